@@ -1,0 +1,75 @@
+#pragma once
+/// \file droplet.hpp
+/// The soft-body droplet: parameters (what the user sets), creation data (topology and rest state
+/// derived once) and runtime state (flat arrays advanced by the simulation).
+
+#include <string>
+#include <vector>
+
+namespace softdrop {
+
+/// Physical and numerical parameters of a droplet. Units are the paper's pixel-like numerical
+/// units: length in grid units, time in simulation time units, mass in mass units.
+struct DropletParams {
+  int masses = 40;           ///< N, point masses on the ring
+  double mass = 1.0;         ///< m, mass of each point
+  double radius = 10.0;      ///< R, radius of the inflated droplet (ring at the stretch limit)
+  double nrt = 6.0e8;         ///< nRT of the ideal gas, P = nRT / V (force x length)
+  double ks = 119755.0;      ///< spring stiffness k_s (force / length)
+  double kd = 365.0;         ///< spring damping k_d (force x time / length)
+  double kc = 1.0e8;         ///< collision penalty stiffness k_c (force / length)
+  double cc = 1.0e4;         ///< collision normal damping (force x time / length)
+  double gravity = -5.0e5;   ///< g_y, acceleration along y (length / time^2); g_x = 0
+  double dt = 2.0e-5;        ///< time step (time)
+  double max_strain = 0.1;   ///< Provot limit: |d - d0| / d0 <= max_strain after each step
+  int constraint_iterations = 4;  ///< Gauss-Seidel passes of the Provot constraint per step
+  /// Contact inverse dynamics: a mass deeper than this inside a grain is moved back to this depth
+  /// and loses its inward normal velocity (length; as a fraction of the smallest grain radius it
+  /// bounds how far a grain can cut into the ring).
+  double max_depth = 0.5;
+  /// Internal viscosity nu (1/time): each mass feels -m nu (v_i - v_rigid,i), where v_rigid is the
+  /// ring's rigid motion (centre-of-mass translation plus rotation). It dissipates deformation
+  /// only, so the centre of mass still moves under gravity and contacts alone. 0 disables it.
+  double viscosity = 1.0e4;
+
+  /// Rest length of a spring: d0 = 2 R sin(pi/N) / (1 + max_strain), so the ring at its stretch
+  /// limit is the regular N-gon inscribed in the circle of radius R.
+  double rest_length() const;
+  /// Area of the inflated droplet, the regular N-gon of circumradius R.
+  double inflated_area() const;
+
+  bool IsValid(std::string* why) const;
+};
+
+/// Runtime state of one droplet: structure of arrays, index i is mass i, ring order i -> i+1 is
+/// counter-clockwise. Position Verlet keeps the previous positions; velocity is (x - px) / dt.
+struct DropletState {
+  std::vector<double> x, y;    ///< positions (x unwrapped: a periodic droplet never jumps)
+  std::vector<double> px, py;  ///< positions one step earlier
+  std::vector<double> fx, fy;  ///< force accumulators
+
+  void resize(int n);
+  int size() const { return static_cast<int>(x.size()); }
+};
+
+/// Places the droplet as the inflated regular N-gon centred at (cx, cy), at rest.
+void place_droplet(const DropletParams& params, double cx, double cy, DropletState* state);
+
+/// Provot's inverse-dynamics length constraint on the ring's springs: every spring longer than
+/// (1 + max_strain) d0 or shorter than (1 - max_strain) d0 has its two ends moved symmetrically
+/// along it back to the limit, edge by edge in ring order, for up to `iterations` passes (stops
+/// early once a pass changes nothing). Previous positions are untouched, so Verlet's implied
+/// velocities follow the corrected positions. Returns the number of corrections made.
+int apply_length_constraint(DropletState* state, double rest_length, double max_strain,
+                            int iterations);
+
+/// Signed enclosed area (shoelace), positive for counter-clockwise order.
+double ring_area(const DropletState& state);
+
+/// True if two non-adjacent edges of the ring intersect.
+bool ring_self_intersects(const DropletState& state);
+
+/// True if the point is inside the ring (crossing number).
+bool ring_contains(const DropletState& state, double px, double py);
+
+}  // namespace softdrop

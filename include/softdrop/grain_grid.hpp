@@ -1,0 +1,50 @@
+#pragma once
+/// \file grain_grid.hpp
+/// A uniform grid over a medium that lists, for each cell, every grain overlapping the cell, so a
+/// point's contacts are found by looking in one cell: O(1) per mass, whatever the grain count.
+
+#include <cstdint>
+#include <vector>
+
+#include "softdrop/medium.hpp"
+
+namespace softdrop {
+
+class GrainGrid {
+ public:
+  /// Builds the grid; periodic media get the images of grains that cross x = 0 or x = W.
+  /// `cell_size` <= 0 picks the mean grain diameter.
+  explicit GrainGrid(const Medium& medium, double cell_size = 0);
+
+  /// Grains (as indices into the stored arrays) whose disc may contain points of the cell holding
+  /// (x, y); x must already be wrapped into [0, W) for periodic media. Empty outside the grid.
+  struct Range {
+    const std::int32_t* begin;
+    const std::int32_t* end;
+  };
+  Range query(double x, double y) const {
+    const double fx = (x - x0_) * inv_cell_;
+    const double fy = (y - y0_) * inv_cell_;
+    if (!(fx >= 0 && fy >= 0 && fx < nx_ && fy < ny_)) return {nullptr, nullptr};
+    const std::int64_t c = static_cast<std::int64_t>(fy) * nx_ + static_cast<std::int64_t>(fx);
+    return {items_.data() + start_[c], items_.data() + start_[c + 1]};
+  }
+
+  /// Stored discs (grains and their periodic images), flat arrays.
+  const std::vector<double>& gx() const { return gx_; }
+  const std::vector<double>& gy() const { return gy_; }
+  const std::vector<double>& gr() const { return gr_; }
+  /// Index of the medium grain a stored disc is (an image maps to its original).
+  const std::vector<std::int32_t>& grain_id() const { return id_; }
+  double cell_size() const { return 1.0 / inv_cell_; }
+
+ private:
+  double x0_ = 0, y0_ = 0, inv_cell_ = 1;
+  int nx_ = 0, ny_ = 0;
+  std::vector<std::int64_t> start_;
+  std::vector<std::int32_t> items_;
+  std::vector<double> gx_, gy_, gr_;
+  std::vector<std::int32_t> id_;
+};
+
+}  // namespace softdrop

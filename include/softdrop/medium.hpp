@@ -1,0 +1,64 @@
+#pragma once
+/// \file medium.hpp
+/// Porous media: a W x H box with disc grains, periodic in x by default, and their generators.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace softdrop {
+
+/// One rigid disc. Units: length units of the simulation (pixel-like, see README).
+struct Grain {
+  double x = 0;  ///< centre x
+  double y = 0;  ///< centre y
+  double r = 0;  ///< radius, > 0
+  bool operator==(const Grain&) const = default;
+};
+
+/// A medium: the box [0, width) x [0, height] and its grains.
+struct Medium {
+  double width = 500;    ///< W, length units
+  double height = 500;   ///< H, length units
+  bool periodic = true;  ///< periodic in x (otherwise solid side walls at x = 0 and x = W)
+  std::vector<Grain> grains;
+
+  /// Checks box size, finiteness and positive radii; names the first bad value in `why`.
+  bool IsValid(std::string* why) const;
+  bool operator==(const Medium&) const = default;
+};
+
+/// How grains are placed.
+enum class MediumKind {
+  overlapping,     ///< Boolean model: uniform centres, discs may overlap
+  non_overlapping  ///< random sequential addition with a minimum surface gap
+};
+
+/// Parses "overlapping" / "non-overlapping"; throws std::invalid_argument naming the value.
+MediumKind parse_medium_kind(const std::string& name);
+const char* to_string(MediumKind kind);
+
+/// Creation data of a random medium.
+struct MediumOptions {
+  MediumKind kind = MediumKind::overlapping;
+  double porosity = 0.8;   ///< target void fraction of the box, in (0, 1)
+  double width = 500;      ///< W, length units
+  double height = 500;     ///< H, length units
+  bool periodic = true;    ///< periodic in x
+  double r_min = 8;        ///< smallest grain radius (radii uniform in [r_min, r_max])
+  double r_max = 16;       ///< largest grain radius
+  double gap = 0.13;       ///< non-overlapping: min surface gap as a fraction of the larger radius
+  std::uint64_t seed = 1;  ///< random seed
+  /// Non-overlapping: consecutive failed placements after which the target is declared unreachable.
+  int max_failed_attempts = 200000;
+
+  bool IsValid(std::string* why) const;
+};
+
+/// Generates a medium. Overlapping: adds discs until the exact porosity first drops to or below the
+/// target. Non-overlapping: random sequential addition keeping every surface gap >= gap * larger
+/// radius and grains inside the box in y, until the target is reached; throws std::runtime_error if
+/// the target cannot be reached (jamming). Throws std::invalid_argument for invalid options.
+Medium generate_medium(const MediumOptions& options);
+
+}  // namespace softdrop

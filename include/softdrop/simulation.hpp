@@ -1,0 +1,127 @@
+#pragma once
+/// \file simulation.hpp
+/// One droplet pushed by gravity through a medium: the step as named stages, exit conditions,
+/// tortuosity of the centre-of-mass path and optional traces.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "softdrop/droplet.hpp"
+#include "softdrop/grain_grid.hpp"
+#include "softdrop/medium.hpp"
+
+namespace softdrop {
+
+/// Why a run ended.
+enum class Outcome {
+  passed,    ///< centre of mass went below y = 0
+  stuck,     ///< no net downward progress of stuck_distance within stuck_window
+  timeout,   ///< max_steps spent
+  diverged   ///< NaN, inverted (area <= 0) or self-intersecting ring
+};
+const char* to_string(Outcome outcome);
+
+/// What to run and what to record.
+struct RunOptions {
+  std::int64_t max_steps = 2'000'000;  ///< step budget (timeout)
+  double stuck_window = 0.5;           ///< time window of the stuck test (time units)
+  double stuck_distance = 5.0;         ///< downward progress required per window (length)
+  int check_interval = 64;             ///< steps between self-intersection / grain-inside checks
+  /// Record the centre-of-mass path every this many steps (0: no path). The tortuosity always uses
+  /// every step, whatever this is.
+  int path_interval = 0;
+  int area_interval = 0;                 ///< record the ring area S(t) every this many steps (0: no)
+  std::vector<double> snapshot_times;    ///< record the ring boundary at these times (time units)
+
+  bool IsValid(std::string* why) const;
+};
+
+/// A recorded ring boundary.
+struct Snapshot {
+  double time = 0;
+  std::vector<double> x, y;
+};
+
+/// The result of one run and why it ended (cf. Ceres' Solver::Summary).
+struct RunSummary {
+  Outcome outcome = Outcome::timeout;
+  std::string reason;            ///< one line saying why the run ended
+  std::int64_t steps = 0;        ///< steps taken
+  double tortuosity = 0;         ///< T = path length between y = H and y = 0 over H (passed only)
+  double path_length = 0;        ///< length of the centre-of-mass path inside the medium so far
+  double start_x = 0, start_y = 0;
+  std::vector<std::int32_t> touched;  ///< indices of grains touched, ascending
+  // Diagnostics, checked every step (area, penetration) or every check_interval steps.
+  double min_area_ratio = 1;     ///< smallest S / S0 seen
+  double max_penetration = 0;    ///< deepest a mass went inside a grain (length)
+  bool grain_inside_ring = false;  ///< a grain centre was found inside the ring
+  // Optional traces.
+  std::vector<double> path_t, path_x, path_y;  ///< centre of mass every path_interval steps
+  std::vector<double> area_t, area;            ///< ring area every area_interval steps
+  std::vector<Snapshot> snapshots;
+};
+
+/// A droplet in a medium. Creation data (params, rest length, grid) is fixed at construction; the
+/// runtime state is reset by `place` and advanced by `step`, which allocates nothing.
+class Simulation {
+ public:
+  /// The medium must outlive the simulation. Throws std::invalid_argument for invalid params.
+  Simulation(const DropletParams& params, const Medium& medium);
+
+  /// Puts the inflated droplet at rest with its centre at (cx, cy) and clears the touched set.
+  void place(double cx, double cy);
+  /// The usual start: centre x = cx, just above the medium (clear of the highest grain).
+  void place_above(double cx);
+  /// Advances one time step: forces (gravity, springs, pressure, collisions), Verlet integration,
+  /// Provot constraint. Returns false if the state became invalid (NaN or area <= 0).
+  bool step();
+  /// Stage 1 of a step on its own: clears and accumulates all forces (gravity, springs, pressure,
+  /// collisions) into state().fx/fy without moving anything.
+  void compute_forces();
+
+  /// Places the droplet above the medium at x = cx and runs to an outcome.
+  RunSummary run(double cx, const RunOptions& options);
+  /// Runs from the current state.
+  RunSummary run_from_current(const RunOptions& options);
+
+  const DropletState& state() const { return state_; }
+  DropletState& mutable_state() { return state_; }
+  const DropletParams& params() const { return params_; }
+  const Medium& medium() const { return medium_; }
+  double area() const { return area_; }
+  double initial_area() const { return area0_; }
+  /// Centre of mass (mean of positions, masses are equal).
+  void centre_of_mass(double* cx, double* cy) const;
+  /// Deepest penetration of a mass into a grain during the last step (length).
+  double last_penetration() const { return last_penetration_; }
+  /// The y at which place_above puts the centre.
+  double start_height() const { return start_y_; }
+  /// FNV-1a hash of the bits of the runtime state: the determinism fingerprint.
+  std::uint64_t state_hash() const;
+
+ private:
+  void accumulate_gravity();
+  void accumulate_springs();
+  void accumulate_pressure();
+  void accumulate_collisions();
+  void accumulate_viscosity();
+  void integrate();
+  void apply_contact_limit();
+  bool any_grain_inside_ring() const;
+
+  DropletParams params_;
+  const Medium& medium_;
+  GrainGrid grid_;
+  DropletState state_;
+  double rest_length_ = 0, area0_ = 0, area_ = 0, start_y_ = 0;
+  double last_penetration_ = 0;
+  std::vector<std::uint8_t> touched_;  ///< per medium grain
+};
+
+/// Length of the polyline (xs, ys) between its first downward crossing of y = top and its first
+/// crossing of y = 0 (crossing points interpolated), divided by `top`. Returns 0 if it does not
+/// cross both. Used to cross-check the on-line accumulator in Simulation.
+double polyline_tortuosity(const std::vector<double>& xs, const std::vector<double>& ys, double top);
+
+}  // namespace softdrop

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs softdrop's build and test dependencies from Debian 12 packages.
+# Non-interactive and safe to run twice; needs root (or sudo).
+set -euo pipefail
+PKGS=(
+  build-essential cmake ninja-build ccache pkg-config
+  libeigen3-dev libnlopt-cxx-dev libnlopt-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libsqlite3-dev sqlite3 libsqlitecpp-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libcli11-dev nlohmann-json3-dev libcairo2-dev libtbb-dev
+)
+missing=()
+for p in "${PKGS[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  SUDO=""; [[ $(id -u) -ne 0 ]] && SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -q
+  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi

@@ -1,0 +1,56 @@
+// softdrop: the command-line program. Every failure ends with one line on stderr and exit code 1
+// (bad input found while running) or 2 (the command line itself is wrong).
+#include <CLI/CLI.hpp>
+#include <exception>
+#include <iostream>
+
+#include "cli/simulate_command.hpp"
+#include "softdrop/version.hpp"
+
+namespace {
+// Reads a TOML/INI file whose plain keys (`porosity = 0.8`) are the long options of the
+// subcommand that was chosen, so a config file looks like the command line without dashes.
+class SubcommandConfig : public CLI::ConfigTOML {
+ public:
+  explicit SubcommandConfig(const CLI::App& app) : app_(app) {}
+  std::vector<CLI::ConfigItem> from_config(std::istream& input) const override {
+    auto parsed = CLI::ConfigTOML::from_config(input);
+    std::string sub;
+    for (const CLI::App* s : app_.get_subcommands()) sub = s->get_name();
+    for (auto& item : parsed)
+      if (item.parents.empty() && !sub.empty()) item.parents.push_back(sub);
+    return parsed;
+  }
+
+ private:
+  const CLI::App& app_;
+};
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"softdrop: soft-body droplets pushed through porous media of disc grains"};
+  app.set_version_flag("--version", softdrop::kVersion);
+  app.require_subcommand(1);
+  app.set_config("--config", "", "Read options from this TOML/INI file (keys: long option names)");
+  app.config_formatter(std::make_shared<SubcommandConfig>(app));
+  app.allow_config_extras(CLI::config_extras_mode::error);
+  softdrop::cli::SimulateArgs simulate;
+  CLI::App* simulate_cmd = softdrop::cli::add_simulate_command(app, simulate);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    std::string message = e.what();
+    for (char& c : message)
+      if (c == '\n') c = ' ';
+    std::cerr << "softdrop: error: " << message << '\n';
+    return 2;
+  }
+  try {
+    if (simulate_cmd->parsed()) return softdrop::cli::run_simulate(simulate);
+  } catch (const std::exception& e) {
+    std::cerr << "softdrop: error: " << e.what() << '\n';
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,224 @@
+#include "cli/simulate_command.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/output.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/porosity.hpp"
+#include "softdrop/version.hpp"
+
+namespace softdrop::cli {
+
+CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
+  CLI::App* s = app.add_subcommand(
+      "simulate", "Push one droplet (or --droplets K) through a generated or loaded medium");
+  s->fallthrough();  // lets `simulate --config FILE` reach the program-level --config
+
+  auto* g = s->add_option_group("Medium", "generated unless --medium is given");
+  g->add_option("--medium", a.medium_file, "Load the medium from this grain file (.json or .csv)");
+  g->add_option("--kind", a.kind, "overlapping or non-overlapping")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"overlapping", "non-overlapping"}));
+  g->add_option("--porosity", a.medium.porosity, "Target porosity phi, in (0, 1)")->capture_default_str();
+  g->add_option("--width", a.medium.width, "Box width W (length units)")->capture_default_str();
+  g->add_option("--height", a.medium.height, "Box height H (length units)")->capture_default_str();
+  g->add_option("--r-min", a.medium.r_min, "Smallest grain radius (length units)")->capture_default_str();
+  g->add_option("--r-max", a.medium.r_max, "Largest grain radius (length units); radii uniform in [r-min, r-max]")
+      ->capture_default_str();
+  g->add_option("--gap", a.medium.gap,
+                "Non-overlapping: min surface gap as a fraction of the larger radius")
+      ->capture_default_str();
+  g->add_flag("--walls", a.walls, "Solid side walls instead of periodic x");
+  g->add_option("--medium-seed", a.medium.seed, "Seed of the medium generator")->capture_default_str();
+  g->add_option("--save-medium", a.save_medium_file, "Write the medium used to this grain file");
+
+  auto* d = s->add_option_group("Droplet", "physical parameters, paper's numerical units");
+  d->add_option("--masses", a.droplet.masses, "N, masses on the ring")->capture_default_str();
+  d->add_option("--mass", a.droplet.mass, "m, mass of each point (mass units)")->capture_default_str();
+  d->add_option("--radius", a.droplet.radius, "R, inflated droplet radius (length units)")->capture_default_str();
+  d->add_option("--nrt", a.droplet.nrt, "nRT of the ideal gas, P = nRT/V (force x length)")->capture_default_str();
+  d->add_option("--ks", a.droplet.ks, "Spring stiffness k_s (force/length)")->capture_default_str();
+  d->add_option("--kd", a.droplet.kd, "Spring damping k_d (force x time/length)")->capture_default_str();
+  d->add_option("--kc", a.droplet.kc, "Collision penalty stiffness k_c (force/length)")->capture_default_str();
+  d->add_option("--cc", a.droplet.cc, "Collision normal damping (force x time/length)")->capture_default_str();
+  d->add_option("--gravity", a.droplet.gravity, "g_y, gravity along y (length/time^2)")->capture_default_str();
+  d->add_option("--dt", a.droplet.dt, "Time step (time units)")->capture_default_str();
+  d->add_option("--max-strain", a.droplet.max_strain, "Provot limit on |d - d0|/d0")->capture_default_str();
+  d->add_option("--constraint-iterations", a.droplet.constraint_iterations,
+                "Passes of the Provot constraint per step")
+      ->capture_default_str();
+
+  d->add_option("--max-depth", a.droplet.max_depth,
+                "Contact limit: deepest a mass may sit inside a grain (length units)")
+      ->capture_default_str();
+  d->add_option("--viscosity", a.droplet.viscosity,
+                "Internal viscosity nu, damps motion relative to rigid motion (1/time)")
+      ->capture_default_str();
+
+  auto* r = s->add_option_group("Run", "exit conditions and droplets");
+  r->add_option("--max-steps", a.run.max_steps, "Step budget per droplet (timeout)")->capture_default_str();
+  r->add_option("--stuck-window", a.run.stuck_window, "Stuck test window (time units)")->capture_default_str();
+  r->add_option("--stuck-distance", a.run.stuck_distance,
+                "Downward progress required per window (length units)")
+      ->capture_default_str();
+  r->add_option("--droplets", a.batch.droplets, "K droplets from random starts, run in parallel")
+      ->capture_default_str();
+  r->add_option("--x0", a.x0, "Start x of the droplet centre (default: random from --seed)");
+  r->add_option("--seed", a.batch.seed, "Seed of the random start positions")->capture_default_str();
+  r->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
+
+  auto* o = s->add_option_group("Output");
+  o->add_option("--format", a.format, "Summary on stdout: table or json")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"table", "json"}));
+  o->add_option("--json", a.json_file, "Also write the JSON summary to this file");
+  o->add_option("--runs", a.runs_csv, "CSV, one row per droplet: start, outcome, T, steps, touched");
+  o->add_option("--paths", a.paths_csv, "CSV of centre-of-mass paths (droplet,t,x,y)");
+  o->add_option("--path-interval", a.run.path_interval, "Steps between path samples (default 100 with --paths)");
+  o->add_option("--trace", a.trace_csv, "CSV of the ring area S(t) (droplet,t,area,ratio)");
+  o->add_option("--trace-interval", a.run.area_interval, "Steps between area samples (default 100 with --trace)");
+  o->add_option("--snapshots", a.snapshots_csv, "CSV of ring boundaries at --snapshot-times (droplet,t,mass,x,y)");
+  o->add_option("--snapshot-times", a.run.snapshot_times, "Times (time units) of boundary snapshots")
+      ->delimiter(',');
+  return s;
+}
+
+namespace {
+
+void validate(SimulateArgs& a) {
+  std::string why;
+  if (!a.droplet.IsValid(&why)) throw std::invalid_argument(why);
+  if (a.batch.droplets < 1 || a.batch.droplets > 10'000'000)
+    throw std::invalid_argument("droplets = " + std::to_string(a.batch.droplets) + ": must be in [1, 1e7]");
+  if (a.batch.threads < 0) throw std::invalid_argument("threads = " + std::to_string(a.batch.threads) + ": must be >= 0");
+  if (!a.paths_csv.empty() && a.run.path_interval == 0) a.run.path_interval = 100;
+  if (!a.trace_csv.empty() && a.run.area_interval == 0) a.run.area_interval = 100;
+  if (!a.snapshots_csv.empty() && a.run.snapshot_times.empty())
+    throw std::invalid_argument("snapshots: --snapshot-times is required with --snapshots");
+  if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
+  if (a.medium_file.empty()) {
+    a.medium.kind = parse_medium_kind(a.kind);
+    a.medium.periodic = !a.walls;
+    if (!a.medium.IsValid(&why)) throw std::invalid_argument(why);
+  }
+  if (!std::isnan(a.x0) && !std::isfinite(a.x0))
+    throw std::invalid_argument("x0 = " + fmt(a.x0) + ": must be finite");
+  for (const auto& [option, path] :
+       {std::pair{"--save-medium", a.save_medium_file}, {"--runs", a.runs_csv}, {"--paths", a.paths_csv},
+        {"--trace", a.trace_csv}, {"--snapshots", a.snapshots_csv}, {"--json", a.json_file}})
+    if (!path.empty()) check_output_path(option, path);
+}
+
+nlohmann::json run_json(const RunSummary& r, int i) {
+  return {{"droplet", i},
+          {"start_x", r.start_x},
+          {"outcome", to_string(r.outcome)},
+          {"reason", r.reason},
+          {"tortuosity", r.outcome == Outcome::passed ? nlohmann::json(r.tortuosity) : nlohmann::json()},
+          {"steps", r.steps},
+          {"touched_grains", r.touched.size()},
+          {"min_area_ratio", r.min_area_ratio},
+          {"max_penetration", r.max_penetration}};
+}
+
+}  // namespace
+
+int run_simulate(SimulateArgs& a) {
+  validate(a);
+  const Medium medium = a.medium_file.empty() ? generate_medium(a.medium) : load_medium(a.medium_file);
+  if (!a.save_medium_file.empty()) save_medium(a.save_medium_file, medium);
+  const double porosity = exact_porosity(medium);
+  a.batch.start_x = a.x0;
+
+  Progress progress("simulate: droplets done");
+  const auto t0 = std::chrono::steady_clock::now();
+  const std::vector<RunSummary> runs =
+      run_batch(a.droplet, medium, a.run, a.batch,
+                a.batch.droplets > 1 ? std::function<void(int, int)>(
+                                           [&](int done, int total) { progress.update(done, total); })
+                                     : std::function<void(int, int)>());
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const BatchStats stats = summarize(runs);
+  double total_steps = 0;
+  for (const auto& r : runs) total_steps += static_cast<double>(r.steps);
+
+  nlohmann::json j;
+  j["version"] = kVersion;
+  j["medium"] = {{"grains", medium.grains.size()}, {"porosity", porosity}, {"width", medium.width},
+                 {"height", medium.height}, {"periodic", medium.periodic}};
+  j["droplets"] = stats.droplets;
+  j["passed"] = stats.passed;
+  j["stuck"] = stats.stuck;
+  j["timeout"] = stats.timeout;
+  j["diverged"] = stats.diverged;
+  j["mean_tortuosity"] = stats.passed ? nlohmann::json(stats.mean_tortuosity) : nlohmann::json();
+  j["standard_error"] = stats.passed > 1 ? nlohmann::json(stats.standard_error) : nlohmann::json();
+  j["stuck_fraction"] = stats.stuck_fraction;
+  j["wall_seconds"] = seconds;
+  j["steps_per_second"] = seconds > 0 ? total_steps / seconds : 0.0;
+  if (runs.size() == 1) j["run"] = run_json(runs[0], 0);
+
+  std::ostringstream table;
+  table << std::setprecision(6);
+  table << "medium       " << medium.grains.size() << " grains, porosity " << fmt(porosity, 6)
+        << ", " << medium.width << " x " << medium.height << (medium.periodic ? ", periodic" : ", walls")
+        << '\n';
+  if (runs.size() == 1) {
+    const RunSummary& r = runs[0];
+    table << "outcome      " << to_string(r.outcome) << " (" << r.reason << ")\n";
+    if (r.outcome == Outcome::passed) table << "tortuosity   " << fmt(r.tortuosity, 10) << '\n';
+    table << "start x      " << r.start_x << "\nsteps        " << r.steps << " (t = " << static_cast<double>(r.steps) * a.droplet.dt
+          << ")\ntouched      " << r.touched.size() << " grains\nmin area     " << r.min_area_ratio
+          << " S0\nmax depth    " << r.max_penetration << " length units\n";
+  } else {
+    table << "droplets     " << stats.droplets << ": " << stats.passed << " passed, " << stats.stuck
+          << " stuck, " << stats.timeout << " timeout, " << stats.diverged << " diverged\n";
+    if (stats.passed) table << "mean T       " << fmt(stats.mean_tortuosity, 8) << " +- " << stats.standard_error << " (standard error)\n";
+    table << "stuck        " << stats.stuck_fraction << " of droplets\n";
+  }
+  table << "speed        " << total_steps / seconds << " steps/s (" << seconds << " s wall)\n";
+
+  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  auto csv = [&](const std::string& path, const std::string& header, auto&& rows) {
+    if (path.empty()) return;
+    std::ostringstream out;
+    out.precision(17);
+    out << header << '\n';
+    for (std::size_t i = 0; i < runs.size(); ++i) rows(out, static_cast<int>(i), runs[i]);
+    write_file_atomically(path, out.str());
+  };
+  csv(a.runs_csv, "droplet,start_x,outcome,tortuosity,steps,touched,min_area_ratio,max_penetration",
+      [](std::ostream& o, int i, const RunSummary& r) {
+        o << i << ',' << r.start_x << ',' << to_string(r.outcome) << ','
+          << (r.outcome == Outcome::passed ? fmt(r.tortuosity) : "") << ',' << r.steps << ','
+          << r.touched.size() << ',' << r.min_area_ratio << ',' << r.max_penetration << '\n';
+      });
+  csv(a.paths_csv, "droplet,t,x,y", [](std::ostream& o, int i, const RunSummary& r) {
+    for (std::size_t k = 0; k < r.path_t.size(); ++k)
+      o << i << ',' << r.path_t[k] << ',' << r.path_x[k] << ',' << r.path_y[k] << '\n';
+  });
+  const double area0 = a.droplet.inflated_area();
+  csv(a.trace_csv, "droplet,t,area,ratio", [&](std::ostream& o, int i, const RunSummary& r) {
+    for (std::size_t k = 0; k < r.area_t.size(); ++k)
+      o << i << ',' << r.area_t[k] << ',' << r.area[k] << ',' << r.area[k] / area0 << '\n';
+  });
+  csv(a.snapshots_csv, "droplet,t,mass,x,y", [](std::ostream& o, int i, const RunSummary& r) {
+    for (const Snapshot& sn : r.snapshots)
+      for (std::size_t k = 0; k < sn.x.size(); ++k)
+        o << i << ',' << sn.time << ',' << k << ',' << sn.x[k] << ',' << sn.y[k] << '\n';
+  });
+
+  if (a.format == "json")
+    std::cout << j.dump(2) << '\n';
+  else
+    std::cout << table.str();
+  return 0;
+}
+
+}  // namespace softdrop::cli

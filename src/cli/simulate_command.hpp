@@ -1,0 +1,35 @@
+#pragma once
+// `softdrop simulate`: generate or load a medium and push one or many droplets through it.
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "softdrop/batch.hpp"
+#include "softdrop/droplet.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop::cli {
+
+struct SimulateArgs {
+  MediumOptions medium;
+  std::string kind = "overlapping";
+  bool walls = false;
+  std::string medium_file;       ///< load instead of generating
+  std::string save_medium_file;  ///< save the medium used
+  DropletParams droplet;
+  RunOptions run;
+  BatchOptions batch;
+  double x0 = std::numeric_limits<double>::quiet_NaN();
+  std::string format = "table";
+  std::string runs_csv, paths_csv, trace_csv, snapshots_csv, json_file;
+};
+
+/// Registers the subcommand and its options on `app`; returns it.
+CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args);
+
+/// Runs it; throws std::exception with a one-line message on bad input.
+int run_simulate(SimulateArgs& args);
+
+}  // namespace softdrop::cli

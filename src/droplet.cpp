@@ -1,0 +1,146 @@
+#include "softdrop/droplet.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace softdrop {
+namespace {
+bool fail(std::string* why, const std::string& message) {
+  if (why) *why = message;
+  return false;
+}
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+bool positive(double v) { return std::isfinite(v) && v > 0; }
+
+// Orientation sign of (a, b, c).
+double cross(double ax, double ay, double bx, double by, double cx, double cy) {
+  return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+}
+}  // namespace
+
+double DropletParams::rest_length() const {
+  return 2 * radius * std::sin(M_PI / masses) / (1 + max_strain);
+}
+
+double DropletParams::inflated_area() const {
+  return 0.5 * masses * radius * radius * std::sin(2 * M_PI / masses);
+}
+
+bool DropletParams::IsValid(std::string* why) const {
+  if (masses < 8 || masses > 100000)
+    return fail(why, "masses = " + std::to_string(masses) + ": must be in [8, 100000]");
+  if (!positive(mass)) return fail(why, "mass = " + num(mass) + ": must be > 0");
+  if (!positive(radius)) return fail(why, "radius = " + num(radius) + ": must be > 0");
+  if (!positive(nrt)) return fail(why, "nrt = " + num(nrt) + ": must be > 0");
+  if (!std::isfinite(ks) || ks < 0) return fail(why, "ks = " + num(ks) + ": must be >= 0");
+  if (!std::isfinite(kd) || kd < 0) return fail(why, "kd = " + num(kd) + ": must be >= 0");
+  if (!positive(kc)) return fail(why, "kc = " + num(kc) + ": must be > 0");
+  if (!std::isfinite(cc) || cc < 0) return fail(why, "cc = " + num(cc) + ": must be >= 0");
+  if (!std::isfinite(gravity)) return fail(why, "gravity = " + num(gravity) + ": must be finite");
+  if (!positive(dt) || dt > 1e-2) return fail(why, "dt = " + num(dt) + ": must be in (0, 0.01]");
+  if (!std::isfinite(max_strain) || max_strain <= 0 || max_strain >= 0.5)
+    return fail(why, "max-strain = " + num(max_strain) + ": must be in (0, 0.5)");
+  if (constraint_iterations < 0 || constraint_iterations > 100)
+    return fail(why, "constraint-iterations = " + std::to_string(constraint_iterations) +
+                         ": must be in [0, 100]");
+  if (!std::isfinite(max_depth) || max_depth <= 0)
+    return fail(why, "max-depth = " + num(max_depth) + ": must be > 0");
+  if (!std::isfinite(viscosity) || viscosity < 0 || viscosity * dt > 0.5)
+    return fail(why, "viscosity = " + num(viscosity) + ": must be >= 0 and viscosity * dt <= 0.5");
+  // Explicit integration is only stable when the stiffest oscillator is resolved in time.
+  const double omega_dt = std::sqrt(std::max(ks, kc) / mass) * dt;
+  if (omega_dt > 0.5)
+    return fail(why, "dt = " + num(dt) + ": too large for the stiffness, sqrt(max(ks, kc) / mass) * dt = " +
+                         num(omega_dt) + " must be <= 0.5");
+  if (std::max(kd, cc) * dt / mass > 1.0)
+    return fail(why, "dt = " + num(dt) + ": too large for the damping, max(kd, cc) * dt / mass = " +
+                         num(std::max(kd, cc) * dt / mass) + " must be <= 1");
+  return true;
+}
+
+void DropletState::resize(int n) {
+  for (auto* v : {&x, &y, &px, &py, &fx, &fy}) v->assign(static_cast<std::size_t>(n), 0.0);
+}
+
+void place_droplet(const DropletParams& params, double cx, double cy, DropletState* state) {
+  state->resize(params.masses);
+  for (int i = 0; i < params.masses; ++i) {
+    const double a = 2 * M_PI * i / params.masses;
+    state->x[i] = state->px[i] = cx + params.radius * std::cos(a);
+    state->y[i] = state->py[i] = cy + params.radius * std::sin(a);
+  }
+}
+
+int apply_length_constraint(DropletState* state, double rest_length, double max_strain,
+                            int iterations) {
+  const int n = state->size();
+  const double dmax = (1 + max_strain) * rest_length;
+  const double dmin = (1 - max_strain) * rest_length;
+  double *x = state->x.data(), *y = state->y.data();
+  int corrections = 0;
+  for (int pass = 0; pass < iterations; ++pass) {
+    int changed = 0;
+    for (int i = 0; i < n; ++i) {
+      const int j = i + 1 == n ? 0 : i + 1;
+      const double dx = x[j] - x[i], dy = y[j] - y[i];
+      const double d2 = dx * dx + dy * dy;
+      if (d2 <= dmax * dmax && d2 >= dmin * dmin) continue;
+      const double d = std::sqrt(d2);
+      if (d == 0) continue;
+      const double target = d > dmax ? dmax : dmin;
+      const double c = 0.5 * (d - target) / d;  // > 0 pulls the ends together, < 0 pushes apart
+      x[i] += c * dx;
+      y[i] += c * dy;
+      x[j] -= c * dx;
+      y[j] -= c * dy;
+      ++changed;
+    }
+    corrections += changed;
+    if (changed == 0) break;
+  }
+  return corrections;
+}
+
+double ring_area(const DropletState& s) {
+  const int n = s.size();
+  double twice = 0;
+  for (int i = 0, j = n - 1; i < n; j = i++) twice += s.x[j] * s.y[i] - s.x[i] * s.y[j];
+  return 0.5 * twice;
+}
+
+bool ring_self_intersects(const DropletState& s) {
+  const int n = s.size();
+  for (int i = 0; i < n; ++i) {
+    const int i1 = (i + 1) % n;
+    for (int j = i + 2; j < n; ++j) {
+      const int j1 = (j + 1) % n;
+      if (j1 == i) continue;  // adjacent through the wrap
+      const double d1 = cross(s.x[i], s.y[i], s.x[i1], s.y[i1], s.x[j], s.y[j]);
+      const double d2 = cross(s.x[i], s.y[i], s.x[i1], s.y[i1], s.x[j1], s.y[j1]);
+      const double d3 = cross(s.x[j], s.y[j], s.x[j1], s.y[j1], s.x[i], s.y[i]);
+      const double d4 = cross(s.x[j], s.y[j], s.x[j1], s.y[j1], s.x[i1], s.y[i1]);
+      if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 &&
+          d4 != 0)
+        return true;
+    }
+  }
+  return false;
+}
+
+bool ring_contains(const DropletState& s, double px, double py) {
+  const int n = s.size();
+  bool inside = false;
+  for (int i = 0, j = n - 1; i < n; j = i++) {
+    if ((s.y[i] > py) != (s.y[j] > py) &&
+        px < (s.x[j] - s.x[i]) * (py - s.y[i]) / (s.y[j] - s.y[i]) + s.x[i])
+      inside = !inside;
+  }
+  return inside;
+}
+
+}  // namespace softdrop

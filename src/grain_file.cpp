@@ -1,0 +1,167 @@
+#include "softdrop/grain_file.hpp"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+namespace softdrop {
+namespace {
+
+bool ends_with(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+[[noreturn]] void bad(const std::string& path, const std::string& what) {
+  throw std::runtime_error("grain file '" + path + "': " + what);
+}
+
+double parse_number(const std::string& path, int line, const std::string& text) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  std::size_t end = used;
+  while (end < text.size() && std::isspace(static_cast<unsigned char>(text[end]))) ++end;
+  if (used == 0 || end != text.size())
+    bad(path, "line " + std::to_string(line) + ": '" + text + "' is not a number");
+  return v;
+}
+
+bool parse_bool(const std::string& path, int line, std::string v) {
+  if (v == "true" || v == "1") return true;
+  if (v == "false" || v == "0") return false;
+  bad(path, "line " + std::to_string(line) + ": periodic must be true or false, got '" + v + "'");
+}
+
+std::string trim(std::string s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+Medium load_json(const std::string& path, std::istream& in) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    bad(path, std::string("not valid JSON (") + e.what() + ")");
+  }
+  if (!j.is_object()) bad(path, "top level must be an object");
+  if (j.value("format", "") != "softdrop-medium") bad(path, "\"format\" must be \"softdrop-medium\"");
+  if (j.value("version", 0) != 1) bad(path, "unsupported \"version\" (this program reads 1)");
+  Medium m;
+  try {
+    m.width = j.at("width").get<double>();
+    m.height = j.at("height").get<double>();
+    m.periodic = j.value("periodic", true);
+    const auto& grains = j.at("grains");
+    if (!grains.is_array()) bad(path, "\"grains\" must be an array");
+    m.grains.reserve(grains.size());
+    for (const auto& g : grains)
+      m.grains.push_back({g.at("x").get<double>(), g.at("y").get<double>(), g.at("r").get<double>()});
+  } catch (const nlohmann::json::exception& e) {
+    bad(path, std::string("missing or mistyped field (") + e.what() + ")");
+  }
+  return m;
+}
+
+Medium load_csv(const std::string& path, std::istream& in) {
+  Medium m;
+  bool have_w = false, have_h = false, have_header = false;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    line = trim(line);
+    if (line.empty()) continue;
+    if (line[0] == '#') {
+      const auto eq = line.find('=');
+      if (eq == std::string::npos) continue;
+      const std::string key = trim(line.substr(1, eq - 1)), value = trim(line.substr(eq + 1));
+      if (key == "width") m.width = parse_number(path, number, value), have_w = true;
+      else if (key == "height") m.height = parse_number(path, number, value), have_h = true;
+      else if (key == "periodic") m.periodic = parse_bool(path, number, value);
+      continue;
+    }
+    if (!have_header) {
+      if (line != "x,y,r") bad(path, "line " + std::to_string(number) + ": expected header x,y,r");
+      have_header = true;
+      continue;
+    }
+    std::stringstream fields(line);
+    std::string fx, fy, fr, extra;
+    if (!std::getline(fields, fx, ',') || !std::getline(fields, fy, ',') ||
+        !std::getline(fields, fr, ',') || std::getline(fields, extra, ','))
+      bad(path, "line " + std::to_string(number) + ": expected 3 fields x,y,r");
+    m.grains.push_back({parse_number(path, number, trim(fx)), parse_number(path, number, trim(fy)),
+                        parse_number(path, number, trim(fr))});
+  }
+  if (!have_header) bad(path, "no x,y,r header");
+  if (!have_w || !have_h) bad(path, "missing '# width=' or '# height=' line");
+  return m;
+}
+
+}  // namespace
+
+Medium load_medium(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) bad(path, std::string("cannot open (") + std::strerror(errno) + ")");
+  Medium m = ends_with(path, ".json") ? load_json(path, in) : load_csv(path, in);
+  std::string why;
+  if (!m.IsValid(&why)) bad(path, why);
+  return m;
+}
+
+void write_file_atomically(const std::string& path, const std::string& content) {
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));
+    out << content;
+    out.flush();
+    if (!out) {
+      std::remove(tmp.c_str());
+      throw std::runtime_error("cannot write '" + path + "': write failed");
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) {
+    std::remove(tmp.c_str());
+    throw std::runtime_error("cannot write '" + path + "': " + ec.message());
+  }
+}
+
+void save_medium(const std::string& path, const Medium& medium) {
+  std::ostringstream out;
+  out.precision(17);
+  if (ends_with(path, ".json")) {
+    nlohmann::json j;
+    j["format"] = "softdrop-medium";
+    j["version"] = 1;
+    j["width"] = medium.width;
+    j["height"] = medium.height;
+    j["periodic"] = medium.periodic;
+    j["grains"] = nlohmann::json::array();
+    for (const Grain& g : medium.grains) j["grains"].push_back({{"x", g.x}, {"y", g.y}, {"r", g.r}});
+    out << j.dump(1) << '\n';
+  } else {
+    out << "# softdrop medium\n# width=" << medium.width << "\n# height=" << medium.height
+        << "\n# periodic=" << (medium.periodic ? "true" : "false") << "\nx,y,r\n";
+    for (const Grain& g : medium.grains) out << g.x << ',' << g.y << ',' << g.r << '\n';
+  }
+  write_file_atomically(path, out.str());
+}
+
+}  // namespace softdrop

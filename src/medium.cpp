@@ -1,0 +1,149 @@
+#include "softdrop/medium.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include "softdrop/porosity.hpp"
+#include "softdrop/random.hpp"
+#include "softdrop/spacing.hpp"
+
+namespace softdrop {
+namespace {
+bool fail(std::string* why, const std::string& message) {
+  if (why) *why = message;
+  return false;
+}
+std::string num(double v) {
+  std::ostringstream s;
+  s.precision(17);
+  s << v;
+  return s.str();
+}
+}  // namespace
+
+bool Medium::IsValid(std::string* why) const {
+  if (!std::isfinite(width) || width <= 0) return fail(why, "width = " + num(width) + ": must be > 0");
+  if (!std::isfinite(height) || height <= 0)
+    return fail(why, "height = " + num(height) + ": must be > 0");
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    const Grain& g = grains[i];
+    const std::string at = "grain " + std::to_string(i) + ": ";
+    if (!std::isfinite(g.x) || !std::isfinite(g.y)) return fail(why, at + "non-finite centre");
+    if (!std::isfinite(g.r) || g.r <= 0) return fail(why, at + "radius " + num(g.r) + " must be > 0");
+    if (periodic && 2 * g.r >= width) return fail(why, at + "diameter must be smaller than width");
+  }
+  return true;
+}
+
+MediumKind parse_medium_kind(const std::string& name) {
+  if (name == "overlapping") return MediumKind::overlapping;
+  if (name == "non-overlapping" || name == "nonoverlapping") return MediumKind::non_overlapping;
+  throw std::invalid_argument("kind = '" + name + "': must be overlapping or non-overlapping");
+}
+
+const char* to_string(MediumKind kind) {
+  return kind == MediumKind::overlapping ? "overlapping" : "non-overlapping";
+}
+
+bool MediumOptions::IsValid(std::string* why) const {
+  if (!std::isfinite(porosity) || porosity <= 0 || porosity >= 1)
+    return fail(why, "porosity = " + num(porosity) + ": must be in (0, 1)");
+  if (!std::isfinite(width) || width <= 0) return fail(why, "width = " + num(width) + ": must be > 0");
+  if (!std::isfinite(height) || height <= 0)
+    return fail(why, "height = " + num(height) + ": must be > 0");
+  if (!std::isfinite(r_min) || r_min <= 0) return fail(why, "r-min = " + num(r_min) + ": must be > 0");
+  if (!std::isfinite(r_max) || r_max < r_min)
+    return fail(why, "r-max = " + num(r_max) + ": must be >= r-min");
+  if (2 * r_max >= width) return fail(why, "r-max = " + num(r_max) + ": diameter must be < width");
+  if (kind == MediumKind::non_overlapping && 2 * r_max > height)
+    return fail(why, "r-max = " + num(r_max) + ": diameter must be <= height");
+  if (!std::isfinite(gap) || gap < 0) return fail(why, "gap = " + num(gap) + ": must be >= 0");
+  if (max_failed_attempts <= 0)
+    return fail(why, "max-failed-attempts = " + std::to_string(max_failed_attempts) + ": must be > 0");
+  return true;
+}
+
+namespace {
+
+Grain random_grain(Rng& rng, const MediumOptions& o) {
+  Grain g;
+  g.r = o.r_min == o.r_max ? o.r_min : rng.uniform(o.r_min, o.r_max);
+  if (o.kind == MediumKind::overlapping) {
+    g.x = rng.uniform(0, o.width);
+    g.y = rng.uniform(0, o.height);
+  } else {
+    g.x = o.periodic ? rng.uniform(0, o.width) : rng.uniform(g.r, o.width - g.r);
+    g.y = rng.uniform(g.r, o.height - g.r);
+  }
+  return g;
+}
+
+Medium overlapping_medium(const MediumOptions& o) {
+  // The porosity of a prefix of a fixed random sequence of discs falls monotonically with its
+  // length, so the smallest prefix reaching the target is found by bisection over exact porosities.
+  Rng rng(derive_seed(o.seed, 0));
+  Medium m{o.width, o.height, o.periodic, {}};
+  const double mean_area = M_PI * (o.r_min * o.r_min + o.r_min * o.r_max + o.r_max * o.r_max) / 3;
+  const double expected = -std::log(o.porosity) * o.width * o.height / mean_area;
+  std::vector<Grain> pool;
+  auto porosity_of = [&](std::size_t n) {
+    Medium prefix{o.width, o.height, o.periodic,
+                  std::vector<Grain>(pool.begin(), pool.begin() + static_cast<std::ptrdiff_t>(n))};
+    return exact_porosity(prefix);
+  };
+  std::size_t hi = static_cast<std::size_t>(1.3 * expected) + 16;
+  constexpr std::size_t kMaxGrains = 50'000'000;
+  for (;;) {
+    while (pool.size() < hi) pool.push_back(random_grain(rng, o));
+    if (porosity_of(hi) <= o.porosity) break;
+    if (hi > kMaxGrains)
+      throw std::runtime_error("porosity = " + num(o.porosity) + ": not reached with " +
+                               std::to_string(hi) + " grains");
+    hi *= 2;
+  }
+  std::size_t lo = 0;  // porosity_of(lo) > target (lo = 0 has porosity 1)
+  while (hi - lo > 1) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    (porosity_of(mid) <= o.porosity ? hi : lo) = mid;
+  }
+  m.grains.assign(pool.begin(), pool.begin() + static_cast<std::ptrdiff_t>(hi));
+  return m;
+}
+
+Medium non_overlapping_medium(const MediumOptions& o) {
+  Rng rng(derive_seed(o.seed, 1));
+  Medium m{o.width, o.height, o.periodic, {}};
+  SpacingIndex index(o.width, o.height, o.periodic, o.gap, o.r_max);
+  // Grains lie inside the box in y and do not overlap, so the solid area is the sum of disc areas.
+  const double box = o.width * o.height;
+  double solid = 0;
+  int failed = 0;
+  while (1 - solid / box > o.porosity) {
+    const Grain g = random_grain(rng, o);
+    if (!index.can_place(g)) {
+      if (++failed >= o.max_failed_attempts)
+        throw std::runtime_error("porosity = " + num(o.porosity) +
+                                 ": unreachable for non-overlapping grains with gap " + num(o.gap) +
+                                 " (jammed at porosity " + num(1 - solid / box) + " with " +
+                                 std::to_string(m.grains.size()) + " grains)");
+      continue;
+    }
+    failed = 0;
+    index.insert(g);
+    m.grains.push_back(g);
+    solid += M_PI * g.r * g.r;
+  }
+  return m;
+}
+
+}  // namespace
+
+Medium generate_medium(const MediumOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  return options.kind == MediumKind::overlapping ? overlapping_medium(options)
+                                                 : non_overlapping_medium(options);
+}
+
+}  // namespace softdrop

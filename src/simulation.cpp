@@ -1,0 +1,439 @@
+#include "softdrop/simulation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <sstream>
+#include <stdexcept>
+
+namespace softdrop {
+
+const char* to_string(Outcome outcome) {
+  switch (outcome) {
+    case Outcome::passed: return "passed";
+    case Outcome::stuck: return "stuck";
+    case Outcome::timeout: return "timeout";
+    case Outcome::diverged: return "diverged";
+  }
+  return "?";
+}
+
+bool RunOptions::IsValid(std::string* why) const {
+  auto fail = [&](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (max_steps <= 0) return fail("max-steps = " + std::to_string(max_steps) + ": must be > 0");
+  if (!std::isfinite(stuck_window) || stuck_window <= 0)
+    return fail("stuck-window = " + std::to_string(stuck_window) + ": must be > 0");
+  if (!std::isfinite(stuck_distance) || stuck_distance < 0)
+    return fail("stuck-distance = " + std::to_string(stuck_distance) + ": must be >= 0");
+  if (check_interval <= 0)
+    return fail("check-interval = " + std::to_string(check_interval) + ": must be > 0");
+  if (path_interval < 0)
+    return fail("path-interval = " + std::to_string(path_interval) + ": must be >= 0");
+  if (area_interval < 0)
+    return fail("area-interval = " + std::to_string(area_interval) + ": must be >= 0");
+  for (double t : snapshot_times)
+    if (!std::isfinite(t) || t < 0)
+      return fail("snapshot-times: " + std::to_string(t) + " must be finite and >= 0");
+  return true;
+}
+
+Simulation::Simulation(const DropletParams& params, const Medium& medium)
+    : params_(params), medium_(medium), grid_(medium) {
+  std::string why;
+  if (!params.IsValid(&why)) throw std::invalid_argument(why);
+  if (!medium.IsValid(&why)) throw std::invalid_argument(why);
+  rest_length_ = params.rest_length();
+  area0_ = params.inflated_area();
+  touched_.assign(medium.grains.size(), 0);
+  double top = medium.height;
+  for (const Grain& g : medium.grains) top = std::max(top, g.y + g.r);
+  start_y_ = top + params.radius + 0.05 * params.radius;
+  place(0.5 * medium.width, start_y_);
+}
+
+void Simulation::place(double cx, double cy) {
+  place_droplet(params_, cx, cy, &state_);
+  // Start at rest at t = 0: x(-dt) = x(0) + g dt^2 / 2 makes Verlet exact for free fall.
+  for (int i = 0; i < state_.size(); ++i) state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
+  std::fill(touched_.begin(), touched_.end(), 0);
+  area_ = ring_area(state_);
+  last_penetration_ = 0;
+}
+
+void Simulation::place_above(double cx) { place(cx, start_y_); }
+
+void Simulation::centre_of_mass(double* cx, double* cy) const {
+  const int n = state_.size();
+  double sx = 0, sy = 0;
+  for (int i = 0; i < n; ++i) {
+    sx += state_.x[i];
+    sy += state_.y[i];
+  }
+  *cx = sx / n;
+  *cy = sy / n;
+}
+
+// ---- Stages of a step -------------------------------------------------------------------------
+
+void Simulation::accumulate_gravity() {
+  const double w = params_.mass * params_.gravity;
+  std::fill(state_.fx.begin(), state_.fx.end(), 0.0);
+  std::fill(state_.fy.begin(), state_.fy.end(), w);
+}
+
+void Simulation::accumulate_springs() {
+  const int n = state_.size();
+  const double ks = params_.ks, kd = params_.kd, inv_dt = 1.0 / params_.dt, d0 = rest_length_;
+  double* fx = state_.fx.data();
+  double* fy = state_.fy.data();
+  const double *x = state_.x.data(), *y = state_.y.data();
+  const double *px = state_.px.data(), *py = state_.py.data();
+  for (int i = 0; i < n; ++i) {
+    const int j = i + 1 == n ? 0 : i + 1;
+    const double dx = x[j] - x[i], dy = y[j] - y[i];
+    const double d = std::sqrt(dx * dx + dy * dy);
+    if (d == 0) continue;
+    const double ux = dx / d, uy = dy / d;
+    // Relative velocity of j with respect to i, projected on the spring.
+    const double dvx = ((x[j] - px[j]) - (x[i] - px[i])) * inv_dt;
+    const double dvy = ((y[j] - py[j]) - (y[i] - py[i])) * inv_dt;
+    const double f = ks * (d - d0) + kd * (dvx * ux + dvy * uy);  // > 0 pulls i towards j
+    fx[i] += f * ux;
+    fy[i] += f * uy;
+    fx[j] -= f * ux;
+    fy[j] -= f * uy;
+  }
+}
+
+void Simulation::accumulate_pressure() {
+  area_ = ring_area(state_);
+  const int n = state_.size();
+  // P l_e along the outward normal (dy, -dx) / l_e of a counter-clockwise edge, half to each end.
+  const double half_p = 0.5 * params_.nrt / area_;
+  double* fx = state_.fx.data();
+  double* fy = state_.fy.data();
+  const double *x = state_.x.data(), *y = state_.y.data();
+  for (int i = 0; i < n; ++i) {
+    const int j = i + 1 == n ? 0 : i + 1;
+    const double ex = half_p * (y[j] - y[i]), ey = -half_p * (x[j] - x[i]);
+    fx[i] += ex;
+    fy[i] += ey;
+    fx[j] += ex;
+    fy[j] += ey;
+  }
+}
+
+void Simulation::accumulate_collisions() {
+  const int n = state_.size();
+  const double kc = params_.kc, cc = params_.cc, inv_dt = 1.0 / params_.dt;
+  const double W = medium_.width;
+  const bool periodic = medium_.periodic;
+  const double *gx = grid_.gx().data(), *gy = grid_.gy().data(), *gr = grid_.gr().data();
+  const std::int32_t* gid = grid_.grain_id().data();
+  double deepest = 0;
+  for (int i = 0; i < n; ++i) {
+    const double x = state_.x[i], y = state_.y[i];
+    const double vx = (x - state_.px[i]) * inv_dt, vy = (y - state_.py[i]) * inv_dt;
+    const double xw = periodic ? x - W * std::floor(x / W) : x;
+    const auto range = grid_.query(xw, y);
+    for (const std::int32_t* it = range.begin; it != range.end; ++it) {
+      const std::int32_t k = *it;
+      const double dx = xw - gx[k], dy = y - gy[k], r = gr[k];
+      const double d2 = dx * dx + dy * dy;
+      if (d2 >= r * r) continue;
+      const double d = std::sqrt(d2);
+      const double nx = d > 0 ? dx / d : 0.0, ny = d > 0 ? dy / d : 1.0;
+      const double depth = r - d;
+      // Penalty spring from the surface point plus damping of the normal velocity; never pulls.
+      const double f = std::max(0.0, kc * depth - cc * (vx * nx + vy * ny));
+      state_.fx[i] += f * nx;
+      state_.fy[i] += f * ny;
+      touched_[static_cast<std::size_t>(gid[k])] = 1;
+      deepest = std::max(deepest, depth);
+    }
+    if (!periodic) {  // solid side walls
+      if (x < 0) state_.fx[i] += std::max(0.0, -kc * x - cc * vx);
+      if (x > W) state_.fx[i] -= std::max(0.0, kc * (x - W) + cc * vx);
+    }
+  }
+  last_penetration_ = deepest;
+}
+
+void Simulation::accumulate_viscosity() {
+  // Rigid motion of the ring from its linear and angular momentum; the viscous force acts on the
+  // rest, so it sums to zero force and zero torque.
+  const int n = state_.size();
+  const double inv_dt = 1.0 / params_.dt;
+  const double *x = state_.x.data(), *y = state_.y.data(), *px = state_.px.data(), *py = state_.py.data();
+  double cx = 0, cy = 0, vx = 0, vy = 0;
+  for (int i = 0; i < n; ++i) {
+    cx += x[i];
+    cy += y[i];
+    vx += x[i] - px[i];
+    vy += y[i] - py[i];
+  }
+  cx /= n;
+  cy /= n;
+  vx *= inv_dt / n;
+  vy *= inv_dt / n;
+  double ang = 0, inertia = 0;
+  for (int i = 0; i < n; ++i) {
+    const double rx = x[i] - cx, ry = y[i] - cy;
+    ang += rx * ((y[i] - py[i]) * inv_dt - vy) - ry * ((x[i] - px[i]) * inv_dt - vx);
+    inertia += rx * rx + ry * ry;
+  }
+  const double omega = inertia > 0 ? ang / inertia : 0.0;
+  const double c = params_.mass * params_.viscosity;
+  for (int i = 0; i < n; ++i) {
+    const double rx = x[i] - cx, ry = y[i] - cy;
+    state_.fx[i] -= c * ((x[i] - px[i]) * inv_dt - (vx - omega * ry));
+    state_.fy[i] -= c * ((y[i] - py[i]) * inv_dt - (vy + omega * rx));
+  }
+}
+
+void Simulation::apply_contact_limit() {
+  // Inverse dynamics for contacts: no mass stays deeper than max_depth inside a grain, and one
+  // that is pushed back loses the normal velocity that carried it in (an inelastic stop).
+  const int n = state_.size();
+  const double W = medium_.width, limit = params_.max_depth;
+  const bool periodic = medium_.periodic;
+  const double *gx = grid_.gx().data(), *gy = grid_.gy().data(), *gr = grid_.gr().data();
+  for (int i = 0; i < n; ++i) {
+    const double xw = periodic ? state_.x[i] - W * std::floor(state_.x[i] / W) : state_.x[i];
+    const auto range = grid_.query(xw, state_.y[i]);
+    for (const std::int32_t* it = range.begin; it != range.end; ++it) {
+      const std::int32_t k = *it;
+      const double dx = xw - gx[k], dy = state_.y[i] - gy[k], inner = gr[k] - limit;
+      const double d2 = dx * dx + dy * dy;
+      if (inner <= 0 || d2 >= inner * inner) continue;
+      const double d = std::sqrt(d2);
+      const double nx = d > 0 ? dx / d : 0.0, ny = d > 0 ? dy / d : 1.0;
+      const double push = inner - d;
+      const double vx = state_.x[i] - state_.px[i], vy = state_.y[i] - state_.py[i];
+      const double vn = std::min(0.0, vx * nx + vy * ny);  // inward displacement per step
+      state_.x[i] += push * nx;
+      state_.y[i] += push * ny;
+      state_.px[i] = state_.x[i] - (vx - vn * nx);
+      state_.py[i] = state_.y[i] - (vy - vn * ny);
+    }
+  }
+}
+
+void Simulation::integrate() {
+  const int n = state_.size();
+  const double h2m = params_.dt * params_.dt / params_.mass;
+  double *x = state_.x.data(), *y = state_.y.data(), *px = state_.px.data(), *py = state_.py.data();
+  const double *fx = state_.fx.data(), *fy = state_.fy.data();
+  for (int i = 0; i < n; ++i) {
+    const double nx = 2 * x[i] - px[i] + fx[i] * h2m;
+    const double ny = 2 * y[i] - py[i] + fy[i] * h2m;
+    px[i] = x[i];
+    py[i] = y[i];
+    x[i] = nx;
+    y[i] = ny;
+  }
+}
+
+void Simulation::compute_forces() {
+  accumulate_gravity();
+  accumulate_springs();
+  accumulate_pressure();
+  accumulate_collisions();
+  if (params_.viscosity > 0) accumulate_viscosity();
+}
+
+bool Simulation::step() {
+  compute_forces();
+  integrate();
+  softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain,
+                                    params_.constraint_iterations);
+  apply_contact_limit();
+  return std::isfinite(area_) && area_ > 0;
+}
+
+// ---- Checks and the run loop ------------------------------------------------------------------
+
+bool Simulation::any_grain_inside_ring() const {
+  const int n = state_.size();
+  double x0 = state_.x[0], x1 = x0, y0 = state_.y[0], y1 = y0;
+  for (int i = 1; i < n; ++i) {
+    x0 = std::min(x0, state_.x[i]);
+    x1 = std::max(x1, state_.x[i]);
+    y0 = std::min(y0, state_.y[i]);
+    y1 = std::max(y1, state_.y[i]);
+  }
+  const double W = medium_.width;
+  for (const Grain& g : medium_.grains) {
+    if (g.y < y0 || g.y > y1) continue;
+    // The ring is unwrapped; try the grain's periodic copies that can fall in its x range.
+    double gx = g.x;
+    if (medium_.periodic) gx += W * std::floor((x0 - g.x) / W);
+    for (; gx <= x1; gx += W) {
+      if (gx >= x0 && ring_contains(state_, gx, g.y)) return true;
+      if (!medium_.periodic) break;
+    }
+  }
+  return false;
+}
+
+namespace {
+double distance(double ax, double ay, double bx, double by) {
+  return std::hypot(bx - ax, by - ay);
+}
+}  // namespace
+
+RunSummary Simulation::run(double cx, const RunOptions& options) {
+  place_above(cx);
+  return run_from_current(options);
+}
+
+RunSummary Simulation::run_from_current(const RunOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  RunSummary s;
+  const double dt = params_.dt, H = medium_.height;
+  double cx, cy;
+  centre_of_mass(&cx, &cy);
+  s.start_x = cx;
+  s.start_y = cy;
+  area_ = ring_area(state_);
+  const std::int64_t window =
+      std::max<std::int64_t>(1, std::llround(options.stuck_window / dt));
+  std::vector<std::int64_t> snapshot_steps;
+  for (double t : options.snapshot_times) snapshot_steps.push_back(std::llround(t / dt));
+  std::sort(snapshot_steps.begin(), snapshot_steps.end());
+  std::size_t next_snapshot = 0;
+  auto record = [&](std::int64_t k) {
+    const double t = static_cast<double>(k) * dt;
+    if (options.path_interval > 0 && k % options.path_interval == 0) {
+      s.path_t.push_back(t);
+      s.path_x.push_back(cx);
+      s.path_y.push_back(cy);
+    }
+    if (options.area_interval > 0 && k % options.area_interval == 0) {
+      s.area_t.push_back(t);
+      s.area.push_back(ring_area(state_));
+    }
+    while (next_snapshot < snapshot_steps.size() && snapshot_steps[next_snapshot] <= k) {
+      s.snapshots.push_back({t, state_.x, state_.y});
+      ++next_snapshot;
+    }
+  };
+  auto finish = [&](Outcome o, std::string reason, std::int64_t k) {
+    s.outcome = o;
+    s.reason = std::move(reason);
+    s.steps = k;
+    for (std::size_t g = 0; g < touched_.size(); ++g)
+      if (touched_[g]) s.touched.push_back(static_cast<std::int32_t>(g));
+    if (options.path_interval > 0 && (s.path_t.empty() || s.path_t.back() != static_cast<double>(k) * dt)) {
+      s.path_t.push_back(static_cast<double>(k) * dt);
+      s.path_x.push_back(cx);
+      s.path_y.push_back(cy);
+    }
+    return s;
+  };
+  record(0);
+  bool entered = cy < H;
+  double checkpoint_y = cy;
+  for (std::int64_t k = 1; k <= options.max_steps; ++k) {
+    const double pcx = cx, pcy = cy;
+    const bool ok = step();
+    centre_of_mass(&cx, &cy);
+    if (!ok || !std::isfinite(cx) || !std::isfinite(cy)) {
+      std::ostringstream r;
+      r << "ring became invalid at step " << k << " (area " << area_ << ")";
+      return finish(Outcome::diverged, r.str(), k);
+    }
+    s.min_area_ratio = std::min(s.min_area_ratio, area_ / area0_);
+    s.max_penetration = std::max(s.max_penetration, last_penetration_);
+    // Path length inside the medium, with the crossings of y = H and y = 0 interpolated.
+    if (!entered && cy < H) {
+      entered = true;
+      const double f = (pcy - H) / (pcy - cy);
+      s.path_length += distance(pcx + f * (cx - pcx), H, cx, cy);
+    } else if (entered) {
+      if (cy < 0) {
+        const double f = pcy / (pcy - cy);
+        s.path_length += distance(pcx, pcy, pcx + f * (cx - pcx), 0);
+      } else {
+        s.path_length += distance(pcx, pcy, cx, cy);
+      }
+    }
+    record(k);
+    if (cy < 0) {
+      s.tortuosity = s.path_length / H;
+      return finish(Outcome::passed, "centre of mass left the medium at y = 0", k);
+    }
+    if (k % options.check_interval == 0) {
+      if (ring_self_intersects(state_))
+        return finish(Outcome::diverged, "ring self-intersects at step " + std::to_string(k), k);
+      if (any_grain_inside_ring()) {
+        s.grain_inside_ring = true;
+        return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k),
+                      k);
+      }
+    }
+    if (k % window == 0) {
+      if (checkpoint_y - cy < options.stuck_distance) {
+        std::ostringstream r;
+        r << "centre of mass moved down " << checkpoint_y - cy << " < " << options.stuck_distance
+          << " in the last " << options.stuck_window << " time units, at y = " << cy;
+        return finish(Outcome::stuck, r.str(), k);
+      }
+      checkpoint_y = cy;
+    }
+  }
+  return finish(Outcome::timeout,
+                "step budget of " + std::to_string(options.max_steps) + " steps spent",
+                options.max_steps);
+}
+
+std::uint64_t Simulation::state_hash() const {
+  std::uint64_t h = 1469598103934665603ULL;
+  auto mix = [&](const std::vector<double>& v) {
+    for (double d : v) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &d, sizeof bits);
+      for (int b = 0; b < 8; ++b) {
+        h ^= (bits >> (8 * b)) & 0xFF;
+        h *= 1099511628211ULL;
+      }
+    }
+  };
+  mix(state_.x);
+  mix(state_.y);
+  mix(state_.px);
+  mix(state_.py);
+  return h;
+}
+
+double polyline_tortuosity(const std::vector<double>& xs, const std::vector<double>& ys, double top) {
+  double length = 0;
+  bool entered = false;
+  for (std::size_t k = 1; k < xs.size(); ++k) {
+    const double ax = xs[k - 1], ay = ys[k - 1], bx = xs[k], by = ys[k];
+    if (!entered) {
+      if (ay >= top && by < top) {
+        entered = true;
+        const double f = (ay - top) / (ay - by);
+        if (by < 0) {
+          const double g = ay / (ay - by);
+          return distance(ax + f * (bx - ax), top, ax + g * (bx - ax), 0) / top;
+        }
+        length += distance(ax + f * (bx - ax), top, bx, by);
+      }
+      continue;
+    }
+    if (by < 0) {
+      const double f = ay / (ay - by);
+      return (length + distance(ax, ay, ax + f * (bx - ax), 0)) / top;
+    }
+    length += distance(ax, ay, bx, by);
+  }
+  return 0;
+}
+
+}  // namespace softdrop

@@ -1,0 +1,121 @@
+// The command-line program: bad input gives one line naming the problem, a non-zero exit and no
+// output file; good input gives a parseable summary.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+namespace {
+
+struct Result {
+  int code;
+  std::string out, err;
+};
+
+Result run(const std::string& args) {
+  const auto dir = std::filesystem::temp_directory_path();
+  const std::string err_path = (dir / "softdrop_cli_stderr.txt").string();
+  const std::string cmd = std::string(SOFTDROP_CLI) + " " + args + " 2>" + err_path;
+  Result r{};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+std::string temp(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("softdrop_cli_" + name)).string();
+}
+
+TEST(Cli, BadInputGivesOneLineNamingTheParameterAndNoOutput) {
+  const std::string out = temp("runs.csv");
+  const std::string bad_grains = temp("bad.csv");
+  std::ofstream(bad_grains) << "# width=10\nx,y,r\n1,2,3\n";
+  struct Case {
+    std::string args, names;
+  };
+  for (const Case& c :
+       {Case{"--r-min -1", "r-min"}, Case{"--radius -1", "radius"}, Case{"--porosity 1.5", "porosity"},
+        Case{"--porosity 0", "porosity"}, Case{"--dt 0", "dt"}, Case{"--dt -1e-5", "dt"},
+        Case{"--dt nan", "dt"}, Case{"--nrt nan", "nrt"}, Case{"--porosity nan", "porosity"},
+        Case{"--bogus 3", "bogus"}, Case{"--droplets abc", "droplets"},
+        Case{"--medium " + temp("does_not_exist.json"), "does_not_exist.json"},
+        Case{"--medium " + bad_grains, "bad.csv"}, Case{"--kind lattice", "kind"},
+        Case{"--x0 inf", "x0"}}) {
+    std::filesystem::remove(out);
+    const Result r = run("simulate --droplets 2 --runs " + out + " " + c.args);
+    SCOPED_TRACE(c.args + " -> " + r.err);
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+    EXPECT_EQ(r.err.rfind("softdrop: error: ", 0), 0u);
+    EXPECT_NE(r.err.find(c.names), std::string::npos);
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
+TEST(Cli, OutputIntoMissingDirectoryFailsBeforeRunning) {
+  const Result r = run("simulate --runs /nonexistent_dir/x.csv");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.err.find("--runs"), std::string::npos) << r.err;
+}
+
+TEST(Cli, SimulateWritesJsonSummaryAndCsvFiles) {
+  const std::string runs = temp("ok_runs.csv"), medium = temp("ok_medium.json"),
+                    paths = temp("ok_paths.csv");
+  const Result r = run("simulate --droplets 3 --seed 4 --format json --runs " + runs +
+                       " --save-medium " + medium + " --paths " + paths);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["droplets"], 3);
+  EXPECT_EQ(j["passed"].get<int>() + j["stuck"].get<int>() + j["timeout"].get<int>() +
+                j["diverged"].get<int>(),
+            3);
+  std::ifstream in(runs);
+  std::string line;
+  int lines = 0;
+  while (std::getline(in, line)) ++lines;
+  EXPECT_EQ(lines, 4);
+  // The saved medium reproduces the same numbers when loaded.
+  const Result again = run("simulate --droplets 3 --seed 4 --format json --medium " + medium);
+  ASSERT_EQ(again.code, 0) << again.err;
+  const auto k = nlohmann::json::parse(again.out);
+  EXPECT_EQ(j["mean_tortuosity"], k["mean_tortuosity"]);
+  EXPECT_EQ(j["medium"]["porosity"], k["medium"]["porosity"]);
+  EXPECT_TRUE(std::filesystem::exists(paths));
+}
+
+TEST(Cli, ConfigFileSetsOptions) {
+  const std::string config = temp("config.toml");
+  std::ofstream(config) << "porosity = 0.9\nradius = 8\n";
+  const Result r = run("simulate --config " + config + " --x0 100 --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["medium"]["porosity"].get<double>(), 0.9, 0.01);
+  const std::string bad = temp("bad_config.toml");
+  std::ofstream(bad) << "porosity = 2\n";
+  const Result b = run("simulate --config " + bad);
+  EXPECT_NE(b.code, 0);
+  EXPECT_NE(b.err.find("porosity"), std::string::npos) << b.err;
+}
+
+TEST(Cli, HelpDocumentsUnitsAndDefaults) {
+  const Result r = run("simulate --help");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("--dt"), std::string::npos);
+  EXPECT_NE(r.out.find("time units"), std::string::npos);
+  EXPECT_NE(r.out.find("2e-05"), std::string::npos);
+}
+
+}  // namespace

@@ -1,0 +1,149 @@
+#include "softdrop/droplet.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fixtures.hpp"
+#include "softdrop/random.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop {
+namespace {
+
+double edge(const DropletState& s, int i) {
+  const int j = (i + 1) % s.size();
+  return std::hypot(s.x[j] - s.x[i], s.y[j] - s.y[i]);
+}
+
+TEST(Droplet, InflatedRingIsCounterClockwiseWithTheStatedArea) {
+  DropletParams p;
+  DropletState s;
+  place_droplet(p, 3, 4, &s);
+  EXPECT_NEAR(ring_area(s), p.inflated_area(), 1e-9 * p.inflated_area());
+  EXPECT_GT(ring_area(s), 0);
+  EXPECT_NEAR(edge(s, 0), (1 + p.max_strain) * p.rest_length(), 1e-12);
+  EXPECT_FALSE(ring_self_intersects(s));
+  EXPECT_TRUE(ring_contains(s, 3, 4));
+  EXPECT_FALSE(ring_contains(s, 3 + 1.01 * p.radius, 4));
+}
+
+TEST(Droplet, ReversedRingHasNegativeAreaAndFigureEightIntersects) {
+  DropletParams p;
+  DropletState s;
+  place_droplet(p, 0, 0, &s);
+  std::reverse(s.x.begin(), s.x.end());
+  std::reverse(s.y.begin(), s.y.end());
+  EXPECT_LT(ring_area(s), 0);
+  // Twist: swap the halves' y to make a figure eight.
+  place_droplet(p, 0, 0, &s);
+  for (int i = 0; i < s.size() / 2; ++i) s.y[i] = -s.y[i];
+  EXPECT_TRUE(ring_self_intersects(s));
+}
+
+TEST(Droplet, InternalForcesSumToZero) {
+  // Gravity off, no grains: springs, pressure and viscosity are internal and must cancel.
+  DropletParams p;
+  p.gravity = 0;
+  const Medium empty = test::empty_medium();
+  Simulation sim(p, empty);
+  sim.place(250, 250);
+  Rng rng(7);
+  DropletState& s = sim.mutable_state();
+  for (int i = 0; i < s.size(); ++i) {  // a deformed ring moving with random velocities
+    s.x[i] += rng.uniform(-1, 1);
+    s.y[i] += rng.uniform(-1, 1);
+    s.px[i] = s.x[i] - rng.uniform(-0.1, 0.1);
+    s.py[i] = s.y[i] - rng.uniform(-0.1, 0.1);
+  }
+  sim.compute_forces();
+  double sx = 0, sy = 0, scale = 0;
+  for (int i = 0; i < s.size(); ++i) {
+    sx += s.fx[i];
+    sy += s.fy[i];
+    scale += std::abs(s.fx[i]) + std::abs(s.fy[i]);
+  }
+  ASSERT_GT(scale, 1e6);  // the forces are large, so the cancellation is meaningful
+  EXPECT_LT(std::abs(sx), 1e-12 * scale);
+  EXPECT_LT(std::abs(sy), 1e-12 * scale);
+}
+
+TEST(Droplet, ProvotConstraintFixesStretchAndCompressionSymmetrically) {
+  DropletState s;
+  s.resize(4);
+  // A square of side 1 (rest length 1) with one edge stretched and one compressed.
+  const double xs[4] = {0, 1.5, 1.5, 0}, ys[4] = {0, 0, 1, 1};
+  for (int i = 0; i < 4; ++i) s.x[i] = xs[i], s.y[i] = ys[i];
+  s.px = s.x;
+  s.py = s.y;
+  // Edge 0-1 is 1.5 long: 0.4 beyond the 1.1 limit, so each end moves 0.2 inwards.
+  // Edge 1-2 is then 1.0 (fine); edge 2-3 is 1.5 - after the first fix it is 1.5: same fix.
+  EXPECT_GT(apply_length_constraint(&s, 1.0, 0.1, 1), 0);
+  EXPECT_DOUBLE_EQ(s.x[0], 0.2);
+  EXPECT_DOUBLE_EQ(s.x[1], 1.3);
+  EXPECT_DOUBLE_EQ(edge(s, 0), 1.1);
+  // Compression: two points 0.5 apart with rest length 1 and 10 % limit end 0.9 apart, midpoint kept.
+  DropletState c;
+  c.resize(3);
+  c.x = {0, 0.5, 0.25};
+  c.y = {0, 0, 0.9};  // after the fix the third point's edges are ~1.006 long: within limits
+  apply_length_constraint(&c, 1.0, 0.1, 1);
+  EXPECT_DOUBLE_EQ(c.x[0], -0.2);
+  EXPECT_DOUBLE_EQ(c.x[1], 0.7);
+  EXPECT_DOUBLE_EQ(c.y[0], 0.0);
+  // Previous positions are not touched: the implied velocity follows the correction.
+  EXPECT_EQ(s.px[0], 0.0);
+}
+
+TEST(Droplet, ConstraintPassesConvergeOnARandomRing) {
+  DropletParams p;
+  DropletState s;
+  place_droplet(p, 0, 0, &s);
+  Rng rng(3);
+  for (int i = 0; i < s.size(); ++i) s.x[i] += rng.uniform(-0.3, 0.3), s.y[i] += rng.uniform(-0.3, 0.3);
+  auto worst = [&] {
+    double w = 0;
+    for (int i = 0; i < s.size(); ++i) {
+      const double strain = edge(s, i) / p.rest_length() - 1;
+      w = std::max(w, std::abs(strain) - p.max_strain);
+    }
+    return w;
+  };
+  const double before = worst();
+  ASSERT_GT(before, 0.05);
+  apply_length_constraint(&s, p.rest_length(), p.max_strain, 1);
+  const double one_pass = worst();
+  apply_length_constraint(&s, p.rest_length(), p.max_strain, 200);
+  // Gauss-Seidel passes converge: each fix disturbs the neighbours a little less.
+  EXPECT_LT(one_pass, before);
+  EXPECT_LT(worst(), 1e-4);
+  EXPECT_LT(worst(), 0.01 * one_pass);
+}
+
+TEST(Droplet, ParamsValidation) {
+  std::string why;
+  DropletParams p;
+  EXPECT_TRUE(p.IsValid(&why)) << why;
+  p.dt = 0;
+  EXPECT_FALSE(p.IsValid(&why));
+  EXPECT_NE(why.find("dt"), std::string::npos);
+  p = {};
+  p.radius = -1;
+  EXPECT_FALSE(p.IsValid(&why));
+  EXPECT_NE(why.find("radius"), std::string::npos);
+  p = {};
+  p.nrt = std::nan("");
+  EXPECT_FALSE(p.IsValid(&why));
+  EXPECT_NE(why.find("nrt"), std::string::npos);
+  p = {};
+  p.dt = 1e-3;  // far too large for k_c = 1e8 at m = 1
+  EXPECT_FALSE(p.IsValid(&why));
+  EXPECT_NE(why.find("dt"), std::string::npos);
+  p = {};
+  p.masses = 100000000;
+  EXPECT_FALSE(p.IsValid(&why));
+  EXPECT_NE(why.find("masses"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace softdrop

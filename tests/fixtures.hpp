@@ -1,0 +1,26 @@
+#pragma once
+// Shared scenes for the tests.
+
+#include "softdrop/droplet.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop::test {
+
+/// An empty periodic box.
+inline Medium empty_medium(double width = 500, double height = 500) {
+  return Medium{width, height, true, {}};
+}
+
+/// The paper's Fig. 2 scene: two grains whose gap (14) is narrower than the droplet's diameter
+/// (20), and a third grain below the pore that the droplet must flow around.
+inline Medium pore_of_three_grains() {
+  Medium m{200, 200, true, {}};
+  const double r = 16, gap = 14;
+  m.grains.push_back({100 - gap / 2 - r, 120, r});
+  m.grains.push_back({100 + gap / 2 + r, 120, r});
+  m.grains.push_back({112, 70, 14});
+  return m;
+}
+
+}  // namespace softdrop::test

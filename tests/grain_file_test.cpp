@@ -1,0 +1,86 @@
+#include "softdrop/grain_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "softdrop/medium.hpp"
+
+namespace softdrop {
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("softdrop_test_" + name)).string();
+}
+
+void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+
+std::string load_error(const std::string& path) {
+  try {
+    load_medium(path);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(GrainFile, JsonAndCsvRoundTripExactly) {
+  MediumOptions o;
+  o.porosity = 0.85;
+  o.seed = 3;
+  Medium m = generate_medium(o);
+  m.periodic = false;
+  for (const std::string ext : {".json", ".csv"}) {
+    const std::string path = temp_path("roundtrip" + ext);
+    save_medium(path, m);
+    EXPECT_EQ(load_medium(path), m) << ext;
+    std::filesystem::remove(path);
+  }
+}
+
+TEST(GrainFile, HandWrittenCsvLoads) {
+  const std::string path = temp_path("hand.csv");
+  write(path, "# width=200\n# height = 100\n# periodic=false\nx,y,r\n10,20,5\n 30 , 40 , 6\n");
+  const Medium m = load_medium(path);
+  EXPECT_EQ(m.width, 200);
+  EXPECT_EQ(m.height, 100);
+  EXPECT_FALSE(m.periodic);
+  ASSERT_EQ(m.grains.size(), 2u);
+  EXPECT_EQ(m.grains[1], (Grain{30, 40, 6}));
+  std::filesystem::remove(path);
+}
+
+TEST(GrainFile, BadFilesGiveErrorsNamingTheFile) {
+  const std::string missing = temp_path("missing.json");
+  EXPECT_NE(load_error(missing).find(missing), std::string::npos);
+  struct Bad {
+    std::string name, text, expect;
+  };
+  for (const Bad& b : {Bad{"a.json", "{\"format\": \"softdrop-medium\", \"version\": 1", "JSON"},
+                       Bad{"b.json", "{\"format\": \"other\"}", "format"},
+                       Bad{"c.json",
+                           R"({"format":"softdrop-medium","version":1,"width":10,"height":10,"grains":[{"x":1,"y":2}]})",
+                           "missing"},
+                       Bad{"d.csv", "# width=10\n# height=10\nx,y,r\n1,2,abc\n", "line 4"},
+                       Bad{"e.csv", "# width=10\nx,y,r\n1,2,3\n", "height"},
+                       Bad{"f.csv", "# width=10\n# height=10\nx,y,r\n1,2,-3\n", "radius"},
+                       Bad{"g.csv", "# width=10\n# height=10\nx,y\n", "header"},
+                       Bad{"h.csv", "# width=10\n# height=10\nx,y,r\n1,2,3,4\n", "3 fields"}}) {
+    const std::string path = temp_path(b.name);
+    write(path, b.text);
+    const std::string error = load_error(path);
+    EXPECT_NE(error.find(path), std::string::npos) << b.name << ": " << error;
+    EXPECT_NE(error.find(b.expect), std::string::npos) << b.name << ": " << error;
+    std::filesystem::remove(path);
+  }
+}
+
+TEST(GrainFile, SaveIntoMissingDirectoryFailsAndLeavesNothing) {
+  const std::string dir = temp_path("no_such_dir");
+  EXPECT_THROW(save_medium(dir + "/m.json", Medium{}), std::runtime_error);
+  EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+}  // namespace
+}  // namespace softdrop

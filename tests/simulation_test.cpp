@@ -1,0 +1,140 @@
+#include "softdrop/simulation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fixtures.hpp"
+
+namespace softdrop {
+namespace {
+
+TEST(Simulation, FreeFallWithoutGrainsHasTortuosityOneAndFollowsTheParabola) {
+  DropletParams p;
+  const Medium empty = test::empty_medium();
+  Simulation sim(p, empty);
+  RunOptions o;
+  o.path_interval = 50;
+  const RunSummary r = sim.run(123.0, o);
+  ASSERT_EQ(r.outcome, Outcome::passed) << r.reason;
+  EXPECT_NEAR(r.tortuosity, 1.0, 1e-9);
+  EXPECT_TRUE(r.touched.empty());
+  // Centre of mass: y0 + g t^2 / 2 (internal forces cancel), x constant.
+  for (std::size_t k = 0; k < r.path_t.size(); ++k) {
+    const double t = r.path_t[k];
+    EXPECT_NEAR(r.path_y[k], r.start_y + 0.5 * p.gravity * t * t, 1e-9 * (1 + std::abs(r.start_y)))
+        << "t = " << t;
+    EXPECT_NEAR(r.path_x[k], 123.0, 1e-9);
+  }
+  // Fall time from the start height through H = 500.
+  const double expected_t = std::sqrt(2 * r.start_y / -p.gravity);
+  EXPECT_NEAR(static_cast<double>(r.steps) * p.dt, expected_t, 2 * p.dt);
+  // The on-line path length agrees with the polyline of the recorded path.
+  EXPECT_NEAR(polyline_tortuosity(r.path_x, r.path_y, empty.height), 1.0, 1e-9);
+}
+
+TEST(Simulation, RestingDropletWithoutGravityKeepsItsAreaAndPlace) {
+  DropletParams p;
+  p.gravity = 0;
+  const Medium empty = test::empty_medium();
+  Simulation sim(p, empty);
+  sim.place(250, 250);
+  const double a0 = ring_area(sim.state());
+  double min_a = a0, max_a = a0;
+  for (int k = 0; k < 100000; ++k) {
+    ASSERT_TRUE(sim.step());
+    if (k % 100 == 0) {
+      const double a = ring_area(sim.state());
+      min_a = std::min(min_a, a);
+      max_a = std::max(max_a, a);
+    }
+  }
+  EXPECT_GT(min_a, 0.995 * a0);
+  EXPECT_LT(max_a, 1.005 * a0);
+  double cx, cy;
+  sim.centre_of_mass(&cx, &cy);
+  // Only rounding moves it: internal forces cancel (about 5e-9 after 1e5 steps).
+  EXPECT_NEAR(cx, 250, 1e-7);
+  EXPECT_NEAR(cy, 250, 1e-7);
+}
+
+TEST(Simulation, SqueezesThroughAPoreNarrowerThanItsDiameter) {
+  DropletParams p;
+  const Medium pore = test::pore_of_three_grains();
+  ASSERT_LT(pore.grains[1].x - pore.grains[0].x - 2 * 16, 2 * p.radius);
+  Simulation sim(p, pore);
+  RunOptions o;
+  o.area_interval = 10;
+  o.check_interval = 1;
+  const RunSummary r = sim.run(100.0, o);
+  ASSERT_EQ(r.outcome, Outcome::passed) << r.reason;
+  EXPECT_GE(r.tortuosity, 1.0);
+  // It touched both pore grains and changed its area on the way.
+  EXPECT_TRUE(std::binary_search(r.touched.begin(), r.touched.end(), 0));
+  EXPECT_TRUE(std::binary_search(r.touched.begin(), r.touched.end(), 1));
+  EXPECT_LT(r.min_area_ratio, 0.95);
+  EXPECT_LE(r.max_penetration, 0.25 * p.radius);
+  EXPECT_FALSE(r.grain_inside_ring);
+}
+
+TEST(Simulation, RowOfGrainsStopsTheDroplet) {
+  DropletParams p;
+  Medium floor{200, 200, true, {}};
+  for (int i = 0; i < 10; ++i) floor.grains.push_back({10.0 + 20.0 * i, 100, 12});
+  Simulation sim(p, floor);
+  RunOptions o;
+  o.stuck_window = 0.1;
+  const RunSummary r = sim.run(37.0, o);
+  EXPECT_EQ(r.outcome, Outcome::stuck) << r.reason;
+  EXPECT_NE(r.reason.find("moved down"), std::string::npos);
+  double cx, cy;
+  sim.centre_of_mass(&cx, &cy);
+  EXPECT_GT(cy, 100);  // resting on top of the row
+  EXPECT_FALSE(r.touched.empty());
+}
+
+TEST(Simulation, StepBudgetEndsInTimeout) {
+  DropletParams p;
+  const Medium empty = test::empty_medium();
+  Simulation sim(p, empty);
+  RunOptions o;
+  o.max_steps = 100;
+  const RunSummary r = sim.run(50, o);
+  EXPECT_EQ(r.outcome, Outcome::timeout);
+  EXPECT_EQ(r.steps, 100);
+}
+
+TEST(Simulation, NaNStateEndsInDivergedNotACrash) {
+  DropletParams p;
+  const Medium empty = test::empty_medium();
+  Simulation sim(p, empty);
+  sim.place_above(50);
+  sim.mutable_state().x[3] = std::nan("");
+  const RunSummary r = sim.run_from_current({});
+  EXPECT_EQ(r.outcome, Outcome::diverged);
+  EXPECT_EQ(r.steps, 1);
+}
+
+TEST(Simulation, SolidWallsKeepTheDropletInTheBox) {
+  DropletParams p;
+  Medium box{100, 300, false, {}};
+  box.grains.push_back({80, 150, 30});  // deflects the droplet towards the right wall
+  Simulation sim(p, box);
+  RunOptions o;
+  o.path_interval = 1;
+  const RunSummary r = sim.run(70, o);
+  ASSERT_NE(r.outcome, Outcome::diverged) << r.reason;
+  for (double x : r.path_x) {
+    EXPECT_GT(x, p.radius * 0.5);
+    EXPECT_LT(x, 100 - p.radius * 0.5);
+  }
+}
+
+TEST(Simulation, PolylineTortuosityInterpolatesCrossings) {
+  // Enters at (0, 10), goes right 10, leaves at (10, 0): length 10 + 10 over H = 10.
+  const std::vector<double> xs = {0, 0, 10, 10}, ys = {15, 5, 5, -5};
+  EXPECT_DOUBLE_EQ(polyline_tortuosity(xs, ys, 10), 2.0);
+}
+
+}  // namespace
+}  // namespace softdrop
