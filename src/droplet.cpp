@@ -1,20 +1,13 @@
 #include "softdrop/droplet.hpp"
 
 #include <cmath>
-#include <sstream>
+
+#include "validation.hpp"
 
 namespace softdrop {
+using detail::fail;
+using detail::num;
 namespace {
-bool fail(std::string* why, const std::string& message) {
-  if (why) *why = message;
-  return false;
-}
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
 bool positive(double v) { return std::isfinite(v) && v > 0; }
 
 // Orientation sign of (a, b, c).

@@ -1,26 +1,16 @@
 #include "softdrop/medium.hpp"
 
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
 #include "softdrop/spacing.hpp"
+#include "validation.hpp"
 
 namespace softdrop {
-namespace {
-bool fail(std::string* why, const std::string& message) {
-  if (why) *why = message;
-  return false;
-}
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
-}  // namespace
+using detail::fail;
+using detail::num;
 
 bool Medium::IsValid(std::string* why) const {
   if (!std::isfinite(width) || width <= 0) return fail(why, "width = " + num(width) + ": must be > 0");

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "validation.hpp"
+
 namespace softdrop {
 
 const char* to_string(Outcome outcome) {
@@ -19,24 +21,22 @@ const char* to_string(Outcome outcome) {
 }
 
 bool RunOptions::IsValid(std::string* why) const {
-  auto fail = [&](const std::string& m) {
-    if (why) *why = m;
-    return false;
-  };
-  if (max_steps <= 0) return fail("max-steps = " + std::to_string(max_steps) + ": must be > 0");
+  using detail::fail;
+  using detail::num;
+  if (max_steps <= 0) return fail(why, "max-steps = " + std::to_string(max_steps) + ": must be > 0");
   if (!std::isfinite(stuck_window) || stuck_window <= 0)
-    return fail("stuck-window = " + std::to_string(stuck_window) + ": must be > 0");
+    return fail(why, "stuck-window = " + num(stuck_window) + ": must be > 0");
   if (!std::isfinite(stuck_distance) || stuck_distance < 0)
-    return fail("stuck-distance = " + std::to_string(stuck_distance) + ": must be >= 0");
+    return fail(why, "stuck-distance = " + num(stuck_distance) + ": must be >= 0");
   if (check_interval <= 0)
-    return fail("check-interval = " + std::to_string(check_interval) + ": must be > 0");
+    return fail(why, "check-interval = " + std::to_string(check_interval) + ": must be > 0");
   if (path_interval < 0)
-    return fail("path-interval = " + std::to_string(path_interval) + ": must be >= 0");
+    return fail(why, "path-interval = " + std::to_string(path_interval) + ": must be >= 0");
   if (area_interval < 0)
-    return fail("area-interval = " + std::to_string(area_interval) + ": must be >= 0");
+    return fail(why, "trace-interval = " + std::to_string(area_interval) + ": must be >= 0");
   for (double t : snapshot_times)
     if (!std::isfinite(t) || t < 0)
-      return fail("snapshot-times: " + std::to_string(t) + " must be finite and >= 0");
+      return fail(why, "snapshot-times: " + num(t) + " must be finite and >= 0");
   return true;
 }
 
