@@ -32,6 +32,12 @@ MediumKind parse_medium_kind(const std::string& name) {
   throw std::invalid_argument("kind = '" + name + "': must be overlapping or non-overlapping");
 }
 
+RadiusDistribution parse_radius_distribution(const std::string& name) {
+  if (name == "uniform") return RadiusDistribution::uniform;
+  if (name == "lognormal") return RadiusDistribution::lognormal;
+  throw std::invalid_argument("radius-distribution = '" + name + "': must be uniform or lognormal");
+}
+
 const char* to_string(MediumKind kind) {
   return kind == MediumKind::overlapping ? "overlapping" : "non-overlapping";
 }
@@ -48,6 +54,12 @@ bool MediumOptions::IsValid(std::string* why) const {
   if (2 * r_max >= width) return fail(why, "r-max = " + num(r_max) + ": diameter must be < width");
   if (kind == MediumKind::non_overlapping && 2 * r_max > height)
     return fail(why, "r-max = " + num(r_max) + ": diameter must be <= height");
+  if (radii == RadiusDistribution::lognormal) {
+    if (!std::isfinite(r_median) || r_median < r_min || r_median > r_max)
+      return fail(why, "r-median = " + num(r_median) + ": must be in [r-min, r-max]");
+    if (!std::isfinite(r_sigma) || r_sigma <= 0 || r_sigma > 5)
+      return fail(why, "r-sigma = " + num(r_sigma) + ": must be in (0, 5]");
+  }
   if (!std::isfinite(gap) || gap < 0) return fail(why, "gap = " + num(gap) + ": must be >= 0");
   if (max_failed_attempts <= 0)
     return fail(why, "max-failed-attempts = " + std::to_string(max_failed_attempts) + ": must be > 0");
@@ -56,9 +68,31 @@ bool MediumOptions::IsValid(std::string* why) const {
 
 namespace {
 
+// Standard normal deviate by Box-Muller from two portable uniforms.
+double standard_normal(Rng& rng) {
+  const double u = 1.0 - rng.uniform();  // (0, 1]
+  return std::sqrt(-2.0 * std::log(u)) * std::cos(2 * M_PI * rng.uniform());
+}
+
+double random_radius(Rng& rng, const MediumOptions& o) {
+  if (o.r_min == o.r_max) return o.r_min;
+  if (o.radii == RadiusDistribution::uniform) return rng.uniform(o.r_min, o.r_max);
+  for (;;) {  // truncated log-normal; the median lies inside, so acceptance is at least ~50 %
+    const double r = o.r_median * std::exp(o.r_sigma * standard_normal(rng));
+    if (r >= o.r_min && r <= o.r_max) return r;
+  }
+}
+
+// Mean disc area of the radius distribution (for the first guess of the grain count).
+double mean_disc_area(const MediumOptions& o) {
+  if (o.radii == RadiusDistribution::uniform)
+    return M_PI * (o.r_min * o.r_min + o.r_min * o.r_max + o.r_max * o.r_max) / 3;
+  return M_PI * o.r_median * o.r_median * std::exp(2 * o.r_sigma * o.r_sigma);
+}
+
 Grain random_grain(Rng& rng, const MediumOptions& o) {
   Grain g;
-  g.r = o.r_min == o.r_max ? o.r_min : rng.uniform(o.r_min, o.r_max);
+  g.r = random_radius(rng, o);
   if (o.kind == MediumKind::overlapping) {
     g.x = rng.uniform(0, o.width);
     g.y = rng.uniform(0, o.height);
@@ -74,8 +108,7 @@ Medium overlapping_medium(const MediumOptions& o) {
   // length, so the smallest prefix reaching the target is found by bisection over exact porosities.
   Rng rng(derive_seed(o.seed, 0));
   Medium m{o.width, o.height, o.periodic, {}};
-  const double mean_area = M_PI * (o.r_min * o.r_min + o.r_min * o.r_max + o.r_max * o.r_max) / 3;
-  const double expected = -std::log(o.porosity) * o.width * o.height / mean_area;
+  const double expected = -std::log(o.porosity) * o.width * o.height / mean_disc_area(o);
   std::vector<Grain> pool;
   auto porosity_of = [&](std::size_t n) {
     Medium prefix{o.width, o.height, o.periodic,

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "softdrop/porosity.hpp"
@@ -35,6 +36,34 @@ TEST(Medium, OverlappingStopsAtTheFirstGrainThatReachesTheTarget) {
     EXPECT_GE(g.x, 0);
     EXPECT_LT(g.x, o.width);
   }
+}
+
+TEST(Medium, LognormalRadiiStayInRangeAndCentreOnTheMedian) {
+  MediumOptions o;
+  o.radii = RadiusDistribution::lognormal;
+  o.r_min = 4;
+  o.r_max = 30;
+  o.r_median = 10;
+  o.r_sigma = 0.3;
+  o.porosity = 0.5;
+  const Medium m = generate_medium(o);
+  ASSERT_GT(m.grains.size(), 300u);
+  std::vector<double> r;
+  for (const Grain& g : m.grains) {
+    ASSERT_GE(g.r, o.r_min);
+    ASSERT_LE(g.r, o.r_max);
+    r.push_back(g.r);
+  }
+  std::nth_element(r.begin(), r.begin() + static_cast<std::ptrdiff_t>(r.size() / 2), r.end());
+  EXPECT_NEAR(r[r.size() / 2], 10, 1.0);  // sample median of a few hundred draws
+  double mean_log = 0, var_log = 0;
+  for (double v : r) mean_log += std::log(v) / static_cast<double>(r.size());
+  for (double v : r) var_log += (std::log(v) - mean_log) * (std::log(v) - mean_log) / static_cast<double>(r.size());
+  EXPECT_NEAR(std::sqrt(var_log), 0.3, 0.04);
+  o.r_median = 40;
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_NE(why.find("r-median"), std::string::npos);
 }
 
 TEST(Medium, SameSeedSameMediumOtherSeedOtherMedium) {

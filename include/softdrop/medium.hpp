@@ -38,6 +38,16 @@ enum class MediumKind {
 MediumKind parse_medium_kind(const std::string& name);
 const char* to_string(MediumKind kind);
 
+/// How grain radii are drawn.
+enum class RadiusDistribution {
+  uniform,   ///< uniform in [r_min, r_max]
+  lognormal  ///< log-normal with median r_median and log-standard-deviation r_sigma, redrawn until
+             ///< it falls in [r_min, r_max]
+};
+
+/// Parses "uniform" / "lognormal"; throws std::invalid_argument naming the value.
+RadiusDistribution parse_radius_distribution(const std::string& name);
+
 /// Creation data of a random medium.
 struct MediumOptions {
   MediumKind kind = MediumKind::overlapping;
@@ -45,8 +55,11 @@ struct MediumOptions {
   double width = 500;      ///< W, length units
   double height = 500;     ///< H, length units
   bool periodic = true;    ///< periodic in x
-  double r_min = 8;        ///< smallest grain radius (radii uniform in [r_min, r_max])
+  double r_min = 8;        ///< smallest grain radius
   double r_max = 16;       ///< largest grain radius
+  RadiusDistribution radii = RadiusDistribution::uniform;  ///< how radii are drawn
+  double r_median = 12;    ///< log-normal: median radius
+  double r_sigma = 0.25;   ///< log-normal: standard deviation of ln r
   double gap = 0.13;       ///< non-overlapping: min surface gap as a fraction of the larger radius
   std::uint64_t seed = 1;  ///< random seed
   /// Non-overlapping: consecutive failed placements after which the target is declared unreachable.

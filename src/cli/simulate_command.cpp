@@ -29,7 +29,14 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
   g->add_option("--width", a.medium.width, "Box width W (length units)")->capture_default_str();
   g->add_option("--height", a.medium.height, "Box height H (length units)")->capture_default_str();
   g->add_option("--r-min", a.medium.r_min, "Smallest grain radius (length units)")->capture_default_str();
-  g->add_option("--r-max", a.medium.r_max, "Largest grain radius (length units); radii uniform in [r-min, r-max]")
+  g->add_option("--r-max", a.medium.r_max, "Largest grain radius (length units)")->capture_default_str();
+  g->add_option("--radius-distribution", a.radii,
+                "uniform in [r-min, r-max], or lognormal (--r-median, --r-sigma) cut to that range")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"uniform", "lognormal"}));
+  g->add_option("--r-median", a.medium.r_median, "Log-normal: median grain radius (length units)")
+      ->capture_default_str();
+  g->add_option("--r-sigma", a.medium.r_sigma, "Log-normal: standard deviation of ln r")
       ->capture_default_str();
   g->add_option("--gap", a.medium.gap,
                 "Non-overlapping: min surface gap as a fraction of the larger radius")
@@ -104,6 +111,7 @@ void validate(SimulateArgs& a) {
   if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
   if (a.medium_file.empty()) {
     a.medium.kind = parse_medium_kind(a.kind);
+    a.medium.radii = parse_radius_distribution(a.radii);
     a.medium.periodic = !a.walls;
     if (!a.medium.IsValid(&why)) throw std::invalid_argument(why);
   }

@@ -15,6 +15,7 @@ namespace softdrop::cli {
 struct SimulateArgs {
   MediumOptions medium;
   std::string kind = "overlapping";
+  std::string radii = "uniform";
   bool walls = false;
   std::string medium_file;       ///< load instead of generating
   std::string save_medium_file;  ///< save the medium used
