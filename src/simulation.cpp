@@ -47,6 +47,15 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
   if (!medium.IsValid(&why)) throw std::invalid_argument(why);
   rest_length_ = params.rest_length();
   area0_ = params.inflated_area();
+  // Only masses are tested against grains; a grain narrower than an edge could slip between two.
+  const double longest_edge = (1 + params.max_strain) * rest_length_;
+  for (std::size_t i = 0; i < medium.grains.size(); ++i)
+    if (medium.grains[i].r < longest_edge)
+      throw std::invalid_argument("grain " + std::to_string(i) + " radius " +
+                                  detail::num(medium.grains[i].r) +
+                                  " is smaller than the droplet's longest edge " +
+                                  detail::num(longest_edge) +
+                                  ": use more masses, a smaller radius or larger grains");
   touched_.assign(medium.grains.size(), 0);
   double top = medium.height;
   for (const Grain& g : medium.grains) top = std::max(top, g.y + g.r);

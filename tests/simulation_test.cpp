@@ -130,6 +130,14 @@ TEST(Simulation, SolidWallsKeepTheDropletInTheBox) {
   }
 }
 
+TEST(Simulation, GrainsNarrowerThanAnEdgeAreRefused) {
+  DropletParams p;  // longest edge 2 R sin(pi / N) = 1.57
+  const Medium tiny{100, 100, true, {{50, 50, 1.0}}};
+  EXPECT_THROW(Simulation(p, tiny), std::invalid_argument);
+  p.masses = 80;  // longest edge 0.785: fine
+  EXPECT_NO_THROW(Simulation(p, tiny));
+}
+
 TEST(Simulation, PolylineTortuosityInterpolatesCrossings) {
   // Enters at (0, 10), goes right 10, leaves at (10, 0): length 10 + 10 over H = 10.
   const std::vector<double> xs = {0, 0, 10, 10}, ys = {15, 5, 5, -5};
