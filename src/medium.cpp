@@ -45,6 +45,8 @@ const char* to_string(MediumKind kind) {
 bool MediumOptions::IsValid(std::string* why) const {
   if (!std::isfinite(porosity) || porosity <= 0 || porosity >= 1)
     return fail(why, "porosity = " + num(porosity) + ": must be in (0, 1)");
+  if (grains < 0 || grains > 10'000'000)
+    return fail(why, "grains = " + std::to_string(grains) + ": must be in [0, 1e7]");
   if (!std::isfinite(width) || width <= 0) return fail(why, "width = " + num(width) + ": must be > 0");
   if (!std::isfinite(height) || height <= 0)
     return fail(why, "height = " + num(height) + ": must be > 0");
@@ -108,6 +110,10 @@ Medium overlapping_medium(const MediumOptions& o) {
   // length, so the smallest prefix reaching the target is found by bisection over exact porosities.
   Rng rng(derive_seed(o.seed, 0));
   Medium m{o.width, o.height, o.periodic, {}};
+  if (o.grains > 0) {
+    for (int i = 0; i < o.grains; ++i) m.grains.push_back(random_grain(rng, o));
+    return m;
+  }
   const double expected = -std::log(o.porosity) * o.width * o.height / mean_disc_area(o);
   std::vector<Grain> pool;
   auto porosity_of = [&](std::size_t n) {
@@ -142,10 +148,17 @@ Medium non_overlapping_medium(const MediumOptions& o) {
   const double box = o.width * o.height;
   double solid = 0;
   int failed = 0;
-  while (1 - solid / box > o.porosity) {
+  auto more = [&] {
+    return o.grains > 0 ? m.grains.size() < static_cast<std::size_t>(o.grains) : 1 - solid / box > o.porosity;
+  };
+  while (more()) {
     const Grain g = random_grain(rng, o);
     if (!index.can_place(g)) {
-      if (++failed >= o.max_failed_attempts)
+      if (++failed >= o.max_failed_attempts && o.grains > 0)
+        throw std::runtime_error("grains = " + std::to_string(o.grains) +
+                                 ": do not fit in the box with gap " + num(o.gap) + " (jammed after " +
+                                 std::to_string(m.grains.size()) + " grains)");
+      if (failed >= o.max_failed_attempts)
         throw std::runtime_error("porosity = " + num(o.porosity) +
                                  ": unreachable for non-overlapping grains with gap " + num(o.gap) +
                                  " (jammed at porosity " + num(1 - solid / box) + " with " +

@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace softdrop {
@@ -26,29 +28,50 @@ using Circle = Kernel::Circle_2;
 
 double required_distance(double a, double b, double gap) { return a + b + gap * std::max(a, b); }
 
+namespace {
+// The pair test of the rule, symmetric bit for bit in (a, b): IEEE subtraction is exactly
+// antisymmetric, and the nearest periodic image is chosen from |dx| alone. Every check (placing,
+// moving, verifying) goes through here, so they can never disagree at the threshold.
+bool too_close(const Grain& a, const Grain& b, double width, bool periodic, double gap) {
+  double dx = b.x - a.x;
+  if (periodic) dx -= width * std::round(dx / width);  // nearest image; round() is odd too
+  const double dy = b.y - a.y;
+  const double need = required_distance(a.r, b.r, gap);
+  return dx * dx + dy * dy < need * need;
+}
+}  // namespace
+
 struct SpacingIndex::Impl {
   double width, height;
   bool periodic;
   double gap, r_max;
   std::vector<Grain> grains;  // vertex info indexes this
+  std::vector<Delaunay::Vertex_handle> vertices;  // grain id -> its vertex
   Delaunay dt;
   std::vector<Delaunay::Vertex_handle> found;
 
-  // True if some stored grain is closer than the rule allows to g placed at x offset `shift`.
-  bool conflicts(const Grain& g, double shift) {
+  // True if some stored grain other than `skip` is closer than the rule allows to g placed at x
+  // offset `shift`.
+  bool conflicts(const Grain& g, double shift, int skip) {
     const double reach = required_distance(g.r, r_max, gap);
     const Point centre(g.x + shift, g.y);
     found.clear();
     CGAL::range_search(dt, Circle(centre, reach * reach), std::back_inserter(found));
     for (const auto& v : found) {
       const int id = v->info().id;
-      if (id < 0) continue;  // range_search's own temporary vertex
-      const Grain& o = grains[static_cast<std::size_t>(id)];
-      const double dx = o.x - (g.x + shift), dy = o.y - g.y;
-      const double need = required_distance(g.r, o.r, gap);
-      if (dx * dx + dy * dy < need * need) return true;
+      if (id < 0 || id == skip) continue;  // range_search's own temporary vertex, or the mover
+      if (too_close(g, grains[static_cast<std::size_t>(id)], width, periodic, gap)) return true;
     }
     return false;
+  }
+
+  // The rule of can_place for g, ignoring grain `skip` (-1: none).
+  bool fits(const Grain& g, int skip) {
+    if (g.y - g.r < 0 || g.y + g.r > height) return false;
+    if (!periodic && (g.x - g.r < 0 || g.x + g.r > width)) return false;
+    if (conflicts(g, 0, skip)) return false;
+    if (periodic && (conflicts(g, -width, skip) || conflicts(g, width, skip))) return false;
+    return true;
   }
 };
 
@@ -64,20 +87,33 @@ SpacingIndex::~SpacingIndex() = default;
 SpacingIndex::SpacingIndex(SpacingIndex&&) noexcept = default;
 SpacingIndex& SpacingIndex::operator=(SpacingIndex&&) noexcept = default;
 
-bool SpacingIndex::can_place(const Grain& g) const {
-  Impl& s = *impl_;
-  if (g.y - g.r < 0 || g.y + g.r > s.height) return false;
-  if (!s.periodic && (g.x - g.r < 0 || g.x + g.r > s.width)) return false;
-  if (s.conflicts(g, 0)) return false;
-  if (s.periodic && (s.conflicts(g, -s.width) || s.conflicts(g, s.width))) return false;
-  return true;
-}
+bool SpacingIndex::can_place(const Grain& g) const { return impl_->fits(g, -1); }
 
 void SpacingIndex::insert(const Grain& g) {
   auto v = impl_->dt.insert(Point(g.x, g.y));
   v->info().id = static_cast<int>(impl_->grains.size());
   impl_->grains.push_back(g);
+  impl_->vertices.push_back(v);
 }
+
+bool SpacingIndex::can_move(int i, const Grain& g) const {
+  if (i < 0 || static_cast<std::size_t>(i) >= impl_->grains.size())
+    throw std::out_of_range("SpacingIndex::can_move: no grain " + std::to_string(i));
+  return impl_->fits(g, i);
+}
+
+void SpacingIndex::move(int i, const Grain& g) {
+  Impl& s = *impl_;
+  if (i < 0 || static_cast<std::size_t>(i) >= s.grains.size())
+    throw std::out_of_range("SpacingIndex::move: no grain " + std::to_string(i));
+  // The spacing rule keeps centres apart, so the new point never coincides with another vertex.
+  auto& v = s.vertices[static_cast<std::size_t>(i)];
+  v = s.dt.move(v, Point(g.x, g.y));
+  v->info().id = i;
+  s.grains[static_cast<std::size_t>(i)] = g;
+}
+
+const Grain& SpacingIndex::grain(int i) const { return impl_->grains.at(static_cast<std::size_t>(i)); }
 
 std::size_t SpacingIndex::size() const { return impl_->grains.size(); }
 
@@ -112,10 +148,8 @@ std::optional<std::pair<int, int>> find_spacing_violation(const Medium& medium, 
       for (const auto& v : found) {
         const int j = v->info().id;
         if (j < 0 || j == i) continue;
-        const Grain& o = medium.grains[static_cast<std::size_t>(j)];
-        const double dx = o.x - (g.x + shift), dy = o.y - g.y;
-        const double need = required_distance(g.r, o.r, gap);
-        if (dx * dx + dy * dy < need * need) return std::pair{std::min(i, j), std::max(i, j)};
+        if (too_close(g, medium.grains[static_cast<std::size_t>(j)], medium.width, medium.periodic, gap))
+          return std::pair{std::min(i, j), std::max(i, j)};
       }
     }
   }

@@ -1,7 +1,8 @@
 // The command-line program: bad input gives one line naming the problem, a non-zero exit and no
 // output file; good input gives a parseable summary.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
+
+#include "cli_run.hpp"
 
 #include <array>
 #include <cstdio>
@@ -11,33 +12,10 @@
 #include <sstream>
 
 namespace {
+using softdrop::test::Result;
+using softdrop::test::run;
 
-struct Result {
-  int code;
-  std::string out, err;
-};
-
-Result run(const std::string& args) {
-  const auto dir = std::filesystem::temp_directory_path();
-  const std::string err_path = (dir / "softdrop_cli_stderr.txt").string();
-  const std::string cmd = std::string(SOFTDROP_CLI) + " " + args + " 2>" + err_path;
-  Result r{};
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::array<char, 4096> buf{};
-  std::size_t n;
-  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
-  const int status = pclose(pipe);
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream e(err_path);
-  std::stringstream ss;
-  ss << e.rdbuf();
-  r.err = ss.str();
-  return r;
-}
-
-std::string temp(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("softdrop_cli_" + name)).string();
-}
+std::string temp(const std::string& name) { return softdrop::test::temp_path("cli_" + name); }
 
 TEST(Cli, BadInputGivesOneLineNamingTheParameterAndNoOutput) {
   const std::string out = temp("runs.csv");

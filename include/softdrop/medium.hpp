@@ -52,6 +52,8 @@ RadiusDistribution parse_radius_distribution(const std::string& name);
 struct MediumOptions {
   MediumKind kind = MediumKind::overlapping;
   double porosity = 0.8;   ///< target void fraction of the box, in (0, 1)
+  /// If > 0, place exactly this many grains and ignore the porosity target (the search's media).
+  int grains = 0;
   double width = 500;      ///< W, length units
   double height = 500;     ///< H, length units
   bool periodic = true;    ///< periodic in x
@@ -68,7 +70,7 @@ struct MediumOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// Generates a medium. Overlapping: adds discs until the exact porosity first drops to or below the
+/// Generates a medium. With `grains` > 0: that many grains, overlapping or not. Otherwise: overlapping: adds discs until the exact porosity first drops to or below the
 /// target. Non-overlapping: random sequential addition keeping every surface gap >= gap * larger
 /// radius and grains inside the box in y, until the target is reached; throws std::runtime_error if
 /// the target cannot be reached (jamming). Throws std::invalid_argument for invalid options.

@@ -27,8 +27,15 @@ class SpacingIndex {
   /// True if the grain keeps the gap to every grain inserted so far and lies inside the box in y.
   /// Its radius must not exceed the r_max given at construction.
   bool can_place(const Grain& g) const;
-  /// Adds a grain (no check; call can_place first).
+  /// Adds a grain (no check; call can_place first). Its id is the number of grains before it.
   void insert(const Grain& g);
+  /// True if grain `i` may be replaced by `g`: the rule of can_place against every other grain.
+  /// Throws std::out_of_range for a bad id.
+  bool can_move(int i, const Grain& g) const;
+  /// Replaces grain `i` by `g` (no check; call can_move first).
+  void move(int i, const Grain& g);
+  /// Grain `i` as stored.
+  const Grain& grain(int i) const;
   std::size_t size() const;
 
  private:

@@ -4,6 +4,8 @@
 #include <exception>
 #include <iostream>
 
+#include "cli/history_command.hpp"
+#include "cli/optimize_command.hpp"
 #include "cli/simulate_command.hpp"
 #include "softdrop/version.hpp"
 
@@ -36,6 +38,12 @@ int main(int argc, char** argv) {
   app.allow_config_extras(CLI::config_extras_mode::error);
   softdrop::cli::SimulateArgs simulate;
   CLI::App* simulate_cmd = softdrop::cli::add_simulate_command(app, simulate);
+  softdrop::cli::OptimizeArgs optimize;
+  CLI::App* optimize_cmd = softdrop::cli::add_optimize_command(app, optimize);
+  softdrop::cli::HistoryArgs history;
+  CLI::App* history_cmd = softdrop::cli::add_history_command(app, history);
+  softdrop::cli::ExportArgs export_args;
+  CLI::App* export_cmd = softdrop::cli::add_export_command(app, export_args);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -48,6 +56,9 @@ int main(int argc, char** argv) {
   }
   try {
     if (simulate_cmd->parsed()) return softdrop::cli::run_simulate(simulate);
+    if (optimize_cmd->parsed()) return softdrop::cli::run_optimize(optimize, *optimize_cmd);
+    if (history_cmd->parsed()) return softdrop::cli::run_history(history);
+    if (export_cmd->parsed()) return softdrop::cli::run_export(export_args);
   } catch (const std::exception& e) {
     std::cerr << "softdrop: error: " << e.what() << '\n';
     return 1;

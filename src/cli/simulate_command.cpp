@@ -20,60 +20,12 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
       "simulate", "Push one droplet (or --droplets K) through a generated or loaded medium");
   s->fallthrough();  // lets `simulate --config FILE` reach the program-level --config
 
-  auto* g = s->add_option_group("Medium", "generated unless --medium is given");
-  g->add_option("--medium", a.medium_file, "Load the medium from this grain file (.json or .csv)");
-  g->add_option("--kind", a.kind, "overlapping or non-overlapping")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"overlapping", "non-overlapping"}));
-  g->add_option("--porosity", a.medium.porosity, "Target porosity phi, in (0, 1)")->capture_default_str();
-  g->add_option("--width", a.medium.width, "Box width W (length units)")->capture_default_str();
-  g->add_option("--height", a.medium.height, "Box height H (length units)")->capture_default_str();
-  g->add_option("--r-min", a.medium.r_min, "Smallest grain radius (length units)")->capture_default_str();
-  g->add_option("--r-max", a.medium.r_max, "Largest grain radius (length units)")->capture_default_str();
-  g->add_option("--radius-distribution", a.radii,
-                "uniform in [r-min, r-max], or lognormal (--r-median, --r-sigma) cut to that range")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"uniform", "lognormal"}));
-  g->add_option("--r-median", a.medium.r_median, "Log-normal: median grain radius (length units)")
-      ->capture_default_str();
-  g->add_option("--r-sigma", a.medium.r_sigma, "Log-normal: standard deviation of ln r")
-      ->capture_default_str();
-  g->add_option("--gap", a.medium.gap,
-                "Non-overlapping: min surface gap as a fraction of the larger radius")
-      ->capture_default_str();
-  g->add_flag("--walls", a.walls, "Solid side walls instead of periodic x");
-  g->add_option("--medium-seed", a.medium.seed, "Seed of the medium generator")->capture_default_str();
+  auto* g = add_medium_options(s, a.medium, false);
   g->add_option("--save-medium", a.save_medium_file, "Write the medium used to this grain file");
-
-  auto* d = s->add_option_group("Droplet", "physical parameters, paper's numerical units");
-  d->add_option("--masses", a.droplet.masses, "N, masses on the ring")->capture_default_str();
-  d->add_option("--mass", a.droplet.mass, "m, mass of each point (mass units)")->capture_default_str();
-  d->add_option("--radius", a.droplet.radius, "R, inflated droplet radius (length units)")->capture_default_str();
-  d->add_option("--nrt", a.droplet.nrt, "nRT of the ideal gas, P = nRT/V (force x length)")->capture_default_str();
-  d->add_option("--ks", a.droplet.ks, "Spring stiffness k_s (force/length)")->capture_default_str();
-  d->add_option("--kd", a.droplet.kd, "Spring damping k_d (force x time/length)")->capture_default_str();
-  d->add_option("--kc", a.droplet.kc, "Collision penalty stiffness k_c (force/length)")->capture_default_str();
-  d->add_option("--cc", a.droplet.cc, "Collision normal damping (force x time/length)")->capture_default_str();
-  d->add_option("--gravity", a.droplet.gravity, "g_y, gravity along y (length/time^2)")->capture_default_str();
-  d->add_option("--dt", a.droplet.dt, "Time step (time units)")->capture_default_str();
-  d->add_option("--max-strain", a.droplet.max_strain, "Provot limit on |d - d0|/d0")->capture_default_str();
-  d->add_option("--constraint-iterations", a.droplet.constraint_iterations,
-                "Passes of the Provot constraint per step")
-      ->capture_default_str();
-
-  d->add_option("--max-depth", a.droplet.max_depth,
-                "Contact limit: deepest a mass may sit inside a grain (length units)")
-      ->capture_default_str();
-  d->add_option("--viscosity", a.droplet.viscosity,
-                "Internal viscosity nu, damps motion relative to rigid motion (1/time)")
-      ->capture_default_str();
+  add_droplet_options(s, a.droplet);
 
   auto* r = s->add_option_group("Run", "exit conditions and droplets");
-  r->add_option("--max-steps", a.run.max_steps, "Step budget per droplet (timeout)")->capture_default_str();
-  r->add_option("--stuck-window", a.run.stuck_window, "Stuck test window (time units)")->capture_default_str();
-  r->add_option("--stuck-distance", a.run.stuck_distance,
-                "Downward progress required per window (length units)")
-      ->capture_default_str();
+  add_exit_options(r, a.run);
   r->add_option("--droplets", a.batch.droplets, "K droplets from random starts, run in parallel")
       ->capture_default_str();
   r->add_option("--x0", a.x0, "Start x of the droplet centre (default: random from --seed)");
@@ -109,12 +61,7 @@ void validate(SimulateArgs& a) {
   if (!a.snapshots_csv.empty() && a.run.snapshot_times.empty())
     throw std::invalid_argument("snapshots: --snapshot-times is required with --snapshots");
   if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
-  if (a.medium_file.empty()) {
-    a.medium.kind = parse_medium_kind(a.kind);
-    a.medium.radii = parse_radius_distribution(a.radii);
-    a.medium.periodic = !a.walls;
-    if (!a.medium.IsValid(&why)) throw std::invalid_argument(why);
-  }
+  resolve_medium(a.medium);
   if (!std::isnan(a.x0) && !std::isfinite(a.x0))
     throw std::invalid_argument("x0 = " + fmt(a.x0) + ": must be finite");
   for (const auto& [option, path] :
@@ -139,7 +86,7 @@ nlohmann::json run_json(const RunSummary& r, int i) {
 
 int run_simulate(SimulateArgs& a) {
   validate(a);
-  const Medium medium = a.medium_file.empty() ? generate_medium(a.medium) : load_medium(a.medium_file);
+  const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
   if (!a.save_medium_file.empty()) save_medium(a.save_medium_file, medium);
   const double porosity = exact_porosity(medium);
   a.batch.start_x = a.x0;

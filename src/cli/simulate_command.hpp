@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/common_options.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"
@@ -13,11 +14,7 @@
 namespace softdrop::cli {
 
 struct SimulateArgs {
-  MediumOptions medium;
-  std::string kind = "overlapping";
-  std::string radii = "uniform";
-  bool walls = false;
-  std::string medium_file;       ///< load instead of generating
+  MediumArgs medium;
   std::string save_medium_file;  ///< save the medium used
   DropletParams droplet;
   RunOptions run;

@@ -1,0 +1,99 @@
+#pragma once
+/// \file history.hpp
+/// The search history: one storage interface, implemented by an SQLite file (see README.md,
+/// "The history database", for the schema). Every generation is one transaction, so a process
+/// killed at any instant loses at most the generation in flight.
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "softdrop/search.hpp"
+
+namespace softdrop {
+
+/// The schema version this build writes (PRAGMA user_version). Files with a higher version are
+/// refused; files with a lower one would be migrated (none exist yet).
+constexpr int kHistorySchemaVersion = 1;
+/// PRAGMA application_id of a softdrop database: "SDRP".
+constexpr std::int32_t kHistoryApplicationId = 0x53445250;
+
+/// A run's row.
+struct RunRecord {
+  std::int64_t id = 0;
+  std::string created, updated;  ///< UTC, ISO 8601
+  std::string version;           ///< softdrop version that created the run
+  std::string status;            ///< running, finished or interrupted
+  std::string params;            ///< JSON object: every option that defines the run
+  std::uint64_t seed = 0;
+  int lambda = 1;
+  std::int64_t grains = 0;
+  double width = 0, height = 0;
+  bool periodic = true;
+  std::int64_t generations = 0;  ///< last stored generation number
+  std::int64_t evaluations = 0;  ///< droplets pushed so far
+  double best_t = 0;
+  std::int64_t best_generation = 0;
+};
+
+/// A candidate's row.
+struct CandidateRecord {
+  int index = 0;
+  int moved_grain = -1;
+  int moved = 0;
+  std::string outcome;
+  std::string reason;
+  double tortuosity = 0;  ///< 0 unless passed
+  std::int64_t steps = 0;
+  int touched = 0;
+  double seconds = 0;
+};
+
+/// A generation's row with its candidates.
+struct GenerationRecord {
+  std::int64_t generation = 0;
+  std::string kind;
+  int accepted = -1;
+  double best_t = 0;
+  int touched = 0;
+  double seconds = 0;
+  std::string finished;  ///< UTC time it was written
+  std::vector<CandidateRecord> candidates;
+};
+
+/// Storage of search runs. Implementations must make each call atomic.
+class History {
+ public:
+  virtual ~History() = default;
+
+  /// Creates a run together with its generation 0; returns its id.
+  virtual std::int64_t create_run(const std::string& params_json, const SearchOptions& options,
+                                  const Generation& initial, const Configuration& best) = 0;
+  /// Appends generation g of `run`; `best` is the best after it (stored when g was accepted).
+  /// Throws if the generation is not the next one (e.g. another process writes the same run).
+  virtual void append(std::int64_t run, const Generation& g, const Configuration& best) = 0;
+  /// Sets a run's status (running, finished, interrupted).
+  virtual void set_status(std::int64_t run, const std::string& status) = 0;
+
+  virtual std::vector<RunRecord> runs() = 0;
+  /// Throws std::runtime_error naming the id if there is no such run.
+  virtual RunRecord run(std::int64_t id) = 0;
+  virtual std::vector<GenerationRecord> generations(std::int64_t run) = 0;
+  /// The best configuration as of `generation` (the last accepted one at or before it), with its
+  /// tortuosity, touched grains and path; generation < 0 means the latest.
+  virtual Configuration configuration(std::int64_t run, std::int64_t generation) = 0;
+};
+
+/// How to open a history file.
+enum class OpenMode {
+  read_only,  ///< must exist and be a softdrop database
+  create      ///< created if missing; an existing file must be a softdrop database
+};
+
+/// Opens an SQLite history. A missing file (read_only), a file that is not SQLite, a foreign SQLite
+/// database, one from a newer schema or a truncated or corrupted one gives std::runtime_error with
+/// one line naming the file, and the file is not modified.
+std::unique_ptr<History> open_history(const std::string& path, OpenMode mode);
+
+}  // namespace softdrop

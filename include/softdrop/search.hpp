@@ -1,0 +1,168 @@
+#pragma once
+/// \file search.hpp
+/// The maximum-tortuosity search of the paper (section 6 of DESIGN.md): a hill climb over grain
+/// arrangements. Each generation makes candidates from the current best (all grains jiggle, or on
+/// every `single_every`-th generation one grain the droplet touched moves), pushes the droplet
+/// through each, and keeps the best candidate whose tortuosity is strictly higher.
+///
+/// Randomness is counter-based: candidate k of generation g draws from the stream
+/// derive_seed(derive_seed(seed, g), k). The generator state of a search is therefore just (seed,
+/// last generation), which makes resuming exact and results independent of the thread count.
+/// This module knows nothing about storage; callers log generations through the callback.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "softdrop/droplet.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop {
+
+/// How a candidate was made from its parent.
+enum class MoveKind {
+  initial,  ///< generation 0: the starting arrangement itself
+  all,      ///< every grain jumps by a small random step
+  single    ///< one grain, chosen among those the parent's droplet touched, jumps
+};
+const char* to_string(MoveKind kind);
+/// Parses "initial" / "all" / "single"; throws std::invalid_argument naming the value.
+MoveKind parse_move_kind(const std::string& name);
+
+/// Everything that defines a search (and so must not change when it is resumed).
+struct SearchOptions {
+  std::uint64_t seed = 1;   ///< seed of the moves
+  int lambda = 1;           ///< candidates per generation (1: exactly the paper's algorithm)
+  int single_every = 10;    ///< every this-th generation moves a single touched grain (0: never)
+  double step = 1.0;        ///< all-grain move: each grain jumps uniformly within this radius (length)
+  double single_step = 5.0; ///< single move: the grain jumps uniformly within this radius (length)
+  /// A jump that would break the spacing rule is redrawn up to this many times; after that the
+  /// grain stays where it was (which always satisfies the rule).
+  int max_redraws = 20;
+  double gap = 0.13;        ///< spacing rule: surface gap >= gap x the larger radius
+  DropletParams droplet;    ///< the droplet pushed through every candidate
+  /// Exit conditions of each evaluation. path_interval is the sampling of the stored best path
+  /// (steps); traces and snapshots are not used.
+  RunOptions run;
+
+  SearchOptions() { run.path_interval = 100; }
+  bool IsValid(std::string* why) const;
+};
+
+/// The droplet's run through one arrangement, reduced to what the search keeps.
+struct Evaluation {
+  Outcome outcome = Outcome::timeout;
+  std::string reason;
+  double tortuosity = 0;             ///< fitness, meaningful when outcome == passed
+  std::int64_t steps = 0;
+  std::vector<std::int32_t> touched; ///< grains the droplet touched, ascending
+  std::vector<double> path_x, path_y;  ///< centre-of-mass path every run.path_interval steps
+  double seconds = 0;                ///< wall time (not part of the deterministic result)
+};
+
+/// Pushes the droplet from the middle of the top (x = W/2, just above the highest grain).
+Evaluation evaluate(const Medium& medium, const SearchOptions& options);
+
+/// One candidate arrangement of a generation and its evaluation.
+struct Candidate {
+  int index = 0;           ///< k in [0, lambda)
+  MoveKind kind = MoveKind::all;
+  int moved_grain = -1;    ///< single moves: the grain that was chosen
+  int moved = 0;           ///< grains that actually moved (the others' jumps kept being refused)
+  Medium medium;
+  Evaluation eval;
+};
+
+/// The best arrangement so far and the generation that found it.
+struct Configuration {
+  std::int64_t generation = 0;
+  Medium medium;
+  Evaluation eval;
+};
+
+/// One generation's candidates and what became of them.
+struct Generation {
+  std::int64_t number = 0;
+  MoveKind kind = MoveKind::all;
+  std::vector<Candidate> candidates;
+  int accepted = -1;       ///< index of the accepted candidate, -1 if none improved
+  double best_t = 0;       ///< best tortuosity after this generation
+  int touched = 0;         ///< grains touched in the best's run after this generation
+  double seconds = 0;      ///< wall time of the generation
+};
+
+/// The move kind of generation g >= 1.
+MoveKind move_kind(std::int64_t generation, const SearchOptions& options);
+
+/// Candidate `index` of `generation` made from `parent` (not evaluated). Deterministic in (seed,
+/// generation, index). Every grain jump is checked with CGAL against the spacing rule and redrawn
+/// if refused; the result always satisfies the rule (checked again; std::logic_error if not).
+Candidate make_candidate(const Configuration& parent, std::int64_t generation, int index,
+                         const SearchOptions& options);
+
+/// Evaluates the starting arrangement as generation 0. Throws std::runtime_error naming the
+/// outcome if the droplet does not pass, or if the arrangement breaks the spacing rule.
+Generation initial_generation(const Medium& medium, const SearchOptions& options,
+                              Configuration* best);
+
+/// The search state: options, current best and the last generation done.
+class Search {
+ public:
+  /// Throws std::invalid_argument for invalid options or a best that did not pass.
+  Search(const SearchOptions& options, Configuration best, std::int64_t last_generation);
+
+  /// Runs generation last_generation() + 1 with up to `threads` threads (0: all cores) and updates
+  /// the best. The result does not depend on `threads`.
+  Generation next(int threads = 0);
+
+  const Configuration& best() const { return best_; }
+  std::int64_t last_generation() const { return last_; }
+  const SearchOptions& options() const { return options_; }
+
+ private:
+  SearchOptions options_;
+  Configuration best_;
+  std::int64_t last_;
+};
+
+/// Why `drive` stopped.
+enum class Termination {
+  generations,  ///< the requested generation was reached
+  time_limit,   ///< the time budget ran out (checked between generations)
+  interrupted,  ///< the stop flag was raised (Ctrl-C); the generation in flight was finished
+  callback      ///< a callback asked to stop
+};
+const char* to_string(Termination termination);
+
+/// When to stop.
+struct DriveOptions {
+  std::int64_t generations = 100;      ///< run up to this generation number
+  double time_limit = 0;               ///< wall seconds (0: none)
+  const std::atomic<bool>* stop = nullptr;  ///< raised asynchronously to stop after the generation
+  int threads = 0;                     ///< 0: all cores
+};
+
+/// What a drive did and why it ended (cf. Ceres' Solver::Summary).
+struct SearchSummary {
+  Termination termination = Termination::generations;
+  std::string message;            ///< one line
+  std::int64_t last_generation = 0;
+  std::int64_t generations_run = 0;
+  std::int64_t evaluations = 0;
+  std::int64_t accepted = 0;
+  double seconds = 0;
+  double best_t = 0;
+  double evaluations_per_second() const { return seconds > 0 ? static_cast<double>(evaluations) / seconds : 0; }
+};
+
+/// Called after each generation; returns false to stop. The logging hook (the history store and
+/// the progress line live in callbacks, so the search knows nothing of them).
+using GenerationCallback = std::function<bool(const Generation&, const Configuration& best)>;
+
+/// Runs generations until a stop condition holds.
+SearchSummary drive(Search& search, const DriveOptions& options, const GenerationCallback& callback);
+
+}  // namespace softdrop

@@ -1,0 +1,22 @@
+#pragma once
+/// \file search_params.hpp
+/// A search's options as a flat JSON object whose keys are the command line's long option names
+/// ("lambda", "nrt", "max-steps", ...): what the history stores with each run, and what a resume
+/// compares the command line against.
+
+#include <string>
+#include <vector>
+
+#include "softdrop/search.hpp"
+
+namespace softdrop {
+
+/// Every option of `options`, numbers written so that they read back bit for bit.
+std::string search_params_to_json(const SearchOptions& options);
+/// Reads them back from a JSON object (extra keys are ignored). Throws std::runtime_error naming a
+/// missing or mistyped key.
+SearchOptions search_params_from_json(const std::string& json);
+/// The keys search_params_to_json writes.
+std::vector<std::string> search_param_keys();
+
+}  // namespace softdrop

@@ -1,0 +1,91 @@
+// Making a candidate arrangement from its parent: grain jumps checked against the spacing rule.
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "softdrop/random.hpp"
+#include "softdrop/search.hpp"
+#include "softdrop/spacing.hpp"
+
+namespace softdrop {
+namespace {
+
+// A uniform point in the disc of radius `radius`, by rejection from the square (portable: it uses
+// only Rng::uniform, and the acceptance rate is pi/4).
+void random_jump(Rng& rng, double radius, double* dx, double* dy) {
+  for (;;) {
+    const double u = rng.uniform(-1.0, 1.0), v = rng.uniform(-1.0, 1.0);
+    if (u * u + v * v <= 1.0) {
+      *dx = u * radius;
+      *dy = v * radius;
+      return;
+    }
+  }
+}
+
+// Brings x back into [0, width) after a jump shorter than the width.
+double wrap(double x, double width) {
+  if (x < 0) return x + width;
+  if (x >= width) return x - width;
+  return x;
+}
+
+}  // namespace
+
+MoveKind move_kind(std::int64_t generation, const SearchOptions& options) {
+  if (generation <= 0) return MoveKind::initial;
+  if (options.single_every > 0 && generation % options.single_every == 0) return MoveKind::single;
+  return MoveKind::all;
+}
+
+Candidate make_candidate(const Configuration& parent, std::int64_t generation, int index,
+                         const SearchOptions& options) {
+  const Medium& m = parent.medium;
+  Candidate c;
+  c.index = index;
+  c.kind = move_kind(generation, options);
+  c.medium = m;
+  Rng rng(derive_seed(derive_seed(options.seed, static_cast<std::uint64_t>(generation)),
+                      static_cast<std::uint64_t>(index)));
+  if (m.grains.empty()) return c;
+
+  double r_max = 0;
+  for (const Grain& g : m.grains) r_max = std::max(r_max, g.r);
+  SpacingIndex index_of(m.width, m.height, m.periodic, options.gap, r_max);
+  for (const Grain& g : m.grains) index_of.insert(g);
+
+  // Grains move one after another, each checked against the others' current places, so the
+  // arrangement satisfies the rule after every single jump (and a refused grain keeps its place).
+  auto try_jump = [&](int i, double radius) {
+    const Grain old = index_of.grain(i);
+    for (int attempt = 0; attempt <= options.max_redraws; ++attempt) {
+      double dx = 0, dy = 0;
+      random_jump(rng, radius, &dx, &dy);
+      const Grain g{m.periodic ? wrap(old.x + dx, m.width) : old.x + dx, old.y + dy, old.r};
+      if (index_of.can_move(i, g)) {
+        index_of.move(i, g);
+        c.medium.grains[static_cast<std::size_t>(i)] = g;
+        return 1;
+      }
+    }
+    return 0;
+  };
+
+  const int n = static_cast<int>(m.grains.size());
+  if (c.kind == MoveKind::single) {
+    const auto& touched = parent.eval.touched;
+    c.moved_grain = touched.empty()
+                        ? static_cast<int>(rng.below(static_cast<std::uint64_t>(n)))
+                        : touched[static_cast<std::size_t>(rng.below(touched.size()))];
+    c.moved = try_jump(c.moved_grain, options.single_step);
+  } else {
+    for (int i = 0; i < n; ++i) c.moved += try_jump(i, options.step);
+  }
+
+  if (auto bad = find_spacing_violation(c.medium, options.gap))
+    throw std::logic_error("make_candidate: grains " + std::to_string(bad->first) + " and " +
+                           std::to_string(bad->second) + " break the spacing rule after a move");
+  return c;
+}
+
+}  // namespace softdrop

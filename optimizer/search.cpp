@@ -1,0 +1,203 @@
+// The search loop: evaluate candidates in parallel, keep the best strict improvement.
+#include "softdrop/search.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "softdrop/spacing.hpp"
+#include "validation.hpp"
+
+namespace softdrop {
+using detail::fail;
+using detail::num;
+
+const char* to_string(MoveKind kind) {
+  switch (kind) {
+    case MoveKind::initial: return "initial";
+    case MoveKind::all: return "all";
+    case MoveKind::single: return "single";
+  }
+  return "?";
+}
+
+MoveKind parse_move_kind(const std::string& name) {
+  if (name == "initial") return MoveKind::initial;
+  if (name == "all") return MoveKind::all;
+  if (name == "single") return MoveKind::single;
+  throw std::invalid_argument("move kind '" + name + "': expected initial, all or single");
+}
+
+const char* to_string(Termination termination) {
+  switch (termination) {
+    case Termination::generations: return "generations";
+    case Termination::time_limit: return "time-limit";
+    case Termination::interrupted: return "interrupted";
+    case Termination::callback: return "callback";
+  }
+  return "?";
+}
+
+bool SearchOptions::IsValid(std::string* why) const {
+  if (lambda < 1 || lambda > 4096) return fail(why, "lambda = " + std::to_string(lambda) + ": must be in [1, 4096]");
+  if (single_every < 0) return fail(why, "single-every = " + std::to_string(single_every) + ": must be >= 0");
+  if (!std::isfinite(step) || step <= 0) return fail(why, "step = " + num(step) + ": must be > 0");
+  if (!std::isfinite(single_step) || single_step <= 0)
+    return fail(why, "single-step = " + num(single_step) + ": must be > 0");
+  if (max_redraws < 0 || max_redraws > 1'000'000)
+    return fail(why, "max-redraws = " + std::to_string(max_redraws) + ": must be in [0, 1e6]");
+  if (!std::isfinite(gap) || gap < 0) return fail(why, "gap = " + num(gap) + ": must be >= 0");
+  if (!droplet.IsValid(why)) return false;
+  if (!run.IsValid(why)) return false;
+  if (run.path_interval < 1) return fail(why, "path-interval = " + std::to_string(run.path_interval) + ": must be >= 1");
+  return true;
+}
+
+Evaluation evaluate(const Medium& medium, const SearchOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  RunOptions run = options.run;
+  run.area_interval = 0;
+  run.snapshot_times.clear();
+  Simulation sim(options.droplet, medium);
+  RunSummary s = sim.run(0.5 * medium.width, run);
+  Evaluation e;
+  e.outcome = s.outcome;
+  e.reason = std::move(s.reason);
+  e.tortuosity = s.outcome == Outcome::passed ? s.tortuosity : 0.0;
+  e.steps = s.steps;
+  e.touched = std::move(s.touched);
+  e.path_x = std::move(s.path_x);
+  e.path_y = std::move(s.path_y);
+  e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return e;
+}
+
+namespace {
+void check_medium(const Medium& medium, const SearchOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
+  if (!medium.IsValid(&why)) throw std::invalid_argument(why);
+  if (medium.grains.empty()) throw std::invalid_argument("medium: the search needs at least one grain");
+  if (options.step >= 0.5 * medium.width)
+    throw std::invalid_argument("step = " + num(options.step) + ": must be < half the width");
+  if (options.single_step >= 0.5 * medium.width)
+    throw std::invalid_argument("single-step = " + num(options.single_step) + ": must be < half the width");
+  if (auto bad = find_spacing_violation(medium, options.gap))
+    throw std::invalid_argument(
+        bad->first == bad->second
+            ? "medium: grain " + std::to_string(bad->first) + " is not inside the box"
+            : "medium: grains " + std::to_string(bad->first) + " and " + std::to_string(bad->second) +
+                  " are closer than the spacing rule allows (gap " + num(options.gap) + ")");
+}
+}  // namespace
+
+Generation initial_generation(const Medium& medium, const SearchOptions& options, Configuration* best) {
+  check_medium(medium, options);
+  const auto t0 = std::chrono::steady_clock::now();
+  Generation g;
+  g.number = 0;
+  g.kind = MoveKind::initial;
+  Candidate c;
+  c.kind = MoveKind::initial;
+  c.medium = medium;
+  c.eval = evaluate(medium, options);
+  if (c.eval.outcome != Outcome::passed)
+    throw std::runtime_error(std::string("the droplet does not pass through the starting medium: ") +
+                             to_string(c.eval.outcome) + " (" + c.eval.reason + ")");
+  best->generation = 0;
+  best->medium = medium;
+  best->eval = c.eval;
+  g.accepted = 0;
+  g.best_t = c.eval.tortuosity;
+  g.touched = static_cast<int>(c.eval.touched.size());
+  g.candidates.push_back(std::move(c));
+  g.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return g;
+}
+
+Search::Search(const SearchOptions& options, Configuration best, std::int64_t last_generation)
+    : options_(options), best_(std::move(best)), last_(last_generation) {
+  check_medium(best_.medium, options_);
+  if (best_.eval.outcome != Outcome::passed)
+    throw std::invalid_argument("search: the best configuration's droplet did not pass");
+  if (last_ < 0) throw std::invalid_argument("search: last generation " + std::to_string(last_) + " < 0");
+}
+
+Generation Search::next(int threads) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Generation g;
+  g.number = last_ + 1;
+  g.kind = move_kind(g.number, options_);
+  g.candidates.resize(static_cast<std::size_t>(options_.lambda));
+  auto work = [&](int k) {
+    Candidate c = make_candidate(best_, g.number, k, options_);
+    c.eval = evaluate(c.medium, options_);
+    g.candidates[static_cast<std::size_t>(k)] = std::move(c);
+  };
+  if (options_.lambda == 1) {
+    work(0);
+  } else {
+    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+    arena.execute([&] { tbb::parallel_for(0, options_.lambda, work); });
+  }
+  // The best strict improvement; ties go to the lowest index, so the choice is thread-independent.
+  double best_t = best_.eval.tortuosity;
+  for (const Candidate& c : g.candidates)
+    if (c.eval.outcome == Outcome::passed && c.eval.tortuosity > best_t) {
+      best_t = c.eval.tortuosity;
+      g.accepted = c.index;
+    }
+  if (g.accepted >= 0) {
+    const Candidate& c = g.candidates[static_cast<std::size_t>(g.accepted)];
+    best_.generation = g.number;
+    best_.medium = c.medium;
+    best_.eval = c.eval;
+  }
+  last_ = g.number;
+  g.best_t = best_.eval.tortuosity;
+  g.touched = static_cast<int>(best_.eval.touched.size());
+  g.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return g;
+}
+
+SearchSummary drive(Search& search, const DriveOptions& options, const GenerationCallback& callback) {
+  const auto t0 = std::chrono::steady_clock::now();
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  SearchSummary s;
+  for (;;) {
+    if (search.last_generation() >= options.generations) {
+      s.termination = Termination::generations;
+      s.message = "reached generation " + std::to_string(options.generations);
+      break;
+    }
+    if (options.stop && options.stop->load()) {
+      s.termination = Termination::interrupted;
+      s.message = "interrupted after generation " + std::to_string(search.last_generation());
+      break;
+    }
+    if (options.time_limit > 0 && elapsed() >= options.time_limit) {
+      s.termination = Termination::time_limit;
+      s.message = "time limit of " + num(options.time_limit) + " s reached after generation " +
+                  std::to_string(search.last_generation());
+      break;
+    }
+    const Generation g = search.next(options.threads);
+    ++s.generations_run;
+    s.evaluations += static_cast<std::int64_t>(g.candidates.size());
+    if (g.accepted >= 0) ++s.accepted;
+    if (callback && !callback(g, search.best())) {
+      s.termination = Termination::callback;
+      s.message = "stopped by a callback after generation " + std::to_string(g.number);
+      break;
+    }
+  }
+  s.last_generation = search.last_generation();
+  s.best_t = search.best().eval.tortuosity;
+  s.seconds = elapsed();
+  return s;
+}
+
+}  // namespace softdrop

@@ -1,0 +1,496 @@
+// The search history in one SQLite file (WAL, foreign keys, schema version in user_version).
+// The schema is documented in README.md ("The history database"); keep the two in step.
+#include <SQLiteCpp/SQLiteCpp.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+#include <sqlite3.h>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "softdrop/history.hpp"
+#include "softdrop/version.hpp"
+
+namespace softdrop {
+namespace {
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE IF NOT EXISTS runs (
+  id              INTEGER PRIMARY KEY,
+  created         TEXT NOT NULL,
+  updated         TEXT NOT NULL,
+  version         TEXT NOT NULL,
+  status          TEXT NOT NULL CHECK (status IN ('running', 'finished', 'interrupted')),
+  params          TEXT NOT NULL,
+  seed            INTEGER NOT NULL,
+  lambda          INTEGER NOT NULL,
+  grains          INTEGER NOT NULL,
+  width           REAL NOT NULL,
+  height          REAL NOT NULL,
+  periodic        INTEGER NOT NULL,
+  generations     INTEGER NOT NULL,
+  evaluations     INTEGER NOT NULL,
+  best_t          REAL NOT NULL,
+  best_generation INTEGER NOT NULL
+);
+CREATE TABLE IF NOT EXISTS generations (
+  run_id             INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  generation         INTEGER NOT NULL,
+  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single')),
+  accepted_candidate INTEGER,
+  best_t             REAL NOT NULL,
+  touched            INTEGER NOT NULL,
+  seconds            REAL NOT NULL,
+  finished           TEXT NOT NULL,
+  PRIMARY KEY (run_id, generation)
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS candidates (
+  run_id      INTEGER NOT NULL,
+  generation  INTEGER NOT NULL,
+  candidate   INTEGER NOT NULL,
+  moved_grain INTEGER,
+  moved       INTEGER NOT NULL,
+  outcome     TEXT NOT NULL CHECK (outcome IN ('passed', 'stuck', 'timeout', 'diverged')),
+  reason      TEXT NOT NULL,
+  tortuosity  REAL,
+  steps       INTEGER NOT NULL,
+  touched     INTEGER NOT NULL,
+  seconds     REAL NOT NULL,
+  PRIMARY KEY (run_id, generation, candidate),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS grains (
+  run_id     INTEGER NOT NULL,
+  generation INTEGER NOT NULL,
+  grain      INTEGER NOT NULL,
+  x          REAL NOT NULL,
+  y          REAL NOT NULL,
+  r          REAL NOT NULL,
+  touched    INTEGER NOT NULL,
+  PRIMARY KEY (run_id, generation, grain),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS paths (
+  run_id     INTEGER NOT NULL,
+  generation INTEGER NOT NULL,
+  point      INTEGER NOT NULL,
+  x          REAL NOT NULL,
+  y          REAL NOT NULL,
+  PRIMARY KEY (run_id, generation, point),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+)sql";
+
+constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
+
+std::runtime_error file_error(const std::string& path, const std::string& what) {
+  return std::runtime_error("--db '" + path + "': " + what);
+}
+
+// Reads what the file is before SQLite touches it: missing, empty, or an SQLite file whose header
+// is consistent with its size. Returns false for "no usable content yet" (missing or empty).
+bool check_file(const std::string& path, OpenMode mode) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    if (mode == OpenMode::read_only) throw file_error(path, "no such file");
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) throw file_error(path, "not a regular file");
+  if (st.st_size == 0) {
+    if (mode == OpenMode::read_only) throw file_error(path, "empty file, not a softdrop database");
+    return false;
+  }
+  SQLite::Header h{};
+  try {
+    h = SQLite::Database::getHeaderInfo(path);
+  } catch (const std::exception&) {
+    throw file_error(path, "not an SQLite database (no SQLite header)");
+  }
+  const unsigned long page = h.pageSizeBytes == 1 ? 65536UL : h.pageSizeBytes;
+  // The in-header size is valid when the change counter matches version-valid-for.
+  if (h.fileChangeCounter == h.versionValidFor && h.databaseSizePages > 0 &&
+      static_cast<unsigned long long>(st.st_size) <
+          static_cast<unsigned long long>(page) * h.databaseSizePages)
+    throw file_error(path, "truncated or corrupted (the header promises " +
+                               std::to_string(static_cast<unsigned long long>(page) * h.databaseSizePages) +
+                               " bytes, the file has " + std::to_string(st.st_size) + ")");
+  return true;
+}
+
+// Checks an open database is ours and readable. Returns false for an empty SQLite database.
+bool check_schema(SQLite::Database& db, const std::string& path) {
+  try {
+    const int app = db.execAndGet("PRAGMA application_id").getInt();
+    const int version = db.execAndGet("PRAGMA user_version").getInt();
+    const int tables = db.execAndGet("SELECT count(*) FROM sqlite_master").getInt();
+    if (app == 0 && version == 0 && tables == 0) return false;
+    if (app != kHistoryApplicationId)
+      throw file_error(path, "an SQLite database, but not a softdrop database (application_id " +
+                                 std::to_string(app) + ")");
+    if (version > kHistorySchemaVersion)
+      throw file_error(path, "written by a newer softdrop (schema version " + std::to_string(version) +
+                                 "; this build reads up to " + std::to_string(kHistorySchemaVersion) + ")");
+    if (version < 1) throw file_error(path, "softdrop database without a schema version");
+    const std::string check = db.execAndGet("PRAGMA quick_check").getString();
+    if (check != "ok") {
+      std::string line = check;
+      for (char& c : line)
+        if (c == '\n') c = ';';
+      throw file_error(path, "corrupted (quick_check: " + line + ")");
+    }
+    return true;
+  } catch (const SQLite::Exception& e) {
+    throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
+  }
+}
+
+std::int64_t to_i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
+
+class SqliteHistory final : public History {
+ public:
+  SqliteHistory(const std::string& path, OpenMode mode)
+      : path_(path),
+        db_(path, mode == OpenMode::read_only ? SQLite::OPEN_READONLY : SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE,
+            60'000) {
+    db_.exec("PRAGMA foreign_keys = ON");
+    if (mode == OpenMode::read_only) return;
+    // Switching to WAL needs the file to itself and does not wait through the busy handler, so a
+    // second process opening a new file at the same instant retries here.
+    for (int attempt = 0;; ++attempt) {
+      try {
+        db_.exec("PRAGMA journal_mode = WAL");
+        break;
+      } catch (const SQLite::Exception& e) {
+        if ((e.getErrorCode() & 0xff) != SQLITE_BUSY || attempt >= 6000) throw;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    }
+    // NORMAL in WAL mode: a killed process never loses a committed generation; a power cut may
+    // lose the last few, never consistency.
+    db_.exec("PRAGMA synchronous = NORMAL");
+    SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
+    // Another process may have created the schema since we looked.
+    if (db_.execAndGet("PRAGMA user_version").getInt() == 0) {
+      db_.exec(kSchema);
+      db_.exec("PRAGMA application_id = " + std::to_string(kHistoryApplicationId));
+      db_.exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
+    }
+    t.commit();
+  }
+
+  std::int64_t create_run(const std::string& params_json, const SearchOptions& o, const Generation& g0,
+                          const Configuration& best) override {
+    return guarded([&] {
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
+      SQLite::Statement q(db_, std::string("INSERT INTO runs (created, updated, version, status, params, "
+                                           "seed, lambda, grains, width, height, periodic, generations, "
+                                           "evaluations, best_t, best_generation) VALUES (") +
+                                   kNow + ", " + kNow + ", ?, 'running', ?, ?, ?, ?, ?, ?, ?, 0, ?, ?, 0)");
+      q.bind(1, kVersion);
+      q.bind(2, params_json);
+      q.bind(3, static_cast<std::int64_t>(to_i64(o.seed)));
+      q.bind(4, o.lambda);
+      q.bind(5, static_cast<std::int64_t>(best.medium.grains.size()));
+      q.bind(6, best.medium.width);
+      q.bind(7, best.medium.height);
+      q.bind(8, best.medium.periodic ? 1 : 0);
+      q.bind(9, static_cast<std::int64_t>(g0.candidates.size()));
+      q.bind(10, best.eval.tortuosity);
+      q.exec();
+      const std::int64_t run = db_.getLastInsertRowid();
+      write_generation(run, g0, best);
+      t.commit();
+      return run;
+    });
+  }
+
+  void append(std::int64_t run, const Generation& g, const Configuration& best) override {
+    guarded([&] {
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
+      SQLite::Statement last(db_, "SELECT generations FROM runs WHERE id = ?");
+      last.bind(1, static_cast<std::int64_t>(run));
+      if (!last.executeStep()) throw std::runtime_error("run " + std::to_string(run) + ": no such run");
+      const std::int64_t stored = last.getColumn(0).getInt64();
+      if (g.number != stored + 1)
+        throw std::runtime_error("run " + std::to_string(run) + ": generation " + std::to_string(g.number) +
+                                 " does not follow the stored generation " + std::to_string(stored) +
+                                 " (is another process writing this run?)");
+      write_generation(run, g, best);
+      SQLite::Statement u(db_, std::string("UPDATE runs SET generations = ?, evaluations = evaluations + ?, "
+                                           "best_t = ?, best_generation = ?, status = 'running', updated = ") +
+                                   kNow + " WHERE id = ?");
+      u.bind(1, static_cast<std::int64_t>(g.number));
+      u.bind(2, static_cast<std::int64_t>(g.candidates.size()));
+      u.bind(3, best.eval.tortuosity);
+      u.bind(4, static_cast<std::int64_t>(best.generation));
+      u.bind(5, static_cast<std::int64_t>(run));
+      u.exec();
+      t.commit();
+      return 0;
+    });
+  }
+
+  void set_status(std::int64_t run, const std::string& status) override {
+    guarded([&] {
+      SQLite::Statement u(db_, std::string("UPDATE runs SET status = ?, updated = ") + kNow + " WHERE id = ?");
+      u.bind(1, status);
+      u.bind(2, static_cast<std::int64_t>(run));
+      if (u.exec() != 1) throw std::runtime_error("run " + std::to_string(run) + ": no such run");
+      return 0;
+    });
+  }
+
+  std::vector<RunRecord> runs() override {
+    return guarded([&] {
+      std::vector<RunRecord> out;
+      SQLite::Statement q(db_, std::string(kRunColumns) + " ORDER BY id");
+      while (q.executeStep()) out.push_back(read_run(q));
+      return out;
+    });
+  }
+
+  RunRecord run(std::int64_t id) override {
+    return guarded([&] {
+      SQLite::Statement q(db_, std::string(kRunColumns) + " WHERE id = ?");
+      q.bind(1, static_cast<std::int64_t>(id));
+      if (!q.executeStep()) throw std::runtime_error("--run " + std::to_string(id) + ": no such run in '" + path_ + "'");
+      return read_run(q);
+    });
+  }
+
+  std::vector<GenerationRecord> generations(std::int64_t run_id) override {
+    return guarded([&] {
+      run(run_id);  // names a missing run
+      // One read transaction, so a writer in another process cannot slip a generation in between.
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);
+      std::vector<GenerationRecord> out;
+      SQLite::Statement q(db_, "SELECT generation, kind, accepted_candidate, best_t, touched, seconds, finished "
+                               "FROM generations WHERE run_id = ? ORDER BY generation");
+      q.bind(1, static_cast<std::int64_t>(run_id));
+      while (q.executeStep()) {
+        GenerationRecord g;
+        g.generation = q.getColumn(0).getInt64();
+        g.kind = q.getColumn(1).getString();
+        g.accepted = q.getColumn(2).isNull() ? -1 : q.getColumn(2).getInt();
+        g.best_t = q.getColumn(3).getDouble();
+        g.touched = q.getColumn(4).getInt();
+        g.seconds = q.getColumn(5).getDouble();
+        g.finished = q.getColumn(6).getString();
+        out.push_back(std::move(g));
+      }
+      SQLite::Statement c(db_, "SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, "
+                               "steps, touched, seconds FROM candidates WHERE run_id = ? "
+                               "ORDER BY generation, candidate");
+      c.bind(1, static_cast<std::int64_t>(run_id));
+      std::size_t k = 0;
+      while (c.executeStep()) {
+        const std::int64_t gen = c.getColumn(0).getInt64();
+        while (k < out.size() && out[k].generation < gen) ++k;
+        if (k == out.size() || out[k].generation != gen)
+          throw std::runtime_error("candidate of missing generation " + std::to_string(gen));
+        CandidateRecord r;
+        r.index = c.getColumn(1).getInt();
+        r.moved_grain = c.getColumn(2).isNull() ? -1 : c.getColumn(2).getInt();
+        r.moved = c.getColumn(3).getInt();
+        r.outcome = c.getColumn(4).getString();
+        r.reason = c.getColumn(5).getString();
+        r.tortuosity = c.getColumn(6).isNull() ? 0.0 : c.getColumn(6).getDouble();
+        r.steps = c.getColumn(7).getInt64();
+        r.touched = c.getColumn(8).getInt();
+        r.seconds = c.getColumn(9).getDouble();
+        out[k].candidates.push_back(std::move(r));
+      }
+      t.commit();
+      return out;
+    });
+  }
+
+  Configuration configuration(std::int64_t run_id, std::int64_t generation) override {
+    return guarded([&] {
+      const RunRecord r = run(run_id);
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);
+      SQLite::Statement q(db_, "SELECT generation, accepted_candidate FROM generations WHERE run_id = ? AND "
+                               "accepted_candidate IS NOT NULL AND generation <= ? "
+                               "ORDER BY generation DESC LIMIT 1");
+      q.bind(1, static_cast<std::int64_t>(run_id));
+      q.bind(2, static_cast<std::int64_t>(generation < 0 ? r.generations : generation));
+      if (!q.executeStep())
+        throw std::runtime_error("--generation " + std::to_string(generation) + ": run " +
+                                 std::to_string(run_id) + " has no configuration there");
+      Configuration c;
+      c.generation = q.getColumn(0).getInt64();
+      const int candidate = q.getColumn(1).getInt();
+      c.medium.width = r.width;
+      c.medium.height = r.height;
+      c.medium.periodic = r.periodic;
+
+      SQLite::Statement e(db_, "SELECT outcome, reason, tortuosity, steps FROM candidates "
+                               "WHERE run_id = ? AND generation = ? AND candidate = ?");
+      e.bind(1, static_cast<std::int64_t>(run_id));
+      e.bind(2, static_cast<std::int64_t>(c.generation));
+      e.bind(3, candidate);
+      if (!e.executeStep()) throw std::runtime_error("accepted candidate missing");
+      if (e.getColumn(0).getString() != "passed") throw std::runtime_error("accepted candidate did not pass");
+      c.eval.outcome = Outcome::passed;
+      c.eval.reason = e.getColumn(1).getString();
+      c.eval.tortuosity = e.getColumn(2).getDouble();
+      c.eval.steps = e.getColumn(3).getInt64();
+
+      SQLite::Statement gq(db_, "SELECT grain, x, y, r, touched FROM grains WHERE run_id = ? AND generation = ? "
+                                "ORDER BY grain");
+      gq.bind(1, static_cast<std::int64_t>(run_id));
+      gq.bind(2, static_cast<std::int64_t>(c.generation));
+      while (gq.executeStep()) {
+        const int i = gq.getColumn(0).getInt();
+        if (i != static_cast<int>(c.medium.grains.size())) throw std::runtime_error("grain numbering has a hole");
+        c.medium.grains.push_back({gq.getColumn(1).getDouble(), gq.getColumn(2).getDouble(), gq.getColumn(3).getDouble()});
+        if (gq.getColumn(4).getInt() != 0) c.eval.touched.push_back(i);
+      }
+      if (static_cast<std::int64_t>(c.medium.grains.size()) != r.grains)
+        throw std::runtime_error("generation " + std::to_string(c.generation) + " stores " +
+                                 std::to_string(c.medium.grains.size()) + " grains, the run has " +
+                                 std::to_string(r.grains));
+
+      SQLite::Statement pq(db_, "SELECT x, y FROM paths WHERE run_id = ? AND generation = ? ORDER BY point");
+      pq.bind(1, static_cast<std::int64_t>(run_id));
+      pq.bind(2, static_cast<std::int64_t>(c.generation));
+      while (pq.executeStep()) {
+        c.eval.path_x.push_back(pq.getColumn(0).getDouble());
+        c.eval.path_y.push_back(pq.getColumn(1).getDouble());
+      }
+      t.commit();
+      return c;
+    });
+  }
+
+ private:
+  static constexpr const char* kRunColumns =
+      "SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, periodic, "
+      "generations, evaluations, best_t, best_generation FROM runs";
+
+  static RunRecord read_run(SQLite::Statement& q) {
+    RunRecord r;
+    r.id = q.getColumn(0).getInt64();
+    r.created = q.getColumn(1).getString();
+    r.updated = q.getColumn(2).getString();
+    r.version = q.getColumn(3).getString();
+    r.status = q.getColumn(4).getString();
+    r.params = q.getColumn(5).getString();
+    r.seed = static_cast<std::uint64_t>(q.getColumn(6).getInt64());
+    r.lambda = q.getColumn(7).getInt();
+    r.grains = q.getColumn(8).getInt64();
+    r.width = q.getColumn(9).getDouble();
+    r.height = q.getColumn(10).getDouble();
+    r.periodic = q.getColumn(11).getInt() != 0;
+    r.generations = q.getColumn(12).getInt64();
+    r.evaluations = q.getColumn(13).getInt64();
+    r.best_t = q.getColumn(14).getDouble();
+    r.best_generation = q.getColumn(15).getInt64();
+    return r;
+  }
+
+  // Inside a transaction: the generation, its candidates and, if accepted, the new best's grains
+  // (with the touched flag) and path.
+  void write_generation(std::int64_t run, const Generation& g, const Configuration& best) {
+    const std::int64_t rid = run, gen = g.number;
+    SQLite::Statement q(db_, std::string("INSERT INTO generations (run_id, generation, kind, accepted_candidate, "
+                                         "best_t, touched, seconds, finished) VALUES (?, ?, ?, ?, ?, ?, ?, ") +
+                                 kNow + ")");
+    q.bind(1, rid);
+    q.bind(2, gen);
+    q.bind(3, to_string(g.kind));
+    if (g.accepted >= 0) q.bind(4, g.accepted); else q.bind(4);
+    q.bind(5, g.best_t);
+    q.bind(6, g.touched);
+    q.bind(7, g.seconds);
+    q.exec();
+
+    SQLite::Statement c(db_, "INSERT INTO candidates (run_id, generation, candidate, moved_grain, moved, outcome, "
+                             "reason, tortuosity, steps, touched, seconds) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    for (const Candidate& k : g.candidates) {
+      c.reset();
+      c.clearBindings();
+      c.bind(1, rid);
+      c.bind(2, gen);
+      c.bind(3, k.index);
+      if (k.moved_grain >= 0) c.bind(4, k.moved_grain);
+      c.bind(5, k.moved);
+      c.bind(6, to_string(k.eval.outcome));
+      c.bind(7, k.eval.reason);
+      if (k.eval.outcome == Outcome::passed) c.bind(8, k.eval.tortuosity);
+      c.bind(9, static_cast<std::int64_t>(k.eval.steps));
+      c.bind(10, static_cast<int>(k.eval.touched.size()));
+      c.bind(11, k.eval.seconds);
+      c.exec();
+    }
+    if (g.accepted < 0) return;
+    if (best.generation != g.number) throw std::logic_error("append: accepted generation but best is older");
+
+    std::vector<std::uint8_t> touched(best.medium.grains.size(), 0);
+    for (const std::int32_t i : best.eval.touched) touched.at(static_cast<std::size_t>(i)) = 1;
+    SQLite::Statement gq(db_, "INSERT INTO grains (run_id, generation, grain, x, y, r, touched) "
+                              "VALUES (?, ?, ?, ?, ?, ?, ?)");
+    for (std::size_t i = 0; i < best.medium.grains.size(); ++i) {
+      const Grain& gr = best.medium.grains[i];
+      gq.reset();
+      gq.bind(1, rid);
+      gq.bind(2, gen);
+      gq.bind(3, static_cast<std::int64_t>(i));
+      gq.bind(4, gr.x);
+      gq.bind(5, gr.y);
+      gq.bind(6, gr.r);
+      gq.bind(7, static_cast<int>(touched[i]));
+      gq.exec();
+    }
+    SQLite::Statement pq(db_, "INSERT INTO paths (run_id, generation, point, x, y) VALUES (?, ?, ?, ?, ?)");
+    for (std::size_t i = 0; i < best.eval.path_x.size(); ++i) {
+      pq.reset();
+      pq.bind(1, rid);
+      pq.bind(2, gen);
+      pq.bind(3, static_cast<std::int64_t>(i));
+      pq.bind(4, best.eval.path_x[i]);
+      pq.bind(5, best.eval.path_y[i]);
+      pq.exec();
+    }
+  }
+
+  // SQLite errors become one line naming the file.
+  template <class F>
+  auto guarded(F&& f) -> decltype(f()) {
+    try {
+      return f();
+    } catch (const SQLite::Exception& e) {
+      throw file_error(path_, e.what());
+    }
+  }
+
+  std::string path_;
+  SQLite::Database db_;
+};
+
+}  // namespace
+
+std::unique_ptr<History> open_history(const std::string& path, OpenMode mode) {
+  const bool has_content = check_file(path, mode);
+  if (has_content) {
+    // Inspect read-only first: nothing is written to a file that turns out not to be ours.
+    bool ours = false;
+    try {
+      SQLite::Database probe(path, SQLite::OPEN_READONLY, 60'000);
+      ours = check_schema(probe, path);
+    } catch (const SQLite::Exception& e) {
+      throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
+    }
+    if (!ours && mode == OpenMode::read_only) throw file_error(path, "empty SQLite database, no softdrop runs");
+  }
+  try {
+    return std::make_unique<SqliteHistory>(path, mode);
+  } catch (const SQLite::Exception& e) {
+    throw file_error(path, e.what());
+  }
+}
+
+}  // namespace softdrop

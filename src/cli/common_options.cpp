@@ -1,0 +1,79 @@
+#include "cli/common_options.hpp"
+
+#include <stdexcept>
+
+namespace softdrop::cli {
+
+CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_count) {
+  auto* g = s->add_option_group("Medium", "generated unless --medium is given");
+  g->add_option("--medium", a.file, "Load the medium from this grain file (.json or .csv)");
+  if (fixed_count) {
+    g->add_option("--grains", a.options.grains, "Number of non-overlapping grains")->capture_default_str();
+  } else {
+    g->add_option("--kind", a.kind, "overlapping or non-overlapping")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"overlapping", "non-overlapping"}));
+    g->add_option("--porosity", a.options.porosity, "Target porosity phi, in (0, 1)")->capture_default_str();
+  }
+  g->add_option("--width", a.options.width, "Box width W (length units)")->capture_default_str();
+  g->add_option("--height", a.options.height, "Box height H (length units)")->capture_default_str();
+  g->add_option("--r-min", a.options.r_min, "Smallest grain radius (length units)")->capture_default_str();
+  g->add_option("--r-max", a.options.r_max, "Largest grain radius (length units)")->capture_default_str();
+  g->add_option("--radius-distribution", a.radii,
+                "uniform in [r-min, r-max], or lognormal (--r-median, --r-sigma) cut to that range")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"uniform", "lognormal"}));
+  g->add_option("--r-median", a.options.r_median, "Log-normal: median grain radius (length units)")
+      ->capture_default_str();
+  g->add_option("--r-sigma", a.options.r_sigma, "Log-normal: standard deviation of ln r")
+      ->capture_default_str();
+  g->add_option("--gap", a.options.gap,
+                fixed_count ? "Spacing rule: min surface gap as a fraction of the larger radius"
+                            : "Non-overlapping: min surface gap as a fraction of the larger radius")
+      ->capture_default_str();
+  g->add_flag("--walls", a.walls, "Solid side walls instead of periodic x");
+  g->add_option("--medium-seed", a.options.seed, "Seed of the medium generator")->capture_default_str();
+  if (fixed_count) a.kind = "non-overlapping";
+  return g;
+}
+
+CLI::Option_group* add_droplet_options(CLI::App* s, DropletParams& d) {
+  auto* g = s->add_option_group("Droplet", "physical parameters, paper's numerical units");
+  g->add_option("--masses", d.masses, "N, masses on the ring")->capture_default_str();
+  g->add_option("--mass", d.mass, "m, mass of each point (mass units)")->capture_default_str();
+  g->add_option("--radius", d.radius, "R, inflated droplet radius (length units)")->capture_default_str();
+  g->add_option("--nrt", d.nrt, "nRT of the ideal gas, P = nRT/V (force x length)")->capture_default_str();
+  g->add_option("--ks", d.ks, "Spring stiffness k_s (force/length)")->capture_default_str();
+  g->add_option("--kd", d.kd, "Spring damping k_d (force x time/length)")->capture_default_str();
+  g->add_option("--kc", d.kc, "Collision penalty stiffness k_c (force/length)")->capture_default_str();
+  g->add_option("--cc", d.cc, "Collision normal damping (force x time/length)")->capture_default_str();
+  g->add_option("--gravity", d.gravity, "g_y, gravity along y (length/time^2)")->capture_default_str();
+  g->add_option("--dt", d.dt, "Time step (time units)")->capture_default_str();
+  g->add_option("--max-strain", d.max_strain, "Provot limit on |d - d0|/d0")->capture_default_str();
+  g->add_option("--constraint-iterations", d.constraint_iterations, "Passes of the Provot constraint per step")
+      ->capture_default_str();
+  g->add_option("--max-depth", d.max_depth, "Contact limit: deepest a mass may sit inside a grain (length units)")
+      ->capture_default_str();
+  g->add_option("--viscosity", d.viscosity,
+                "Internal viscosity nu, damps motion relative to rigid motion (1/time)")
+      ->capture_default_str();
+  return g;
+}
+
+void add_exit_options(CLI::Option_group* g, RunOptions& r) {
+  g->add_option("--max-steps", r.max_steps, "Step budget per droplet (timeout)")->capture_default_str();
+  g->add_option("--stuck-window", r.stuck_window, "Stuck test window (time units)")->capture_default_str();
+  g->add_option("--stuck-distance", r.stuck_distance, "Downward progress required per window (length units)")
+      ->capture_default_str();
+}
+
+void resolve_medium(MediumArgs& a) {
+  if (!a.file.empty()) return;
+  a.options.kind = parse_medium_kind(a.kind);
+  a.options.radii = parse_radius_distribution(a.radii);
+  a.options.periodic = !a.walls;
+  std::string why;
+  if (!a.options.IsValid(&why)) throw std::invalid_argument(why);
+}
+
+}  // namespace softdrop::cli

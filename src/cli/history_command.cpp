@@ -1,0 +1,167 @@
+#include "cli/history_command.hpp"
+
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/output.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/history.hpp"
+#include "softdrop/search_params.hpp"
+
+namespace softdrop::cli {
+
+CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
+  CLI::App* s = app.add_subcommand("history", "List the runs of a search database, or one run's generations");
+  s->fallthrough();
+  s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
+  s->add_option("--run", a.run, "List this run's generations instead of the runs");
+  s->add_flag("--best", a.best, "With --run: only accepted generations (the best-T curve)");
+  s->add_option("--format", a.format, "table, csv or json")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"table", "csv", "json"}));
+  return s;
+}
+
+CLI::App* add_export_command(CLI::App& app, ExportArgs& a) {
+  CLI::App* s = app.add_subcommand("export", "Write a stored configuration as a grain file for `simulate`");
+  s->fallthrough();
+  s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
+  s->add_option("--run", a.run, "Run id")->required();
+  s->add_option("--generation", a.generation,
+                "The best configuration as of this generation (default: the run's best)");
+  s->add_option("--output,-o", a.output, "Grain file to write (.json, otherwise CSV)")->required();
+  s->add_option("--simulate-config", a.simulate_config,
+                "Also write a TOML config: `softdrop simulate --config FILE` reproduces the stored T");
+  return s;
+}
+
+namespace {
+
+// A table: columns of strings, printed aligned, as CSV or as a JSON array of objects.
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::vector<nlohmann::json>> rows;
+
+  static std::string text(const nlohmann::json& v) {
+    if (v.is_null()) return "";
+    if (v.is_string()) return v.get<std::string>();
+    if (v.is_number_float()) return fmt(v.get<double>());
+    return v.dump();
+  }
+  void print(std::ostream& out, const std::string& format) const {
+    if (format == "json") {
+      nlohmann::ordered_json j = nlohmann::ordered_json::array();
+      for (const auto& row : rows) {
+        nlohmann::ordered_json o;
+        for (std::size_t c = 0; c < header.size(); ++c) o[header[c]] = row[c];
+        j.push_back(o);
+      }
+      out << j.dump(2) << '\n';
+      return;
+    }
+    if (format == "csv") {
+      for (std::size_t c = 0; c < header.size(); ++c) out << (c ? "," : "") << header[c];
+      out << '\n';
+      for (const auto& row : rows) {
+        for (std::size_t c = 0; c < row.size(); ++c) {
+          std::string t = text(row[c]);
+          if (t.find_first_of(",\"\n") != std::string::npos) {
+            std::string q = "\"";
+            for (char ch : t) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+            t = q + "\"";
+          }
+          out << (c ? "," : "") << t;
+        }
+        out << '\n';
+      }
+      return;
+    }
+    // Table: doubles shortened for reading; CSV and JSON keep every digit.
+    auto cell = [](const nlohmann::json& v) { return v.is_number_float() ? fmt(v.get<double>(), 8) : text(v); };
+    std::vector<std::size_t> width(header.size());
+    for (std::size_t c = 0; c < header.size(); ++c) width[c] = header[c].size();
+    for (const auto& row : rows)
+      for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], cell(row[c]).size());
+    for (std::size_t c = 0; c < header.size(); ++c) out << (c ? "  " : "") << std::left << std::setw(static_cast<int>(width[c])) << header[c];
+    out << '\n';
+    for (const auto& row : rows) {
+      for (std::size_t c = 0; c < row.size(); ++c)
+        out << (c ? "  " : "") << std::left << std::setw(static_cast<int>(width[c])) << cell(row[c]);
+      out << '\n';
+    }
+  }
+};
+
+nlohmann::json or_null(bool present, double v) { return present ? nlohmann::json(v) : nlohmann::json(); }
+
+}  // namespace
+
+int run_history(const HistoryArgs& a) {
+  if (a.best && a.run == 0) throw std::invalid_argument("best: --best needs --run");
+  auto history = open_history(a.db, OpenMode::read_only);
+  Table t;
+  if (a.run == 0) {
+    t.header = {"run", "created", "status", "grains", "generations", "evaluations", "best_t", "best_generation",
+                "lambda", "seed", "version"};
+    for (const RunRecord& r : history->runs())
+      t.rows.push_back({r.id, r.created, r.status, r.grains, r.generations, r.evaluations, r.best_t,
+                        r.best_generation, r.lambda, r.seed, r.version});
+  } else if (a.best) {
+    t.header = {"generation", "kind", "best_t", "touched"};
+    for (const GenerationRecord& g : history->generations(a.run))
+      if (g.accepted >= 0) t.rows.push_back({g.generation, g.kind, g.best_t, g.touched});
+  } else {
+    t.header = {"generation", "kind", "accepted", "candidate_t", "outcomes", "best_t", "touched", "seconds"};
+    for (const GenerationRecord& g : history->generations(a.run)) {
+      // The generation's best passing candidate, and every candidate's outcome.
+      bool any = false;
+      double top = 0;
+      std::string outcomes;
+      for (const CandidateRecord& c : g.candidates) {
+        if (c.outcome == "passed" && (!any || c.tortuosity > top)) top = c.tortuosity, any = true;
+        outcomes += (outcomes.empty() ? "" : ";") + c.outcome;
+      }
+      t.rows.push_back({g.generation, g.kind, g.accepted >= 0 ? 1 : 0, or_null(any, top), outcomes, g.best_t,
+                        g.touched, g.seconds});
+    }
+  }
+  t.print(std::cout, a.format);
+  return 0;
+}
+
+int run_export(const ExportArgs& a) {
+  if (a.generation < -1) throw std::invalid_argument("generation = " + std::to_string(a.generation) + ": must be >= 0");
+  check_output_path("--output", a.output);
+  if (!a.simulate_config.empty()) check_output_path("--simulate-config", a.simulate_config);
+  auto history = open_history(a.db, OpenMode::read_only);
+  const RunRecord run = history->run(a.run);
+  if (a.generation > run.generations)
+    throw std::invalid_argument("generation = " + std::to_string(a.generation) + ": run " + std::to_string(a.run) +
+                                " has stored generations 0 to " + std::to_string(run.generations));
+  const Configuration c = history->configuration(a.run, a.generation);
+  save_medium(a.output, c.medium);
+  if (!a.simulate_config.empty()) {
+    // The droplet and exit options of the run, so that simulate pushes the same droplet from the
+    // same place: numbers in JSON notation, which TOML reads back to the same doubles.
+    const nlohmann::json params = nlohmann::json::parse(run.params);
+    std::ostringstream toml;
+    toml << "# softdrop simulate --config " << a.simulate_config << "  (run " << a.run << ", generation "
+         << c.generation << ", T = " << fmt(c.eval.tortuosity) << ")\n";
+    toml << "medium = " << nlohmann::json(a.output).dump() << "\n";
+    toml << "x0 = " << nlohmann::json(0.5 * c.medium.width).dump() << "\n";
+    for (const char* key : {"masses", "mass", "radius", "nrt", "ks", "kd", "kc", "cc", "gravity", "dt", "max-strain",
+                            "constraint-iterations", "max-depth", "viscosity", "max-steps", "stuck-window",
+                            "stuck-distance"})
+      toml << key << " = " << params.at(key).dump() << "\n";
+    write_file_atomically(a.simulate_config, toml.str());
+  }
+  std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation << " (T = "
+            << fmt(c.eval.tortuosity) << ", " << c.medium.grains.size() << " grains) written to " << a.output
+            << "\n";
+  return 0;
+}
+
+}  // namespace softdrop::cli

@@ -1,0 +1,31 @@
+#pragma once
+// `softdrop history` (list runs, a run's generations, its best-T curve) and `softdrop export`
+// (a stored configuration as a grain file that `softdrop simulate` accepts).
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+
+namespace softdrop::cli {
+
+struct HistoryArgs {
+  std::string db = "softdrop.db";
+  std::int64_t run = 0;  ///< 0: list runs
+  bool best = false;     ///< with --run: only accepted generations (the best-T curve)
+  std::string format = "table";
+};
+
+struct ExportArgs {
+  std::string db = "softdrop.db";
+  std::int64_t run = 0;
+  std::int64_t generation = -1;  ///< -1: the run's best
+  std::string output;
+  std::string simulate_config;   ///< optional TOML for `softdrop simulate --config`
+};
+
+CLI::App* add_history_command(CLI::App& app, HistoryArgs& args);
+CLI::App* add_export_command(CLI::App& app, ExportArgs& args);
+int run_history(const HistoryArgs& args);
+int run_export(const ExportArgs& args);
+
+}  // namespace softdrop::cli

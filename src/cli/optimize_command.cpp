@@ -1,0 +1,280 @@
+#include "cli/optimize_command.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstring>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/output.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/history.hpp"
+#include "softdrop/porosity.hpp"
+#include "softdrop/random.hpp"
+#include "softdrop/search_params.hpp"
+#include "softdrop/version.hpp"
+
+namespace softdrop::cli {
+
+OptimizeArgs::OptimizeArgs() {
+  // The default search scene: a 300 x 300 periodic box of 60 non-overlapping grains (phi ~ 0.69).
+  medium.options.kind = MediumKind::non_overlapping;
+  medium.options.grains = 60;
+  medium.options.width = 300;
+  medium.options.height = 300;
+}
+
+CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
+  CLI::App* s = app.add_subcommand(
+      "optimize", "Search grain arrangements of maximum tortuosity, logging every generation to SQLite");
+  s->fallthrough();
+
+  auto* h = s->add_option_group("History");
+  h->add_option("--db", a.db, "SQLite history file (created if missing; holds many runs)")->capture_default_str();
+  h->add_option("--resume", a.resume, "Continue this run of the database instead of starting a new one");
+
+  auto* g = s->add_option_group("Search", "stored with the run; a resume must not contradict them");
+  g->add_option("--generations", a.generations, "Run up to this generation number")->capture_default_str();
+  g->add_option("--time-limit", a.time_limit, "Stop after this many wall seconds (0: no limit)")
+      ->capture_default_str();
+  g->add_option("--lambda", a.search.lambda, "Candidates per generation, evaluated in parallel (1: the paper)")
+      ->capture_default_str();
+  g->add_option("--seed", a.search.seed, "Seed of the moves")->capture_default_str();
+  g->add_option("--single-every", a.search.single_every,
+                "Every this-th generation moves one grain the droplet touched (0: never)")
+      ->capture_default_str();
+  g->add_option("--step", a.search.step, "All-grain move: jump radius of each grain (length units)")
+      ->capture_default_str();
+  g->add_option("--single-step", a.search.single_step, "Single move: jump radius of the grain (length units)")
+      ->capture_default_str();
+  g->add_option("--max-redraws", a.search.max_redraws,
+                "Redraws of a jump refused by the spacing rule before the grain stays put")
+      ->capture_default_str();
+  g->add_option("--path-interval", a.search.run.path_interval, "Steps between stored path points")
+      ->capture_default_str();
+  g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  g->add_option("--start-attempts", a.start_attempts,
+                "Random starting media to try until the droplet passes (generated media only)")
+      ->capture_default_str();
+  add_exit_options(g, a.search.run);
+
+  add_medium_options(s, a.medium, true);
+  add_droplet_options(s, a.search.droplet);
+
+  auto* o = s->add_option_group("Output");
+  o->add_option("--format", a.format, "Summary on stdout: table or json")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"table", "json"}));
+  o->add_option("--json", a.json_file, "Also write the JSON summary to this file");
+  o->add_flag("--quiet", a.quiet, "No progress on stderr");
+  return s;
+}
+
+namespace {
+
+std::atomic<bool> g_stop{false};
+
+extern "C" void on_signal(int) {
+  if (g_stop.exchange(true)) _exit(130);  // second Ctrl-C: leave now, the database stays consistent
+  const char msg[] = "\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n";
+  [[maybe_unused]] auto n = ::write(2, msg, sizeof msg - 1);
+}
+
+// The command line's view of the run: search options plus how the starting medium was made.
+nlohmann::json params_of(const OptimizeArgs& a) {
+  nlohmann::json j = nlohmann::json::parse(search_params_to_json(a.search));
+  const MediumOptions& m = a.medium.options;
+  j["medium"] = a.medium.file;
+  j["grains"] = m.grains;
+  j["width"] = m.width;
+  j["height"] = m.height;
+  j["r-min"] = m.r_min;
+  j["r-max"] = m.r_max;
+  j["radius-distribution"] = a.medium.radii;
+  j["r-median"] = m.r_median;
+  j["r-sigma"] = m.r_sigma;
+  j["walls"] = a.medium.walls;
+  j["medium-seed"] = m.seed;
+  return j;
+}
+
+// Options given on the command line (or in a config file) that differ from the stored run.
+std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& cmd) {
+  std::string out;
+  for (const auto& [key, value] : given.items()) {
+    const CLI::Option* opt = cmd.get_option_no_throw("--" + key);
+    if (!opt || opt->count() == 0) continue;
+    const bool differs = !stored.contains(key) || stored.at(key) != value;
+    if (differs)
+      out += (out.empty() ? "" : ", ") + std::string("--") + key + " " + value.dump() + " (stored " +
+             (stored.contains(key) ? stored.at(key).dump() : std::string("nothing")) + ")";
+  }
+  return out;
+}
+
+// Progress on stderr: at most once a second on a terminal, every 10 s otherwise.
+class SearchProgress {
+ public:
+  SearchProgress(std::int64_t run, std::int64_t target, bool quiet)
+      : run_(run), target_(target), quiet_(quiet), tty_(::isatty(2) != 0), t0_(clock::now()), last_(t0_) {}
+  void update(const Generation& g, const Configuration& best, bool force) {
+    ++generations_;
+    evaluations_ += static_cast<std::int64_t>(g.candidates.size());
+    if (g.accepted >= 0) ++accepted_;
+    if (quiet_) return;
+    const auto now = clock::now();
+    if (!force && now - last_ < (tty_ ? std::chrono::seconds(1) : std::chrono::seconds(10))) return;
+    last_ = now;
+    const double s = std::chrono::duration<double>(now - t0_).count();
+    std::ostringstream line;
+    line << "optimize: run " << run_ << " generation " << g.number << "/" << target_ << "  best T "
+         << fmt(best.eval.tortuosity, 8) << " (gen " << best.generation << ")  accepted " << accepted_ << "/"
+         << generations_ << "  " << fmt(s > 0 ? static_cast<double>(evaluations_) / s : 0.0, 3) << " eval/s";
+    std::cerr << (tty_ ? "\r" : "") << line.str() << (tty_ && !force ? "\033[K" : "\n") << std::flush;
+  }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  std::int64_t run_, target_;
+  bool quiet_, tty_;
+  clock::time_point t0_, last_;
+  std::int64_t generations_ = 0, evaluations_ = 0, accepted_ = 0;
+};
+
+// Generation 0 of a new run: the loaded medium, or random media until the droplet passes.
+Generation start(const OptimizeArgs& a, Configuration* best) {
+  if (!a.medium.file.empty()) return initial_generation(load_medium(a.medium.file), a.search, best);
+  std::string last_reason;
+  for (int attempt = 0; attempt < a.start_attempts; ++attempt) {
+    MediumOptions m = a.medium.options;
+    if (attempt > 0) m.seed = derive_seed(a.medium.options.seed, static_cast<std::uint64_t>(attempt));
+    try {
+      return initial_generation(generate_medium(m), a.search, best);
+    } catch (const std::runtime_error& e) {
+      last_reason = e.what();
+      if (!a.quiet)
+        std::cerr << "optimize: starting medium " << attempt + 1 << ": " << last_reason << "; trying another\n";
+    }
+  }
+  throw std::runtime_error("start-attempts = " + std::to_string(a.start_attempts) +
+                           ": no starting medium let the droplet pass (" + last_reason + ")");
+}
+
+}  // namespace
+
+int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
+  if (a.generations < 0 || a.generations > 1'000'000'000)
+    throw std::invalid_argument("generations = " + std::to_string(a.generations) + ": must be in [0, 1e9]");
+  if (!(a.time_limit >= 0) || !std::isfinite(a.time_limit))
+    throw std::invalid_argument("time-limit = " + fmt(a.time_limit) + ": must be >= 0");
+  if (a.threads < 0) throw std::invalid_argument("threads = " + std::to_string(a.threads) + ": must be >= 0");
+  if (a.start_attempts < 1)
+    throw std::invalid_argument("start-attempts = " + std::to_string(a.start_attempts) + ": must be >= 1");
+  if (a.resume < 0) throw std::invalid_argument("resume = " + std::to_string(a.resume) + ": not a run id");
+  if (!a.json_file.empty()) check_output_path("--json", a.json_file);
+  const nlohmann::json given = params_of(a);
+
+  std::unique_ptr<History> history;
+  std::int64_t run = a.resume;
+  std::unique_ptr<Search> search;
+  if (run > 0) {
+    history = open_history(a.db, OpenMode::read_only);  // checks the file before any write
+    history.reset();
+    history = open_history(a.db, OpenMode::create);
+    const RunRecord rec = history->run(run);
+    const nlohmann::json stored = nlohmann::json::parse(rec.params);
+    if (const std::string bad = contradictions(given, stored, cmd); !bad.empty())
+      throw std::invalid_argument("resume " + std::to_string(run) + ": the command line contradicts the stored run: " + bad);
+    a.search = search_params_from_json(rec.params);
+    Configuration best = history->configuration(run, -1);
+    // The stored best must come out the same with this build, or the history would fork.
+    const Evaluation check = evaluate(best.medium, a.search);
+    if (check.outcome != Outcome::passed || check.tortuosity != best.eval.tortuosity || check.touched != best.eval.touched)
+      throw std::runtime_error("resume " + std::to_string(run) + ": this build gives T = " + fmt(check.tortuosity) +
+                               " for the stored best of generation " + std::to_string(best.generation) +
+                               ", the run stored " + fmt(best.eval.tortuosity) +
+                               " (built with other numerics? resuming would not continue the same history)");
+    best.eval = check;
+    search = std::make_unique<Search>(a.search, std::move(best), rec.generations);
+    if (!a.quiet)
+      std::cerr << "optimize: resuming run " << run << " of " << a.db << " at generation " << rec.generations
+                << " (best T " << fmt(rec.best_t, 8) << ")\n";
+  } else {
+    resolve_medium(a.medium);
+    std::string why;
+    if (!a.search.IsValid(&why)) throw std::invalid_argument(why);
+    history = open_history(a.db, OpenMode::create);
+    Configuration best;
+    const Generation g0 = start(a, &best);
+    run = history->create_run(given.dump(), a.search, g0, best);
+    search = std::make_unique<Search>(a.search, std::move(best), 0);
+    if (!a.quiet)
+      std::cerr << "optimize: run " << run << " in " << a.db << ": " << search->best().medium.grains.size()
+                << " grains, porosity " << fmt(exact_porosity(search->best().medium), 6) << ", T0 = "
+                << fmt(search->best().eval.tortuosity, 8) << "\n";
+  }
+
+  g_stop = false;
+  auto previous_int = std::signal(SIGINT, on_signal);
+  auto previous_term = std::signal(SIGTERM, on_signal);
+  SearchProgress progress(run, a.generations, a.quiet);
+  DriveOptions drive_options;
+  drive_options.generations = a.generations;
+  drive_options.time_limit = a.time_limit;
+  drive_options.stop = &g_stop;
+  drive_options.threads = a.threads;
+  SearchSummary summary;
+  try {
+    summary = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
+      history->append(run, g, best);
+      progress.update(g, best, g.number == a.generations);
+      return true;
+    });
+  } catch (...) {
+    std::signal(SIGINT, previous_int);
+    std::signal(SIGTERM, previous_term);
+    throw;
+  }
+  std::signal(SIGINT, previous_int);
+  std::signal(SIGTERM, previous_term);
+  history->set_status(run, summary.termination == Termination::generations ? "finished" : "interrupted");
+
+  const Configuration& best = search->best();
+  nlohmann::json j;
+  j["version"] = kVersion;
+  j["db"] = a.db;
+  j["run"] = run;
+  j["termination"] = to_string(summary.termination);
+  j["message"] = summary.message;
+  j["last_generation"] = summary.last_generation;
+  j["generations_run"] = summary.generations_run;
+  j["evaluations"] = summary.evaluations;
+  j["accepted"] = summary.accepted;
+  j["best_tortuosity"] = best.eval.tortuosity;
+  j["best_generation"] = best.generation;
+  j["grains"] = best.medium.grains.size();
+  j["touched_grains"] = best.eval.touched.size();
+  j["wall_seconds"] = summary.seconds;
+  j["evaluations_per_second"] = summary.evaluations_per_second();
+  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  if (a.format == "json") {
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << "run          " << run << " in " << a.db << "\n"
+              << "stopped      " << summary.message << "\n"
+              << "best T       " << fmt(best.eval.tortuosity, 10) << " (generation " << best.generation << ", "
+              << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n"
+              << "this session " << summary.generations_run << " generations, " << summary.accepted
+              << " accepted, " << summary.evaluations << " evaluations, "
+              << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
+  }
+  return summary.termination == Termination::interrupted ? 130 : 0;
+}
+
+}  // namespace softdrop::cli

@@ -1,0 +1,35 @@
+#pragma once
+// `softdrop optimize`: the maximum-tortuosity search, logged generation by generation to an
+// SQLite history; `--resume RUN` continues a stored run exactly.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+
+#include "cli/common_options.hpp"
+#include "softdrop/search.hpp"
+
+namespace softdrop::cli {
+
+struct OptimizeArgs {
+  std::string db = "softdrop.db";
+  std::int64_t resume = 0;         ///< run id to continue (0: start a new run)
+  std::int64_t generations = 200;  ///< run up to this generation number
+  double time_limit = 0;           ///< wall seconds, 0: none
+  int threads = 0;
+  int start_attempts = 20;         ///< random starting media tried until the droplet passes
+  SearchOptions search;
+  MediumArgs medium;
+  bool quiet = false;
+  std::string format = "table";
+  std::string json_file;
+
+  OptimizeArgs();
+};
+
+CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args);
+
+/// Runs it; `command` is the parsed subcommand (to tell which options were given).
+int run_optimize(OptimizeArgs& args, const CLI::App& command);
+
+}  // namespace softdrop::cli

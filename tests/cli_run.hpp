@@ -1,0 +1,46 @@
+#pragma once
+// Running the softdrop program from tests: exit code, stdout and stderr of one invocation.
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace softdrop::test {
+
+struct Result {
+  int code;  ///< exit code, -1 if killed by a signal
+  std::string out, err;
+};
+
+/// A path in the temporary directory, unique to this test process.
+inline std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() /
+          ("softdrop_" + std::to_string(::getpid()) + "_" + name)).string();
+}
+
+/// Runs `softdrop ARGS` through the shell.
+inline Result run(const std::string& args) {
+  const std::string err_path = temp_path("stderr.txt");
+  const std::string cmd = std::string(SOFTDROP_CLI) + " " + args + " 2>" + err_path;
+  Result r{};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::array<char, 4096> buf{};
+  std::size_t n;
+  while ((n = fread(buf.data(), 1, buf.size(), pipe)) > 0) r.out.append(buf.data(), n);
+  const int status = pclose(pipe);
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  std::ifstream e(err_path);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  std::filesystem::remove(err_path);
+  return r;
+}
+
+}  // namespace softdrop::test

@@ -1,0 +1,211 @@
+// `softdrop optimize / history / export` end to end: a search killed with SIGKILL at random
+// instants and resumed each time writes exactly the history of one that never stopped; an exported
+// configuration re-simulated gives the stored T bit for bit; two searches share one file.
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <sstream>
+#include <thread>
+
+#include "cli_run.hpp"
+
+extern char** environ;
+
+namespace {
+using softdrop::test::Result;
+using softdrop::test::run;
+
+// The small scene of search_fixtures.hpp, on the command line.
+const std::string kScene =
+    " --grains 16 --width 160 --height 120 --medium-seed 2 --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet ";
+
+std::string fresh(const std::string& name) {
+  const std::string p = softdrop::test::temp_path(name);
+  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(p + suffix);
+  return p;
+}
+
+// Everything deterministic a run stored: the rows of every table without times and durations.
+std::string dump(const std::string& db_path, int run) {
+  SQLite::Database db(db_path, SQLite::OPEN_READONLY);
+  std::ostringstream out;
+  out.precision(17);
+  auto table = [&](const std::string& sql) {
+    SQLite::Statement q(db, sql);
+    q.bind(1, run);
+    while (q.executeStep()) {
+      for (int c = 0; c < q.getColumnCount(); ++c) out << q.getColumn(c).getText() << '|';
+      out << '\n';
+    }
+  };
+  table("SELECT status, params, seed, lambda, grains, width, height, periodic, generations, evaluations, best_t, "
+        "best_generation FROM runs WHERE id = ?");
+  table("SELECT generation, kind, accepted_candidate, best_t, touched FROM generations WHERE run_id = ? "
+        "ORDER BY generation");
+  table("SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched "
+        "FROM candidates WHERE run_id = ? ORDER BY generation, candidate");
+  table("SELECT generation, grain, x, y, r, touched FROM grains WHERE run_id = ? ORDER BY generation, grain");
+  table("SELECT generation, point, x, y FROM paths WHERE run_id = ? ORDER BY generation, point");
+  return out.str();
+}
+
+pid_t spawn(const std::string& args) {
+  std::vector<std::string> words{SOFTDROP_CLI};
+  std::istringstream in(args);
+  for (std::string w; in >> w;) words.push_back(w);
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  EXPECT_EQ(posix_spawn(&pid, SOFTDROP_CLI, &actions, nullptr, argv.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&actions);
+  return pid;
+}
+
+int wait_for(pid_t pid) {
+  int status = 0;
+  waitpid(pid, &status, 0);
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
+}
+
+bool has_run(const std::string& db_path) {
+  if (!std::filesystem::exists(db_path)) return false;
+  try {
+    SQLite::Database db(db_path, SQLite::OPEN_READONLY);
+    return db.execAndGet("SELECT count(*) FROM runs").getInt() > 0;
+  } catch (const SQLite::Exception&) {
+    return false;  // killed before the schema was committed
+  }
+}
+
+TEST(Optimize, KilledAtRandomInstantsAndResumedEqualsAnUninterruptedRun) {
+  const std::string gens = " --generations 30 --lambda 2 --threads 1 ";
+  const std::string ref = fresh("ref.db"), killed = fresh("killed.db");
+  const Result r = run("optimize --db " + ref + kScene + gens);
+  ASSERT_EQ(r.code, 0) << r.err;
+
+  std::mt19937 rng(2026);  // the test's kill instants are reproducible too
+  int kills = 0, resumes = 0;
+  for (int attempt = 0; attempt < 7; ++attempt) {
+    const bool resume = has_run(killed);
+    resumes += resume;
+    const pid_t pid = spawn("optimize --db " + killed + kScene + gens + (resume ? " --resume 1" : ""));
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(30, 700)(rng)));
+    if (kill(pid, SIGKILL) == 0) ++kills;
+    wait_for(pid);
+  }
+  const std::string last = has_run(killed) ? " --resume 1" : "";
+  const Result fin = run("optimize --db " + killed + kScene + gens + last);
+  ASSERT_EQ(fin.code, 0) << fin.err;
+  EXPECT_GE(kills, 5);
+  EXPECT_GE(resumes, 3);
+  EXPECT_EQ(dump(killed, 1), dump(ref, 1));
+  SQLite::Database db(killed, SQLite::OPEN_READONLY);
+  EXPECT_EQ(db.execAndGet("PRAGMA integrity_check").getString(), "ok");
+  EXPECT_EQ(db.execAndGet("SELECT count(*) FROM runs").getInt(), 1);
+}
+
+TEST(Optimize, ExportedGenerationsReproduceTheStoredTBitForBit) {
+  const std::string db = fresh("export.db");
+  ASSERT_EQ(run("optimize --db " + db + kScene + " --generations 20").code, 0);
+  const Result best = run("history --db " + db + " --run 1 --best --format json");
+  ASSERT_EQ(best.code, 0) << best.err;
+  const auto curve = nlohmann::json::parse(best.out);
+  ASSERT_GE(curve.size(), 2u);
+  double previous = 0;
+  for (const auto& point : curve) {  // the best-T curve rises strictly
+    EXPECT_GT(point["best_t"].get<double>(), previous);
+    previous = point["best_t"].get<double>();
+  }
+  for (const auto& point : {curve.front(), curve.back()}) {
+    const std::string g = std::to_string(point["generation"].get<int>());
+    const std::string grains = fresh("export_" + g + ".json"), config = fresh("export_" + g + ".toml");
+    const Result e = run("export --db " + db + " --run 1 --generation " + g + " -o " + grains +
+                         " --simulate-config " + config);
+    ASSERT_EQ(e.code, 0) << e.err;
+    const Result s = run("simulate --config " + config + " --format json");
+    ASSERT_EQ(s.code, 0) << s.err;
+    const auto j = nlohmann::json::parse(s.out);
+    EXPECT_EQ(j["run"]["outcome"], "passed");
+    EXPECT_EQ(j["run"]["tortuosity"].get<double>(), point["best_t"].get<double>()) << "generation " << g;
+  }
+}
+
+TEST(Optimize, ResumeRefusesContradictingOptionsAndNamesThem) {
+  const std::string db = fresh("contradict.db");
+  ASSERT_EQ(run("optimize --db " + db + kScene + " --generations 3").code, 0);
+  const Result r = run("optimize --db " + db + " --resume 1 --generations 5 --lambda 3 --nrt 7e8 --seed 7");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--lambda 3 (stored 1)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--nrt"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("--seed"), std::string::npos) << "the same value is no contradiction: " << r.err;
+  const Result missing = run("optimize --db " + db + " --resume 9 --generations 5");
+  EXPECT_NE(missing.code, 0);
+  EXPECT_NE(missing.err.find("--run 9: no such run"), std::string::npos) << missing.err;
+  // Resuming with the stored options (none given) continues; asking for fewer does nothing.
+  EXPECT_EQ(run("optimize --db " + db + " --resume 1 --generations 5 --quiet").code, 0);
+  EXPECT_EQ(run("optimize --db " + db + " --resume 1 --generations 4 --quiet").code, 0);
+  const auto runs = nlohmann::json::parse(run("history --db " + db + " --format json").out);
+  ASSERT_EQ(runs.size(), 1u);
+  EXPECT_EQ(runs[0]["generations"], 5);
+  EXPECT_EQ(runs[0]["status"], "finished");
+}
+
+TEST(Optimize, TwoSearchesShareOneFileWhileItIsRead) {
+  const std::string db = fresh("shared.db"), solo = fresh("solo.db");
+  const std::string gens = " --generations 12 ";
+  ASSERT_EQ(run("optimize --db " + solo + kScene + gens).code, 0);
+  const pid_t a = spawn("optimize --db " + db + kScene + gens);
+  const pid_t b = spawn("optimize --db " + db + kScene + gens);
+  int reads = 0;
+  for (int i = 0; i < 20; ++i) {  // readers see consistent snapshots while both write
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    if (!has_run(db)) continue;
+    const Result h = run("history --db " + db + " --format csv");
+    EXPECT_EQ(h.code, 0) << h.err;
+    reads += h.code == 0;
+  }
+  EXPECT_EQ(wait_for(a), 0);
+  EXPECT_EQ(wait_for(b), 0);
+  EXPECT_GT(reads, 0);
+  // Both runs are complete, and each equals the same search run alone.
+  EXPECT_EQ(dump(db, 1), dump(solo, 1));
+  EXPECT_EQ(dump(db, 2), dump(solo, 1));
+}
+
+TEST(Optimize, BadDatabaseFilesGiveOneLineAndStayUnchanged) {
+  const std::string text = fresh("cli_text.db");
+  std::ofstream(text) << "not a database at all, just some text that is long enough to have a header\n";
+  for (const std::string& cmd : {"optimize --db " + text + kScene + " --generations 2", "history --db " + text,
+                                 "export --db " + text + " --run 1 -o " + fresh("x.json")}) {
+    const Result r = run(cmd);
+    SCOPED_TRACE(cmd);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("not an SQLite database"), std::string::npos) << r.err;
+  }
+  std::ifstream in(text);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "not a database at all, just some text that is long enough to have a header");
+  EXPECT_FALSE(std::filesystem::exists(fresh("x.json")));
+  const Result none = run("history --db " + fresh("nothing.db"));
+  EXPECT_NE(none.err.find("no such file"), std::string::npos) << none.err;
+  EXPECT_FALSE(std::filesystem::exists(fresh("nothing.db")));
+}
+
+}  // namespace

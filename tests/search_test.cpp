@@ -1,0 +1,254 @@
+// The search: moves keep the spacing rule, generations are deterministic at any thread count,
+// the best never gets worse and is only replaced by a strictly better passing candidate.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "search_fixtures.hpp"
+#include "softdrop/search.hpp"
+#include "softdrop/search_params.hpp"
+#include "softdrop/spacing.hpp"
+
+namespace softdrop {
+namespace {
+
+Configuration start(const SearchOptions& o) {
+  Configuration best;
+  initial_generation(test::small_search_medium(), o, &best);
+  return best;
+}
+
+double periodic_dx(double a, double b, double w) {
+  double d = b - a;
+  return d - w * std::round(d / w);
+}
+
+TEST(Mutation, AllGrainMoveKeepsSpacingRadiiAndStepBound) {
+  const SearchOptions o = test::small_search_options();
+  const Configuration parent = start(o);
+  for (int k = 0; k < 20; ++k) {
+    const Candidate c = make_candidate(parent, 1, k, o);
+    ASSERT_EQ(c.kind, MoveKind::all);
+    ASSERT_EQ(c.medium.grains.size(), parent.medium.grains.size());
+    EXPECT_FALSE(find_spacing_violation(c.medium, o.gap).has_value());
+    int moved = 0;
+    for (std::size_t i = 0; i < c.medium.grains.size(); ++i) {
+      const Grain& a = parent.medium.grains[i];
+      const Grain& b = c.medium.grains[i];
+      EXPECT_EQ(a.r, b.r);
+      EXPECT_GE(b.x, 0);
+      EXPECT_LT(b.x, c.medium.width);
+      const double dx = periodic_dx(a.x, b.x, c.medium.width), dy = b.y - a.y;
+      EXPECT_LE(std::hypot(dx, dy), o.step * (1 + 1e-12));
+      moved += (a.x != b.x || a.y != b.y);
+    }
+    EXPECT_EQ(moved, c.moved);
+    EXPECT_GT(c.moved, 0);
+  }
+}
+
+TEST(Mutation, IsDeterministicPerGenerationAndIndex) {
+  const SearchOptions o = test::small_search_options();
+  const Configuration parent = start(o);
+  EXPECT_EQ(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 3, 1, o).medium);
+  EXPECT_NE(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 3, 2, o).medium);
+  EXPECT_NE(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 4, 1, o).medium);
+  SearchOptions other = o;
+  other.seed = o.seed + 1;
+  EXPECT_NE(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 3, 1, other).medium);
+}
+
+TEST(Mutation, SingleMoveMovesOneTouchedGrain) {
+  SearchOptions o = test::small_search_options();
+  const Configuration parent = start(o);
+  ASSERT_FALSE(parent.eval.touched.empty());
+  EXPECT_EQ(move_kind(10, o), MoveKind::single);
+  EXPECT_EQ(move_kind(11, o), MoveKind::all);
+  for (int k = 0; k < 10; ++k) {
+    const Candidate c = make_candidate(parent, 10, k, o);
+    ASSERT_EQ(c.kind, MoveKind::single);
+    EXPECT_TRUE(std::binary_search(parent.eval.touched.begin(), parent.eval.touched.end(), c.moved_grain));
+    int changed = 0;
+    for (std::size_t i = 0; i < c.medium.grains.size(); ++i)
+      if (!(c.medium.grains[i] == parent.medium.grains[i])) {
+        ++changed;
+        EXPECT_EQ(static_cast<int>(i), c.moved_grain);
+      }
+    EXPECT_EQ(changed, c.moved);
+    EXPECT_FALSE(find_spacing_violation(c.medium, o.gap).has_value());
+  }
+  o.single_every = 0;
+  EXPECT_EQ(move_kind(10, o), MoveKind::all);
+}
+
+TEST(Mutation, RefusedJumpsLeaveTheGrainInPlace) {
+  // A grain that exactly fills a walled box: every jump would leave the box, so all are refused.
+  SearchOptions o = test::small_search_options();
+  Configuration parent;
+  parent.medium = Medium{24, 24, false, {{12, 12, 12}}};
+  const Candidate c = make_candidate(parent, 1, 0, o);
+  EXPECT_EQ(c.moved, 0);
+  EXPECT_EQ(c.medium, parent.medium);
+}
+
+TEST(Search, BestNeverDropsAndOnlyStrictImprovementsOfPassingCandidatesAreKept) {
+  const SearchOptions o = test::small_search_options(2);
+  Configuration best;
+  const Generation g0 = initial_generation(test::small_search_medium(), o, &best);
+  EXPECT_EQ(g0.accepted, 0);
+  Search search(o, best, 0);
+  double previous = best.eval.tortuosity;
+  int accepted = 0;
+  for (int i = 0; i < 24; ++i) {
+    const Generation g = search.next(2);
+    ASSERT_EQ(g.number, i + 1);
+    ASSERT_EQ(g.candidates.size(), 2u);
+    EXPECT_GE(g.best_t, previous);
+    double top = previous;
+    int expect = -1;
+    for (const Candidate& c : g.candidates) {
+      EXPECT_FALSE(find_spacing_violation(c.medium, o.gap).has_value());
+      if (c.eval.outcome == Outcome::passed && c.eval.tortuosity > top) top = c.eval.tortuosity, expect = c.index;
+    }
+    EXPECT_EQ(g.accepted, expect);
+    if (g.accepted >= 0) {
+      ++accepted;
+      EXPECT_GT(g.best_t, previous);
+      EXPECT_EQ(search.best().generation, g.number);
+      // The stored fitness is the configuration's: a fresh evaluation gives it bit for bit.
+      const Evaluation again = evaluate(search.best().medium, o);
+      EXPECT_EQ(again.tortuosity, search.best().eval.tortuosity);
+      EXPECT_EQ(again.touched, search.best().eval.touched);
+    } else {
+      EXPECT_EQ(g.best_t, previous);
+    }
+    previous = g.best_t;
+  }
+  EXPECT_GT(accepted, 0) << "24 generations of this scene always find an improvement";
+  EXPECT_GT(search.best().eval.tortuosity, best.eval.tortuosity);
+}
+
+TEST(Search, LambdaFourGivesTheSameHistoryOnOneAndTwoThreads) {
+  const SearchOptions o = test::small_search_options(4);
+  Configuration best;
+  initial_generation(test::small_search_medium(), o, &best);
+  Search one(o, best, 0), two(o, best, 0);
+  for (int i = 0; i < 6; ++i) {
+    const Generation a = one.next(1), b = two.next(2);
+    ASSERT_EQ(a.accepted, b.accepted);
+    ASSERT_EQ(a.best_t, b.best_t);
+    for (std::size_t k = 0; k < a.candidates.size(); ++k) {
+      EXPECT_EQ(a.candidates[k].medium, b.candidates[k].medium);
+      EXPECT_EQ(a.candidates[k].eval.outcome, b.candidates[k].eval.outcome);
+      EXPECT_EQ(a.candidates[k].eval.tortuosity, b.candidates[k].eval.tortuosity);
+      EXPECT_EQ(a.candidates[k].eval.steps, b.candidates[k].eval.steps);
+    }
+  }
+  EXPECT_EQ(one.best().medium, two.best().medium);
+}
+
+TEST(Search, ResumingFromTheStoredBestContinuesTheSameHistory) {
+  const SearchOptions o = test::small_search_options();
+  Configuration best;
+  initial_generation(test::small_search_medium(), o, &best);
+  Search straight(o, best, 0);
+  for (int i = 0; i < 12; ++i) straight.next(1);
+  Search first(o, best, 0);
+  for (int i = 0; i < 5; ++i) first.next(1);
+  Search resumed(o, first.best(), first.last_generation());  // what --resume rebuilds
+  for (int i = 0; i < 7; ++i) resumed.next(1);
+  EXPECT_EQ(resumed.best().medium, straight.best().medium);
+  EXPECT_EQ(resumed.best().eval.tortuosity, straight.best().eval.tortuosity);
+  EXPECT_EQ(resumed.best().generation, straight.best().generation);
+}
+
+TEST(Search, DriveStopsAtGenerationsStopFlagAndCallback) {
+  const SearchOptions o = test::small_search_options();
+  Configuration best;
+  initial_generation(test::small_search_medium(), o, &best);
+  Search s(o, best, 0);
+  DriveOptions d;
+  d.generations = 3;
+  int calls = 0;
+  SearchSummary sum = drive(s, d, [&](const Generation&, const Configuration&) { return ++calls > 0; });
+  EXPECT_EQ(sum.termination, Termination::generations);
+  EXPECT_EQ(sum.generations_run, 3);
+  EXPECT_EQ(calls, 3);
+  EXPECT_EQ(sum.evaluations, 3);
+  std::atomic<bool> stop{true};
+  d.generations = 10;
+  d.stop = &stop;
+  sum = drive(s, d, {});
+  EXPECT_EQ(sum.termination, Termination::interrupted);
+  EXPECT_EQ(sum.generations_run, 0);
+  d.stop = nullptr;
+  sum = drive(s, d, [](const Generation&, const Configuration&) { return false; });
+  EXPECT_EQ(sum.termination, Termination::callback);
+  EXPECT_EQ(sum.last_generation, 4);
+}
+
+TEST(Search, RefusesAStartTheDropletCannotPassOrThatBreaksTheRule) {
+  const SearchOptions o = test::small_search_options();
+  Configuration best;
+  // A wall of touching grains across a walled box: nothing passes, and the rule is broken.
+  Medium wall{100, 100, false, {}};
+  for (int i = 0; i < 5; ++i) wall.grains.push_back({10.0 + 20 * i, 50, 10});
+  EXPECT_THROW(initial_generation(wall, o, &best), std::invalid_argument);
+  // Spaced grains, but the gaps (2.6) are far narrower than the droplet: it gets stuck.
+  Medium sieve{104, 100, false, {}};
+  for (int i = 0; i < 4; ++i) sieve.grains.push_back({14.0 + 25.3 * i, 50, 11.3});
+  ASSERT_FALSE(find_spacing_violation(sieve, o.gap).has_value());
+  try {
+    initial_generation(sieve, o, &best);
+    FAIL() << "expected the droplet to be refused";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("does not pass"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SearchOptions, IsValidNamesTheBadParameter) {
+  std::string why;
+  auto bad = [&](auto change, const char* name) {
+    SearchOptions o;
+    change(o);
+    EXPECT_FALSE(o.IsValid(&why)) << name;
+    EXPECT_NE(why.find(name), std::string::npos) << why;
+  };
+  bad([](SearchOptions& o) { o.lambda = 0; }, "lambda");
+  bad([](SearchOptions& o) { o.step = -1; }, "step");
+  bad([](SearchOptions& o) { o.single_step = NAN; }, "single-step");
+  bad([](SearchOptions& o) { o.single_every = -2; }, "single-every");
+  bad([](SearchOptions& o) { o.gap = -0.1; }, "gap");
+  bad([](SearchOptions& o) { o.droplet.dt = 0; }, "dt");
+  EXPECT_TRUE(SearchOptions().IsValid(&why)) << why;
+}
+
+TEST(SearchParams, RoundTripBitForBitAndNameMissingKeys) {
+  SearchOptions o;
+  o.seed = 0xFFFFFFFFFFFFFFF1ULL;
+  o.lambda = 3;
+  o.step = 0.1 + 0.2;
+  o.droplet.dt = 1.2345678901234567e-5;
+  o.droplet.nrt = 6.02214076e8;
+  o.run.max_steps = 123456789;
+  const SearchOptions back = search_params_from_json(search_params_to_json(o));
+  EXPECT_EQ(back.seed, o.seed);
+  EXPECT_EQ(back.lambda, 3);
+  EXPECT_EQ(back.step, o.step);
+  EXPECT_EQ(back.droplet.dt, o.droplet.dt);
+  EXPECT_EQ(back.droplet.nrt, o.droplet.nrt);
+  EXPECT_EQ(back.run.max_steps, o.run.max_steps);
+  EXPECT_EQ(search_params_to_json(back), search_params_to_json(o));
+  try {
+    search_params_from_json(R"({"seed": 1})");
+    FAIL();
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("'lambda' missing"), std::string::npos) << e.what();
+  }
+  std::string j = search_params_to_json(o);
+  j.replace(j.find("\"lambda\":3"), 10, "\"lambda\":3.5");
+  EXPECT_THROW(search_params_from_json(j), std::runtime_error);
+}
+
+}  // namespace
+}  // namespace softdrop
