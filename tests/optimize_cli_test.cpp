@@ -187,6 +187,29 @@ TEST(Optimize, TwoSearchesShareOneFileWhileItIsRead) {
   EXPECT_EQ(dump(db, 2), dump(solo, 1));
 }
 
+TEST(Optimize, CtrlCFinishesTheGenerationInFlightAndTimeLimitStops) {
+  const std::string db = fresh("sigint.db");
+  const pid_t pid = spawn("optimize --db " + db + kScene + " --generations 100000 --lambda 2 --threads 1");
+  for (int i = 0; i < 200 && !has_run(db); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  kill(pid, SIGINT);
+  EXPECT_EQ(wait_for(pid), 130);
+  SQLite::Database h(db, SQLite::OPEN_READONLY);
+  EXPECT_EQ(h.execAndGet("SELECT status FROM runs WHERE id = 1").getString(), "interrupted");
+  const int last = h.execAndGet("SELECT generations FROM runs WHERE id = 1").getInt();
+  EXPECT_GT(last, 0);
+  // Every stored generation is whole: its two candidates are there.
+  EXPECT_EQ(h.execAndGet("SELECT count(*) FROM candidates WHERE run_id = 1").getInt(), 1 + 2 * last);
+
+  const std::string timed = fresh("timed.db");
+  const Result r = run("optimize --db " + timed + kScene + " --generations 100000 --time-limit 0.5 --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["termination"], "time-limit");
+  EXPECT_GT(j["generations_run"].get<int>(), 0);
+  EXPECT_LT(j["generations_run"].get<int>(), 100000);
+}
+
 TEST(Optimize, BadDatabaseFilesGiveOneLineAndStayUnchanged) {
   const std::string text = fresh("cli_text.db");
   std::ofstream(text) << "not a database at all, just some text that is long enough to have a header\n";

@@ -33,6 +33,8 @@ int main(int argc, char** argv) {
   CLI::App app{"softdrop: soft-body droplets pushed through porous media of disc grains"};
   app.set_version_flag("--version", softdrop::kVersion);
   app.require_subcommand(1);
+  // A later value overrides an earlier one, so scripts can append to a default command line.
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   app.set_config("--config", "", "Read options from this TOML/INI file (keys: long option names)");
   app.config_formatter(std::make_shared<SubcommandConfig>(app));
   app.allow_config_extras(CLI::config_extras_mode::error);
