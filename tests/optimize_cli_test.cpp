@@ -119,6 +119,15 @@ TEST(Optimize, KilledAtRandomInstantsAndResumedEqualsAnUninterruptedRun) {
   EXPECT_EQ(db.execAndGet("SELECT count(*) FROM runs").getInt(), 1);
 }
 
+TEST(Optimize, LambdaFourWritesTheSameHistoryOnOneAndTwoThreads) {
+  const std::string one = fresh("lambda_t1.db"), two = fresh("lambda_t2.db");
+  ASSERT_EQ(run("optimize --db " + one + kScene + " --generations 8 --lambda 4 --threads 1").code, 0);
+  ASSERT_EQ(run("optimize --db " + two + kScene + " --generations 8 --lambda 4 --threads 2").code, 0);
+  const std::string a = dump(one, 1);
+  EXPECT_EQ(a, dump(two, 1));
+  EXPECT_NE(a.find("|8|33|"), std::string::npos) << "8 generations of 4 candidates plus the start";
+}
+
 TEST(Optimize, ExportedGenerationsReproduceTheStoredTBitForBit) {
   const std::string db = fresh("export.db");
   ASSERT_EQ(run("optimize --db " + db + kScene + " --generations 20").code, 0);
