@@ -214,6 +214,9 @@ class SqliteHistory final : public History {
       last.bind(1, static_cast<std::int64_t>(run));
       if (!last.executeStep()) throw std::runtime_error("run " + std::to_string(run) + ": no such run");
       const std::int64_t stored = last.getColumn(0).getInt64();
+      // A statement left mid-result keeps a read snapshot open past COMMIT, and that snapshot
+      // stops every automatic checkpoint: the WAL file would grow without bound.
+      last.reset();
       if (g.number != stored + 1)
         throw std::runtime_error("run " + std::to_string(run) + ": generation " + std::to_string(g.number) +
                                  " does not follow the stored generation " + std::to_string(stored) +

@@ -100,6 +100,29 @@ TEST(History, WhatIsWrittenReadsBackExactly) {
   EXPECT_EQ(h->generations(id).size(), 13u);
 }
 
+TEST(History, TheWalIsCheckpointedAndStaysBounded) {
+  // 600 accepted generations with long paths write ~20 MB of pages; automatic checkpoints must
+  // keep folding them into the database so that the WAL never grows far past 1000 pages.
+  const std::string path = fresh("wal.db");
+  auto h = open_history(path, OpenMode::create);
+  const SearchOptions o = test::small_search_options();
+  Configuration best;
+  const Generation g0 = initial_generation(test::small_search_medium(), o, &best);
+  const std::int64_t id = h->create_run(search_params_to_json(o), o, g0, best);
+  best.eval.path_x.assign(2000, 1.5);
+  best.eval.path_y.assign(2000, 2.5);
+  Generation g = g0;
+  g.kind = MoveKind::all;
+  for (int i = 1; i <= 600; ++i) {
+    g.number = best.generation = i;
+    best.eval.tortuosity += 1e-3;
+    g.best_t = best.eval.tortuosity;
+    h->append(id, g, best);
+  }
+  EXPECT_GT(std::filesystem::file_size(path), 10'000'000u);
+  EXPECT_LT(std::filesystem::file_size(path + "-wal"), 1200u * 4096u);
+}
+
 TEST(History, SchemaIsVersionedAndForeignKeysHold) {
   const std::string path = fresh("schema.db");
   { auto h = open_history(path, OpenMode::create); write_run(*h, test::small_search_options(), 2); }

@@ -6,6 +6,7 @@
 
 #include "cli/history_command.hpp"
 #include "cli/optimize_command.hpp"
+#include "cli/render_command.hpp"
 #include "cli/simulate_command.hpp"
 #include "softdrop/version.hpp"
 
@@ -46,6 +47,8 @@ int main(int argc, char** argv) {
   CLI::App* history_cmd = softdrop::cli::add_history_command(app, history);
   softdrop::cli::ExportArgs export_args;
   CLI::App* export_cmd = softdrop::cli::add_export_command(app, export_args);
+  softdrop::cli::RenderArgs render;
+  CLI::App* render_cmd = softdrop::cli::add_render_command(app, render);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -61,6 +64,7 @@ int main(int argc, char** argv) {
     if (optimize_cmd->parsed()) return softdrop::cli::run_optimize(optimize, *optimize_cmd);
     if (history_cmd->parsed()) return softdrop::cli::run_history(history);
     if (export_cmd->parsed()) return softdrop::cli::run_export(export_args);
+    if (render_cmd->parsed()) return softdrop::cli::run_render(render, *render_cmd);
   } catch (const std::exception& e) {
     std::cerr << "softdrop: error: " << e.what() << '\n';
     return 1;

@@ -1,0 +1,85 @@
+#pragma once
+/// \file render.hpp
+/// Pictures of media, droplets, paths and searches, drawn with Cairo: PNG, SVG and PDF from the
+/// same drawing code (chosen by the file extension), and animated GIFs encoded with giflib.
+/// One module shared by the CLI, the studies and the tests. Files are written atomically.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "softdrop/medium.hpp"
+
+namespace softdrop {
+
+/// Output format, from the file extension.
+enum class ImageFormat { png, svg, pdf, gif };
+/// .png, .svg, .pdf or .gif (case-insensitive); throws std::invalid_argument naming the path.
+ImageFormat image_format_for(const std::string& path);
+
+/// A colour with alpha, components in [0, 1].
+struct Rgba {
+  double r = 0, g = 0, b = 0, a = 1;
+  bool operator==(const Rgba&) const = default;
+};
+/// Parses "#rrggbb" or "#rrggbbaa"; throws std::invalid_argument naming the text.
+Rgba parse_colour(const std::string& text);
+
+/// How pictures look. Lengths are in output pixels (points for SVG and PDF).
+struct RenderStyle {
+  int width = 800;                       ///< picture width; the height follows the aspect ratio
+  Rgba background{1, 1, 1, 1};
+  Rgba grain{0.12, 0.16, 0.22, 1};       ///< grain outlines ("wire spheres")
+  Rgba touched{0.25, 0.27, 0.30, 1};     ///< fill of grains the droplet touched
+  Rgba box{0.55, 0.55, 0.55, 1};         ///< the medium's box
+  Rgba text{0, 0, 0, 1};
+  double grain_line = 1.2;
+  double margin = 12;
+  bool caption = true;                   ///< a line of text under the picture
+
+  bool IsValid(std::string* why) const;
+};
+
+/// A polyline in medium coordinates (y up): a path, or a droplet's boundary (closed).
+struct Polyline {
+  std::vector<double> x, y;
+  Rgba colour{0.8, 0.1, 0.1, 1};
+  double width = 2;     ///< line width (pixels)
+  bool closed = false;  ///< join the last point to the first
+  Rgba fill{0, 0, 0, 0};  ///< fill of a closed polyline (alpha 0: none)
+};
+
+/// What to draw: a medium, grains to fill, polylines on top, a caption.
+struct Scene {
+  Medium medium;
+  std::vector<std::uint8_t> filled;  ///< per grain, nonzero: fill it (touched grains)
+  std::vector<Polyline> lines;
+  std::string caption;
+  /// Extra room above the medium (length units) so that droplets starting above it are seen;
+  /// -1: fit the polylines.
+  double top_room = -1;
+};
+
+/// Draws a scene to a PNG, SVG or PDF file (by extension). With a periodic medium, grains that
+/// cross x = 0 or x = W are drawn again at their periodic image, and polylines are wrapped into
+/// [0, W). Throws std::runtime_error naming the file on failure; nothing is left half-written.
+void render_scene(const Scene& scene, const RenderStyle& style, const std::string& path);
+
+/// A line chart, e.g. best T against generation (drawn as steps when `steps`).
+struct Chart {
+  std::vector<double> x, y;
+  std::string x_label, y_label, title;
+  bool steps = false;
+  Rgba colour{0.8, 0.1, 0.1, 1};
+};
+/// Draws a chart with axes, ticks and labels to a PNG, SVG or PDF file; height = 0.62 width.
+void render_chart(const Chart& chart, const RenderStyle& style, const std::string& path);
+
+/// An animation: frame(i, scene) fills the scene of frame i for i in [0, frames); frames are
+/// drawn as for render_scene and encoded as an animated GIF (a fixed 256-colour palette) that
+/// loops, at `fps` frames per second. Throws std::runtime_error naming the file on failure.
+void render_animation(int frames, double fps, const std::function<void(int, Scene&)>& frame,
+                      const RenderStyle& style, const std::string& path);
+
+}  // namespace softdrop

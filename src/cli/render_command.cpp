@@ -1,0 +1,294 @@
+#include "cli/render_command.hpp"
+
+#include <cmath>
+#include <iostream>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/output.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/history.hpp"
+#include "softdrop/porosity.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop::cli {
+
+CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
+  CLI::App* r = app.add_subcommand("render", "Draw media, droplets, paths, searches and animations (PNG, SVG, PDF, GIF)");
+  r->require_subcommand(1);
+  auto style = [&](CLI::App* s, const char* formats) {
+    s->fallthrough();
+    auto* g = s->add_option_group("Picture");
+    g->add_option("--output,-o", a.output, std::string("Picture file: ") + formats + " (format from the extension)")->required();
+    g->add_option("--size", a.size, "Width in pixels (points for SVG/PDF); the height follows")->capture_default_str();
+    g->add_option("--background", a.background, "Colour #rrggbb[aa]")->capture_default_str();
+    g->add_option("--grain-colour", a.grain_colour, "Grain outline colour")->capture_default_str();
+    g->add_option("--touched-colour", a.touched_colour, "Fill of grains the droplet touched")->capture_default_str();
+    g->add_option("--path-colour", a.path_colour, "Centre-of-mass path colour")->capture_default_str();
+    g->add_option("--droplet-colour", a.droplet_colour, "Droplet boundary colour")->capture_default_str();
+    g->add_flag("--no-caption", a.no_caption, "No line of text under the picture");
+  };
+  auto scene_options = [&](CLI::App* s) {
+    add_medium_options(s, a.medium, false);
+    auto* d = add_droplet_options(s, a.droplet);
+    add_exit_options(d, a.run);
+  };
+
+  CLI::App* m = r->add_subcommand("medium", "The grains as outlined discs, with periodic copies at the edges");
+  style(m, ".png, .svg or .pdf");
+  add_medium_options(m, a.medium, false);
+
+  CLI::App* s = r->add_subcommand("snapshots", "The droplet's boundary at chosen times over the medium (paper Fig. 2)");
+  style(s, ".png, .svg or .pdf");
+  scene_options(s);
+  s->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)");
+  s->add_option("--times", a.times, "Times of the snapshots (time units), comma-separated")->delimiter(',')->required();
+
+  CLI::App* p = r->add_subcommand("paths", "Centre-of-mass paths of many droplets, alpha-blended");
+  style(p, ".png, .svg or .pdf");
+  scene_options(p);
+  p->add_option("--droplets", a.batch.droplets, "Droplets from random starts")->capture_default_str();
+  p->add_option("--seed", a.batch.seed, "Seed of the start positions")->capture_default_str();
+  p->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
+  p->add_option("--alpha", a.alpha, "Opacity of one path (0: automatic, about 6 / droplets)")->capture_default_str();
+
+  CLI::App* q = r->add_subcommand("search", "A search's best configuration, its path, earlier paths, touched grains");
+  style(q, ".png, .svg or .pdf");
+  q->add_option("--db", a.db, "SQLite history file")->required();
+  q->add_option("--run", a.run_id, "Run id")->required();
+  q->add_option("--generation", a.generation, "The best as of this generation (default: the run's best)");
+  q->add_option("--curve", a.curve, "Also draw the best-T-versus-generation chart to this file");
+
+  CLI::App* v = r->add_subcommand("animation", "A droplet pushed through the medium, as an animated GIF");
+  style(v, ".gif");
+  scene_options(v);
+  v->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)");
+  v->add_option("--fps", a.fps, "Frames per second")->capture_default_str();
+  v->add_option("--speed", a.speed, "Simulated time units per second of animation (1 = real time)")->capture_default_str();
+  v->add_option("--max-frames", a.max_frames, "Refuse animations longer than this")->capture_default_str();
+  return r;
+}
+
+namespace {
+
+RenderStyle style_of(const RenderArgs& a) {
+  RenderStyle s;
+  s.width = a.size;
+  s.background = parse_colour(a.background);
+  s.grain = parse_colour(a.grain_colour);
+  s.touched = parse_colour(a.touched_colour);
+  s.caption = !a.no_caption;
+  std::string why;
+  if (!s.IsValid(&why)) throw std::invalid_argument(why);
+  return s;
+}
+
+Medium medium_of(RenderArgs& a) {
+  resolve_medium(a.medium);
+  return a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
+}
+
+std::string describe(const Medium& m) {
+  std::ostringstream s;
+  s << m.grains.size() << " grains, porosity " << fmt(exact_porosity(m), 4) << ", " << m.width << " x " << m.height
+    << (m.periodic ? ", periodic in x" : ", walls");
+  return s.str();
+}
+
+Polyline path_line(const std::vector<double>& x, const std::vector<double>& y, Rgba colour, double width) {
+  Polyline p;
+  p.x = x;
+  p.y = y;
+  p.colour = colour;
+  p.width = width;
+  return p;
+}
+
+void check_droplet(const RenderArgs& a) {
+  std::string why;
+  if (!a.droplet.IsValid(&why)) throw std::invalid_argument(why);
+  if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
+  if (!std::isnan(a.x0) && !std::isfinite(a.x0)) throw std::invalid_argument("x0 = " + fmt(a.x0) + ": must be finite");
+}
+
+int render_medium(RenderArgs& a) {
+  Scene scene;
+  scene.medium = medium_of(a);
+  scene.caption = describe(scene.medium);
+  scene.top_room = 0;
+  render_scene(scene, style_of(a), a.output);
+  return 0;
+}
+
+int render_snapshots(RenderArgs& a) {
+  check_droplet(a);
+  if (a.times.empty()) throw std::invalid_argument("times: at least one snapshot time is needed");
+  const RenderStyle style = style_of(a);
+  Scene scene;
+  scene.medium = medium_of(a);
+  Simulation sim(a.droplet, scene.medium);
+  RunOptions run = a.run;
+  run.snapshot_times = a.times;
+  run.path_interval = 20;
+  const double x0 = std::isnan(a.x0) ? 0.5 * scene.medium.width : a.x0;
+  const RunSummary r = sim.run(x0, run);
+  const Rgba droplet = parse_colour(a.droplet_colour);
+  scene.lines.push_back(path_line(r.path_x, r.path_y, parse_colour(a.path_colour), 1.2));
+  for (const Snapshot& sn : r.snapshots) {
+    Polyline ring = path_line(sn.x, sn.y, droplet, 1.8);
+    ring.closed = true;
+    ring.fill = Rgba{droplet.r, droplet.g, droplet.b, 0.15};
+    // Draw the ring where its centre is: shift it by a whole number of widths.
+    double cx = 0;
+    for (double x : sn.x) cx += x;
+    cx /= static_cast<double>(sn.x.size());
+    if (scene.medium.periodic) {
+      const double shift = std::floor(cx / scene.medium.width) * scene.medium.width;
+      for (double& x : ring.x) x -= shift;
+    }
+    scene.lines.push_back(std::move(ring));
+  }
+  scene.caption = std::to_string(r.snapshots.size()) + " snapshots; " + to_string(r.outcome) +
+                  (r.outcome == Outcome::passed ? ", T = " + fmt(r.tortuosity, 5) : "") + "; " + describe(scene.medium);
+  if (r.snapshots.size() < a.times.size())
+    std::cerr << "render: " << a.times.size() - r.snapshots.size() << " snapshot time(s) after the run ended ("
+              << to_string(r.outcome) << " at t = " << fmt(static_cast<double>(r.steps) * a.droplet.dt, 4) << ")\n";
+  render_scene(scene, style, a.output);
+  return 0;
+}
+
+int render_paths(RenderArgs& a) {
+  check_droplet(a);
+  if (a.batch.droplets < 1 || a.batch.droplets > 1'000'000)
+    throw std::invalid_argument("droplets = " + std::to_string(a.batch.droplets) + ": must be in [1, 1e6]");
+  if (!(a.alpha >= 0 && a.alpha <= 1)) throw std::invalid_argument("alpha = " + fmt(a.alpha) + ": must be in [0, 1]");
+  const RenderStyle style = style_of(a);
+  Scene scene;
+  scene.medium = medium_of(a);
+  RunOptions run = a.run;
+  run.path_interval = 50;
+  Progress progress("render: droplets done");
+  const auto runs = run_batch(a.droplet, scene.medium, run, a.batch,
+                              [&](int done, int total) { progress.update(done, total); });
+  const double alpha = a.alpha > 0 ? a.alpha : std::min(1.0, std::max(0.02, 6.0 / a.batch.droplets));
+  Rgba colour = parse_colour(a.path_colour);
+  colour.a = alpha;
+  for (const RunSummary& r : runs) scene.lines.push_back(path_line(r.path_x, r.path_y, colour, 1.5));
+  const BatchStats stats = summarize(runs);
+  scene.caption = std::to_string(stats.droplets) + " droplets, " + std::to_string(stats.passed) + " passed" +
+                  (stats.passed ? ", <T> = " + fmt(stats.mean_tortuosity, 4) : "") + "; " + describe(scene.medium);
+  render_scene(scene, style, a.output);
+  return 0;
+}
+
+int render_search(RenderArgs& a) {
+  const RenderStyle style = style_of(a);
+  check_output_path("--output", a.output);
+  if (!a.curve.empty()) {
+    image_format_for(a.curve);
+    check_output_path("--curve", a.curve);
+  }
+  auto history = open_history(a.db, OpenMode::read_only);
+  const RunRecord run = history->run(a.run_id);
+  const Configuration best = history->configuration(a.run_id, a.generation);
+  Scene scene;
+  scene.medium = best.medium;
+  scene.filled.assign(best.medium.grains.size(), 0);
+  for (std::int32_t i : best.eval.touched) scene.filled[static_cast<std::size_t>(i)] = 1;
+  // Earlier accepted generations' paths, thin and light; the best's thick on top.
+  Rgba thin = parse_colour(a.path_colour);
+  thin.a = 0.35;
+  Chart chart;
+  for (const GenerationRecord& g : history->generations(a.run_id)) {
+    if (g.generation > best.generation) break;
+    if (g.accepted < 0) continue;
+    chart.x.push_back(static_cast<double>(g.generation));
+    chart.y.push_back(g.best_t);
+    if (g.generation == best.generation) continue;
+    const Configuration c = history->configuration(a.run_id, g.generation);
+    scene.lines.push_back(path_line(c.eval.path_x, c.eval.path_y, thin, 1.0));
+  }
+  scene.lines.push_back(path_line(best.eval.path_x, best.eval.path_y, parse_colour(a.path_colour), 3.5));
+  scene.caption = "run " + std::to_string(a.run_id) + ", generation " + std::to_string(best.generation) +
+                  ": T = " + fmt(best.eval.tortuosity, 5) + ", " + std::to_string(best.eval.touched.size()) +
+                  " grains touched (filled); " + describe(best.medium);
+  render_scene(scene, style, a.output);
+  if (!a.curve.empty()) {
+    chart.steps = true;
+    chart.x_label = "generation";
+    chart.y_label = "best tortuosity T";
+    chart.title = "run " + std::to_string(a.run_id) + ": " + std::to_string(run.grains) + " grains, lambda = " +
+                  std::to_string(run.lambda);
+    chart.colour = parse_colour(a.path_colour);
+    render_chart(chart, style, a.curve);
+  }
+  return 0;
+}
+
+int render_animation_command(RenderArgs& a) {
+  check_droplet(a);
+  if (!std::isfinite(a.speed) || a.speed <= 0) throw std::invalid_argument("speed = " + fmt(a.speed) + ": must be > 0");
+  if (!std::isfinite(a.fps) || a.fps <= 0 || a.fps > 100) throw std::invalid_argument("fps = " + fmt(a.fps) + ": must be in (0, 100]");
+  const RenderStyle style = style_of(a);
+  image_format_for(a.output);
+  const Medium medium = medium_of(a);
+  const double x0 = std::isnan(a.x0) ? 0.5 * medium.width : a.x0;
+  // First the whole run (deterministic), to know its length; then a replay that draws frames.
+  Simulation sim(a.droplet, medium);
+  const RunSummary whole = sim.run(x0, a.run);
+  const double steps_per_frame = a.speed / (a.fps * a.droplet.dt);
+  const int frames = static_cast<int>(std::ceil(static_cast<double>(whole.steps) / steps_per_frame)) + 1;
+  if (frames > a.max_frames)
+    throw std::invalid_argument("max-frames = " + std::to_string(a.max_frames) + ": the run needs " +
+                                std::to_string(frames) + " frames at --speed " + fmt(a.speed) + " and --fps " + fmt(a.fps));
+  sim.place_above(x0);
+  const double top_room = sim.start_height() - medium.height + 1.6 * a.droplet.radius;
+  std::int64_t done = 0;
+  std::vector<double> path_x, path_y;
+  const Rgba droplet = parse_colour(a.droplet_colour), path = parse_colour(a.path_colour);
+  Progress progress("render: frames");
+  render_animation(frames, a.fps, [&](int f, Scene& scene) {
+    const auto target = std::min<std::int64_t>(whole.steps, std::llround(f * steps_per_frame));
+    while (done < target) {
+      sim.step();
+      ++done;
+      if (done % 10 == 0) {
+        double cx, cy;
+        sim.centre_of_mass(&cx, &cy);
+        path_x.push_back(cx);
+        path_y.push_back(cy);
+      }
+    }
+    scene.medium = medium;
+    scene.top_room = top_room;
+    scene.lines.push_back(path_line(path_x, path_y, path, 1.5));
+    Polyline ring = path_line(sim.state().x, sim.state().y, droplet, 2);
+    ring.closed = true;
+    ring.fill = Rgba{droplet.r, droplet.g, droplet.b, 0.25};
+    double cx, cy;
+    sim.centre_of_mass(&cx, &cy);
+    if (medium.periodic) {
+      const double shift = std::floor(cx / medium.width) * medium.width;
+      for (double& x : ring.x) x -= shift;
+    }
+    scene.lines.push_back(std::move(ring));
+    scene.caption = "t = " + fmt(static_cast<double>(done) * a.droplet.dt, 3) + " (" + to_string(whole.outcome) +
+                    (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") + ")";
+    progress.update(f + 1, frames);
+  }, style, a.output);
+  return 0;
+}
+
+}  // namespace
+
+int run_render(RenderArgs& a, const CLI::App& render) {
+  const std::string which = render.get_subcommands().front()->get_name();
+  check_output_path("--output", a.output);
+  if (which == "medium") return render_medium(a);
+  if (which == "snapshots") return render_snapshots(a);
+  if (which == "paths") return render_paths(a);
+  if (which == "search") return render_search(a);
+  return render_animation_command(a);
+}
+
+}  // namespace softdrop::cli

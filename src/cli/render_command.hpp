@@ -1,0 +1,42 @@
+#pragma once
+// `softdrop render medium|snapshots|paths|search|animation`: pictures through the one drawing
+// module (softdrop/render.hpp).
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cli/common_options.hpp"
+#include "softdrop/batch.hpp"
+#include "softdrop/render.hpp"
+
+namespace softdrop::cli {
+
+struct RenderArgs {
+  std::string output;
+  int size = 800;
+  std::string background = "#ffffff", grain_colour = "#1f2938", touched_colour = "#40454d",
+              path_colour = "#cc1a1a", droplet_colour = "#1f4fcc";
+  bool no_caption = false;
+  MediumArgs medium;
+  DropletParams droplet;
+  RunOptions run;
+  double x0 = std::numeric_limits<double>::quiet_NaN();  ///< default: the middle
+  std::vector<double> times;  ///< snapshots
+  BatchOptions batch;         ///< paths
+  double alpha = 0;           ///< paths: 0 = automatic
+  std::string db;             ///< search
+  std::int64_t run_id = 0;
+  std::int64_t generation = -1;
+  std::string curve;          ///< search: best-T chart
+  double fps = 25, speed = 0.02;  ///< animation: frames per second, time units per second
+  int max_frames = 1500;
+};
+
+/// Registers `render` and its five subcommands; returns `render`.
+CLI::App* add_render_command(CLI::App& app, RenderArgs& args);
+/// Runs the chosen subcommand of `render`.
+int run_render(RenderArgs& args, const CLI::App& render);
+
+}  // namespace softdrop::cli

@@ -1,0 +1,442 @@
+// Drawing with Cairo: scenes (medium, filled grains, polylines, caption), charts and GIF frames.
+#include "softdrop/render.hpp"
+
+#include <cairo-pdf.h>
+#include <cairo-svg.h>
+#include <cairo.h>
+#include <gif_lib.h>
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "validation.hpp"
+
+namespace softdrop {
+using detail::fail;
+using detail::num;
+
+ImageFormat image_format_for(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".png") return ImageFormat::png;
+  if (ext == ".svg") return ImageFormat::svg;
+  if (ext == ".pdf") return ImageFormat::pdf;
+  if (ext == ".gif") return ImageFormat::gif;
+  throw std::invalid_argument("output '" + path + "': unknown picture format (use .png, .svg, .pdf or .gif)");
+}
+
+Rgba parse_colour(const std::string& text) {
+  auto hex = [&](std::size_t i) -> double {
+    const std::string two = text.substr(i, 2);
+    if (!std::isxdigit(static_cast<unsigned char>(two[0])) || !std::isxdigit(static_cast<unsigned char>(two[1])))
+      throw std::invalid_argument("colour '" + text + "': expected #rrggbb or #rrggbbaa");
+    return std::stoi(two, nullptr, 16) / 255.0;
+  };
+  if (text.size() != 7 && text.size() != 9) throw std::invalid_argument("colour '" + text + "': expected #rrggbb or #rrggbbaa");
+  if (text[0] != '#') throw std::invalid_argument("colour '" + text + "': expected #rrggbb or #rrggbbaa");
+  return {hex(1), hex(3), hex(5), text.size() == 9 ? hex(7) : 1.0};
+}
+
+bool RenderStyle::IsValid(std::string* why) const {
+  if (width < 16 || width > 20000) return fail(why, "size = " + std::to_string(width) + ": must be in [16, 20000] pixels");
+  if (!std::isfinite(grain_line) || grain_line <= 0) return fail(why, "grain-line = " + num(grain_line) + ": must be > 0");
+  if (!std::isfinite(margin) || margin < 0) return fail(why, "margin = " + num(margin) + ": must be >= 0");
+  return true;
+}
+
+namespace {
+
+using CairoPtr = std::unique_ptr<cairo_t, decltype(&cairo_destroy)>;
+using SurfacePtr = std::unique_ptr<cairo_surface_t, decltype(&cairo_surface_destroy)>;
+
+void set(cairo_t* cr, const Rgba& c) { cairo_set_source_rgba(cr, c.r, c.g, c.b, c.a); }
+
+// Where the medium lands on the picture: picture = (margin + s (x - x0), margin + s (y1 - y)).
+struct Geometry {
+  double y0 = 0, y1 = 0;  // medium-y range shown
+  double scale = 1;
+  int width = 0, height = 0;
+  double caption_height = 0;
+};
+
+Geometry geometry_of(const Scene& scene, const RenderStyle& style) {
+  const Medium& m = scene.medium;
+  Geometry g;
+  g.y0 = 0;
+  g.y1 = m.height;
+  if (scene.top_room >= 0) {
+    g.y1 = m.height + scene.top_room;
+  } else {
+    for (const Polyline& p : scene.lines)
+      for (double y : p.y) g.y1 = std::max(g.y1, y), g.y0 = std::min(g.y0, y);
+  }
+  g.y0 = std::max(g.y0, -0.1 * m.height);  // a path leaves through the bottom; show only its start
+  g.width = style.width;
+  g.scale = (style.width - 2 * style.margin) / m.width;
+  g.caption_height = style.caption && !scene.caption.empty() ? std::max(11.0, 0.02 * style.width) * 1.6 : 0;
+  g.height = static_cast<int>(std::ceil(2 * style.margin + g.scale * (g.y1 - g.y0) + g.caption_height));
+  return g;
+}
+
+// Wraps an unwrapped periodic polyline into [0, W): a new piece starts where it crosses an edge.
+std::vector<std::vector<std::pair<double, double>>> pieces_of(const Polyline& p, const Medium& m) {
+  std::vector<std::vector<std::pair<double, double>>> out(1);
+  long previous_cell = 0;
+  for (std::size_t i = 0; i < p.x.size(); ++i) {
+    double x = p.x[i];
+    long cell = 0;
+    if (m.periodic && !p.closed) {
+      cell = static_cast<long>(std::floor(x / m.width));
+      x -= static_cast<double>(cell) * m.width;
+      if (i > 0 && cell != previous_cell) {
+        // Finish this piece just across the edge, start the next one from just across the other.
+        const double shift = static_cast<double>(cell - previous_cell) * m.width;
+        out.back().emplace_back(x + shift, p.y[i]);
+        out.emplace_back();
+        out.back().emplace_back(p.x[i - 1] - static_cast<double>(cell) * m.width, p.y[i - 1]);
+      }
+    } else if (m.periodic && p.closed) {
+      // A ring is drawn whole, shifted so that its first point lies inside the box.
+      cell = static_cast<long>(std::floor(p.x[0] / m.width));
+      x -= static_cast<double>(cell) * m.width;
+    }
+    previous_cell = cell;
+    out.back().emplace_back(x, p.y[i]);
+  }
+  return out;
+}
+
+void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const Geometry& g) {
+  const Medium& m = scene.medium;
+  auto px = [&](double x) { return style.margin + g.scale * x; };
+  auto py = [&](double y) { return style.margin + g.scale * (g.y1 - y); };
+  set(cr, style.background);
+  cairo_paint(cr);
+
+  cairo_save(cr);
+  cairo_rectangle(cr, px(0), py(g.y1), g.scale * m.width, g.scale * (g.y1 - g.y0));
+  cairo_clip(cr);
+  // Grains, with their periodic images at the edges; each grain is one path.
+  for (std::size_t i = 0; i < m.grains.size(); ++i) {
+    const Grain& gr = m.grains[i];
+    const bool fill = i < scene.filled.size() && scene.filled[i];
+    std::vector<double> xs{gr.x};
+    if (m.periodic) {
+      if (gr.x - gr.r < 0) xs.push_back(gr.x + m.width);
+      if (gr.x + gr.r > m.width) xs.push_back(gr.x - m.width);
+    }
+    for (double x : xs) {
+      cairo_new_path(cr);
+      cairo_arc(cr, px(x), py(gr.y), g.scale * gr.r, 0, 2 * M_PI);
+      if (fill) {
+        set(cr, style.touched);
+        cairo_fill_preserve(cr);
+      }
+      set(cr, style.grain);
+      cairo_set_line_width(cr, style.grain_line);
+      cairo_stroke(cr);
+    }
+  }
+  // Polylines on top.
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
+  for (const Polyline& p : scene.lines) {
+    if (p.x.size() < 2) continue;
+    for (const auto& piece : pieces_of(p, m)) {
+      if (piece.size() < 2) continue;
+      cairo_new_path(cr);
+      cairo_move_to(cr, px(piece[0].first), py(piece[0].second));
+      for (std::size_t i = 1; i < piece.size(); ++i) cairo_line_to(cr, px(piece[i].first), py(piece[i].second));
+      if (p.closed) {
+        cairo_close_path(cr);
+        if (p.fill.a > 0) {
+          set(cr, p.fill);
+          cairo_fill_preserve(cr);
+        }
+      }
+      set(cr, p.colour);
+      cairo_set_line_width(cr, p.width);
+      cairo_stroke(cr);
+    }
+  }
+  cairo_restore(cr);
+
+  // The medium's box (dashed above the top, where the droplet starts).
+  set(cr, style.box);
+  cairo_set_line_width(cr, 1);
+  cairo_rectangle(cr, px(0), py(m.height), g.scale * m.width, g.scale * m.height);
+  cairo_stroke(cr);
+
+  if (g.caption_height > 0) {
+    set(cr, style.text);
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    // Shrink the font until the caption fits the width.
+    double font = g.caption_height / 1.6;
+    cairo_set_font_size(cr, font);
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr, scene.caption.c_str(), &ext);
+    const double room = g.width - 2 * style.margin;
+    if (ext.x_advance > room) cairo_set_font_size(cr, font * room / ext.x_advance);
+    cairo_move_to(cr, style.margin, g.height - style.margin - 0.3 * g.caption_height);
+    cairo_show_text(cr, scene.caption.c_str());
+  }
+}
+
+// Draws with `paint(cr)` on a surface of the format of `path`, into a temporary file renamed over
+// `path` on success.
+void write_picture(const std::string& path, int width, int height, const std::function<void(cairo_t*)>& paint) {
+  const ImageFormat format = image_format_for(path);
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  cairo_surface_t* raw = nullptr;
+  switch (format) {
+    case ImageFormat::png: raw = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height); break;
+    case ImageFormat::svg: raw = cairo_svg_surface_create(tmp.c_str(), width, height); break;
+    case ImageFormat::pdf: raw = cairo_pdf_surface_create(tmp.c_str(), width, height); break;
+    case ImageFormat::gif: throw std::invalid_argument("output '" + path + "': a still picture cannot be a .gif (use .png, .svg or .pdf)");
+  }
+  SurfacePtr surface(raw, cairo_surface_destroy);
+  auto failed = [&](const std::string& what) {
+    std::filesystem::remove(tmp);
+    return std::runtime_error("output '" + path + "': " + what);
+  };
+  if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
+    throw failed(cairo_status_to_string(cairo_surface_status(surface.get())));
+  {
+    CairoPtr cr(cairo_create(surface.get()), cairo_destroy);
+    paint(cr.get());
+    if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) throw failed(cairo_status_to_string(cairo_status(cr.get())));
+  }
+  if (format == ImageFormat::png) {
+    const cairo_status_t s = cairo_surface_write_to_png(surface.get(), tmp.c_str());
+    if (s != CAIRO_STATUS_SUCCESS) throw failed(cairo_status_to_string(s));
+  } else {
+    cairo_surface_finish(surface.get());
+    if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
+      throw failed(cairo_status_to_string(cairo_surface_status(surface.get())));
+  }
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw failed(ec.message());
+}
+
+// Tick positions 1, 2 or 5 x 10^k covering [lo, hi] with about `count` ticks.
+std::vector<double> nice_ticks(double lo, double hi, int count) {
+  const double span = hi - lo;
+  const double raw = span / count;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  double step = mag;
+  for (double f : {1.0, 2.0, 5.0, 10.0})
+    if (f * mag >= raw) {
+      step = f * mag;
+      break;
+    }
+  std::vector<double> ticks;
+  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step) ticks.push_back(std::abs(t) < 1e-12 * span ? 0.0 : t);
+  return ticks;
+}
+
+std::string tick_label(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
+
+}  // namespace
+
+void render_scene(const Scene& scene, const RenderStyle& style, const std::string& path) {
+  std::string why;
+  if (!style.IsValid(&why)) throw std::invalid_argument(why);
+  if (!scene.medium.IsValid(&why)) throw std::invalid_argument(why);
+  const Geometry g = geometry_of(scene, style);
+  write_picture(path, g.width, g.height, [&](cairo_t* cr) { draw_scene(cr, scene, style, g); });
+}
+
+void render_chart(const Chart& chart, const RenderStyle& style, const std::string& path) {
+  std::string why;
+  if (!style.IsValid(&why)) throw std::invalid_argument(why);
+  if (chart.x.size() != chart.y.size() || chart.x.empty())
+    throw std::invalid_argument("chart: needs as many y as x values, at least one");
+  const int w = style.width, h = static_cast<int>(std::lround(0.62 * style.width));
+  write_picture(path, w, h, [&](cairo_t* cr) {
+    set(cr, style.background);
+    cairo_paint(cr);
+    const double font = std::max(10.0, 0.022 * w);
+    const double left = style.margin + 4.5 * font, right = w - style.margin - font;
+    const double top = style.margin + (chart.title.empty() ? font : 2.2 * font), bottom = h - style.margin - 3 * font;
+    double x0 = *std::min_element(chart.x.begin(), chart.x.end()), x1 = *std::max_element(chart.x.begin(), chart.x.end());
+    double y0 = *std::min_element(chart.y.begin(), chart.y.end()), y1 = *std::max_element(chart.y.begin(), chart.y.end());
+    if (x1 <= x0) x1 = x0 + 1;
+    if (y1 <= y0) y1 = y0 + std::max(1e-3, 0.05 * std::abs(y0));
+    const double pad = 0.05 * (y1 - y0);
+    y0 -= pad;
+    y1 += pad;
+    auto px = [&](double x) { return left + (right - left) * (x - x0) / (x1 - x0); };
+    auto py = [&](double y) { return bottom - (bottom - top) * (y - y0) / (y1 - y0); };
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, font);
+    cairo_set_line_width(cr, 1);
+    cairo_text_extents_t ext;
+    for (double t : nice_ticks(x0, x1, 6)) {  // x ticks and grid
+      set(cr, Rgba{0.9, 0.9, 0.9, 1});
+      cairo_move_to(cr, px(t), top);
+      cairo_line_to(cr, px(t), bottom);
+      cairo_stroke(cr);
+      set(cr, style.text);
+      const std::string label = tick_label(t);
+      cairo_text_extents(cr, label.c_str(), &ext);
+      cairo_move_to(cr, px(t) - ext.width / 2, bottom + 1.3 * font);
+      cairo_show_text(cr, label.c_str());
+    }
+    for (double t : nice_ticks(y0, y1, 5)) {  // y ticks and grid
+      set(cr, Rgba{0.9, 0.9, 0.9, 1});
+      cairo_move_to(cr, left, py(t));
+      cairo_line_to(cr, right, py(t));
+      cairo_stroke(cr);
+      set(cr, style.text);
+      const std::string label = tick_label(t);
+      cairo_text_extents(cr, label.c_str(), &ext);
+      cairo_move_to(cr, left - ext.width - 0.4 * font, py(t) + 0.35 * font);
+      cairo_show_text(cr, label.c_str());
+    }
+    set(cr, style.text);
+    cairo_rectangle(cr, left, top, right - left, bottom - top);
+    cairo_stroke(cr);
+    cairo_text_extents(cr, chart.x_label.c_str(), &ext);
+    cairo_move_to(cr, (left + right) / 2 - ext.width / 2, h - style.margin - 0.3 * font);
+    cairo_show_text(cr, chart.x_label.c_str());
+    cairo_save(cr);
+    cairo_text_extents(cr, chart.y_label.c_str(), &ext);
+    cairo_move_to(cr, style.margin + font, (top + bottom) / 2 + ext.width / 2);
+    cairo_rotate(cr, -M_PI / 2);
+    cairo_show_text(cr, chart.y_label.c_str());
+    cairo_restore(cr);
+    if (!chart.title.empty()) {
+      cairo_text_extents(cr, chart.title.c_str(), &ext);
+      cairo_move_to(cr, (left + right) / 2 - ext.width / 2, style.margin + font);
+      cairo_show_text(cr, chart.title.c_str());
+    }
+    // The data.
+    set(cr, chart.colour);
+    cairo_set_line_width(cr, 2);
+    cairo_move_to(cr, px(chart.x[0]), py(chart.y[0]));
+    for (std::size_t i = 1; i < chart.x.size(); ++i) {
+      if (chart.steps) cairo_line_to(cr, px(chart.x[i]), py(chart.y[i - 1]));
+      cairo_line_to(cr, px(chart.x[i]), py(chart.y[i]));
+    }
+    if (chart.steps) cairo_line_to(cr, right, py(chart.y.back()));
+    cairo_stroke(cr);
+    for (std::size_t i = 0; i < chart.x.size(); ++i) {
+      cairo_arc(cr, px(chart.x[i]), py(chart.y[i]), 2.5, 0, 2 * M_PI);
+      cairo_fill(cr);
+    }
+  });
+}
+
+void render_animation(int frames, double fps, const std::function<void(int, Scene&)>& frame,
+                      const RenderStyle& style, const std::string& path) {
+  std::string why;
+  if (!style.IsValid(&why)) throw std::invalid_argument(why);
+  if (image_format_for(path) != ImageFormat::gif)
+    throw std::invalid_argument("output '" + path + "': an animation is written as .gif");
+  if (frames < 1 || frames > 100000) throw std::invalid_argument("frames = " + std::to_string(frames) + ": must be in [1, 1e5]");
+  if (!std::isfinite(fps) || fps <= 0 || fps > 100) throw std::invalid_argument("fps = " + num(fps) + ": must be in (0, 100]");
+
+  Scene scene;
+  frame(0, scene);
+  if (!scene.medium.IsValid(&why)) throw std::invalid_argument(why);
+  const Geometry g = geometry_of(scene, style);  // fixed for all frames
+  if (g.width > 65535 || g.height > 65535) throw std::invalid_argument("size: too large for a GIF");
+
+  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  int error = 0;
+  // Opened here rather than by giflib, which would create the file readable by its owner only.
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
+  if (fd < 0) throw std::runtime_error("output '" + path + "': cannot write " + tmp);
+  GifFileType* gif = EGifOpenFileHandle(fd, &error);
+  if (!gif) ::close(fd);
+  auto failed = [&](const std::string& what) {
+    if (gif) EGifCloseFile(gif, &error);
+    gif = nullptr;
+    std::filesystem::remove(tmp);
+    return std::runtime_error("output '" + path + "': " + what);
+  };
+  if (!gif) throw failed(std::string("cannot write (") + GifErrorString(error) + ")");
+  // A fixed palette: the 6 x 6 x 6 colour cube and 40 greys. Drawings have few colours, so the
+  // nearest-entry mapping below is enough (no dithering, no per-frame quantisation).
+  GifColorType colours[256];
+  for (int i = 0; i < 216; ++i)
+    colours[i] = {static_cast<GifByteType>(51 * (i / 36)), static_cast<GifByteType>(51 * (i / 6 % 6)),
+                  static_cast<GifByteType>(51 * (i % 6))};
+  for (int i = 216; i < 256; ++i) {
+    const auto v = static_cast<GifByteType>(std::lround((i - 216) * 255.0 / 39));
+    colours[i] = {v, v, v};
+  }
+  ColorMapObject* map = GifMakeMapObject(256, colours);
+  const bool ok = EGifPutScreenDesc(gif, g.width, g.height, 8, 0, map) == GIF_OK;
+  GifFreeMapObject(map);
+  if (!ok) throw failed("GIF screen descriptor");
+  EGifSetGifVersion(gif, true);
+  // Loop forever (NETSCAPE2.0 application extension).
+  const unsigned char loop_app[] = {'N', 'E', 'T', 'S', 'C', 'A', 'P', 'E', '2', '.', '0'};
+  const unsigned char loop_data[] = {1, 0, 0};
+  if (EGifPutExtensionLeader(gif, APPLICATION_EXT_FUNC_CODE) != GIF_OK ||
+      EGifPutExtensionBlock(gif, sizeof loop_app, loop_app) != GIF_OK ||
+      EGifPutExtensionBlock(gif, sizeof loop_data, loop_data) != GIF_OK || EGifPutExtensionTrailer(gif) != GIF_OK)
+    throw failed("GIF loop extension");
+
+  SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, g.width, g.height), cairo_surface_destroy);
+  std::vector<GifByteType> row(static_cast<std::size_t>(g.width));
+  const int delay = std::max(2, static_cast<int>(std::lround(100.0 / fps)));  // centiseconds
+  for (int f = 0; f < frames; ++f) {
+    if (f > 0) {
+      scene = Scene{};
+      frame(f, scene);
+    }
+    {
+      CairoPtr cr(cairo_create(surface.get()), cairo_destroy);
+      draw_scene(cr.get(), scene, style, g);
+    }
+    cairo_surface_flush(surface.get());
+    GraphicsControlBlock gcb{};
+    gcb.DisposalMode = DISPOSE_DO_NOT;
+    gcb.DelayTime = delay;
+    gcb.TransparentColor = NO_TRANSPARENT_COLOR;
+    GifByteType ext[4];
+    const std::size_t n = EGifGCBToExtension(&gcb, ext);
+    if (EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(n), ext) != GIF_OK ||
+        EGifPutImageDesc(gif, 0, 0, g.width, g.height, false, nullptr) != GIF_OK)
+      throw failed("GIF frame header");
+    const unsigned char* data = cairo_image_surface_get_data(surface.get());
+    const int stride = cairo_image_surface_get_stride(surface.get());
+    for (int y = 0; y < g.height; ++y) {
+      const auto* px = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
+      for (int x = 0; x < g.width; ++x) {
+        const int r = static_cast<int>((px[x] >> 16) & 0xff), gg = static_cast<int>((px[x] >> 8) & 0xff),
+                  b = static_cast<int>(px[x] & 0xff);
+        int index;
+        if (std::abs(r - gg) < 8 && std::abs(gg - b) < 8)
+          index = 216 + static_cast<int>(std::lround((r + gg + b) / 3.0 * 39 / 255));
+        else
+          index = 36 * ((r + 25) / 51) + 6 * ((gg + 25) / 51) + (b + 25) / 51;
+        row[static_cast<std::size_t>(x)] = static_cast<GifByteType>(index);
+      }
+      if (EGifPutLine(gif, row.data(), g.width) != GIF_OK) throw failed("GIF pixels");
+    }
+  }
+  if (EGifCloseFile(gif, &error) != GIF_OK) {
+    gif = nullptr;
+    throw failed(std::string("GIF close (") + GifErrorString(error) + ")");
+  }
+  gif = nullptr;
+  std::error_code ec;
+  std::filesystem::rename(tmp, path, ec);
+  if (ec) throw failed(ec.message());
+}
+
+}  // namespace softdrop

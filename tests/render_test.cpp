@@ -1,0 +1,219 @@
+// Pictures: every kind renders for a small scene at the asked size and is not blank; the SVG
+// parses and holds one circle per grain (plus periodic copies); bad inputs leave no file.
+#include <cairo.h>
+#include <gif_lib.h>
+#include <gtest/gtest.h>
+#include <tinyxml2.h>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "cli_run.hpp"
+#include "softdrop/render.hpp"
+
+namespace softdrop {
+namespace {
+
+std::string fresh(const std::string& name) {
+  const std::string p = test::temp_path(name);
+  std::filesystem::remove(p);
+  return p;
+}
+
+struct Png {
+  int width = 0, height = 0;
+  long non_background = 0;  // pixels that differ from the top-left one
+};
+
+Png read_png(const std::string& path) {
+  cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+  Png p;
+  if (cairo_surface_status(s) == CAIRO_STATUS_SUCCESS) {
+    p.width = cairo_image_surface_get_width(s);
+    p.height = cairo_image_surface_get_height(s);
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    const auto background = *reinterpret_cast<const std::uint32_t*>(data);
+    for (int y = 0; y < p.height; ++y)
+      for (int x = 0; x < p.width; ++x)
+        p.non_background += reinterpret_cast<const std::uint32_t*>(data + y * stride)[x] != background;
+  }
+  cairo_surface_destroy(s);
+  return p;
+}
+
+// Elements anywhere below `e` whose attribute `style` contains `needle`.
+int count_styled(const tinyxml2::XMLElement* e, const std::string& needle) {
+  int n = 0;
+  for (const auto* c = e->FirstChildElement(); c; c = c->NextSiblingElement()) {
+    const char* style = c->Attribute("style");
+    if (style && std::string(style).find(needle) != std::string::npos) ++n;
+    n += count_styled(c, needle);
+  }
+  return n;
+}
+
+Scene small_scene() {
+  Scene s;
+  s.medium = Medium{100, 80, true, {{50, 40, 10}, {20, 20, 8}, {97, 60, 9}}};  // the last crosses x = W
+  s.caption = "three grains";
+  Polyline p;
+  p.x = {50, 60, 110, 120};  // unwrapped: leaves through x = W and comes back at x = 0
+  p.y = {90, 60, 30, -2};
+  s.lines.push_back(p);
+  return s;
+}
+
+TEST(Render, PngHasTheAskedWidthAndIsNotBlank) {
+  const std::string out = fresh("scene.png");
+  RenderStyle style;
+  style.width = 320;
+  render_scene(small_scene(), style, out);
+  const Png png = read_png(out);
+  EXPECT_EQ(png.width, 320);
+  EXPECT_GT(png.height, 320 * 80 / 100);  // the box's aspect ratio plus the caption
+  EXPECT_GT(png.non_background, 2000);
+}
+
+TEST(Render, SvgParsesAndHasOneCirclePerGrainPlusPeriodicCopies) {
+  const std::string out = fresh("scene.svg");
+  RenderStyle style;
+  style.grain = parse_colour("#ff0000");
+  render_scene(small_scene(), style, out);
+  tinyxml2::XMLDocument doc;
+  ASSERT_EQ(doc.LoadFile(out.c_str()), tinyxml2::XML_SUCCESS);
+  ASSERT_STREQ(doc.RootElement()->Name(), "svg");
+  EXPECT_EQ(count_styled(doc.RootElement(), "stroke:rgb(100%,0%,0%)"), 3 + 1);
+  Scene walls = small_scene();
+  walls.medium.periodic = false;
+  walls.medium.grains[2].x = 80;
+  render_scene(walls, style, out);
+  ASSERT_EQ(doc.LoadFile(out.c_str()), tinyxml2::XML_SUCCESS);
+  EXPECT_EQ(count_styled(doc.RootElement(), "stroke:rgb(100%,0%,0%)"), 3);
+}
+
+TEST(Render, PdfAndChartAreWritten) {
+  const std::string pdf = fresh("scene.pdf");
+  render_scene(small_scene(), RenderStyle{}, pdf);
+  std::ifstream in(pdf, std::ios::binary);
+  std::string head(5, '\0');
+  in.read(head.data(), 5);
+  EXPECT_EQ(head, "%PDF-");
+  const std::string chart = fresh("chart.png");
+  Chart c;
+  c.x = {0, 3, 8, 20};
+  c.y = {1.1, 1.12, 1.15, 1.2};
+  c.steps = true;
+  c.x_label = "generation";
+  c.y_label = "best T";
+  RenderStyle style;
+  style.width = 400;
+  render_chart(c, style, chart);
+  const Png png = read_png(chart);
+  EXPECT_EQ(png.width, 400);
+  EXPECT_EQ(png.height, 248);
+  EXPECT_GT(png.non_background, 1500);
+}
+
+TEST(Render, AnimationIsALoopingGifWithOneImagePerFrame) {
+  const std::string out = fresh("anim.gif");
+  RenderStyle style;
+  style.width = 200;
+  render_animation(7, 10, [](int f, Scene& s) {
+    s = small_scene();
+    s.top_room = 20;
+    s.lines[0].x.resize(static_cast<std::size_t>(1 + f % 4));
+  }, style, out);
+  int error = 0;
+  GifFileType* gif = DGifOpenFileName(out.c_str(), &error);
+  ASSERT_NE(gif, nullptr);
+  ASSERT_EQ(DGifSlurp(gif), GIF_OK);
+  EXPECT_EQ(gif->ImageCount, 7);
+  EXPECT_EQ(gif->SWidth, 200);
+  GraphicsControlBlock gcb;
+  ASSERT_EQ(DGifSavedExtensionToGCB(gif, 1, &gcb), GIF_OK);
+  EXPECT_EQ(gcb.DelayTime, 10);  // centiseconds at 10 fps
+  bool loops = false;  // the NETSCAPE2.0 application extension, before the first frame
+  for (int i = 0; i < gif->SavedImages[0].ExtensionBlockCount; ++i) {
+    const ExtensionBlock& b = gif->SavedImages[0].ExtensionBlocks[i];
+    loops |= b.Function == APPLICATION_EXT_FUNC_CODE && b.ByteCount == 11 &&
+             std::string(reinterpret_cast<const char*>(b.Bytes), 11) == "NETSCAPE2.0";
+  }
+  EXPECT_TRUE(loops);
+  long coloured = 0;
+  const SavedImage& frame = gif->SavedImages[3];
+  for (int i = 0; i < frame.ImageDesc.Width * frame.ImageDesc.Height; ++i) coloured += frame.RasterBits[i] != frame.RasterBits[0];
+  EXPECT_GT(coloured, 500);
+  DGifCloseFile(gif, &error);
+}
+
+TEST(Render, BadFormatAndColourAreRefusedWithoutAFile) {
+  EXPECT_THROW(render_scene(small_scene(), RenderStyle{}, fresh("scene.bmp")), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(fresh("scene.bmp")));
+  EXPECT_THROW(render_scene(small_scene(), RenderStyle{}, fresh("still.gif")), std::invalid_argument);
+  EXPECT_THROW(parse_colour("red"), std::invalid_argument);
+  EXPECT_THROW(parse_colour("#12345g"), std::invalid_argument);
+  EXPECT_EQ(parse_colour("#ff000080"), (Rgba{1, 0, 0, 128 / 255.0}));
+}
+
+// The command line, one invocation per picture kind, on small scenes.
+const std::string kPore = std::string(SOFTDROP_SOURCE_DIR) + "/examples/pore.json";
+
+void expect_png(const std::string& args, const std::string& out, int width) {
+  const test::Result r = test::run("render " + args + " -o " + out + " --size " + std::to_string(width));
+  ASSERT_EQ(r.code, 0) << args << ": " << r.err;
+  const Png png = read_png(out);
+  EXPECT_EQ(png.width, width) << args;
+  EXPECT_GT(png.non_background, width * 4) << args;
+}
+
+TEST(RenderCli, EveryPictureKindRenders) {
+  expect_png("medium --medium " + kPore, fresh("cli_medium.png"), 300);
+  expect_png("medium --kind non-overlapping --porosity 0.85 --width 200 --height 200", fresh("cli_gen.png"), 240);
+  expect_png("snapshots --medium " + kPore + " --x0 100 --times 0.008,0.02,0.03", fresh("cli_snap.png"), 300);
+  expect_png("paths --medium " + kPore + " --droplets 6 --seed 2", fresh("cli_paths.png"), 300);
+
+  const std::string db = fresh("cli_search.db");
+  ASSERT_EQ(test::run("optimize --db " + db + " --grains 16 --width 160 --height 120 --medium-seed 2 --seed 7 "
+                      "--stuck-window 0.1 --stuck-distance 1 --generations 8 --quiet").code, 0);
+  const std::string curve = fresh("cli_curve.svg");
+  expect_png("search --db " + db + " --run 1 --curve " + curve, fresh("cli_search.png"), 320);
+  tinyxml2::XMLDocument doc;
+  EXPECT_EQ(doc.LoadFile(curve.c_str()), tinyxml2::XML_SUCCESS);
+
+  const std::string gif = fresh("cli_anim.gif");
+  const test::Result r = test::run("render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 -o " + gif + " --size 160");
+  ASSERT_EQ(r.code, 0) << r.err;
+  int error = 0;
+  GifFileType* g = DGifOpenFileName(gif.c_str(), &error);
+  ASSERT_NE(g, nullptr);
+  ASSERT_EQ(DGifSlurp(g), GIF_OK);
+  EXPECT_GE(g->ImageCount, 4);  // about 0.039 time units at 0.01 per second, 10 frames a second
+  EXPECT_EQ(g->SWidth, 160);
+  DGifCloseFile(g, &error);
+}
+
+TEST(RenderCli, MissingOrMalformedInputsGiveOneLineAndNoPicture) {
+  const std::string bad_grains = fresh("bad_grains.json");
+  std::ofstream(bad_grains) << "{\"format\": \"softdrop-medium\", \"version\": 1, \"width\": 10";
+  const std::string bad_db = fresh("bad.db");
+  std::ofstream(bad_db) << std::string(300, 'x');
+  const std::string out = fresh("never.png");
+  for (const std::string& args :
+       {"medium --medium " + fresh("missing.json"), "medium --medium " + bad_grains,
+        "snapshots --medium " + bad_grains + " --times 0.01", "search --db " + fresh("missing.db") + " --run 1",
+        "search --db " + bad_db + " --run 1", "medium --medium " + kPore + " --background red",
+        "medium --medium " + kPore + " --size 3"}) {
+    const test::Result r = test::run("render " + args + " -o " + out);
+    SCOPED_TRACE(args);
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("softdrop: error: ", 0), 0u) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
+}  // namespace
+}  // namespace softdrop
