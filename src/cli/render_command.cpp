@@ -50,7 +50,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   p->add_option("--droplets", a.batch.droplets, "Droplets from random starts")->capture_default_str();
   p->add_option("--seed", a.batch.seed, "Seed of the start positions")->capture_default_str();
   p->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
-  p->add_option("--alpha", a.alpha, "Opacity of one path (0: automatic, about 6 / droplets)")->capture_default_str();
+  p->add_option("--alpha", a.alpha, "Opacity of one path (0: automatic, 10 / droplets, at least 0.03)")->capture_default_str();
 
   CLI::App* q = r->add_subcommand("search", "A search's best configuration, its path, earlier paths, touched grains");
   style(q, ".png, .svg or .pdf");
@@ -170,7 +170,7 @@ int render_paths(RenderArgs& a) {
   Progress progress("render: droplets done");
   const auto runs = run_batch(a.droplet, scene.medium, run, a.batch,
                               [&](int done, int total) { progress.update(done, total); });
-  const double alpha = a.alpha > 0 ? a.alpha : std::min(1.0, std::max(0.02, 6.0 / a.batch.droplets));
+  const double alpha = a.alpha > 0 ? a.alpha : std::min(1.0, std::max(0.03, 10.0 / a.batch.droplets));
   Rgba colour = parse_colour(a.path_colour);
   colour.a = alpha;
   for (const RunSummary& r : runs) scene.lines.push_back(path_line(r.path_x, r.path_y, colour, 1.5));
