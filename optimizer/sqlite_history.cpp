@@ -1,185 +1,23 @@
-// The search history in one SQLite file (WAL, foreign keys, schema version in user_version).
-// The schema is documented in README.md ("The history database"); keep the two in step.
+// The search history (History) on a softdrop SQLite database (see sqlite_file.hpp).
 #include <SQLiteCpp/SQLiteCpp.h>
-#include <sys/stat.h>
 
-#include <chrono>
-#include <cmath>
-#include <thread>
-#include <sqlite3.h>
-#include <filesystem>
 #include <stdexcept>
 #include <string>
 
 #include "softdrop/history.hpp"
 #include "softdrop/version.hpp"
+#include "sqlite_file.hpp"
 
 namespace softdrop {
 namespace {
-
-constexpr const char* kSchema = R"sql(
-CREATE TABLE IF NOT EXISTS runs (
-  id              INTEGER PRIMARY KEY,
-  created         TEXT NOT NULL,
-  updated         TEXT NOT NULL,
-  version         TEXT NOT NULL,
-  status          TEXT NOT NULL CHECK (status IN ('running', 'finished', 'interrupted')),
-  params          TEXT NOT NULL,
-  seed            INTEGER NOT NULL,
-  lambda          INTEGER NOT NULL,
-  grains          INTEGER NOT NULL,
-  width           REAL NOT NULL,
-  height          REAL NOT NULL,
-  periodic        INTEGER NOT NULL,
-  generations     INTEGER NOT NULL,
-  evaluations     INTEGER NOT NULL,
-  best_t          REAL NOT NULL,
-  best_generation INTEGER NOT NULL
-);
-CREATE TABLE IF NOT EXISTS generations (
-  run_id             INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
-  generation         INTEGER NOT NULL,
-  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single')),
-  accepted_candidate INTEGER,
-  best_t             REAL NOT NULL,
-  touched            INTEGER NOT NULL,
-  seconds            REAL NOT NULL,
-  finished           TEXT NOT NULL,
-  PRIMARY KEY (run_id, generation)
-) WITHOUT ROWID;
-CREATE TABLE IF NOT EXISTS candidates (
-  run_id      INTEGER NOT NULL,
-  generation  INTEGER NOT NULL,
-  candidate   INTEGER NOT NULL,
-  moved_grain INTEGER,
-  moved       INTEGER NOT NULL,
-  outcome     TEXT NOT NULL CHECK (outcome IN ('passed', 'stuck', 'timeout', 'diverged')),
-  reason      TEXT NOT NULL,
-  tortuosity  REAL,
-  steps       INTEGER NOT NULL,
-  touched     INTEGER NOT NULL,
-  seconds     REAL NOT NULL,
-  PRIMARY KEY (run_id, generation, candidate),
-  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
-) WITHOUT ROWID;
-CREATE TABLE IF NOT EXISTS grains (
-  run_id     INTEGER NOT NULL,
-  generation INTEGER NOT NULL,
-  grain      INTEGER NOT NULL,
-  x          REAL NOT NULL,
-  y          REAL NOT NULL,
-  r          REAL NOT NULL,
-  touched    INTEGER NOT NULL,
-  PRIMARY KEY (run_id, generation, grain),
-  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
-) WITHOUT ROWID;
-CREATE TABLE IF NOT EXISTS paths (
-  run_id     INTEGER NOT NULL,
-  generation INTEGER NOT NULL,
-  point      INTEGER NOT NULL,
-  x          REAL NOT NULL,
-  y          REAL NOT NULL,
-  PRIMARY KEY (run_id, generation, point),
-  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
-) WITHOUT ROWID;
-)sql";
-
-constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
-
-std::runtime_error file_error(const std::string& path, const std::string& what) {
-  return std::runtime_error("--db '" + path + "': " + what);
-}
-
-// Reads what the file is before SQLite touches it: missing, empty, or an SQLite file whose header
-// is consistent with its size. Returns false for "no usable content yet" (missing or empty).
-bool check_file(const std::string& path, OpenMode mode) {
-  struct stat st {};
-  if (::stat(path.c_str(), &st) != 0) {
-    if (mode == OpenMode::read_only) throw file_error(path, "no such file");
-    return false;
-  }
-  if (!S_ISREG(st.st_mode)) throw file_error(path, "not a regular file");
-  if (st.st_size == 0) {
-    if (mode == OpenMode::read_only) throw file_error(path, "empty file, not a softdrop database");
-    return false;
-  }
-  SQLite::Header h{};
-  try {
-    h = SQLite::Database::getHeaderInfo(path);
-  } catch (const std::exception&) {
-    throw file_error(path, "not an SQLite database (no SQLite header)");
-  }
-  const unsigned long page = h.pageSizeBytes == 1 ? 65536UL : h.pageSizeBytes;
-  // The in-header size is valid when the change counter matches version-valid-for.
-  if (h.fileChangeCounter == h.versionValidFor && h.databaseSizePages > 0 &&
-      static_cast<unsigned long long>(st.st_size) <
-          static_cast<unsigned long long>(page) * h.databaseSizePages)
-    throw file_error(path, "truncated or corrupted (the header promises " +
-                               std::to_string(static_cast<unsigned long long>(page) * h.databaseSizePages) +
-                               " bytes, the file has " + std::to_string(st.st_size) + ")");
-  return true;
-}
-
-// Checks an open database is ours and readable. Returns false for an empty SQLite database.
-bool check_schema(SQLite::Database& db, const std::string& path) {
-  try {
-    const int app = db.execAndGet("PRAGMA application_id").getInt();
-    const int version = db.execAndGet("PRAGMA user_version").getInt();
-    const int tables = db.execAndGet("SELECT count(*) FROM sqlite_master").getInt();
-    if (app == 0 && version == 0 && tables == 0) return false;
-    if (app != kHistoryApplicationId)
-      throw file_error(path, "an SQLite database, but not a softdrop database (application_id " +
-                                 std::to_string(app) + ")");
-    if (version > kHistorySchemaVersion)
-      throw file_error(path, "written by a newer softdrop (schema version " + std::to_string(version) +
-                                 "; this build reads up to " + std::to_string(kHistorySchemaVersion) + ")");
-    if (version < 1) throw file_error(path, "softdrop database without a schema version");
-    const std::string check = db.execAndGet("PRAGMA quick_check").getString();
-    if (check != "ok") {
-      std::string line = check;
-      for (char& c : line)
-        if (c == '\n') c = ';';
-      throw file_error(path, "corrupted (quick_check: " + line + ")");
-    }
-    return true;
-  } catch (const SQLite::Exception& e) {
-    throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
-  }
-}
+using detail::kNow;
 
 std::int64_t to_i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
 class SqliteHistory final : public History {
  public:
   SqliteHistory(const std::string& path, OpenMode mode)
-      : path_(path),
-        db_(path, mode == OpenMode::read_only ? SQLite::OPEN_READONLY : SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE,
-            60'000) {
-    db_.exec("PRAGMA foreign_keys = ON");
-    if (mode == OpenMode::read_only) return;
-    // Switching to WAL needs the file to itself and does not wait through the busy handler, so a
-    // second process opening a new file at the same instant retries here.
-    for (int attempt = 0;; ++attempt) {
-      try {
-        db_.exec("PRAGMA journal_mode = WAL");
-        break;
-      } catch (const SQLite::Exception& e) {
-        if ((e.getErrorCode() & 0xff) != SQLITE_BUSY || attempt >= 6000) throw;
-        std::this_thread::sleep_for(std::chrono::milliseconds(10));
-      }
-    }
-    // NORMAL in WAL mode: a killed process never loses a committed generation; a power cut may
-    // lose the last few, never consistency.
-    db_.exec("PRAGMA synchronous = NORMAL");
-    SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
-    // Another process may have created the schema since we looked.
-    if (db_.execAndGet("PRAGMA user_version").getInt() == 0) {
-      db_.exec(kSchema);
-      db_.exec("PRAGMA application_id = " + std::to_string(kHistoryApplicationId));
-      db_.exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
-    }
-    t.commit();
-  }
+      : path_(path), db_ptr_(detail::open_database(path, mode)), db_(*db_ptr_) {}
 
   std::int64_t create_run(const std::string& params_json, const SearchOptions& o, const Generation& g0,
                           const Configuration& best) override {
@@ -460,40 +298,20 @@ class SqliteHistory final : public History {
     }
   }
 
-  // SQLite errors become one line naming the file.
   template <class F>
   auto guarded(F&& f) -> decltype(f()) {
-    try {
-      return f();
-    } catch (const SQLite::Exception& e) {
-      throw file_error(path_, e.what());
-    }
+    return detail::guarded(path_, std::forward<F>(f));
   }
 
   std::string path_;
-  SQLite::Database db_;
+  std::unique_ptr<SQLite::Database> db_ptr_;
+  SQLite::Database& db_;
 };
 
 }  // namespace
 
 std::unique_ptr<History> open_history(const std::string& path, OpenMode mode) {
-  const bool has_content = check_file(path, mode);
-  if (has_content) {
-    // Inspect read-only first: nothing is written to a file that turns out not to be ours.
-    bool ours = false;
-    try {
-      SQLite::Database probe(path, SQLite::OPEN_READONLY, 60'000);
-      ours = check_schema(probe, path);
-    } catch (const SQLite::Exception& e) {
-      throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
-    }
-    if (!ours && mode == OpenMode::read_only) throw file_error(path, "empty SQLite database, no softdrop runs");
-  }
-  try {
-    return std::make_unique<SqliteHistory>(path, mode);
-  } catch (const SQLite::Exception& e) {
-    throw file_error(path, e.what());
-  }
+  return std::make_unique<SqliteHistory>(path, mode);
 }
 
 }  // namespace softdrop

@@ -260,8 +260,24 @@ void render_scene(const Scene& scene, const RenderStyle& style, const std::strin
 void render_chart(const Chart& chart, const RenderStyle& style, const std::string& path) {
   std::string why;
   if (!style.IsValid(&why)) throw std::invalid_argument(why);
-  if (chart.x.size() != chart.y.size() || chart.x.empty())
-    throw std::invalid_argument("chart: needs as many y as x values, at least one");
+  double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
+  for (const Series& s : chart.series) {
+    if (s.x.size() != s.y.size() || (!s.err.empty() && s.err.size() != s.y.size()))
+      throw std::invalid_argument("chart: series '" + s.label + "' has mismatched lengths");
+    for (std::size_t i = 0; i < s.x.size(); ++i) {
+      const double e = s.err.empty() ? 0.0 : s.err[i];
+      x0 = std::min(x0, s.x[i]), x1 = std::max(x1, s.x[i]);
+      y0 = std::min(y0, s.y[i] - e), y1 = std::max(y1, s.y[i] + e);
+    }
+  }
+  for (double m : chart.markers) x0 = std::min(x0, m), x1 = std::max(x1, m);
+  for (double h : chart.hlines) y0 = std::min(y0, h), y1 = std::max(y1, h);
+  if (!std::isfinite(x0) || !std::isfinite(y0)) throw std::invalid_argument("chart: no data");
+  if (x1 <= x0) x1 = x0 + 1;
+  if (y1 <= y0) y1 = y0 + std::max(1e-3, 0.05 * std::abs(y0));
+  const double pad = 0.05 * (y1 - y0);
+  y0 -= pad;
+  y1 += pad;
   const int w = style.width, h = static_cast<int>(std::lround(0.62 * style.width));
   write_picture(path, w, h, [&](cairo_t* cr) {
     set(cr, style.background);
@@ -269,21 +285,15 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
     const double font = std::max(10.0, 0.022 * w);
     const double left = style.margin + 4.5 * font, right = w - style.margin - font;
     const double top = style.margin + (chart.title.empty() ? font : 2.2 * font), bottom = h - style.margin - 3 * font;
-    double x0 = *std::min_element(chart.x.begin(), chart.x.end()), x1 = *std::max_element(chart.x.begin(), chart.x.end());
-    double y0 = *std::min_element(chart.y.begin(), chart.y.end()), y1 = *std::max_element(chart.y.begin(), chart.y.end());
-    if (x1 <= x0) x1 = x0 + 1;
-    if (y1 <= y0) y1 = y0 + std::max(1e-3, 0.05 * std::abs(y0));
-    const double pad = 0.05 * (y1 - y0);
-    y0 -= pad;
-    y1 += pad;
     auto px = [&](double x) { return left + (right - left) * (x - x0) / (x1 - x0); };
     auto py = [&](double y) { return bottom - (bottom - top) * (y - y0) / (y1 - y0); };
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, font);
     cairo_set_line_width(cr, 1);
     cairo_text_extents_t ext;
+    const Rgba grid{0.9, 0.9, 0.9, 1};
     for (double t : nice_ticks(x0, x1, 6)) {  // x ticks and grid
-      set(cr, Rgba{0.9, 0.9, 0.9, 1});
+      set(cr, grid);
       cairo_move_to(cr, px(t), top);
       cairo_line_to(cr, px(t), bottom);
       cairo_stroke(cr);
@@ -294,7 +304,7 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       cairo_show_text(cr, label.c_str());
     }
     for (double t : nice_ticks(y0, y1, 5)) {  // y ticks and grid
-      set(cr, Rgba{0.9, 0.9, 0.9, 1});
+      set(cr, grid);
       cairo_move_to(cr, left, py(t));
       cairo_line_to(cr, right, py(t));
       cairo_stroke(cr);
@@ -321,19 +331,74 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       cairo_move_to(cr, (left + right) / 2 - ext.width / 2, style.margin + font);
       cairo_show_text(cr, chart.title.c_str());
     }
-    // The data.
-    set(cr, chart.colour);
-    cairo_set_line_width(cr, 2);
-    cairo_move_to(cr, px(chart.x[0]), py(chart.y[0]));
-    for (std::size_t i = 1; i < chart.x.size(); ++i) {
-      if (chart.steps) cairo_line_to(cr, px(chart.x[i]), py(chart.y[i - 1]));
-      cairo_line_to(cr, px(chart.x[i]), py(chart.y[i]));
+    cairo_save(cr);
+    cairo_rectangle(cr, left, top, right - left, bottom - top);
+    cairo_clip(cr);
+    const double dash[] = {5, 4}, dots[] = {1.5, 3};
+    set(cr, Rgba{0.35, 0.35, 0.35, 1});
+    cairo_set_dash(cr, dots, 2, 0);
+    for (double y : chart.hlines) {
+      cairo_move_to(cr, left, py(y));
+      cairo_line_to(cr, right, py(y));
+      cairo_stroke(cr);
     }
-    if (chart.steps) cairo_line_to(cr, right, py(chart.y.back()));
-    cairo_stroke(cr);
-    for (std::size_t i = 0; i < chart.x.size(); ++i) {
-      cairo_arc(cr, px(chart.x[i]), py(chart.y[i]), 2.5, 0, 2 * M_PI);
-      cairo_fill(cr);
+    cairo_set_dash(cr, dash, 2, 0);
+    for (std::size_t i = 0; i < chart.markers.size(); ++i) {
+      cairo_move_to(cr, px(chart.markers[i]), top);
+      cairo_line_to(cr, px(chart.markers[i]), bottom);
+      cairo_stroke(cr);
+      if (i < chart.marker_labels.size()) {
+        cairo_move_to(cr, px(chart.markers[i]) + 0.3 * font, top + 1.2 * font);
+        cairo_show_text(cr, chart.marker_labels[i].c_str());
+      }
+    }
+    cairo_set_dash(cr, nullptr, 0, 0);
+    for (const Series& s : chart.series) {  // the data
+      if (s.x.empty()) continue;
+      set(cr, s.colour);
+      cairo_set_line_width(cr, s.style == Series::Style::points ? 1.2 : s.width);
+      if (!s.err.empty())
+        for (std::size_t i = 0; i < s.x.size(); ++i) {
+          cairo_move_to(cr, px(s.x[i]), py(s.y[i] - s.err[i]));
+          cairo_line_to(cr, px(s.x[i]), py(s.y[i] + s.err[i]));
+          cairo_stroke(cr);
+        }
+      if (s.style == Series::Style::points) {
+        for (std::size_t i = 0; i < s.x.size(); ++i) {
+          cairo_new_sub_path(cr);
+          cairo_arc(cr, px(s.x[i]), py(s.y[i]), s.width, 0, 2 * M_PI);
+        }
+        cairo_fill(cr);
+        continue;
+      }
+      cairo_move_to(cr, px(s.x[0]), py(s.y[0]));
+      for (std::size_t i = 1; i < s.x.size(); ++i) {
+        if (s.style == Series::Style::steps) cairo_line_to(cr, px(s.x[i]), py(s.y[i - 1]));
+        cairo_line_to(cr, px(s.x[i]), py(s.y[i]));
+      }
+      cairo_stroke(cr);
+    }
+    cairo_restore(cr);
+    // Legend, top right.
+    double ly = top + 1.4 * font;
+    for (const Series& s : chart.series) {
+      if (s.label.empty()) continue;
+      cairo_text_extents(cr, s.label.c_str(), &ext);
+      const double lx = right - ext.x_advance - 3.2 * font;
+      set(cr, s.colour);
+      if (s.style == Series::Style::points) {
+        cairo_arc(cr, lx + 1.2 * font, ly - 0.35 * font, std::max(2.5, s.width), 0, 2 * M_PI);
+        cairo_fill(cr);
+      } else {
+        cairo_set_line_width(cr, s.width);
+        cairo_move_to(cr, lx, ly - 0.35 * font);
+        cairo_line_to(cr, lx + 2.4 * font, ly - 0.35 * font);
+        cairo_stroke(cr);
+      }
+      set(cr, style.text);
+      cairo_move_to(cr, lx + 2.8 * font, ly);
+      cairo_show_text(cr, s.label.c_str());
+      ly += 1.4 * font;
     }
   });
 }

@@ -12,7 +12,7 @@
 #include "cli_run.hpp"
 #include "search_fixtures.hpp"
 #include "softdrop/history.hpp"
-#include "softdrop/search_params.hpp"
+#include "softdrop/params_json.hpp"
 #include "softdrop/spacing.hpp"
 
 namespace softdrop {

@@ -103,9 +103,17 @@ TEST(Render, PdfAndChartAreWritten) {
   EXPECT_EQ(head, "%PDF-");
   const std::string chart = fresh("chart.png");
   Chart c;
-  c.x = {0, 3, 8, 20};
-  c.y = {1.1, 1.12, 1.15, 1.2};
-  c.steps = true;
+  Series steps;
+  steps.x = {0, 3, 8, 20};
+  steps.y = {1.1, 1.12, 1.15, 1.2};
+  steps.style = Series::Style::steps;
+  steps.label = "best";
+  Series dots = steps;
+  dots.style = Series::Style::points;
+  dots.err = {0.01, 0.01, 0.02, 0.01};
+  c.series = {steps, dots};
+  c.markers = {5};
+  c.marker_labels = {"enters"};
   c.x_label = "generation";
   c.y_label = "best T";
   RenderStyle style;
@@ -115,6 +123,14 @@ TEST(Render, PdfAndChartAreWritten) {
   EXPECT_EQ(png.width, 400);
   EXPECT_EQ(png.height, 248);
   EXPECT_GT(png.non_background, 1500);
+  Series bad = steps;
+  bad.err = {1};
+  c.series = {bad};
+  EXPECT_THROW(render_chart(c, style, fresh("bad_chart.png")), std::invalid_argument);
+  c.series.clear();
+  c.markers.clear();
+  EXPECT_THROW(render_chart(c, style, fresh("empty_chart.png")), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(fresh("bad_chart.png")));
 }
 
 TEST(Render, AnimationIsALoopingGifWithOneImagePerFrame) {

@@ -6,7 +6,7 @@
 
 #include "search_fixtures.hpp"
 #include "softdrop/search.hpp"
-#include "softdrop/search_params.hpp"
+#include "softdrop/params_json.hpp"
 #include "softdrop/spacing.hpp"
 
 namespace softdrop {

@@ -14,8 +14,8 @@
 namespace softdrop {
 
 /// The schema version this build writes (PRAGMA user_version). Files with a higher version are
-/// refused; files with a lower one would be migrated (none exist yet).
-constexpr int kHistorySchemaVersion = 1;
+/// refused; files with a lower one are migrated when opened for writing (1 -> 2 adds the sweeps).
+constexpr int kHistorySchemaVersion = 2;
 /// PRAGMA application_id of a softdrop database: "SDRP".
 constexpr std::int32_t kHistoryApplicationId = 0x53445250;
 

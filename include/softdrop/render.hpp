@@ -66,14 +66,27 @@ struct Scene {
 /// [0, W). Throws std::runtime_error naming the file on failure; nothing is left half-written.
 void render_scene(const Scene& scene, const RenderStyle& style, const std::string& path);
 
-/// A line chart, e.g. best T against generation (drawn as steps when `steps`).
-struct Chart {
+/// One data series of a chart.
+struct Series {
+  enum class Style { line, steps, points };
   std::vector<double> x, y;
-  std::string x_label, y_label, title;
-  bool steps = false;
+  std::vector<double> err;  ///< optional y error bars (same length as y)
+  std::string label;        ///< legend entry (empty: none)
+  Style style = Style::line;
   Rgba colour{0.8, 0.1, 0.1, 1};
+  double width = 2;         ///< line width, or point radius for points
 };
-/// Draws a chart with axes, ticks and labels to a PNG, SVG or PDF file; height = 0.62 width.
+
+/// A chart: series, vertical markers, axes with ticks and labels, a legend.
+struct Chart {
+  std::vector<Series> series;
+  std::vector<double> markers;             ///< vertical dashed lines at these x
+  std::vector<std::string> marker_labels;  ///< their labels (optional)
+  std::vector<double> hlines;              ///< horizontal dotted lines at these y
+  std::string x_label, y_label, title;
+};
+/// Draws a chart to a PNG, SVG or PDF file; height = 0.62 width. Axes span all series (with error
+/// bars) and markers. Throws std::invalid_argument for an empty chart or mismatched lengths.
 void render_chart(const Chart& chart, const RenderStyle& style, const std::string& path);
 
 /// An animation: frame(i, scene) fills the scene of frame i for i in [0, frames); frames are

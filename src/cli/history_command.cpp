@@ -9,7 +9,7 @@
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/history.hpp"
-#include "softdrop/search_params.hpp"
+#include "softdrop/params_json.hpp"
 
 namespace softdrop::cli {
 
@@ -39,61 +39,6 @@ CLI::App* add_export_command(CLI::App& app, ExportArgs& a) {
 }
 
 namespace {
-
-// A table: columns of strings, printed aligned, as CSV or as a JSON array of objects.
-struct Table {
-  std::vector<std::string> header;
-  std::vector<std::vector<nlohmann::json>> rows;
-
-  static std::string text(const nlohmann::json& v) {
-    if (v.is_null()) return "";
-    if (v.is_string()) return v.get<std::string>();
-    if (v.is_number_float()) return fmt(v.get<double>());
-    return v.dump();
-  }
-  void print(std::ostream& out, const std::string& format) const {
-    if (format == "json") {
-      nlohmann::ordered_json j = nlohmann::ordered_json::array();
-      for (const auto& row : rows) {
-        nlohmann::ordered_json o;
-        for (std::size_t c = 0; c < header.size(); ++c) o[header[c]] = row[c];
-        j.push_back(o);
-      }
-      out << j.dump(2) << '\n';
-      return;
-    }
-    if (format == "csv") {
-      for (std::size_t c = 0; c < header.size(); ++c) out << (c ? "," : "") << header[c];
-      out << '\n';
-      for (const auto& row : rows) {
-        for (std::size_t c = 0; c < row.size(); ++c) {
-          std::string t = text(row[c]);
-          if (t.find_first_of(",\"\n") != std::string::npos) {
-            std::string q = "\"";
-            for (char ch : t) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-            t = q + "\"";
-          }
-          out << (c ? "," : "") << t;
-        }
-        out << '\n';
-      }
-      return;
-    }
-    // Table: doubles shortened for reading; CSV and JSON keep every digit.
-    auto cell = [](const nlohmann::json& v) { return v.is_number_float() ? fmt(v.get<double>(), 8) : text(v); };
-    std::vector<std::size_t> width(header.size());
-    for (std::size_t c = 0; c < header.size(); ++c) width[c] = header[c].size();
-    for (const auto& row : rows)
-      for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], cell(row[c]).size());
-    for (std::size_t c = 0; c < header.size(); ++c) out << (c ? "  " : "") << std::left << std::setw(static_cast<int>(width[c])) << header[c];
-    out << '\n';
-    for (const auto& row : rows) {
-      for (std::size_t c = 0; c < row.size(); ++c)
-        out << (c ? "  " : "") << std::left << std::setw(static_cast<int>(width[c])) << cell(row[c]);
-      out << '\n';
-    }
-  }
-};
 
 nlohmann::json or_null(bool present, double v) { return present ? nlohmann::json(v) : nlohmann::json(); }
 

@@ -8,6 +8,7 @@
 #include "cli/optimize_command.hpp"
 #include "cli/render_command.hpp"
 #include "cli/simulate_command.hpp"
+#include "cli/sweep_command.hpp"
 #include "softdrop/version.hpp"
 
 namespace {
@@ -47,6 +48,12 @@ int main(int argc, char** argv) {
   CLI::App* history_cmd = softdrop::cli::add_history_command(app, history);
   softdrop::cli::ExportArgs export_args;
   CLI::App* export_cmd = softdrop::cli::add_export_command(app, export_args);
+  softdrop::cli::SweepArgs sweep;
+  softdrop::cli::SweepMergeArgs sweep_merge;
+  softdrop::cli::SweepReportArgs sweep_report;
+  softdrop::cli::FitArgs fit;
+  softdrop::cli::AveragingArgs averagings;
+  softdrop::cli::add_study_commands(app, sweep, sweep_merge, sweep_report, fit, averagings);
   softdrop::cli::RenderArgs render;
   CLI::App* render_cmd = softdrop::cli::add_render_command(app, render);
   try {
@@ -64,6 +71,11 @@ int main(int argc, char** argv) {
     if (optimize_cmd->parsed()) return softdrop::cli::run_optimize(optimize, *optimize_cmd);
     if (history_cmd->parsed()) return softdrop::cli::run_history(history);
     if (export_cmd->parsed()) return softdrop::cli::run_export(export_args);
+    if (app.got_subcommand("sweep")) return softdrop::cli::run_sweep(sweep, *app.get_subcommand("sweep"));
+    if (app.got_subcommand("sweep-merge")) return softdrop::cli::run_sweep_merge(sweep_merge);
+    if (app.got_subcommand("sweep-report")) return softdrop::cli::run_sweep_report(sweep_report);
+    if (app.got_subcommand("fit")) return softdrop::cli::run_fit(fit);
+    if (app.got_subcommand("averagings")) return softdrop::cli::run_averagings(averagings);
     if (render_cmd->parsed()) return softdrop::cli::run_render(render, *render_cmd);
   } catch (const std::exception& e) {
     std::cerr << "softdrop: error: " << e.what() << '\n';

@@ -16,7 +16,7 @@
 #include "softdrop/history.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
-#include "softdrop/search_params.hpp"
+#include "softdrop/params_json.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
@@ -77,14 +77,6 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
 }
 
 namespace {
-
-std::atomic<bool> g_stop{false};
-
-extern "C" void on_signal(int) {
-  if (g_stop.exchange(true)) _exit(130);  // second Ctrl-C: leave now, the database stays consistent
-  const char msg[] = "\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n";
-  [[maybe_unused]] auto n = ::write(2, msg, sizeof msg - 1);
-}
 
 // The command line's view of the run: search options plus how the starting medium was made.
 nlohmann::json params_of(const OptimizeArgs& a) {
@@ -220,29 +212,18 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
                 << fmt(search->best().eval.tortuosity, 8) << "\n";
   }
 
-  g_stop = false;
-  auto previous_int = std::signal(SIGINT, on_signal);
-  auto previous_term = std::signal(SIGTERM, on_signal);
+  StopOnSignal stop("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
   SearchProgress progress(run, a.generations, a.quiet);
   DriveOptions drive_options;
   drive_options.generations = a.generations;
   drive_options.time_limit = a.time_limit;
-  drive_options.stop = &g_stop;
+  drive_options.stop = stop.flag();
   drive_options.threads = a.threads;
-  SearchSummary summary;
-  try {
-    summary = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
-      history->append(run, g, best);
-      progress.update(g, best, g.number == a.generations);
-      return true;
-    });
-  } catch (...) {
-    std::signal(SIGINT, previous_int);
-    std::signal(SIGTERM, previous_term);
-    throw;
-  }
-  std::signal(SIGINT, previous_int);
-  std::signal(SIGTERM, previous_term);
+  const SearchSummary summary = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
+    history->append(run, g, best);
+    progress.update(g, best, g.number == a.generations);
+    return true;
+  });
   history->set_status(run, summary.termination == Termination::generations ? "finished" : "interrupted");
 
   const Configuration& best = search->best();

@@ -2,7 +2,10 @@
 
 #include <unistd.h>
 
+#include <csignal>
+#include <cstring>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <stdexcept>
@@ -31,6 +34,81 @@ void Progress::update(long done, long total) {
   last_ = now;
   std::cerr << (tty_ ? "\r" : "") << label_ << ": " << done << "/" << total
             << (tty_ && done != total ? "" : "\n") << std::flush;
+}
+
+namespace {
+std::atomic<bool> g_stop{false};
+const char* g_stop_message = "";
+
+extern "C" void softdrop_on_stop_signal(int) {
+  if (g_stop.exchange(true)) _exit(130);  // second signal: leave now; stores stay consistent
+  [[maybe_unused]] auto n = ::write(2, g_stop_message, std::strlen(g_stop_message));
+}
+}  // namespace
+
+StopOnSignal::StopOnSignal(const char* message) {
+  g_stop = false;
+  g_stop_message = message;
+  previous_int_ = std::signal(SIGINT, softdrop_on_stop_signal);
+  previous_term_ = std::signal(SIGTERM, softdrop_on_stop_signal);
+}
+StopOnSignal::~StopOnSignal() {
+  std::signal(SIGINT, previous_int_);
+  std::signal(SIGTERM, previous_term_);
+}
+bool StopOnSignal::requested() const { return g_stop.load(); }
+const std::atomic<bool>* StopOnSignal::flag() const { return &g_stop; }
+
+namespace {
+std::string text(const nlohmann::json& v) {
+  if (v.is_null()) return "";
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number_float()) return fmt(v.get<double>());
+  return v.dump();
+}
+}  // namespace
+
+void Table::print(std::ostream& out, const std::string& format) const {
+  if (format == "json") {
+    nlohmann::ordered_json j = nlohmann::ordered_json::array();
+    for (const auto& row : rows) {
+      nlohmann::ordered_json o;
+      for (std::size_t c = 0; c < header.size(); ++c) o[header[c]] = row[c];
+      j.push_back(o);
+    }
+    out << j.dump(2) << '\n';
+    return;
+  }
+  if (format == "csv") {
+    for (std::size_t c = 0; c < header.size(); ++c) out << (c ? "," : "") << header[c];
+    out << '\n';
+    for (const auto& row : rows) {
+      for (std::size_t c = 0; c < row.size(); ++c) {
+        std::string t = text(row[c]);
+        if (t.find_first_of(",\"\n") != std::string::npos) {
+          std::string q = "\"";
+          for (char ch : t) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+          t = q + "\"";
+        }
+        out << (c ? "," : "") << t;
+      }
+      out << '\n';
+    }
+    return;
+  }
+  // Table: doubles shortened for reading; CSV and JSON keep every digit.
+  auto cell = [](const nlohmann::json& v) { return v.is_number_float() ? fmt(v.get<double>(), 8) : text(v); };
+  std::vector<std::size_t> width(header.size());
+  for (std::size_t c = 0; c < header.size(); ++c) width[c] = header[c].size();
+  for (const auto& row : rows)
+    for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], cell(row[c]).size());
+  for (std::size_t c = 0; c < header.size(); ++c) out << (c ? "  " : "") << std::left << std::setw(static_cast<int>(width[c])) << header[c];
+  out << '\n';
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < row.size(); ++c)
+      out << (c ? "  " : "") << std::left << std::setw(static_cast<int>(width[c])) << cell(row[c]);
+    out << '\n';
+  }
 }
 
 std::string fmt(double v, int digits) {

@@ -1,8 +1,12 @@
 #pragma once
 // Output helpers shared by the CLI commands: checked output paths, progress on stderr.
 
+#include <atomic>
 #include <chrono>
+#include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
+#include <vector>
 
 namespace softdrop::cli {
 
@@ -21,6 +25,32 @@ class Progress {
   std::string label_;
   std::chrono::steady_clock::time_point last_;
   bool tty_;
+};
+
+/// While alive, SIGINT and SIGTERM raise a stop flag (the command finishes the unit in flight and
+/// stops cleanly) and print `message`; a second signal exits at once with code 130. The previous
+/// handlers are restored on destruction. One at a time.
+class StopOnSignal {
+ public:
+  explicit StopOnSignal(const char* message);
+  ~StopOnSignal();
+  StopOnSignal(const StopOnSignal&) = delete;
+  StopOnSignal& operator=(const StopOnSignal&) = delete;
+  bool requested() const;
+  const std::atomic<bool>* flag() const;
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+};
+
+/// Rows of cells printed as an aligned table (doubles to 8 digits), CSV or a JSON array of objects
+/// (both with every digit).
+struct Table {
+  std::vector<std::string> header;
+  std::vector<std::vector<nlohmann::json>> rows;
+  /// format: table, csv or json.
+  void print(std::ostream& out, const std::string& format) const;
 };
 
 /// Formats a double with the given significant digits (17 = round trip).

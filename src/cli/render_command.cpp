@@ -198,12 +198,12 @@ int render_search(RenderArgs& a) {
   // Earlier accepted generations' paths, thin and light; the best's thick on top.
   Rgba thin = parse_colour(a.path_colour);
   thin.a = 0.35;
-  Chart chart;
+  Series curve;
   for (const GenerationRecord& g : history->generations(a.run_id)) {
     if (g.generation > best.generation) break;
     if (g.accepted < 0) continue;
-    chart.x.push_back(static_cast<double>(g.generation));
-    chart.y.push_back(g.best_t);
+    curve.x.push_back(static_cast<double>(g.generation));
+    curve.y.push_back(g.best_t);
     if (g.generation == best.generation) continue;
     const Configuration c = history->configuration(a.run_id, g.generation);
     scene.lines.push_back(path_line(c.eval.path_x, c.eval.path_y, thin, 1.0));
@@ -214,12 +214,17 @@ int render_search(RenderArgs& a) {
                   " grains touched (filled); " + describe(best.medium);
   render_scene(scene, style, a.output);
   if (!a.curve.empty()) {
-    chart.steps = true;
+    // The curve continues flat to the last stored generation.
+    curve.x.push_back(static_cast<double>(std::max(best.generation, a.generation < 0 ? run.generations : a.generation)));
+    curve.y.push_back(best.eval.tortuosity);
+    curve.style = Series::Style::steps;
+    curve.colour = parse_colour(a.path_colour);
+    Chart chart;
+    chart.series.push_back(curve);
     chart.x_label = "generation";
     chart.y_label = "best tortuosity T";
     chart.title = "run " + std::to_string(a.run_id) + ": " + std::to_string(run.grains) + " grains, lambda = " +
                   std::to_string(run.lambda);
-    chart.colour = parse_colour(a.path_colour);
     render_chart(chart, style, a.curve);
   }
   return 0;

@@ -1,5 +1,5 @@
 #pragma once
-/// \file search_params.hpp
+/// \file params_json.hpp
 /// A search's options as a flat JSON object whose keys are the command line's long option names
 /// ("lambda", "nrt", "max-steps", ...): what the history stores with each run, and what a resume
 /// compares the command line against.
@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "softdrop/search.hpp"
+#include "softdrop/sweep.hpp"
 
 namespace softdrop {
 
@@ -18,5 +19,11 @@ std::string search_params_to_json(const SearchOptions& options);
 SearchOptions search_params_from_json(const std::string& json);
 /// The keys search_params_to_json writes.
 std::vector<std::string> search_param_keys();
+
+/// A sweep's options, the same way (keys: porosities, media, droplets, seed, the medium's and the
+/// droplet's option names). Two sweeps are the same sweep exactly when these texts are equal.
+std::string sweep_params_to_json(const SweepOptions& options);
+/// Reads them back; throws std::runtime_error naming a missing or mistyped key.
+SweepOptions sweep_params_from_json(const std::string& json);
 
 }  // namespace softdrop

@@ -1,0 +1,45 @@
+#pragma once
+/// \file fit.hpp
+/// Weighted least-squares fits of <T>(phi), with NLopt: the paper's law T = a - c phi^b and the
+/// hydrodynamic law T = 1 - p ln(phi). Uncertainties come from the covariance (J^T W J)^-1 at the
+/// optimum (the standard errors are taken as true, absolute errors); the two fits are compared by
+/// chi^2 and Akaike's information criterion AIC = chi^2 + 2 k.
+
+#include <string>
+#include <vector>
+
+namespace softdrop {
+
+/// One data point: porosity, mean tortuosity and its standard error (> 0).
+struct FitPoint {
+  double phi = 0, t = 0, se = 0;
+};
+
+enum class FitLaw {
+  power,  ///< T = a - c phi^b (parameters a, b, c)
+  log     ///< T = 1 - p ln(phi) (parameter p)
+};
+const char* to_string(FitLaw law);
+
+/// The law's value at phi for parameters `p` (power: a, b, c; log: p).
+double fit_law_value(FitLaw law, const std::vector<double>& p, double phi);
+
+/// A fit and why it ended.
+struct FitResult {
+  FitLaw law = FitLaw::power;
+  std::vector<std::string> names;    ///< parameter names
+  std::vector<double> values;        ///< best parameters
+  std::vector<double> errors;        ///< their standard errors
+  std::vector<double> residuals;     ///< (T_i - f(phi_i)) / se_i, per point
+  double chi2 = 0;
+  int dof = 0;                       ///< points - parameters
+  double reduced_chi2 = 0;           ///< chi2 / dof (0 if dof = 0)
+  double aic = 0;                    ///< chi2 + 2 k
+  std::string message;               ///< how NLopt ended
+};
+
+/// Fits one law. Throws std::invalid_argument for fewer points than parameters, a non-finite
+/// value, phi outside (0, 1] or se <= 0 (naming the point).
+FitResult fit_law(FitLaw law, const std::vector<FitPoint>& points);
+
+}  // namespace softdrop

@@ -1,0 +1,88 @@
+#pragma once
+/// \file sweep.hpp
+/// The tortuosity-porosity sweep (the paper's main study): for each target porosity, M media,
+/// each with K droplets from random starts. The unit of work is one medium and its droplets; units
+/// are numbered, can be split into shards (`unit % shards == shard`), and are independent of one
+/// another, so an interrupted or sharded sweep gives exactly the records of an uninterrupted one.
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "softdrop/droplet.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop {
+
+/// Everything that defines a sweep (stored with it; the same options resume the same sweep).
+struct SweepOptions {
+  std::vector<double> porosities{0.5, 0.6, 0.7, 0.8, 0.9};  ///< target porosities
+  int media = 10;           ///< M media per porosity
+  int droplets = 20;        ///< K droplets per medium, from random starts
+  std::uint64_t seed = 1;   ///< seed of media and start positions
+  MediumOptions medium;     ///< the media (porosity and seed are set per medium)
+  DropletParams droplet;
+  RunOptions run;           ///< exit conditions (traces are not recorded)
+
+  bool IsValid(std::string* why) const;
+};
+
+/// One unit of work: medium `medium` of porosity `porosity` (indices into the options).
+struct SweepUnit {
+  int porosity = 0;
+  int medium = 0;
+  bool operator==(const SweepUnit&) const = default;
+};
+
+/// The units of shard `shard` of `shards` (0 <= shard < shards), in order.
+std::vector<SweepUnit> sweep_units(const SweepOptions& options, int shard = 0, int shards = 1);
+
+/// Seed of a unit's medium: depends on the sweep seed, the target porosity's value and the medium
+/// index, so adding porosities or media to a sweep leaves the existing units unchanged.
+std::uint64_t sweep_medium_seed(const SweepOptions& options, const SweepUnit& unit);
+
+/// One droplet's record.
+struct SweepDroplet {
+  int droplet = 0;
+  double start_x = 0;
+  Outcome outcome = Outcome::timeout;
+  double tortuosity = 0;  ///< 0 unless passed
+  std::int64_t steps = 0;
+};
+
+/// One medium's record: its summary and its droplets.
+struct SweepMedium {
+  SweepUnit unit;
+  double target_porosity = 0;
+  double porosity = 0;        ///< exact porosity of the generated medium
+  int grains = 0;
+  std::uint64_t medium_seed = 0;
+  int passed = 0, stuck = 0, timeout = 0, diverged = 0;
+  double mean_t = 0;          ///< <T> over passed droplets (0 if none)
+  double standard_error = 0;  ///< of <T> (0 if fewer than 2 passed)
+  double stuck_fraction = 0;
+  double seconds = 0;         ///< wall time (not part of the deterministic record)
+  std::vector<SweepDroplet> droplets;
+};
+
+/// Generates the unit's medium and pushes its K droplets through it with up to `threads` threads
+/// (0: all cores). Deterministic whatever the thread count. `progress(done, total)` is called as
+/// droplets finish.
+SweepMedium run_sweep_unit(const SweepOptions& options, const SweepUnit& unit, int threads,
+                           const std::function<void(int, int)>& progress = {});
+
+/// Per-porosity aggregate of medium records: droplets pooled over the porosity's media.
+struct SweepPoint {
+  double target_porosity = 0;
+  double porosity = 0;        ///< mean exact porosity of its media
+  int media = 0, droplets = 0, passed = 0, stuck = 0;
+  double mean_t = 0, standard_error = 0;  ///< over all passed droplets of the porosity
+  double stuck_fraction = 0;
+};
+/// Aggregates records by target porosity (ascending); points with no passed droplet are kept with
+/// mean_t = 0 and passed = 0.
+std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media);
+
+}  // namespace softdrop

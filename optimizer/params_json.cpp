@@ -1,0 +1,154 @@
+#include "softdrop/params_json.hpp"
+
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <type_traits>
+
+namespace softdrop {
+namespace {
+
+// The lists of stored options: key (= CLI long option name) and field.
+template <class Droplet, class F>
+void visit_droplet(Droplet& d, F&& f) {
+  f("masses", d.masses);
+  f("mass", d.mass);
+  f("radius", d.radius);
+  f("nrt", d.nrt);
+  f("ks", d.ks);
+  f("kd", d.kd);
+  f("kc", d.kc);
+  f("cc", d.cc);
+  f("gravity", d.gravity);
+  f("dt", d.dt);
+  f("max-strain", d.max_strain);
+  f("constraint-iterations", d.constraint_iterations);
+  f("max-depth", d.max_depth);
+  f("viscosity", d.viscosity);
+}
+
+template <class Run, class F>
+void visit_exit(Run& r, F&& f) {
+  f("max-steps", r.max_steps);
+  f("stuck-window", r.stuck_window);
+  f("stuck-distance", r.stuck_distance);
+  f("check-interval", r.check_interval);
+}
+
+template <class Options, class F>
+void visit_search(Options& o, F&& f) {
+  f("seed", o.seed);
+  f("lambda", o.lambda);
+  f("single-every", o.single_every);
+  f("step", o.step);
+  f("single-step", o.single_step);
+  f("max-redraws", o.max_redraws);
+  f("gap", o.gap);
+  visit_droplet(o.droplet, f);
+  visit_exit(o.run, f);
+  f("path-interval", o.run.path_interval);
+}
+
+// Sweep options; the medium kind, radius distribution and walls go through their CLI spelling.
+struct SweepFields {
+  SweepOptions o;
+  std::string kind, radii;
+  bool walls = false;
+};
+
+template <class F>
+void visit_sweep(SweepFields& s, F&& f) {
+  f("porosities", s.o.porosities);
+  f("media", s.o.media);
+  f("droplets", s.o.droplets);
+  f("seed", s.o.seed);
+  f("kind", s.kind);
+  f("width", s.o.medium.width);
+  f("height", s.o.medium.height);
+  f("walls", s.walls);
+  f("r-min", s.o.medium.r_min);
+  f("r-max", s.o.medium.r_max);
+  f("radius-distribution", s.radii);
+  f("r-median", s.o.medium.r_median);
+  f("r-sigma", s.o.medium.r_sigma);
+  f("gap", s.o.medium.gap);
+  f("max-failed-attempts", s.o.medium.max_failed_attempts);
+  visit_droplet(s.o.droplet, f);
+  visit_exit(s.o.run, f);
+}
+
+nlohmann::json parse_object(const std::string& text) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error(std::string("stored parameters: not JSON (") + e.what() + ")");
+  }
+  if (!j.is_object()) throw std::runtime_error("stored parameters: not a JSON object");
+  return j;
+}
+
+// Reads `key` of `j` into `value`, refusing a missing key or a value of the wrong JSON type.
+struct Reader {
+  const nlohmann::json& j;
+  template <class T>
+  void operator()(const char* key, T& value) const {
+    if (!j.contains(key)) throw std::runtime_error(std::string("stored parameters: '") + key + "' missing");
+    const auto& v = j.at(key);
+    bool ok;
+    if constexpr (std::is_same_v<T, bool>) ok = v.is_boolean();
+    else if constexpr (std::is_same_v<T, std::string>) ok = v.is_string();
+    else if constexpr (std::is_same_v<T, std::vector<double>>) ok = v.is_array();
+    else if constexpr (std::is_integral_v<T>) ok = v.is_number_integer() || v.is_number_unsigned();
+    else ok = v.is_number();
+    if (ok) {
+      try {
+        value = v.template get<T>();
+        return;
+      } catch (const nlohmann::json::exception&) {
+      }
+    }
+    throw std::runtime_error(std::string("stored parameters: '") + key + "' has the wrong type");
+  }
+};
+
+}  // namespace
+
+std::string search_params_to_json(const SearchOptions& options) {
+  nlohmann::json j = nlohmann::json::object();
+  visit_search(options, [&](const char* key, const auto& value) { j[key] = value; });
+  return j.dump();
+}
+
+SearchOptions search_params_from_json(const std::string& text) {
+  const nlohmann::json j = parse_object(text);
+  SearchOptions o;
+  visit_search(o, Reader{j});
+  return o;
+}
+
+std::vector<std::string> search_param_keys() {
+  std::vector<std::string> keys;
+  SearchOptions o;
+  visit_search(o, [&](const char* key, const auto&) { keys.emplace_back(key); });
+  return keys;
+}
+
+std::string sweep_params_to_json(const SweepOptions& options) {
+  SweepFields s{options, to_string(options.medium.kind),
+                options.medium.radii == RadiusDistribution::uniform ? "uniform" : "lognormal", !options.medium.periodic};
+  nlohmann::json j = nlohmann::json::object();
+  visit_sweep(s, [&](const char* key, const auto& value) { j[key] = value; });
+  return j.dump();
+}
+
+SweepOptions sweep_params_from_json(const std::string& text) {
+  const nlohmann::json j = parse_object(text);
+  SweepFields s;
+  visit_sweep(s, Reader{j});
+  s.o.medium.kind = parse_medium_kind(s.kind);
+  s.o.medium.radii = parse_radius_distribution(s.radii);
+  s.o.medium.periodic = !s.walls;
+  return s.o;
+}
+
+}  // namespace softdrop

@@ -1,0 +1,236 @@
+#include "sqlite_file.hpp"
+
+#include <sqlite3.h>
+#include <sys/stat.h>
+
+#include <chrono>
+#include <thread>
+
+namespace softdrop::detail {
+namespace {
+
+// Version 1: the search history.
+constexpr const char* kSchemaV1 = R"sql(
+CREATE TABLE IF NOT EXISTS runs (
+  id              INTEGER PRIMARY KEY,
+  created         TEXT NOT NULL,
+  updated         TEXT NOT NULL,
+  version         TEXT NOT NULL,
+  status          TEXT NOT NULL CHECK (status IN ('running', 'finished', 'interrupted')),
+  params          TEXT NOT NULL,
+  seed            INTEGER NOT NULL,
+  lambda          INTEGER NOT NULL,
+  grains          INTEGER NOT NULL,
+  width           REAL NOT NULL,
+  height          REAL NOT NULL,
+  periodic        INTEGER NOT NULL,
+  generations     INTEGER NOT NULL,
+  evaluations     INTEGER NOT NULL,
+  best_t          REAL NOT NULL,
+  best_generation INTEGER NOT NULL
+);
+CREATE TABLE IF NOT EXISTS generations (
+  run_id             INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  generation         INTEGER NOT NULL,
+  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single')),
+  accepted_candidate INTEGER,
+  best_t             REAL NOT NULL,
+  touched            INTEGER NOT NULL,
+  seconds            REAL NOT NULL,
+  finished           TEXT NOT NULL,
+  PRIMARY KEY (run_id, generation)
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS candidates (
+  run_id      INTEGER NOT NULL,
+  generation  INTEGER NOT NULL,
+  candidate   INTEGER NOT NULL,
+  moved_grain INTEGER,
+  moved       INTEGER NOT NULL,
+  outcome     TEXT NOT NULL CHECK (outcome IN ('passed', 'stuck', 'timeout', 'diverged')),
+  reason      TEXT NOT NULL,
+  tortuosity  REAL,
+  steps       INTEGER NOT NULL,
+  touched     INTEGER NOT NULL,
+  seconds     REAL NOT NULL,
+  PRIMARY KEY (run_id, generation, candidate),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS grains (
+  run_id     INTEGER NOT NULL,
+  generation INTEGER NOT NULL,
+  grain      INTEGER NOT NULL,
+  x          REAL NOT NULL,
+  y          REAL NOT NULL,
+  r          REAL NOT NULL,
+  touched    INTEGER NOT NULL,
+  PRIMARY KEY (run_id, generation, grain),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS paths (
+  run_id     INTEGER NOT NULL,
+  generation INTEGER NOT NULL,
+  point      INTEGER NOT NULL,
+  x          REAL NOT NULL,
+  y          REAL NOT NULL,
+  PRIMARY KEY (run_id, generation, point),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+)sql";
+
+// Version 2 adds the porosity sweeps.
+constexpr const char* kSchemaV2 = R"sql(
+CREATE TABLE IF NOT EXISTS sweeps (
+  id          INTEGER PRIMARY KEY,
+  created     TEXT NOT NULL,
+  updated     TEXT NOT NULL,
+  version     TEXT NOT NULL,
+  status      TEXT NOT NULL CHECK (status IN ('running', 'complete', 'interrupted')),
+  params      TEXT NOT NULL UNIQUE,
+  units       INTEGER NOT NULL
+);
+CREATE TABLE IF NOT EXISTS sweep_media (
+  sweep_id        INTEGER NOT NULL REFERENCES sweeps(id) ON DELETE CASCADE,
+  porosity_index  INTEGER NOT NULL,
+  medium_index    INTEGER NOT NULL,
+  target_porosity REAL NOT NULL,
+  porosity        REAL NOT NULL,
+  grains          INTEGER NOT NULL,
+  medium_seed     INTEGER NOT NULL,
+  droplets        INTEGER NOT NULL,
+  passed          INTEGER NOT NULL,
+  stuck           INTEGER NOT NULL,
+  timeout         INTEGER NOT NULL,
+  diverged        INTEGER NOT NULL,
+  mean_t          REAL,
+  standard_error  REAL,
+  stuck_fraction  REAL NOT NULL,
+  seconds         REAL NOT NULL,
+  PRIMARY KEY (sweep_id, porosity_index, medium_index)
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS sweep_droplets (
+  sweep_id       INTEGER NOT NULL,
+  porosity_index INTEGER NOT NULL,
+  medium_index   INTEGER NOT NULL,
+  droplet        INTEGER NOT NULL,
+  start_x        REAL NOT NULL,
+  outcome        TEXT NOT NULL CHECK (outcome IN ('passed', 'stuck', 'timeout', 'diverged')),
+  tortuosity     REAL,
+  steps          INTEGER NOT NULL,
+  PRIMARY KEY (sweep_id, porosity_index, medium_index, droplet),
+  FOREIGN KEY (sweep_id, porosity_index, medium_index)
+    REFERENCES sweep_media(sweep_id, porosity_index, medium_index) ON DELETE CASCADE
+) WITHOUT ROWID;
+)sql";
+
+
+// Reads what the file is before SQLite touches it: missing, empty, or an SQLite file whose header
+// is consistent with its size. Returns false for "no usable content yet" (missing or empty).
+bool check_file(const std::string& path, OpenMode mode) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) {
+    if (mode == OpenMode::read_only) throw file_error(path, "no such file");
+    return false;
+  }
+  if (!S_ISREG(st.st_mode)) throw file_error(path, "not a regular file");
+  if (st.st_size == 0) {
+    if (mode == OpenMode::read_only) throw file_error(path, "empty file, not a softdrop database");
+    return false;
+  }
+  SQLite::Header h{};
+  try {
+    h = SQLite::Database::getHeaderInfo(path);
+  } catch (const std::exception&) {
+    throw file_error(path, "not an SQLite database (no SQLite header)");
+  }
+  const unsigned long page = h.pageSizeBytes == 1 ? 65536UL : h.pageSizeBytes;
+  // The in-header size is valid when the change counter matches version-valid-for.
+  if (h.fileChangeCounter == h.versionValidFor && h.databaseSizePages > 0 &&
+      static_cast<unsigned long long>(st.st_size) <
+          static_cast<unsigned long long>(page) * h.databaseSizePages)
+    throw file_error(path, "truncated or corrupted (the header promises " +
+                               std::to_string(static_cast<unsigned long long>(page) * h.databaseSizePages) +
+                               " bytes, the file has " + std::to_string(st.st_size) + ")");
+  return true;
+}
+
+// Checks an open database is ours and readable. Returns false for an empty SQLite database.
+bool check_schema(SQLite::Database& db, const std::string& path) {
+  try {
+    const int app = db.execAndGet("PRAGMA application_id").getInt();
+    const int version = db.execAndGet("PRAGMA user_version").getInt();
+    const int tables = db.execAndGet("SELECT count(*) FROM sqlite_master").getInt();
+    if (app == 0 && version == 0 && tables == 0) return false;
+    if (app != kHistoryApplicationId)
+      throw file_error(path, "an SQLite database, but not a softdrop database (application_id " +
+                                 std::to_string(app) + ")");
+    if (version > kHistorySchemaVersion)
+      throw file_error(path, "written by a newer softdrop (schema version " + std::to_string(version) +
+                                 "; this build reads up to " + std::to_string(kHistorySchemaVersion) + ")");
+    if (version < 1) throw file_error(path, "softdrop database without a schema version");
+    const std::string check = db.execAndGet("PRAGMA quick_check").getString();
+    if (check != "ok") {
+      std::string line = check;
+      for (char& c : line)
+        if (c == '\n') c = ';';
+      throw file_error(path, "corrupted (quick_check: " + line + ")");
+    }
+    return true;
+  } catch (const SQLite::Exception& e) {
+    throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
+  }
+}
+
+}  // namespace
+
+std::runtime_error file_error(const std::string& path, const std::string& what) {
+  return std::runtime_error("--db '" + path + "': " + what);
+}
+
+std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMode mode) {
+  const bool has_content = check_file(path, mode);
+  if (has_content) {
+    // Inspect read-only first: nothing is written to a file that turns out not to be ours.
+    bool ours = false;
+    try {
+      SQLite::Database probe(path, SQLite::OPEN_READONLY, 60'000);
+      ours = check_schema(probe, path);
+    } catch (const SQLite::Exception& e) {
+      throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
+    }
+    if (!ours && mode == OpenMode::read_only) throw file_error(path, "empty SQLite database, no softdrop data");
+  }
+  return guarded(path, [&] {
+    auto db = std::make_unique<SQLite::Database>(
+        path, mode == OpenMode::read_only ? SQLite::OPEN_READONLY : SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE,
+        60'000);
+    db->exec("PRAGMA foreign_keys = ON");
+    if (mode == OpenMode::read_only) return db;
+    // Switching to WAL needs the file to itself and does not wait through the busy handler, so a
+    // second process opening a new file at the same instant retries here.
+    for (int attempt = 0;; ++attempt) {
+      try {
+        db->exec("PRAGMA journal_mode = WAL");
+        break;
+      } catch (const SQLite::Exception& e) {
+        if ((e.getErrorCode() & 0xff) != SQLITE_BUSY || attempt >= 6000) throw;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      }
+    }
+    // NORMAL in WAL mode: a killed process never loses a committed transaction; a power cut may
+    // lose the last few, never consistency.
+    db->exec("PRAGMA synchronous = NORMAL");
+    SQLite::Transaction t(*db, SQLite::TransactionBehavior::IMMEDIATE);
+    // Read again inside the write lock: another process may have created the schema meanwhile.
+    const int version = db->execAndGet("PRAGMA user_version").getInt();
+    if (version < 1) {
+      db->exec(kSchemaV1);
+      db->exec("PRAGMA application_id = " + std::to_string(kHistoryApplicationId));
+    }
+    if (version < 2) db->exec(kSchemaV2);  // migration 1 -> 2: the sweep tables
+    if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
+    t.commit();
+    return db;
+  });
+}
+
+}  // namespace softdrop::detail

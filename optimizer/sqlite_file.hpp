@@ -1,0 +1,37 @@
+#pragma once
+// Opening a softdrop database (internal to the store): the checks made before anything writes to
+// the file, WAL and foreign keys, and the schema, created or migrated to the current version.
+// The schema is documented in README.md ("The history database"); keep the two in step.
+
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "softdrop/history.hpp"
+
+namespace softdrop::detail {
+
+/// SQL for "now" in UTC, ISO 8601 with milliseconds.
+inline constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
+
+/// One line naming the database file.
+std::runtime_error file_error(const std::string& path, const std::string& what);
+
+/// Checks the file (read-only), then opens it. In create mode a missing file is created and the
+/// schema is created or migrated to kHistorySchemaVersion. Throws std::runtime_error (one line
+/// naming the file) for anything that is not a readable softdrop database.
+std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMode mode);
+
+/// Runs f, turning SQLite exceptions into one line naming the file.
+template <class F>
+auto guarded(const std::string& path, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const SQLite::Exception& e) {
+    throw file_error(path, e.what());
+  }
+}
+
+}  // namespace softdrop::detail

@@ -1,0 +1,214 @@
+// Sweep records (SweepStore) on a softdrop SQLite database (see sqlite_file.hpp).
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "softdrop/sweep_store.hpp"
+#include "softdrop/version.hpp"
+#include "sqlite_file.hpp"
+
+namespace softdrop {
+namespace {
+using detail::kNow;
+
+Outcome parse_outcome(const std::string& s) {
+  if (s == "passed") return Outcome::passed;
+  if (s == "stuck") return Outcome::stuck;
+  if (s == "timeout") return Outcome::timeout;
+  if (s == "diverged") return Outcome::diverged;
+  throw std::runtime_error("unknown outcome '" + s + "'");
+}
+
+class SqliteSweepStore final : public SweepStore {
+ public:
+  SqliteSweepStore(const std::string& path, OpenMode mode)
+      : path_(path), db_ptr_(detail::open_database(path, mode)), db_(*db_ptr_) {}
+
+  std::int64_t find_or_create(const std::string& params, const SweepOptions& o) override {
+    return guarded([&] {
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
+      std::int64_t id = 0;
+      {
+        SQLite::Statement q(db_, "SELECT id FROM sweeps WHERE params = ?");
+        q.bind(1, params);
+        if (q.executeStep()) id = q.getColumn(0).getInt64();
+      }
+      if (id == 0) {
+        SQLite::Statement q(db_, std::string("INSERT INTO sweeps (created, updated, version, status, params, units) "
+                                             "VALUES (") + kNow + ", " + kNow + ", ?, 'running', ?, ?)");
+        q.bind(1, kVersion);
+        q.bind(2, params);
+        q.bind(3, static_cast<std::int64_t>(o.porosities.size()) * o.media);
+        q.exec();
+        id = db_.getLastInsertRowid();
+      }
+      t.commit();
+      return id;
+    });
+  }
+
+  std::vector<SweepUnit> done_units(std::int64_t sweep) override {
+    return guarded([&] {
+      std::vector<SweepUnit> out;
+      SQLite::Statement q(db_, "SELECT porosity_index, medium_index FROM sweep_media WHERE sweep_id = ? "
+                               "ORDER BY porosity_index, medium_index");
+      q.bind(1, sweep);
+      while (q.executeStep()) out.push_back({q.getColumn(0).getInt(), q.getColumn(1).getInt()});
+      return out;
+    });
+  }
+
+  void add(std::int64_t sweep, const SweepMedium& m) override {
+    guarded([&] {
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
+      SQLite::Statement q(db_, "INSERT INTO sweep_media (sweep_id, porosity_index, medium_index, target_porosity, "
+                               "porosity, grains, medium_seed, droplets, passed, stuck, timeout, diverged, mean_t, "
+                               "standard_error, stuck_fraction, seconds) "
+                               "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      q.bind(1, sweep);
+      q.bind(2, m.unit.porosity);
+      q.bind(3, m.unit.medium);
+      q.bind(4, m.target_porosity);
+      q.bind(5, m.porosity);
+      q.bind(6, m.grains);
+      q.bind(7, static_cast<std::int64_t>(m.medium_seed));
+      q.bind(8, static_cast<int>(m.droplets.size()));
+      q.bind(9, m.passed);
+      q.bind(10, m.stuck);
+      q.bind(11, m.timeout);
+      q.bind(12, m.diverged);
+      if (m.passed > 0) q.bind(13, m.mean_t);
+      if (m.passed > 1) q.bind(14, m.standard_error);
+      q.bind(15, m.stuck_fraction);
+      q.bind(16, m.seconds);
+      q.exec();
+      SQLite::Statement d(db_, "INSERT INTO sweep_droplets (sweep_id, porosity_index, medium_index, droplet, start_x, "
+                               "outcome, tortuosity, steps) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+      for (const SweepDroplet& r : m.droplets) {
+        d.reset();
+        d.clearBindings();
+        d.bind(1, sweep);
+        d.bind(2, m.unit.porosity);
+        d.bind(3, m.unit.medium);
+        d.bind(4, r.droplet);
+        d.bind(5, r.start_x);
+        d.bind(6, to_string(r.outcome));
+        if (r.outcome == Outcome::passed) d.bind(7, r.tortuosity);
+        d.bind(8, r.steps);
+        d.exec();
+      }
+      SQLite::Statement u(db_, std::string("UPDATE sweeps SET updated = ") + kNow + " WHERE id = ?");
+      u.bind(1, sweep);
+      u.exec();
+      t.commit();
+      return 0;
+    });
+  }
+
+  void set_status(std::int64_t sweep, const std::string& status) override {
+    guarded([&] {
+      SQLite::Statement u(db_, std::string("UPDATE sweeps SET status = ?, updated = ") + kNow + " WHERE id = ?");
+      u.bind(1, status);
+      u.bind(2, sweep);
+      if (u.exec() != 1) throw std::runtime_error("sweep " + std::to_string(sweep) + ": no such sweep");
+      return 0;
+    });
+  }
+
+  std::vector<SweepRecord> sweeps() override {
+    return guarded([&] {
+      std::vector<SweepRecord> out;
+      SQLite::Statement q(db_, std::string(kColumns) + " GROUP BY s.id ORDER BY s.id");
+      while (q.executeStep()) out.push_back(read(q));
+      return out;
+    });
+  }
+
+  SweepRecord sweep(std::int64_t id) override {
+    return guarded([&] {
+      SQLite::Statement q(db_, std::string(kColumns) + " WHERE s.id = ? GROUP BY s.id");
+      q.bind(1, id);
+      if (!q.executeStep()) throw std::runtime_error("--sweep " + std::to_string(id) + ": no such sweep in '" + path_ + "'");
+      return read(q);
+    });
+  }
+
+  std::vector<SweepMedium> media(std::int64_t sweep_id) override {
+    return guarded([&] {
+      sweep(sweep_id);
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);  // one consistent snapshot
+      std::vector<SweepMedium> out;
+      SQLite::Statement q(db_, "SELECT porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
+                               "passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction, seconds "
+                               "FROM sweep_media WHERE sweep_id = ? ORDER BY porosity_index, medium_index");
+      q.bind(1, sweep_id);
+      while (q.executeStep()) {
+        SweepMedium m;
+        m.unit = {q.getColumn(0).getInt(), q.getColumn(1).getInt()};
+        m.target_porosity = q.getColumn(2).getDouble();
+        m.porosity = q.getColumn(3).getDouble();
+        m.grains = q.getColumn(4).getInt();
+        m.medium_seed = static_cast<std::uint64_t>(q.getColumn(5).getInt64());
+        m.passed = q.getColumn(6).getInt();
+        m.stuck = q.getColumn(7).getInt();
+        m.timeout = q.getColumn(8).getInt();
+        m.diverged = q.getColumn(9).getInt();
+        m.mean_t = q.getColumn(10).isNull() ? 0.0 : q.getColumn(10).getDouble();
+        m.standard_error = q.getColumn(11).isNull() ? 0.0 : q.getColumn(11).getDouble();
+        m.stuck_fraction = q.getColumn(12).getDouble();
+        m.seconds = q.getColumn(13).getDouble();
+        out.push_back(std::move(m));
+      }
+      SQLite::Statement d(db_, "SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps "
+                               "FROM sweep_droplets WHERE sweep_id = ? ORDER BY porosity_index, medium_index, droplet");
+      d.bind(1, sweep_id);
+      std::size_t k = 0;
+      while (d.executeStep()) {
+        const SweepUnit u{d.getColumn(0).getInt(), d.getColumn(1).getInt()};
+        while (k < out.size() && !(out[k].unit == u)) ++k;
+        if (k == out.size()) throw std::runtime_error("droplet of a missing medium");
+        out[k].droplets.push_back({d.getColumn(2).getInt(), d.getColumn(3).getDouble(),
+                                   parse_outcome(d.getColumn(4).getString()),
+                                   d.getColumn(5).isNull() ? 0.0 : d.getColumn(5).getDouble(), d.getColumn(6).getInt64()});
+      }
+      t.commit();
+      return out;
+    });
+  }
+
+ private:
+  static constexpr const char* kColumns =
+      "SELECT s.id, s.created, s.updated, s.version, s.status, s.params, s.units, count(m.sweep_id) "
+      "FROM sweeps s LEFT JOIN sweep_media m ON m.sweep_id = s.id";
+
+  static SweepRecord read(SQLite::Statement& q) {
+    SweepRecord r;
+    r.id = q.getColumn(0).getInt64();
+    r.created = q.getColumn(1).getString();
+    r.updated = q.getColumn(2).getString();
+    r.version = q.getColumn(3).getString();
+    r.status = q.getColumn(4).getString();
+    r.params = q.getColumn(5).getString();
+    r.units = q.getColumn(6).getInt64();
+    r.done = q.getColumn(7).getInt64();
+    return r;
+  }
+
+  template <class F>
+  auto guarded(F&& f) -> decltype(f()) {
+    return detail::guarded(path_, std::forward<F>(f));
+  }
+
+  std::string path_;
+  std::unique_ptr<SQLite::Database> db_ptr_;
+  SQLite::Database& db_;
+};
+
+}  // namespace
+
+std::unique_ptr<SweepStore> open_sweep_store(const std::string& path, OpenMode mode) {
+  return std::make_unique<SqliteSweepStore>(path, mode);
+}
+
+}  // namespace softdrop

@@ -1,0 +1,424 @@
+#include "cli/sweep_command.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/output.hpp"
+#include "softdrop/averaging.hpp"
+#include "softdrop/fit.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/params_json.hpp"
+#include "softdrop/render.hpp"
+#include "softdrop/sweep_store.hpp"
+#include "softdrop/version.hpp"
+
+namespace softdrop::cli {
+
+void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepReportArgs& r, FitArgs& f,
+                        AveragingArgs& v) {
+  CLI::App* s = app.add_subcommand(
+      "sweep", "Tortuosity-porosity sweep: M media per porosity, K droplets each, into a resumable SQLite store");
+  s->fallthrough();
+  auto* g = s->add_option_group("Sweep", "stored with the sweep; the same options continue the same sweep");
+  g->add_option("--db", a.db, "SQLite store (the search history's file family; created if missing)")->capture_default_str();
+  g->add_option("--preset", a.preset, "quick (3 porosities x 2 media x 8 droplets, 200 x 200 boxes) or paper "
+                                      "(10 porosities x 200 media x 200 droplets): defaults for options not given")
+      ->check(CLI::IsMember({"quick", "paper"}));
+  g->add_option("--porosities", a.sweep.porosities, "Target porosities, comma-separated")->delimiter(',')->capture_default_str();
+  g->add_option("--media", a.sweep.media, "M media per porosity")->capture_default_str();
+  g->add_option("--droplets", a.sweep.droplets, "K droplets per medium, from random starts")->capture_default_str();
+  g->add_option("--seed", a.sweep.seed, "Seed of media and start positions")->capture_default_str();
+  g->add_option("--shard", a.shard, "Run only shard i of n (i/n, 0-based); merge the stores with sweep-merge")
+      ->capture_default_str();
+  g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
+  g->add_flag("--quiet", a.quiet, "No progress on stderr");
+  g->add_option("--format", a.format, "Summary on stdout: table, csv or json")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"table", "csv", "json"}));
+  add_medium_options(s, a.medium, false)->get_option("--medium")->description("(not used by sweep)");
+  auto* d = add_droplet_options(s, a.sweep.droplet);
+  add_exit_options(d, a.sweep.run);
+
+  CLI::App* mg = app.add_subcommand("sweep-merge", "Merge sweep stores (e.g. shards) into one; identical units must agree");
+  mg->add_option("--into", m.into, "The store to merge into (created if missing)")->required();
+  mg->add_option("inputs", m.inputs, "Stores to merge from")->required()->check(CLI::ExistingFile);
+
+  CLI::App* rp = app.add_subcommand("sweep-report", "Per-porosity points (or per-medium rows) of a sweep");
+  rp->fallthrough();
+  rp->add_option("--db", r.db, "SQLite store")->capture_default_str();
+  rp->add_option("--sweep", r.sweep, "Sweep id (default: the only one)");
+  rp->add_flag("--media", r.media, "One row per medium instead of one per porosity");
+  rp->add_option("--format", r.format, "table, csv or json")->capture_default_str()->check(CLI::IsMember({"table", "csv", "json"}));
+
+  CLI::App* ft = app.add_subcommand("fit", "Weighted least-squares fits of <T>(phi): a - c phi^b and 1 - p ln phi (NLopt)");
+  ft->fallthrough();
+  auto* src = ft->add_option_group("Data");
+  src->add_option("--db", f.db, "Sweep store: fit its per-porosity points");
+  src->add_option("--points", f.points, "Or a CSV file with columns phi,t,se")->check(CLI::ExistingFile);
+  src->require_option(1);
+  ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)");
+  ft->add_option("--plot", f.plot, "Also draw T(phi) with error bars and both fits (.png, .svg, .pdf)");
+  ft->add_option("--json", f.json_file, "Also write the fits as JSON to this file");
+  ft->add_option("--format", f.format, "table or json")->capture_default_str()->check(CLI::IsMember({"table", "json"}));
+
+  CLI::App* av = app.add_subcommand("averagings", "The paper's two averagings of per-medium points (by T, by phi)");
+  av->fallthrough();
+  av->add_option("--db", v.db, "Sweep store")->capture_default_str();
+  av->add_option("--sweep", v.sweep, "Sweep id (default: the only one)");
+  av->add_option("--group", v.group, "Points per group")->capture_default_str();
+  av->add_option("--csv", v.csv, "Write the groups (type,phi,t,phi_se,t_se,count) to this CSV");
+  av->add_option("--plot", v.plot, "Draw the per-medium points and both averagings");
+}
+
+namespace {
+
+void apply_preset(SweepArgs& a, const CLI::App& cmd) {
+  if (a.preset.empty()) return;
+  auto unset = [&](const char* name) { return cmd.get_option_no_throw(name)->count() == 0; };
+  const bool quick = a.preset == "quick";
+  if (unset("--porosities")) a.sweep.porosities = quick ? std::vector<double>{0.8, 0.9, 0.98}
+                                                        : std::vector<double>{0.45, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9};
+  if (unset("--media")) a.sweep.media = quick ? 2 : 200;
+  if (unset("--droplets")) a.sweep.droplets = quick ? 8 : 200;
+  if (quick && unset("--width")) a.medium.options.width = 200;
+  if (quick && unset("--height")) a.medium.options.height = 200;
+}
+
+std::pair<int, int> parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  try {
+    if (slash != std::string::npos) {
+      std::size_t p1 = 0, p2 = 0;
+      const int i = std::stoi(text.substr(0, slash), &p1), n = std::stoi(text.substr(slash + 1), &p2);
+      if (p1 == slash && p2 == text.size() - slash - 1 && n >= 1 && i >= 0 && i < n) return {i, n};
+    }
+  } catch (const std::exception&) {
+  }
+  throw std::invalid_argument("shard = '" + text + "': expected i/n with 0 <= i < n");
+}
+
+std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db) {
+  if (id > 0) return store.sweep(id).id;
+  const auto all = store.sweeps();
+  if (all.size() == 1) return all[0].id;
+  throw std::invalid_argument(all.empty() ? "--db '" + db + "': holds no sweep"
+                                          : "--sweep: '" + db + "' holds " + std::to_string(all.size()) +
+                                                " sweeps; say which (softdrop sweep-report --db " + db + " lists them? use --sweep ID)");
+}
+
+Table points_table(const std::vector<SweepPoint>& points) {
+  Table t;
+  t.header = {"target_phi", "phi", "media", "droplets", "passed", "mean_t", "standard_error", "stuck_fraction"};
+  for (const SweepPoint& p : points)
+    t.rows.push_back({p.target_porosity, p.porosity, p.media, p.droplets, p.passed,
+                      p.passed ? nlohmann::json(p.mean_t) : nlohmann::json(),
+                      p.passed > 1 ? nlohmann::json(p.standard_error) : nlohmann::json(), p.stuck_fraction});
+  return t;
+}
+
+// Sweeps are listed by sweep-report when no id is given and the store holds several.
+void list_sweeps(SweepStore& store, const std::string& format) {
+  Table t;
+  t.header = {"sweep", "created", "status", "units", "done", "version", "params"};
+  for (const SweepRecord& r : store.sweeps())
+    t.rows.push_back({r.id, r.created, r.status, r.units, r.done, r.version, r.params});
+  t.print(std::cout, format);
+}
+
+}  // namespace
+
+int run_sweep(SweepArgs& a, const CLI::App& cmd) {
+  apply_preset(a, cmd);
+  if (!a.medium.file.empty()) throw std::invalid_argument("medium: sweep generates its media; --medium is not used");
+  resolve_medium(a.medium);
+  a.sweep.medium = a.medium.options;
+  std::string why;
+  if (!a.sweep.IsValid(&why)) throw std::invalid_argument(why);
+  if (a.threads < 0) throw std::invalid_argument("threads = " + std::to_string(a.threads) + ": must be >= 0");
+  const auto [shard, shards] = parse_shard(a.shard);
+
+  auto store = open_sweep_store(a.db, OpenMode::create);
+  const std::string params = sweep_params_to_json(a.sweep);
+  const std::int64_t id = store->find_or_create(params, a.sweep);
+  const std::vector<SweepUnit> done = store->done_units(id);
+  std::vector<SweepUnit> todo;
+  for (const SweepUnit& u : sweep_units(a.sweep, shard, shards))
+    if (std::find(done.begin(), done.end(), u) == done.end()) todo.push_back(u);
+  const std::size_t shard_total = sweep_units(a.sweep, shard, shards).size();
+  if (!a.quiet)
+    std::cerr << "sweep " << id << " in " << a.db << ": " << a.sweep.porosities.size() << " porosities x "
+              << a.sweep.media << " media x " << a.sweep.droplets << " droplets; shard " << shard << "/" << shards
+              << ": " << shard_total - todo.size() << " of " << shard_total << " media already stored\n";
+
+  StopOnSignal stop("\nsoftdrop: stopping after the medium in flight (Ctrl-C again to drop it)\n");
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool tty = ::isatty(2) != 0;
+  auto last = t0;
+  long droplets_done = 0;
+  std::size_t units_done = 0;
+  {
+    for (const SweepUnit& u : todo) {
+      if (stop.requested()) break;
+      const SweepMedium m = run_sweep_unit(a.sweep, u, a.threads);
+      store->add(id, m);
+      ++units_done;
+      droplets_done += static_cast<long>(m.droplets.size());
+      const auto now = std::chrono::steady_clock::now();
+      if (!a.quiet && (now - last > std::chrono::seconds(tty ? 1 : 10) || units_done == todo.size())) {
+        last = now;
+        const double s = std::chrono::duration<double>(now - t0).count();
+        const double eta = s / static_cast<double>(units_done) * static_cast<double>(todo.size() - units_done);
+        std::cerr << (tty ? "\r" : "") << "sweep: " << units_done << "/" << todo.size() << " media, "
+                  << fmt(static_cast<double>(droplets_done) / s, 3) << " droplets/s, phi " << fmt(m.target_porosity, 3)
+                  << " <T> " << fmt(m.mean_t, 5) << ", ETA " << fmt(eta, 3) << " s"
+                  << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
+      }
+    }
+  }
+  const SweepRecord rec = store->sweep(id);
+  store->set_status(id, rec.done == rec.units ? "complete" : stop.requested() ? "interrupted" : "running");
+  points_table(sweep_points(store->media(id))).print(std::cout, a.format);
+  if (!a.quiet) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::cerr << "sweep " << id << ": " << rec.done << " of " << rec.units << " media stored; this session "
+              << units_done << " media, " << droplets_done << " droplets in " << fmt(s, 4) << " s\n";
+  }
+  return stop.requested() ? 130 : 0;
+}
+
+int run_sweep_merge(const SweepMergeArgs& a) {
+  auto out = open_sweep_store(a.into, OpenMode::create);
+  for (const std::string& path : a.inputs) {
+    auto in = open_sweep_store(path, OpenMode::read_only);
+    for (const SweepRecord& r : in->sweeps()) {
+      const SweepOptions o = sweep_params_from_json(r.params);
+      const std::int64_t id = out->find_or_create(r.params, o);
+      std::vector<SweepMedium> have = out->media(id);
+      long added = 0;
+      for (const SweepMedium& m : in->media(r.id)) {
+        const auto same = std::find_if(have.begin(), have.end(), [&](const SweepMedium& h) { return h.unit == m.unit; });
+        if (same == have.end()) {
+          out->add(id, m);
+          ++added;
+          continue;
+        }
+        // Determinism makes a unit computed twice identical; anything else is two different builds.
+        bool equal = same->porosity == m.porosity && same->grains == m.grains && same->droplets.size() == m.droplets.size();
+        for (std::size_t i = 0; equal && i < m.droplets.size(); ++i) {
+          const SweepDroplet &x = same->droplets[i], &y = m.droplets[i];
+          equal = x.start_x == y.start_x && x.outcome == y.outcome && x.tortuosity == y.tortuosity && x.steps == y.steps;
+        }
+        if (!equal)
+          throw std::runtime_error("sweep-merge: '" + path + "' sweep " + std::to_string(r.id) + " porosity " +
+                                   std::to_string(m.unit.porosity) + " medium " + std::to_string(m.unit.medium) +
+                                   " differs from the copy already in '" + a.into + "' (made by another build?)");
+      }
+      const SweepRecord merged = out->sweep(id);
+      out->set_status(id, merged.done == merged.units ? "complete" : "running");
+      std::cerr << "sweep-merge: " << path << " sweep " << r.id << ": " << added << " media added; sweep " << id
+                << " in " << a.into << " has " << merged.done << " of " << merged.units << "\n";
+    }
+  }
+  return 0;
+}
+
+int run_sweep_report(const SweepReportArgs& a) {
+  auto store = open_sweep_store(a.db, OpenMode::read_only);
+  if (a.sweep == 0 && store->sweeps().size() > 1) {
+    list_sweeps(*store, a.format);
+    return 0;
+  }
+  const std::int64_t id = pick_sweep(*store, a.sweep, a.db);
+  const auto media = store->media(id);
+  if (!a.media) {
+    points_table(sweep_points(media)).print(std::cout, a.format);
+    return 0;
+  }
+  Table t;
+  t.header = {"porosity_index", "medium_index", "target_phi", "phi", "grains", "droplets", "passed", "stuck",
+              "timeout", "diverged", "mean_t", "standard_error", "stuck_fraction", "seconds"};
+  for (const SweepMedium& m : media)
+    t.rows.push_back({m.unit.porosity, m.unit.medium, m.target_porosity, m.porosity, m.grains, m.droplets.size(), m.passed,
+                      m.stuck, m.timeout, m.diverged, m.passed ? nlohmann::json(m.mean_t) : nlohmann::json(),
+                      m.passed > 1 ? nlohmann::json(m.standard_error) : nlohmann::json(), m.stuck_fraction, m.seconds});
+  t.print(std::cout, a.format);
+  return 0;
+}
+
+namespace {
+
+std::vector<FitPoint> read_points_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("--points '" + path + "': cannot read");
+  std::string line;
+  std::vector<FitPoint> out;
+  int number = 0;
+  bool header = false;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      if (line.rfind("phi,t,se", 0) != 0)
+        throw std::runtime_error("--points '" + path + "' line " + std::to_string(number) + ": expected the header phi,t,se");
+      header = true;
+      continue;
+    }
+    std::istringstream s(line);
+    FitPoint p;
+    char c1 = 0, c2 = 0;
+    if (!(s >> p.phi >> c1 >> p.t >> c2 >> p.se) || c1 != ',' || c2 != ',')
+      throw std::runtime_error("--points '" + path + "' line " + std::to_string(number) + ": expected three numbers phi,t,se");
+    out.push_back(p);
+  }
+  return out;
+}
+
+}  // namespace
+
+int run_fit(const FitArgs& a) {
+  if (!a.plot.empty()) {
+    image_format_for(a.plot);
+    check_output_path("--plot", a.plot);
+  }
+  if (!a.json_file.empty()) check_output_path("--json", a.json_file);
+  std::vector<FitPoint> points;
+  if (!a.points.empty()) {
+    points = read_points_csv(a.points);
+  } else {
+    auto store = open_sweep_store(a.db, OpenMode::read_only);
+    for (const SweepPoint& p : sweep_points(store->media(pick_sweep(*store, a.sweep, a.db))))
+      if (p.passed > 1 && p.standard_error > 0) points.push_back({p.porosity, p.mean_t, p.standard_error});
+  }
+  const FitResult power = fit_law(FitLaw::power, points), log = fit_law(FitLaw::log, points);
+
+  nlohmann::ordered_json j;
+  j["version"] = kVersion;
+  j["points"] = points.size();
+  for (const FitResult* r : {&power, &log}) {
+    nlohmann::ordered_json f;
+    f["law"] = r->law == FitLaw::power ? "T = a - c phi^b" : "T = 1 - p ln(phi)";
+    for (std::size_t i = 0; i < r->names.size(); ++i) f[r->names[i]] = {{"value", r->values[i]}, {"error", r->errors[i]}};
+    f["chi2"] = r->chi2;
+    f["dof"] = r->dof;
+    f["reduced_chi2"] = r->reduced_chi2;
+    f["aic"] = r->aic;
+    f["residuals"] = r->residuals;
+    f["message"] = r->message;
+    j[to_string(r->law)] = f;
+  }
+  j["delta_aic_log_minus_power"] = log.aic - power.aic;
+  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  if (a.format == "json") {
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << points.size() << " points\n";
+    for (const FitResult* r : {&power, &log}) {
+      std::cout << (r->law == FitLaw::power ? "T = a - c phi^b  " : "T = 1 - p ln phi ");
+      for (std::size_t i = 0; i < r->names.size(); ++i)
+        std::cout << "  " << r->names[i] << " = " << fmt(r->values[i], 5) << " +- " << fmt(r->errors[i], 2);
+      std::cout << "   chi2 = " << fmt(r->chi2, 5) << " (dof " << r->dof << ", reduced " << fmt(r->reduced_chi2, 4)
+                << "), AIC = " << fmt(r->aic, 5) << "\n";
+    }
+    std::cout << "AIC(log) - AIC(power) = " << fmt(log.aic - power.aic, 4)
+              << (log.aic > power.aic ? " (the power law is preferred)\n" : " (the log law is preferred)\n");
+    std::cout << "phi         T          se         resid_power  resid_log\n";
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      std::ostringstream row;
+      row << std::left << std::setw(12) << fmt(points[i].phi, 6) << std::setw(11) << fmt(points[i].t, 6) << std::setw(11)
+          << fmt(points[i].se, 3) << std::setw(13) << fmt(power.residuals[i], 3) << fmt(log.residuals[i], 3);
+      std::cout << row.str() << "\n";
+    }
+  }
+  if (!a.plot.empty()) {
+    Chart c;
+    Series data;
+    data.style = Series::Style::points;
+    data.width = 3.5;
+    data.colour = Rgba{0.1, 0.1, 0.1, 1};
+    data.label = "<T>, sweep";
+    for (const FitPoint& p : points) data.x.push_back(p.phi), data.y.push_back(p.t), data.err.push_back(p.se);
+    double lo = 1, hi = 0;
+    for (const FitPoint& p : points) lo = std::min(lo, p.phi), hi = std::max(hi, p.phi);
+    auto curve = [&](const FitResult& r, Rgba colour, const std::string& label) {
+      Series s;
+      s.colour = colour;
+      s.label = label;
+      for (int i = 0; i <= 100; ++i) {
+        const double phi = lo + (hi - lo) * i / 100.0;
+        s.x.push_back(phi);
+        s.y.push_back(fit_law_value(r.law, r.values, phi));
+      }
+      return s;
+    };
+    c.series = {curve(power, Rgba{0.8, 0.1, 0.1, 1},
+                      "a - c phi^b: a=" + fmt(power.values[0], 3) + " b=" + fmt(power.values[1], 3) + " c=" + fmt(power.values[2], 3)),
+                curve(log, Rgba{0.1, 0.3, 0.8, 1}, "1 - p ln phi: p=" + fmt(log.values[0], 3)), data};
+    c.x_label = "porosity phi";
+    c.y_label = "tortuosity <T>";
+    render_chart(c, RenderStyle{}, a.plot);
+  }
+  return 0;
+}
+
+int run_averagings(const AveragingArgs& a) {
+  if (a.group < 1) throw std::invalid_argument("group = " + std::to_string(a.group) + ": must be >= 1");
+  if (!a.plot.empty()) {
+    image_format_for(a.plot);
+    check_output_path("--plot", a.plot);
+  }
+  if (!a.csv.empty()) check_output_path("--csv", a.csv);
+  auto store = open_sweep_store(a.db, OpenMode::read_only);
+  std::vector<MediumPoint> points;
+  for (const SweepMedium& m : store->media(pick_sweep(*store, a.sweep, a.db)))
+    if (m.passed > 0) points.push_back({m.porosity, m.mean_t});
+  if (points.size() < static_cast<std::size_t>(a.group))
+    throw std::invalid_argument("group = " + std::to_string(a.group) + ": larger than the " +
+                                std::to_string(points.size()) + " media with a passed droplet");
+  const auto by_t = group_averages(points, AveragingType::by_t, a.group);
+  const auto by_phi = group_averages(points, AveragingType::by_phi, a.group);
+  Table t;
+  t.header = {"type", "phi", "t", "phi_se", "t_se", "count"};
+  for (const auto& [type, groups] : {std::pair{1, &by_t}, std::pair{2, &by_phi}})
+    for (const GroupAverage& g : *groups) t.rows.push_back({type, g.phi, g.t, g.phi_se, g.t_se, g.count});
+  t.print(std::cout, "table");
+  if (!a.csv.empty()) {
+    std::ostringstream csv;
+    t.print(csv, "csv");
+    write_file_atomically(a.csv, csv.str());
+  }
+  if (!a.plot.empty()) {
+    Chart c;
+    Series cloud;
+    cloud.style = Series::Style::points;
+    cloud.width = 1.6;
+    cloud.colour = Rgba{0.6, 0.6, 0.6, 0.6};
+    cloud.label = "media (" + std::to_string(points.size()) + ")";
+    for (const MediumPoint& p : points) cloud.x.push_back(p.phi), cloud.y.push_back(p.t);
+    auto series = [](const std::vector<GroupAverage>& groups, Rgba colour, const std::string& label) {
+      Series s;
+      s.colour = colour;
+      s.label = label;
+      s.width = 2.5;
+      for (const GroupAverage& g : groups) s.x.push_back(g.phi), s.y.push_back(g.t), s.err.push_back(g.t_se);
+      return s;
+    };
+    c.series = {cloud, series(by_t, Rgba{0.8, 0.1, 0.1, 1}, "type 1: sorted by T"),
+                series(by_phi, Rgba{0.1, 0.3, 0.8, 1}, "type 2: sorted by phi")};
+    c.x_label = "porosity phi";
+    c.y_label = "tortuosity <T>";
+    c.title = "groups of " + std::to_string(a.group) + " media";
+    render_chart(c, RenderStyle{}, a.plot);
+  }
+  return 0;
+}
+
+}  // namespace softdrop::cli

@@ -1,0 +1,62 @@
+#pragma once
+// The paper's studies on the command line: `sweep` (tortuosity-porosity sweep into a resumable
+// SQLite store, shardable), `sweep-merge`, `sweep-report`, `fit` and `averagings`.
+
+#include <CLI/CLI.hpp>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "cli/common_options.hpp"
+#include "softdrop/sweep.hpp"
+
+namespace softdrop::cli {
+
+struct SweepArgs {
+  std::string db = "sweep.db";
+  SweepOptions sweep;
+  MediumArgs medium;
+  std::string preset;      ///< quick or paper: defaults for options not given
+  std::string shard = "0/1";
+  int threads = 0;
+  bool quiet = false;
+  std::string format = "table";
+};
+
+struct SweepMergeArgs {
+  std::string into;
+  std::vector<std::string> inputs;
+};
+
+struct SweepReportArgs {
+  std::string db = "sweep.db";
+  std::int64_t sweep = 0;  ///< 0: the only one
+  bool media = false;      ///< per-medium rows instead of per-porosity points
+  std::string format = "table";
+};
+
+struct FitArgs {
+  std::string db;           ///< sweep store ...
+  std::int64_t sweep = 0;
+  std::string points;       ///< ... or a CSV with columns phi,t,se
+  std::string plot;         ///< T(phi) with error bars and both fits
+  std::string format = "table";
+  std::string json_file;
+};
+
+struct AveragingArgs {
+  std::string db = "sweep.db";
+  std::int64_t sweep = 0;
+  int group = 100;
+  std::string csv, plot;
+};
+
+void add_study_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, SweepReportArgs& report,
+                        FitArgs& fit, AveragingArgs& averaging);
+int run_sweep(SweepArgs& args, const CLI::App& command);
+int run_sweep_merge(const SweepMergeArgs& args);
+int run_sweep_report(const SweepReportArgs& args);
+int run_fit(const FitArgs& args);
+int run_averagings(const AveragingArgs& args);
+
+}  // namespace softdrop::cli

@@ -1,0 +1,132 @@
+#include "softdrop/fit.hpp"
+
+#include <Eigen/Dense>
+#include <nlopt.hpp>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "validation.hpp"
+
+namespace softdrop {
+using detail::num;
+
+const char* to_string(FitLaw law) { return law == FitLaw::power ? "power" : "log"; }
+
+double fit_law_value(FitLaw law, const std::vector<double>& p, double phi) {
+  return law == FitLaw::power ? p[0] - p[2] * std::pow(phi, p[1]) : 1 - p[0] * std::log(phi);
+}
+
+namespace {
+
+// d f / d p_k at phi.
+Eigen::VectorXd gradient(FitLaw law, const std::vector<double>& p, double phi) {
+  if (law == FitLaw::log) return Eigen::VectorXd::Constant(1, -std::log(phi));
+  const double pb = std::pow(phi, p[1]);
+  Eigen::VectorXd g(3);
+  g << 1.0, -p[2] * pb * std::log(phi), -pb;
+  return g;
+}
+
+struct Problem {
+  FitLaw law;
+  const std::vector<FitPoint>* points;
+};
+
+double chi2_of(const std::vector<double>& p, std::vector<double>& grad, void* data) {
+  const Problem& pr = *static_cast<const Problem*>(data);
+  double chi2 = 0;
+  if (!grad.empty()) std::fill(grad.begin(), grad.end(), 0.0);
+  for (const FitPoint& q : *pr.points) {
+    const double r = (q.t - fit_law_value(pr.law, p, q.phi)) / q.se;
+    chi2 += r * r;
+    if (!grad.empty()) {
+      const Eigen::VectorXd g = gradient(pr.law, p, q.phi);
+      for (std::size_t k = 0; k < grad.size(); ++k) grad[k] += -2 * r * g(static_cast<Eigen::Index>(k)) / q.se;
+    }
+  }
+  return chi2;
+}
+
+// Starting point of the power law: for fixed b the model is linear in (a, c), so scan b and
+// solve the weighted linear problem; NLopt then polishes all three.
+std::vector<double> power_start(const std::vector<FitPoint>& pts) {
+  double best = std::numeric_limits<double>::infinity();
+  std::vector<double> start{1, 1, 0};
+  const auto n = static_cast<Eigen::Index>(pts.size());
+  for (double b = 0.25; b <= 20; b *= 1.05) {
+    Eigen::MatrixXd A(n, 2);
+    Eigen::VectorXd y(n);
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const FitPoint& q = pts[static_cast<std::size_t>(i)];
+      A(i, 0) = 1 / q.se;
+      A(i, 1) = -std::pow(q.phi, b) / q.se;
+      y(i) = q.t / q.se;
+    }
+    const Eigen::VectorXd x = A.colPivHouseholderQr().solve(y);
+    const double chi2 = (A * x - y).squaredNorm();
+    if (chi2 < best) best = chi2, start = {x(0), b, x(1)};
+  }
+  return start;
+}
+
+}  // namespace
+
+FitResult fit_law(FitLaw law, const std::vector<FitPoint>& points) {
+  const std::size_t k = law == FitLaw::power ? 3 : 1;
+  if (points.size() < k)
+    throw std::invalid_argument(std::string("fit ") + to_string(law) + ": needs at least " + std::to_string(k) +
+                                " points, got " + std::to_string(points.size()));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const FitPoint& q = points[i];
+    if (!std::isfinite(q.phi) || q.phi <= 0 || q.phi > 1)
+      throw std::invalid_argument("point " + std::to_string(i) + ": phi = " + num(q.phi) + " is not in (0, 1]");
+    if (!std::isfinite(q.t)) throw std::invalid_argument("point " + std::to_string(i) + ": T is not finite");
+    if (!std::isfinite(q.se) || q.se <= 0)
+      throw std::invalid_argument("point " + std::to_string(i) + ": se = " + num(q.se) + " must be > 0");
+  }
+  FitResult r;
+  r.law = law;
+  r.names = law == FitLaw::power ? std::vector<std::string>{"a", "b", "c"} : std::vector<std::string>{"p"};
+  std::vector<double> p = law == FitLaw::power ? power_start(points) : std::vector<double>{0.5};
+
+  Problem problem{law, &points};
+  nlopt::opt opt(nlopt::LD_LBFGS, static_cast<unsigned>(k));
+  opt.set_min_objective(chi2_of, &problem);
+  opt.set_ftol_rel(1e-14);
+  opt.set_xtol_rel(1e-12);
+  opt.set_maxeval(20000);
+  double chi2 = 0;
+  try {
+    const nlopt::result status = opt.optimize(p, chi2);
+    r.message = status == nlopt::FTOL_REACHED ? "converged (relative chi2 tolerance)"
+                : status == nlopt::XTOL_REACHED ? "converged (relative parameter tolerance)"
+                : status == nlopt::SUCCESS ? "converged"
+                : status == nlopt::MAXEVAL_REACHED ? "stopped at the evaluation limit"
+                                                   : "ended with NLopt status " + std::to_string(static_cast<int>(status));
+  } catch (const nlopt::roundoff_limited&) {
+    // L-BFGS cannot improve further in floating point: p holds the best point found.
+    std::vector<double> none;
+    chi2 = chi2_of(p, none, &problem);
+    r.message = "converged (round-off limited)";
+  }
+  r.values = p;
+  r.chi2 = chi2;
+  r.dof = static_cast<int>(points.size()) - static_cast<int>(k);
+  r.reduced_chi2 = r.dof > 0 ? chi2 / r.dof : 0;
+  r.aic = chi2 + 2.0 * static_cast<double>(k);
+  // Covariance (J^T W J)^-1 at the optimum.
+  Eigen::MatrixXd JtWJ = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
+  for (const FitPoint& q : points) {
+    const Eigen::VectorXd g = gradient(law, p, q.phi);
+    JtWJ += g * g.transpose() / (q.se * q.se);
+    r.residuals.push_back((q.t - fit_law_value(law, p, q.phi)) / q.se);
+  }
+  const Eigen::MatrixXd cov = JtWJ.completeOrthogonalDecomposition().pseudoInverse();
+  for (std::size_t i = 0; i < k; ++i)
+    r.errors.push_back(std::sqrt(std::max(0.0, cov(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)))));
+  return r;
+}
+
+}  // namespace softdrop

@@ -1,0 +1,296 @@
+// The studies: sweep units and shards, deterministic records, the store (resume after SIGKILL,
+// shards merged), fits recovering known laws, the two averagings.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <thread>
+
+#include "cli_run.hpp"
+#include "softdrop/averaging.hpp"
+#include "softdrop/fit.hpp"
+#include "softdrop/history.hpp"
+#include "softdrop/params_json.hpp"
+#include "softdrop/sweep.hpp"
+#include "softdrop/sweep_store.hpp"
+
+namespace softdrop {
+namespace {
+
+std::string fresh(const std::string& name) {
+  const std::string p = test::temp_path(name);
+  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(p + suffix);
+  return p;
+}
+
+SweepOptions tiny() {
+  SweepOptions o;
+  o.porosities = {0.85, 0.95};
+  o.media = 3;
+  o.droplets = 4;
+  o.medium.width = o.medium.height = 150;
+  return o;
+}
+
+TEST(Sweep, ShardsPartitionTheUnits) {
+  const SweepOptions o = tiny();
+  const auto all = sweep_units(o);
+  ASSERT_EQ(all.size(), 6u);
+  std::vector<SweepUnit> joined;
+  for (int s = 0; s < 4; ++s)
+    for (const SweepUnit& u : sweep_units(o, s, 4)) {
+      EXPECT_EQ(std::count(joined.begin(), joined.end(), u), 0);
+      joined.push_back(u);
+    }
+  EXPECT_EQ(joined.size(), all.size());
+  EXPECT_THROW(sweep_units(o, 2, 2), std::invalid_argument);
+  // A unit's medium depends on its porosity's value, not on its position in the list.
+  SweepOptions more = o;
+  more.porosities = {0.75, 0.85, 0.95};
+  EXPECT_EQ(sweep_medium_seed(o, {0, 1}), sweep_medium_seed(more, {1, 1}));
+}
+
+TEST(Sweep, UnitRecordsAreCompleteAndThreadIndependent) {
+  const SweepOptions o = tiny();
+  const SweepMedium a = run_sweep_unit(o, {0, 1}, 1), b = run_sweep_unit(o, {0, 1}, 2);
+  ASSERT_EQ(a.droplets.size(), 4u);
+  EXPECT_NEAR(a.porosity, 0.85, 0.02);
+  EXPECT_EQ(a.porosity, b.porosity);
+  EXPECT_EQ(a.passed + a.stuck + a.timeout + a.diverged, 4);
+  for (std::size_t i = 0; i < a.droplets.size(); ++i) {
+    EXPECT_EQ(a.droplets[i].start_x, b.droplets[i].start_x);
+    EXPECT_EQ(a.droplets[i].outcome, b.droplets[i].outcome);
+    EXPECT_EQ(a.droplets[i].tortuosity, b.droplets[i].tortuosity);
+    EXPECT_EQ(a.droplets[i].steps, b.droplets[i].steps);
+    if (a.droplets[i].outcome == Outcome::passed) {
+      EXPECT_GE(a.droplets[i].tortuosity, 1.0 - 1e-9);  // a straight fall is 1 to rounding
+    }
+  }
+  EXPECT_EQ(a.mean_t, b.mean_t);
+}
+
+TEST(Sweep, PointsPoolTheDropletsOfAPorosity) {
+  SweepMedium m1, m2, m3;
+  m1.target_porosity = m2.target_porosity = 0.8;
+  m3.target_porosity = 0.9;
+  m1.porosity = 0.79, m2.porosity = 0.81, m3.porosity = 0.9;
+  m1.droplets = {{0, 0, Outcome::passed, 1.2, 1}, {1, 0, Outcome::stuck, 0, 1}};
+  m2.droplets = {{0, 0, Outcome::passed, 1.4, 1}, {1, 0, Outcome::passed, 1.3, 1}};
+  m3.droplets = {{0, 0, Outcome::passed, 1.1, 1}};
+  const auto p = sweep_points({m3, m1, m2});
+  ASSERT_EQ(p.size(), 2u);
+  EXPECT_EQ(p[0].target_porosity, 0.8);
+  EXPECT_DOUBLE_EQ(p[0].porosity, 0.8);
+  EXPECT_EQ(p[0].droplets, 4);
+  EXPECT_EQ(p[0].passed, 3);
+  EXPECT_DOUBLE_EQ(p[0].mean_t, 1.3);
+  EXPECT_NEAR(p[0].standard_error, 0.1 / std::sqrt(3.0), 1e-12);
+  EXPECT_DOUBLE_EQ(p[0].stuck_fraction, 0.25);
+  EXPECT_EQ(p[1].passed, 1);
+  EXPECT_EQ(p[1].standard_error, 0);
+}
+
+TEST(Sweep, ParamsRoundTripExactly) {
+  SweepOptions o = tiny();
+  o.medium.kind = MediumKind::non_overlapping;
+  o.medium.periodic = false;
+  o.porosities = {0.1 + 0.2, 0.9};
+  const std::string j = sweep_params_to_json(o);
+  const SweepOptions back = sweep_params_from_json(j);
+  EXPECT_EQ(back.porosities, o.porosities);
+  EXPECT_EQ(back.medium.kind, MediumKind::non_overlapping);
+  EXPECT_FALSE(back.medium.periodic);
+  EXPECT_EQ(sweep_params_to_json(back), j);
+}
+
+// Synthetic data from a law with Gaussian noise of known size.
+std::vector<FitPoint> synthetic(FitLaw law, const std::vector<double>& p, double noise, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> n(0, noise);
+  std::vector<FitPoint> pts;
+  for (int i = 0; i < 12; ++i) {
+    const double phi = 0.45 + 0.05 * i;
+    pts.push_back({phi, fit_law_value(law, p, phi) + n(rng), noise});
+  }
+  return pts;
+}
+
+TEST(Fit, RecoversThePaperLawFromNoisyData) {
+  const std::vector<double> truth{1.58, 3.87, 0.58};
+  int within = 0;
+  for (unsigned seed = 1; seed <= 5; ++seed) {
+    const auto pts = synthetic(FitLaw::power, truth, 0.002, seed);
+    const FitResult r = fit_law(FitLaw::power, pts);
+    ASSERT_EQ(r.values.size(), 3u);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_LT(std::abs(r.values[k] - truth[k]), 5 * r.errors[k]) << r.names[k] << " seed " << seed;
+      within += std::abs(r.values[k] - truth[k]) < 2 * r.errors[k];
+    }
+    EXPECT_GT(r.reduced_chi2, 0.2);
+    EXPECT_LT(r.reduced_chi2, 3.0);
+    EXPECT_LT(r.aic, fit_law(FitLaw::log, pts).aic) << "the true law must win";
+  }
+  EXPECT_GE(within, 12) << "about 95 % of 15 estimates should lie within 2 sigma";
+}
+
+TEST(Fit, RecoversTheLogLawAndRefusesBadPoints) {
+  const auto pts = synthetic(FitLaw::log, {0.77}, 0.002, 9);
+  const FitResult r = fit_law(FitLaw::log, pts);
+  EXPECT_LT(std::abs(r.values[0] - 0.77), 4 * r.errors[0]);
+  EXPECT_LT(r.errors[0], 0.01);
+  EXPECT_EQ(r.residuals.size(), pts.size());
+  EXPECT_EQ(r.dof, 11);
+  // Exact data: chi2 vanishes and the parameter is exact.
+  std::vector<FitPoint> exact;
+  for (double phi : {0.5, 0.7, 0.9}) exact.push_back({phi, 1 - 0.5 * std::log(phi), 0.01});
+  EXPECT_NEAR(fit_law(FitLaw::log, exact).values[0], 0.5, 1e-9);
+  EXPECT_THROW(fit_law(FitLaw::power, {{0.5, 1.2, 0.01}, {0.6, 1.1, 0.01}}), std::invalid_argument);
+  EXPECT_THROW(fit_law(FitLaw::log, {{0.5, 1.2, 0.0}}), std::invalid_argument);
+  EXPECT_THROW(fit_law(FitLaw::log, {{1.5, 1.2, 0.1}}), std::invalid_argument);
+}
+
+TEST(Averaging, GroupsSortedByTOrByPhi) {
+  const std::vector<MediumPoint> pts{{0.5, 1.4}, {0.9, 1.0}, {0.6, 1.1}, {0.7, 1.3}, {0.8, 1.2}};
+  const auto by_t = group_averages(pts, AveragingType::by_t, 2);
+  ASSERT_EQ(by_t.size(), 2u);  // the fifth point is left over
+  EXPECT_DOUBLE_EQ(by_t[0].t, 1.05);
+  EXPECT_DOUBLE_EQ(by_t[0].phi, 0.75);
+  EXPECT_DOUBLE_EQ(by_t[1].t, 1.25);
+  EXPECT_DOUBLE_EQ(by_t[1].phi, 0.75);
+  const auto by_phi = group_averages(pts, AveragingType::by_phi, 2);
+  EXPECT_DOUBLE_EQ(by_phi[0].phi, 0.55);
+  EXPECT_DOUBLE_EQ(by_phi[0].t, 1.25);
+  EXPECT_NEAR(by_phi[0].t_se, 0.15, 1e-12);  // sd 0.15 sqrt(2) over sqrt(2) points
+  EXPECT_THROW(group_averages(pts, AveragingType::by_t, 0), std::invalid_argument);
+}
+
+// ---- the command line ----
+
+std::string dump(const std::string& db) {
+  SQLite::Database d(db, SQLite::OPEN_READONLY);
+  std::ostringstream out;
+  for (const char* sql : {"SELECT params, units FROM sweeps ORDER BY id",
+                          "SELECT sweep_id, porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
+                          "droplets, passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction "
+                          "FROM sweep_media ORDER BY 1, 2, 3",
+                          "SELECT * FROM sweep_droplets ORDER BY 1, 2, 3, 4"}) {
+    SQLite::Statement q(d, sql);
+    while (q.executeStep()) {
+      for (int c = 0; c < q.getColumnCount(); ++c) out << q.getColumn(c).getText() << '|';
+      out << '\n';
+    }
+  }
+  return out.str();
+}
+
+const std::string kQuick = " --preset quick --quiet --format json ";
+
+TEST(SweepCli, QuickPresetEndToEnd) {
+  const std::string db = fresh("quick.db");
+  const test::Result r = test::run("sweep --db " + db + kQuick);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto points = nlohmann::json::parse(r.out);
+  ASSERT_EQ(points.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(points[i]["media"], 2);
+    EXPECT_EQ(points[i]["droplets"], 16);
+    EXPECT_GT(points[i]["passed"].get<int>(), 1);
+  }
+  // <T> rises as phi falls.
+  EXPECT_GT(points[0]["mean_t"].get<double>(), points[1]["mean_t"].get<double>());
+  EXPECT_GT(points[1]["mean_t"].get<double>(), points[2]["mean_t"].get<double>());
+  // Every record is complete.
+  SQLite::Database d(db, SQLite::OPEN_READONLY);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_droplets").getInt(), 48);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_droplets WHERE (outcome = 'passed') != (tortuosity IS NOT NULL)").getInt(), 0);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_droplets WHERE tortuosity < 1 - 1e-9 OR steps <= 0").getInt(), 0);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_media WHERE passed + stuck + timeout + diverged != droplets").getInt(), 0);
+  EXPECT_EQ(d.execAndGet("SELECT status FROM sweeps").getString(), "complete");
+  // Running it again does nothing new and reports the same points.
+  EXPECT_EQ(nlohmann::json::parse(test::run("sweep --db " + db + kQuick).out), points);
+}
+
+TEST(SweepCli, KilledAndRunAgainGivesTheSameRecords) {
+  const std::string ref = fresh("sweep_ref.db"), killed = fresh("sweep_killed.db");
+  const std::string args = " --preset quick --media 3 --quiet --threads 1 ";
+  ASSERT_EQ(test::run("sweep --db " + ref + args).code, 0);
+  std::mt19937 rng(4);
+  for (int k = 0; k < 4; ++k) {
+    const pid_t pid = fork();
+    if (pid == 0) {
+      execl(SOFTDROP_CLI, SOFTDROP_CLI, "sweep", "--db", killed.c_str(), "--preset", "quick", "--media", "3", "--quiet",
+            "--threads", "1", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(100, 900)(rng)));
+    kill(pid, SIGKILL);
+    waitpid(pid, nullptr, 0);
+  }
+  ASSERT_EQ(test::run("sweep --db " + killed + args).code, 0);
+  EXPECT_EQ(dump(killed), dump(ref));
+}
+
+TEST(SweepCli, ShardsMergedEqualOneSweep) {
+  const std::string whole = fresh("whole.db"), s0 = fresh("shard0.db"), s1 = fresh("shard1.db"), merged = fresh("merged.db");
+  ASSERT_EQ(test::run("sweep --db " + whole + " --preset quick --quiet").code, 0);
+  ASSERT_EQ(test::run("sweep --db " + s0 + " --preset quick --quiet --shard 0/2").code, 0);
+  ASSERT_EQ(test::run("sweep --db " + s1 + " --preset quick --quiet --shard 1/2").code, 0);
+  EXPECT_NE(dump(s0), dump(whole));
+  const test::Result m = test::run("sweep-merge --into " + merged + " " + s0 + " " + s1);
+  ASSERT_EQ(m.code, 0) << m.err;
+  EXPECT_EQ(dump(merged), dump(whole));
+  // Merging again adds nothing; a copy that disagrees is refused and named.
+  ASSERT_EQ(test::run("sweep-merge --into " + merged + " " + s0).code, 0);
+  EXPECT_EQ(dump(merged), dump(whole));
+  { SQLite::Database d(s1, SQLite::OPEN_READWRITE); d.exec("UPDATE sweep_droplets SET steps = steps + 1 WHERE droplet = 0"); }
+  const test::Result bad = test::run("sweep-merge --into " + merged + " " + s1);
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("differs"), std::string::npos) << bad.err;
+}
+
+TEST(SweepCli, FitAndAveragingsRunOnTheStore) {
+  const std::string db = fresh("fit.db"), plot = fresh("fit.png"), json = fresh("fit.json"), avg = fresh("avg.svg");
+  ASSERT_EQ(test::run("sweep --db " + db + " --preset quick --quiet --porosities 0.8,0.85,0.9,0.95,0.98").code, 0);
+  const test::Result f = test::run("fit --db " + db + " --plot " + plot + " --json " + json);
+  ASSERT_EQ(f.code, 0) << f.err;
+  EXPECT_NE(f.out.find("AIC"), std::string::npos);
+  const auto j = nlohmann::json::parse(std::ifstream(json));
+  EXPECT_EQ(j["points"], 5);
+  EXPECT_TRUE(j["power"].contains("b"));
+  EXPECT_TRUE(std::filesystem::exists(plot));
+  const test::Result a = test::run("averagings --db " + db + " --group 3 --plot " + avg);
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_TRUE(std::filesystem::exists(avg));
+  const std::string pts = fresh("points.csv");
+  std::ofstream(pts) << "phi,t,se\n0.5,1.4\n";
+  const test::Result bad = test::run("fit --points " + pts);
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("line 2"), std::string::npos) << bad.err;
+}
+
+TEST(SweepStore, AVersionOneFileIsMigratedAndKeepsItsRuns) {
+  const std::string db = fresh("v1.db");
+  ASSERT_EQ(test::run("optimize --db " + db + " --grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 "
+                      "--stuck-distance 1 --generations 2 --quiet").code, 0);
+  {
+    SQLite::Database d(db, SQLite::OPEN_READWRITE);
+    d.exec("DROP TABLE sweep_droplets; DROP TABLE sweep_media; DROP TABLE sweeps; PRAGMA user_version = 1");
+  }
+  EXPECT_EQ(open_history(db, OpenMode::read_only)->runs().size(), 1u);  // read as it is
+  ASSERT_EQ(test::run("sweep --db " + db + " --preset quick --quiet --media 1 --droplets 2").code, 0);
+  SQLite::Database d(db, SQLite::OPEN_READONLY);
+  EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), kHistorySchemaVersion);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 1);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_media").getInt(), 3);
+}
+
+}  // namespace
+}  // namespace softdrop
