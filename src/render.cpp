@@ -275,6 +275,9 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
   if (!std::isfinite(x0) || !std::isfinite(y0)) throw std::invalid_argument("chart: no data");
   if (x1 <= x0) x1 = x0 + 1;
   if (y1 <= y0) y1 = y0 + std::max(1e-3, 0.05 * std::abs(y0));
+  const double xpad = 0.015 * (x1 - x0);  // keeps markers and end points off the frame
+  x0 -= xpad;
+  x1 += xpad;
   const double pad = 0.05 * (y1 - y0);
   y0 -= pad;
   y1 += pad;

@@ -211,6 +211,38 @@ TEST(RenderCli, EveryPictureKindRenders) {
   DGifCloseFile(g, &error);
 }
 
+TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
+  const std::string csv = fresh("trace.csv"), png = fresh("trace.png");
+  const test::Result r = test::run("render trace --medium " + kPore + " --x0 100 --csv " + csv + " -o " + png + " --size 400");
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(csv);
+  std::string line;
+  double enter = -1, leave = -1;
+  std::vector<double> t, ratio;
+  while (std::getline(in, line)) {
+    if (line.rfind("# enter=", 0) == 0) enter = std::stod(line.substr(8));
+    if (line.rfind("# leave=", 0) == 0) leave = std::stod(line.substr(8));
+    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
+    std::istringstream s(line);
+    double a, b, c;
+    char k;
+    s >> a >> k >> b >> k >> c;
+    t.push_back(a);
+    ratio.push_back(c);
+  }
+  ASSERT_GT(t.size(), 50u);
+  EXPECT_GT(enter, 0);
+  EXPECT_GT(leave, enter);
+  EXPECT_LE(leave, t.back() + 1e-12);
+  double lowest = 1;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    EXPECT_LE(ratio[i], 1 + 1e-6) << "the inflated ring (at the stretch limit) is the largest: t = " << t[i];
+    if (t[i] > enter && t[i] < leave) lowest = std::min(lowest, ratio[i]);
+  }
+  EXPECT_LT(lowest, 0.95) << "squeezing through the pore shrinks the droplet";
+  EXPECT_EQ(read_png(png).width, 400);
+}
+
 TEST(RenderCli, MissingOrMalformedInputsGiveOneLineAndNoPicture) {
   const std::string bad_grains = fresh("bad_grains.json");
   std::ofstream(bad_grains) << "{\"format\": \"softdrop-medium\", \"version\": 1, \"width\": 10";

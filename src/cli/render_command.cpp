@@ -1,5 +1,6 @@
 #include "cli/render_command.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -66,6 +67,11 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   v->add_option("--fps", a.fps, "Frames per second")->capture_default_str();
   v->add_option("--speed", a.speed, "Simulated time units per second of animation (1 = real time)")->capture_default_str();
   v->add_option("--max-frames", a.max_frames, "Refuse animations longer than this")->capture_default_str();
+  CLI::App* t = r->add_subcommand("trace", "The area trace S(t)/S0 of one droplet, entry and exit marked (paper's area figure)");
+  style(t, ".png, .svg or .pdf");
+  scene_options(t);
+  t->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)");
+  t->add_option("--csv", a.csv, "Also write the samples (t, area, ratio) to this CSV");
   return r;
 }
 
@@ -284,6 +290,67 @@ int render_animation_command(RenderArgs& a) {
   return 0;
 }
 
+// The ring's area every few steps, and when it enters (lowest mass reaches y = H) and leaves (highest
+// mass below y = 0) the medium. S0 is the area at the entry.
+int render_trace(RenderArgs& a) {
+  check_droplet(a);
+  const RenderStyle style = style_of(a);
+  if (!a.csv.empty()) check_output_path("--csv", a.csv);
+  const Medium medium = medium_of(a);
+  const double x0 = std::isnan(a.x0) ? 0.5 * medium.width : a.x0;
+  Simulation sim(a.droplet, medium);
+  const RunSummary whole = sim.run(x0, a.run);  // deterministic: the replay below is the same run
+  sim.place_above(x0);
+  const int every = 20;
+  std::vector<double> t, area;
+  double enter = NAN, leave = NAN, s0 = NAN;
+  // A droplet that passed is followed until its last mass is below y = 0 (at most 20 000 more steps).
+  const std::int64_t end = whole.outcome == Outcome::passed ? whole.steps + 20000 : whole.steps;
+  for (std::int64_t step = 0; step <= end; ++step) {
+    if (step > 0 && !sim.step()) break;
+    const auto& st = sim.state();
+    const double lo = *std::min_element(st.y.begin(), st.y.end()), hi = *std::max_element(st.y.begin(), st.y.end());
+    const double time = static_cast<double>(step) * a.droplet.dt;
+    if (std::isnan(enter) && lo <= medium.height) enter = time, s0 = sim.area();
+    if (step % every == 0) t.push_back(time), area.push_back(sim.area());
+    if (std::isnan(leave) && hi < 0) {
+      leave = time;
+      if (step % every != 0) t.push_back(time), area.push_back(sim.area());
+      break;
+    }
+  }
+  if (std::isnan(s0)) throw std::runtime_error("trace: the droplet never reached the medium");
+  Series ratio;
+  ratio.colour = parse_colour(a.droplet_colour);
+  ratio.label = "S(t) / S0";
+  for (std::size_t i = 0; i < t.size(); ++i) ratio.x.push_back(t[i]), ratio.y.push_back(area[i] / s0);
+  Chart c;
+  c.series = {ratio};
+  c.hlines = {1.0};
+  c.markers = {enter};
+  c.marker_labels = {"enters"};
+  if (!std::isnan(leave)) c.markers.push_back(leave), c.marker_labels.push_back("leaves");
+  c.x_label = "time t";
+  c.y_label = "area ratio S(t) / S0";
+  c.title = std::string(to_string(whole.outcome)) + (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") +
+            "; " + describe(medium);
+  if (!a.csv.empty()) {
+    std::ostringstream out;
+    out.precision(17);
+    out << "# enter=" << enter << "\n# leave=" << (std::isnan(leave) ? std::string("") : fmt(leave)) << "\n# s0=" << s0
+        << "\n# outcome=" << to_string(whole.outcome) << "\nt,area,ratio\n";
+    for (std::size_t i = 0; i < t.size(); ++i) out << t[i] << ',' << area[i] << ',' << area[i] / s0 << '\n';
+    write_file_atomically(a.csv, out.str());
+  }
+  render_chart(c, style, a.output);
+  double lo = INFINITY, hi = -INFINITY;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= enter && (std::isnan(leave) || t[i] <= leave)) lo = std::min(lo, area[i] / s0), hi = std::max(hi, area[i] / s0);
+  std::cerr << "trace: enters at t = " << fmt(enter, 5) << ", leaves at t = " << (std::isnan(leave) ? "never" : fmt(leave, 5))
+            << "; inside the medium S/S0 spans [" << fmt(lo, 5) << ", " << fmt(hi, 5) << "]\n";
+  return 0;
+}
+
 }  // namespace
 
 int run_render(RenderArgs& a, const CLI::App& render) {
@@ -293,6 +360,7 @@ int run_render(RenderArgs& a, const CLI::App& render) {
   if (which == "snapshots") return render_snapshots(a);
   if (which == "paths") return render_paths(a);
   if (which == "search") return render_search(a);
+  if (which == "trace") return render_trace(a);
   return render_animation_command(a);
 }
 

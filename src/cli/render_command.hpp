@@ -32,9 +32,10 @@ struct RenderArgs {
   std::string curve;          ///< search: best-T chart
   double fps = 25, speed = 0.02;  ///< animation: frames per second, time units per second
   int max_frames = 1500;
+  std::string csv;            ///< trace: the area samples
 };
 
-/// Registers `render` and its five subcommands; returns `render`.
+/// Registers `render` and its six subcommands; returns `render`.
 CLI::App* add_render_command(CLI::App& app, RenderArgs& args);
 /// Runs the chosen subcommand of `render`.
 int run_render(RenderArgs& args, const CLI::App& render);
