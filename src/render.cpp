@@ -350,9 +350,12 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       cairo_move_to(cr, px(chart.markers[i]), top);
       cairo_line_to(cr, px(chart.markers[i]), bottom);
       cairo_stroke(cr);
-      if (i < chart.marker_labels.size()) {
-        cairo_move_to(cr, px(chart.markers[i]) + 0.3 * font, top + 1.2 * font);
-        cairo_show_text(cr, chart.marker_labels[i].c_str());
+      if (i < chart.marker_labels.size()) {  // near the bottom, on the inner side of the line
+        const std::string& label = chart.marker_labels[i];
+        cairo_text_extents(cr, label.c_str(), &ext);
+        const double x = px(chart.markers[i]);
+        cairo_move_to(cr, x > (left + right) / 2 ? x - ext.x_advance - 0.3 * font : x + 0.3 * font, bottom - 0.5 * font);
+        cairo_show_text(cr, label.c_str());
       }
     }
     cairo_set_dash(cr, nullptr, 0, 0);

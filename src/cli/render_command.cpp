@@ -322,7 +322,6 @@ int render_trace(RenderArgs& a) {
   if (std::isnan(s0)) throw std::runtime_error("trace: the droplet never reached the medium");
   Series ratio;
   ratio.colour = parse_colour(a.droplet_colour);
-  ratio.label = "S(t) / S0";
   for (std::size_t i = 0; i < t.size(); ++i) ratio.x.push_back(t[i]), ratio.y.push_back(area[i] / s0);
   Chart c;
   c.series = {ratio};

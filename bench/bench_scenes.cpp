@@ -1,0 +1,227 @@
+// Scene benchmarks: whole runs, timed over repeats (minimum and median), written as CSV with the
+// machine and compiler. Issue 6 measures its targets with these.
+//
+//   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--out FILE.csv]
+//
+// Scenes: free-fall (40 masses, empty box), medium-200 (40 masses through an overlapping medium of
+// about 200 grains at phi 0.7), medium-5000 (the same grain density in a 25x larger box, about
+// 5000 grains), sweep (droplets through media on all threads), search-l1 and search-l2 (the
+// default search at lambda 1 and 2).
+#include <sys/resource.h>
+#include <sys/utsname.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+#include <fstream>
+#include <functional>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "softdrop/batch.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/search.hpp"
+#include "softdrop/simulation.hpp"
+#include "softdrop/sweep.hpp"
+
+namespace {
+using namespace softdrop;
+using Clock = std::chrono::steady_clock;
+
+// What one repeat did: work done (steps, mass updates, droplets, evaluations) in `seconds`.
+struct Work {
+  double seconds = 0, steps = 0, mass_updates = 0, droplets = 0, evaluations = 0;
+  long grains = 0;
+};
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+Medium overlapping(double side, std::uint64_t seed) {
+  MediumOptions mo;
+  mo.porosity = 0.7;
+  mo.width = mo.height = side;
+  mo.seed = seed;
+  return generate_medium(mo);
+}
+
+// Steps of one droplet, re-dropped from a new x every 20 000 steps so that every step is in the
+// medium (as bench_step does); `steps` in total.
+Work stepping(const Medium& medium, std::int64_t steps) {
+  DropletParams p;
+  Simulation sim(p, medium);
+  double x0 = 37;
+  sim.place_above(x0);
+  const auto t0 = Clock::now();
+  for (std::int64_t i = 1; i <= steps; ++i) {
+    sim.step();
+    if (i % 20000 == 0) {
+      x0 = x0 + 97 > medium.width ? x0 + 97 - medium.width : x0 + 97;
+      sim.place_above(x0);
+    }
+  }
+  Work w;
+  w.seconds = since(t0);
+  w.steps = static_cast<double>(steps);
+  w.mass_updates = w.steps * p.masses;
+  w.grains = static_cast<long>(medium.grains.size());
+  return w;
+}
+
+Work free_fall() {
+  Medium empty{500, 1'000'000, true, {}};  // tall enough for 400 000 steps of free fall
+  DropletParams p;
+  Simulation sim(p, empty);
+  sim.place(250, 999'000);
+  const std::int64_t steps = 400'000;
+  const auto t0 = Clock::now();
+  for (std::int64_t i = 0; i < steps; ++i) sim.step();
+  Work w;
+  w.seconds = since(t0);
+  w.steps = static_cast<double>(steps);
+  w.mass_updates = w.steps * p.masses;
+  return w;
+}
+
+Work sweep(int threads) {
+  SweepOptions o;
+  o.porosities = {0.75, 0.9};
+  o.media = 2;
+  o.droplets = 16;
+  o.medium.width = o.medium.height = 300;
+  Work w;
+  const auto t0 = Clock::now();
+  for (const SweepUnit& u : sweep_units(o)) {
+    const SweepMedium m = run_sweep_unit(o, u, threads);
+    w.droplets += static_cast<double>(m.droplets.size());
+    for (const SweepDroplet& d : m.droplets) w.steps += static_cast<double>(d.steps);
+  }
+  w.seconds = since(t0);
+  w.mass_updates = w.steps * o.droplet.masses;
+  return w;
+}
+
+Work search(int lambda, int threads) {
+  SearchOptions o;
+  o.lambda = lambda;
+  MediumOptions mo;
+  mo.kind = MediumKind::non_overlapping;
+  mo.grains = 60;
+  mo.width = mo.height = 300;
+  Configuration best;
+  for (mo.seed = 1;; ++mo.seed) {  // the first medium whose droplet passes, as optimize does
+    try {
+      initial_generation(generate_medium(mo), o, &best);
+      break;
+    } catch (const std::runtime_error&) {
+    }
+  }
+  Search s(o, best, 0);
+  Work w;
+  const auto t0 = Clock::now();
+  for (int g = 0; g < 60 / lambda; ++g) {
+    const Generation gen = s.next(threads);
+    for (const Candidate& c : gen.candidates) w.steps += static_cast<double>(c.eval.steps), ++w.evaluations;
+  }
+  w.seconds = since(t0);
+  w.mass_updates = w.steps * o.droplet.masses;
+  return w;
+}
+
+std::string machine() {
+  std::ifstream cpu("/proc/cpuinfo");
+  std::string line, model = "unknown CPU";
+  while (std::getline(cpu, line))
+    if (line.rfind("model name", 0) == 0) {
+      model = line.substr(line.find(':') + 2);
+      break;
+    }
+  utsname u{};
+  uname(&u);
+  std::ostringstream s;
+  s << model << ", " << std::thread::hardware_concurrency() << " hardware threads, " << u.sysname << " " << u.release;
+  return s.str();
+}
+
+double peak_rss_mb() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return static_cast<double>(r.ru_maxrss) / 1024.0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene = "all", out;
+  int repeats = 5, threads = static_cast<int>(std::thread::hardware_concurrency());
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) {
+        std::cerr << "bench_scenes: " << a << " needs a value\n";
+        std::exit(2);
+      }
+      return argv[++i];
+    };
+    if (a == "--scene") scene = value();
+    else if (a == "--repeats") repeats = std::stoi(value());
+    else if (a == "--threads") threads = std::stoi(value());
+    else if (a == "--out") out = value();
+    else {
+      std::cerr << "bench_scenes: unknown option " << a << "\n";
+      return 2;
+    }
+  }
+  if (repeats < 1 || threads < 1) {
+    std::cerr << "bench_scenes: --repeats and --threads must be >= 1\n";
+    return 2;
+  }
+  const Medium m200 = overlapping(500, 1), m5000 = overlapping(2500, 1);
+  const std::vector<std::pair<std::string, std::function<Work()>>> scenes{
+      {"free-fall", free_fall},
+      {"medium-200", [&] { return stepping(m200, 300'000); }},
+      {"medium-5000", [&] { return stepping(m5000, 300'000); }},
+      {"sweep-1thread", [] { return sweep(1); }},
+      {"sweep", [&] { return sweep(threads); }},
+      {"search-l1", [&] { return search(1, threads); }},
+      {"search-l2-1thread", [] { return search(2, 1); }},
+      {"search-l2", [&] { return search(2, threads); }},
+  };
+  std::ostringstream csv;
+  csv << "# machine: " << machine() << "\n# compiler: GCC " << __VERSION__ << ", "
+#ifdef NDEBUG
+      << "release"
+#else
+      << "debug"
+#endif
+      << " build\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
+         "droplets_per_s,evaluations_per_s,peak_rss_mb\n";
+  bool any = false;
+  for (const auto& [name, run] : scenes) {
+    if (scene != "all" && scene != name) continue;
+    any = true;
+    std::vector<Work> ws;
+    for (int r = 0; r < repeats; ++r) ws.push_back(run());
+    std::sort(ws.begin(), ws.end(), [](const Work& a, const Work& b) { return a.seconds < b.seconds; });
+    const Work& best = ws.front();
+    const double median = ws[ws.size() / 2].seconds;
+    const int used = name.find("1thread") != std::string::npos || name.rfind("medium", 0) == 0 || name == "free-fall" ||
+                             name == "search-l1"
+                         ? 1
+                         : threads;
+    csv << name << ',' << used << ',' << repeats << ',' << best.grains << ',' << best.seconds << ',' << median << ','
+        << best.steps / best.seconds << ',' << best.mass_updates / best.seconds << ','
+        << best.droplets / best.seconds << ',' << best.evaluations / best.seconds << ',' << peak_rss_mb() << '\n';
+    std::cerr << name << ": " << best.steps / best.seconds << " steps/s, " << best.mass_updates / best.seconds
+              << " mass updates/s (min " << best.seconds << " s, median " << median << " s)\n";
+  }
+  if (!any) {
+    std::cerr << "bench_scenes: unknown scene " << scene << "\n";
+    return 2;
+  }
+  if (out.empty()) std::cout << csv.str();
+  else std::ofstream(out) << csv.str();
+  return 0;
+}
