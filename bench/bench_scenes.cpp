@@ -5,7 +5,7 @@
 //
 // Scenes: free-fall (40 masses, empty box), medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7), medium-5000 (the same grain density in a 25x larger box, about
-// 5000 grains), sweep (droplets through media on all threads), search-l1 and search-l2 (the
+// 5000 grains), medium-200-red-black (medium-200 with the red-black constraint order), sweep (droplets through media on all threads), search-l1 and search-l2 (the
 // default search at lambda 1 and 2).
 #include <sys/resource.h>
 #include <sys/utsname.h>
@@ -49,8 +49,9 @@ Medium overlapping(double side, std::uint64_t seed) {
 
 // Steps of one droplet, re-dropped from a new x every 20 000 steps so that every step is in the
 // medium (as bench_step does); `steps` in total.
-Work stepping(const Medium& medium, std::int64_t steps) {
+Work stepping(const Medium& medium, std::int64_t steps, ConstraintOrder order = ConstraintOrder::sequential) {
   DropletParams p;
+  p.constraint_order = order;
   Simulation sim(p, medium);
   double x0 = 37;
   sim.place_above(x0);
@@ -183,6 +184,7 @@ int main(int argc, char** argv) {
       {"free-fall", free_fall},
       {"medium-200", [&] { return stepping(m200, 300'000); }},
       {"medium-5000", [&] { return stepping(m5000, 300'000); }},
+      {"medium-200-red-black", [&] { return stepping(m200, 300'000, ConstraintOrder::red_black); }},
       {"sweep-1thread", [] { return sweep(1); }},
       {"sweep", [&] { return sweep(threads); }},
       {"search-l1", [&] { return search(1, threads); }},

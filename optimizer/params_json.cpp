@@ -5,7 +5,14 @@
 #include <type_traits>
 
 namespace softdrop {
+
+NLOHMANN_JSON_SERIALIZE_ENUM(ConstraintOrder, {{ConstraintOrder::sequential, "sequential"},
+                                               {ConstraintOrder::red_black, "red-black"}})
+
 namespace {
+
+// Keys added after files already existed: a missing one keeps its default (what older builds did).
+bool optional_key(const std::string& key) { return key == "constraint-order"; }
 
 // The lists of stored options: key (= CLI long option name) and field.
 template <class Droplet, class F>
@@ -22,6 +29,7 @@ void visit_droplet(Droplet& d, F&& f) {
   f("dt", d.dt);
   f("max-strain", d.max_strain);
   f("constraint-iterations", d.constraint_iterations);
+  f("constraint-order", d.constraint_order);
   f("max-depth", d.max_depth);
   f("viscosity", d.viscosity);
 }
@@ -92,18 +100,30 @@ struct Reader {
   const nlohmann::json& j;
   template <class T>
   void operator()(const char* key, T& value) const {
-    if (!j.contains(key)) throw std::runtime_error(std::string("stored parameters: '") + key + "' missing");
+    if (!j.contains(key)) {
+      if (optional_key(key)) return;
+      throw std::runtime_error(std::string("stored parameters: '") + key + "' missing");
+    }
     const auto& v = j.at(key);
     bool ok;
     if constexpr (std::is_same_v<T, bool>) ok = v.is_boolean();
-    else if constexpr (std::is_same_v<T, std::string>) ok = v.is_string();
+    else if constexpr (std::is_same_v<T, std::string> || std::is_enum_v<T>) ok = v.is_string();
     else if constexpr (std::is_same_v<T, std::vector<double>>) ok = v.is_array();
     else if constexpr (std::is_integral_v<T>) ok = v.is_number_integer() || v.is_number_unsigned();
     else ok = v.is_number();
     if (ok) {
       try {
-        value = v.template get<T>();
-        return;
+        if constexpr (std::is_enum_v<T>) {
+          // An unknown name would silently map to the first enumerator: refuse it instead.
+          const T parsed = v.template get<T>();
+          if (nlohmann::json(parsed) == v) {
+            value = parsed;
+            return;
+          }
+        } else {
+          value = v.template get<T>();
+          return;
+        }
       } catch (const nlohmann::json::exception&) {
       }
     }

@@ -1,6 +1,7 @@
 #include "softdrop/droplet.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "validation.hpp"
 
@@ -69,8 +70,38 @@ void place_droplet(const DropletParams& params, double cx, double cy, DropletSta
   }
 }
 
-int apply_length_constraint(DropletState* state, double rest_length, double max_strain,
-                            int iterations) {
+ConstraintOrder parse_constraint_order(const std::string& name) {
+  if (name == "sequential") return ConstraintOrder::sequential;
+  if (name == "red-black") return ConstraintOrder::red_black;
+  throw std::invalid_argument("constraint-order '" + name + "': expected sequential or red-black");
+}
+
+const char* to_string(ConstraintOrder order) {
+  return order == ConstraintOrder::sequential ? "sequential" : "red-black";
+}
+
+namespace {
+
+// Brings spring (i, j) back inside [dmin, dmax]; returns 1 if it moved its ends.
+inline int constrain(double* x, double* y, int i, int j, double dmin, double dmax) {
+  const double dx = x[j] - x[i], dy = y[j] - y[i];
+  const double d2 = dx * dx + dy * dy;
+  if (d2 <= dmax * dmax && d2 >= dmin * dmin) return 0;
+  const double d = std::sqrt(d2);
+  if (d == 0) return 0;
+  const double target = d > dmax ? dmax : dmin;
+  const double c = 0.5 * (d - target) / d;  // > 0 pulls the ends together, < 0 pushes apart
+  x[i] += c * dx;
+  y[i] += c * dy;
+  x[j] -= c * dx;
+  y[j] -= c * dy;
+  return 1;
+}
+
+}  // namespace
+
+int apply_length_constraint(DropletState* state, double rest_length, double max_strain, int iterations,
+                            ConstraintOrder order) {
   const int n = state->size();
   const double dmax = (1 + max_strain) * rest_length;
   const double dmin = (1 - max_strain) * rest_length;
@@ -78,20 +109,20 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
   int corrections = 0;
   for (int pass = 0; pass < iterations; ++pass) {
     int changed = 0;
-    for (int i = 0; i < n; ++i) {
-      const int j = i + 1 == n ? 0 : i + 1;
-      const double dx = x[j] - x[i], dy = y[j] - y[i];
-      const double d2 = dx * dx + dy * dy;
-      if (d2 <= dmax * dmax && d2 >= dmin * dmin) continue;
-      const double d = std::sqrt(d2);
-      if (d == 0) continue;
-      const double target = d > dmax ? dmax : dmin;
-      const double c = 0.5 * (d - target) / d;  // > 0 pulls the ends together, < 0 pushes apart
-      x[i] += c * dx;
-      y[i] += c * dy;
-      x[j] -= c * dx;
-      y[j] -= c * dy;
-      ++changed;
+    if (order == ConstraintOrder::sequential) {
+      // Each spring sees its neighbour's correction: a serial chain of square roots and divisions.
+      for (int i = 0; i < n; ++i) changed += constrain(x, y, i, i + 1 == n ? 0 : i + 1, dmin, dmax);
+    } else {
+      // Springs (0,1), (2,3), ... share no mass, nor do (1,2), (3,4), ...: each half-pass is a set
+      // of independent corrections the processor can overlap. An odd ring's closing spring (n-1, 0)
+      // touches the first spring's mass, so it goes last.
+      const int pairs = n / 2;
+      for (int k = 0; k < pairs; ++k) changed += constrain(x, y, 2 * k, 2 * k + 1, dmin, dmax);
+      for (int k = 0; k < pairs; ++k) {  // (1,2), (3,4), ...; for an even ring the last is (n-1, 0)
+        const int i = 2 * k + 1;
+        changed += constrain(x, y, i, i + 1 == n ? 0 : i + 1, dmin, dmax);
+      }
+      if (n % 2 == 1) changed += constrain(x, y, n - 1, 0, dmin, dmax);
     }
     corrections += changed;
     if (changed == 0) break;

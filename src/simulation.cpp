@@ -258,7 +258,7 @@ bool Simulation::step() {
   compute_forces();
   integrate();
   softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain,
-                                    params_.constraint_iterations);
+                                    params_.constraint_iterations, params_.constraint_order);
   apply_contact_limit();
   return std::isfinite(area_) && area_ > 0;
 }

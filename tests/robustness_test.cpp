@@ -54,3 +54,35 @@ TEST(Robustness, ThousandDropletsThroughOverlappingMedia) {
 
 }  // namespace
 }  // namespace softdrop
+
+namespace softdrop {
+namespace {
+
+// The red-black constraint order gives other numbers (other rounding) but the same physics: the
+// same droplets pass, with the same mean tortuosity within the standard errors, and none diverges.
+TEST(Robustness, RedBlackOrderGivesTheSameStatistics) {
+  RunOptions o;
+  o.stuck_window = 0.2;
+  BatchOptions b;
+  b.droplets = 60;
+  b.seed = 11;
+  for (const double phi : {0.85, 0.95}) {
+    MediumOptions mo;
+    mo.porosity = phi;
+    mo.seed = 21;
+    const Medium m = generate_medium(mo);
+    DropletParams seq, rb;
+    rb.constraint_order = ConstraintOrder::red_black;
+    const BatchStats a = summarize(run_batch(seq, m, o, b)), c = summarize(run_batch(rb, m, o, b));
+    SCOPED_TRACE("phi " + std::to_string(phi));
+    EXPECT_EQ(c.diverged, 0);
+    EXPECT_EQ(c.timeout, 0);
+    EXPECT_NEAR(c.passed, a.passed, 0.1 * b.droplets);
+    ASSERT_GT(a.passed, 10);
+    EXPECT_LT(std::abs(c.mean_tortuosity - a.mean_tortuosity),
+              3 * std::hypot(a.standard_error, c.standard_error));
+  }
+}
+
+}  // namespace
+}  // namespace softdrop

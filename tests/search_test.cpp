@@ -248,6 +248,16 @@ TEST(SearchParams, RoundTripBitForBitAndNameMissingKeys) {
   std::string j = search_params_to_json(o);
   j.replace(j.find("\"lambda\":3"), 10, "\"lambda\":3.5");
   EXPECT_THROW(search_params_from_json(j), std::runtime_error);
+  // The constraint order travels as its name; files written before it existed mean sequential.
+  o.droplet.constraint_order = ConstraintOrder::red_black;
+  std::string k = search_params_to_json(o);
+  EXPECT_NE(k.find("\"constraint-order\":\"red-black\""), std::string::npos);
+  EXPECT_EQ(search_params_from_json(k).droplet.constraint_order, ConstraintOrder::red_black);
+  std::string old = k;
+  old.erase(old.find("\"constraint-order\":\"red-black\","), std::string("\"constraint-order\":\"red-black\",").size());
+  EXPECT_EQ(search_params_from_json(old).droplet.constraint_order, ConstraintOrder::sequential);
+  k.replace(k.find("red-black"), 9, "shuffled!");
+  EXPECT_THROW(search_params_from_json(k), std::runtime_error);
 }
 
 }  // namespace

@@ -10,6 +10,12 @@ namespace softdrop {
 
 /// Physical and numerical parameters of a droplet. Units are the paper's pixel-like numerical
 /// units: length in grid units, time in simulation time units, mass in mass units.
+/// How the springs of one constraint pass are ordered.
+enum class ConstraintOrder { sequential, red_black };
+/// Parses "sequential" / "red-black"; throws std::invalid_argument naming the value.
+ConstraintOrder parse_constraint_order(const std::string& name);
+const char* to_string(ConstraintOrder order);
+
 struct DropletParams {
   int masses = 40;           ///< N, point masses on the ring
   double mass = 1.0;         ///< m, mass of each point
@@ -23,6 +29,10 @@ struct DropletParams {
   double dt = 2.0e-5;        ///< time step (time)
   double max_strain = 0.1;   ///< Provot limit: |d - d0| / d0 <= max_strain after each step
   int constraint_iterations = 4;  ///< Gauss-Seidel passes of the Provot constraint per step
+  /// Order of the springs within a pass. Sequential (ring order) is the reference; red-black does
+  /// the even springs, then the odd ones: the springs of a half-pass share no mass, so they run
+  /// independently (about 3x faster steps), with different rounding and so different numbers.
+  ConstraintOrder constraint_order = ConstraintOrder::sequential;
   /// Contact inverse dynamics: a mass deeper than this inside a grain is moved back to this depth
   /// and loses its inward normal velocity (length; as a fraction of the smallest grain radius it
   /// bounds how far a grain can cut into the ring).
@@ -57,11 +67,12 @@ void place_droplet(const DropletParams& params, double cx, double cy, DropletSta
 
 /// Provot's inverse-dynamics length constraint on the ring's springs: every spring longer than
 /// (1 + max_strain) d0 or shorter than (1 - max_strain) d0 has its two ends moved symmetrically
-/// along it back to the limit, edge by edge in ring order, for up to `iterations` passes (stops
-/// early once a pass changes nothing). Previous positions are untouched, so Verlet's implied
+/// along it back to the limit, edge by edge in ring order (or even edges, then odd edges, then,
+/// for an odd ring, the closing edge: red-black), for up to `iterations` passes (stops early once
+/// a pass changes nothing). Previous positions are untouched, so Verlet's implied
 /// velocities follow the corrected positions. Returns the number of corrections made.
 int apply_length_constraint(DropletState* state, double rest_length, double max_strain,
-                            int iterations);
+                            int iterations, ConstraintOrder order = ConstraintOrder::sequential);
 
 /// Signed enclosed area (shoelace), positive for counter-clockwise order.
 double ring_area(const DropletState& state);

@@ -101,6 +101,7 @@ int run_export(const ExportArgs& a) {
                             "constraint-iterations", "max-depth", "viscosity", "max-steps", "stuck-window",
                             "stuck-distance"})
       toml << key << " = " << params.at(key).dump() << "\n";
+    if (params.contains("constraint-order")) toml << "constraint-order = " << params.at("constraint-order").dump() << "\n";
     write_file_atomically(a.simulate_config, toml.str());
   }
   std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation << " (T = "
