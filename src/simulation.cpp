@@ -254,11 +254,15 @@ void Simulation::compute_forces() {
   if (params_.viscosity > 0) accumulate_viscosity();
 }
 
+void Simulation::apply_constraint() {
+  softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain,
+                                    params_.constraint_iterations, params_.constraint_order);
+}
+
 bool Simulation::step() {
   compute_forces();
   integrate();
-  softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain,
-                                    params_.constraint_iterations, params_.constraint_order);
+  apply_constraint();
   apply_contact_limit();
   return std::isfinite(area_) && area_ > 0;
 }

@@ -100,14 +100,18 @@ class Simulation {
   /// FNV-1a hash of the bits of the runtime state: the determinism fingerprint.
   std::uint64_t state_hash() const;
 
+  /// The named stages of a step, in order (step() = the force stages, integrate, the constraint,
+  /// apply_contact_limit). Public so that benchmarks and tests can time and check each one.
+  void accumulate_gravity();     ///< clears the forces to the weight m g
+  void accumulate_springs();     ///< damped springs along the ring
+  void accumulate_pressure();    ///< P l_e on each edge's outward normal (updates area())
+  void accumulate_collisions();  ///< grain and wall contacts (penalty and damping); touched set
+  void accumulate_viscosity();   ///< internal viscosity relative to the rigid motion
+  void integrate();              ///< position Verlet
+  void apply_constraint();       ///< the Provot length constraint (params().constraint_order)
+  void apply_contact_limit();    ///< inverse dynamics: masses no deeper than max_depth
+
  private:
-  void accumulate_gravity();
-  void accumulate_springs();
-  void accumulate_pressure();
-  void accumulate_collisions();
-  void accumulate_viscosity();
-  void integrate();
-  void apply_contact_limit();
   bool any_grain_inside_ring() const;
 
   DropletParams params_;
