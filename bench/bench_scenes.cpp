@@ -3,10 +3,11 @@
 //
 //   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--out FILE.csv]
 //
-// Scenes: free-fall (40 masses, empty box), medium-200 (40 masses through an overlapping medium of
-// about 200 grains at phi 0.7), medium-5000 (the same grain density in a 25x larger box, about
-// 5000 grains), medium-200-red-black (medium-200 with the red-black constraint order), sweep (droplets through media on all threads), search-l1 and search-l2 (the
-// default search at lambda 1 and 2).
+// Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
+// about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
+// 5000 grains); medium-200-red-black (medium-200 with the red-black constraint order); sweep
+// (droplets through media, on 1 thread and on all); search-l1 and search-l2 (the default search
+// at lambda 1 and 2, on 1 thread and on all threads with speculation, as `optimize` runs it).
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -121,11 +122,14 @@ Work search(int lambda, int threads) {
   }
   Search s(o, best, 0);
   Work w;
+  DriveOptions d;
+  d.generations = 120 / lambda;
+  d.threads = threads;  // as optimize does: with 2 threads, idle ones speculate on later generations
   const auto t0 = Clock::now();
-  for (int g = 0; g < 60 / lambda; ++g) {
-    const Generation gen = s.next(threads);
+  drive(s, d, [&](const Generation& gen, const Configuration&) {
     for (const Candidate& c : gen.candidates) w.steps += static_cast<double>(c.eval.steps), ++w.evaluations;
-  }
+    return true;
+  });
   w.seconds = since(t0);
   w.mass_updates = w.steps * o.droplet.masses;
   return w;
@@ -187,6 +191,7 @@ int main(int argc, char** argv) {
       {"medium-200-red-black", [&] { return stepping(m200, 300'000, ConstraintOrder::red_black); }},
       {"sweep-1thread", [] { return sweep(1); }},
       {"sweep", [&] { return sweep(threads); }},
+      {"search-l1-1thread", [] { return search(1, 1); }},
       {"search-l1", [&] { return search(1, threads); }},
       {"search-l2-1thread", [] { return search(2, 1); }},
       {"search-l2", [&] { return search(2, threads); }},
@@ -209,8 +214,7 @@ int main(int argc, char** argv) {
     std::sort(ws.begin(), ws.end(), [](const Work& a, const Work& b) { return a.seconds < b.seconds; });
     const Work& best = ws.front();
     const double median = ws[ws.size() / 2].seconds;
-    const int used = name.find("1thread") != std::string::npos || name.rfind("medium", 0) == 0 || name == "free-fall" ||
-                             name == "search-l1"
+    const int used = name.find("1thread") != std::string::npos || name.rfind("medium", 0) == 0 || name == "free-fall"
                          ? 1
                          : threads;
     csv << name << ',' << used << ',' << repeats << ',' << best.grains << ',' << best.seconds << ',' << median << ','

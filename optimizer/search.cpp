@@ -4,9 +4,17 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <exception>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include "softdrop/spacing.hpp"
 #include "validation.hpp"
@@ -143,6 +151,18 @@ Generation Search::next(int threads) {
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(0, options_.lambda, work); });
   }
+  return complete(std::move(g.candidates),
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+}
+
+Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
+  Generation g;
+  g.number = last_ + 1;
+  g.kind = move_kind(g.number, options_);
+  g.candidates = std::move(candidates);
+  if (static_cast<int>(g.candidates.size()) != options_.lambda)
+    throw std::logic_error("Search::complete: " + std::to_string(g.candidates.size()) + " candidates for lambda " +
+                           std::to_string(options_.lambda));
   // The best strict improvement; ties go to the lowest index, so the choice is thread-independent.
   double best_t = best_.eval.tortuosity;
   for (const Candidate& c : g.candidates)
@@ -159,14 +179,129 @@ Generation Search::next(int threads) {
   last_ = g.number;
   g.best_t = best_.eval.tortuosity;
   g.touched = static_cast<int>(best_.eval.touched.size());
-  g.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  g.seconds = seconds;
   return g;
 }
+
+namespace {
+
+// Speculative evaluation: worker threads take candidates (g, k) in order, up to `depth`
+// generations ahead of the last completed one, each from the best as of the last completed
+// generation. When a generation accepts a candidate, the best changes: every result of a later
+// generation was made from the old best, so it is dropped and handed out again.
+class Pipeline {
+ public:
+  Pipeline(Search& search, int workers, std::int64_t last_allowed)
+      : search_(search), upto_(last_allowed) {
+    const int lambda = search.options().lambda;
+    // Far enough ahead that a slow (stuck) candidate does not leave the other threads idle.
+    depth_ = std::max<std::int64_t>(2, (4 * workers + lambda - 1) / lambda);
+    parent_ = std::make_shared<const Configuration>(search.best());
+    completed_ = next_gen_ = search.last_generation();
+    ++next_gen_;
+    for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
+  }
+  ~Pipeline() {
+    {
+      std::lock_guard lock(m_);
+      stop_ = true;
+    }
+    cv_.notify_all();
+    for (std::thread& t : threads_) t.join();
+  }
+  Pipeline(const Pipeline&) = delete;
+  Pipeline& operator=(const Pipeline&) = delete;
+
+  Generation next() {
+    const auto t0 = std::chrono::steady_clock::now();
+    const int lambda = search_.options().lambda;
+    std::vector<Candidate> candidates;
+    {
+      std::unique_lock lock(m_);
+      const std::int64_t g = completed_ + 1;
+      cv_.wait(lock, [&] {
+        if (error_) return true;
+        for (int k = 0; k < lambda; ++k)
+          if (!done_.count({g, k})) return false;
+        return true;
+      });
+      if (error_) std::rethrow_exception(error_);
+      for (int k = 0; k < lambda; ++k) {
+        auto it = done_.find({g, k});
+        candidates.push_back(std::move(it->second));
+        done_.erase(it);
+      }
+    }
+    const Generation gen =
+        search_.complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    {
+      std::lock_guard lock(m_);
+      completed_ = gen.number;
+      if (gen.accepted >= 0) {  // everything speculated was made from the old best
+        ++epoch_;
+        parent_ = std::make_shared<const Configuration>(search_.best());
+        done_.clear();
+        next_gen_ = gen.number + 1;
+        next_k_ = 0;
+      }
+    }
+    cv_.notify_all();
+    return gen;
+  }
+
+ private:
+  void work() {
+    const SearchOptions& options = search_.options();
+    std::unique_lock lock(m_);
+    for (;;) {
+      cv_.wait(lock, [&] { return stop_ || (next_gen_ <= upto_ && next_gen_ <= completed_ + depth_); });
+      if (stop_) return;
+      const std::int64_t g = next_gen_;
+      const int k = next_k_;
+      if (++next_k_ == options.lambda) next_k_ = 0, ++next_gen_;
+      const std::shared_ptr<const Configuration> parent = parent_;
+      const std::int64_t epoch = epoch_;
+      lock.unlock();
+      std::optional<Candidate> c;
+      try {
+        c = make_candidate(*parent, g, k, options);
+        c->eval = evaluate(c->medium, options);
+      } catch (...) {
+        lock.lock();
+        if (!error_) error_ = std::current_exception();
+        cv_.notify_all();
+        continue;
+      }
+      lock.lock();
+      if (epoch == epoch_) done_.emplace(std::pair{g, k}, std::move(*c));
+      cv_.notify_all();
+    }
+  }
+
+  Search& search_;
+  const std::int64_t upto_;
+  std::int64_t depth_ = 1;
+  std::mutex m_;
+  std::condition_variable cv_;
+  std::shared_ptr<const Configuration> parent_;
+  std::int64_t epoch_ = 0, completed_ = 0, next_gen_ = 0;
+  int next_k_ = 0;
+  std::map<std::pair<std::int64_t, int>, Candidate> done_;
+  std::exception_ptr error_;
+  bool stop_ = false;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace
 
 SearchSummary drive(Search& search, const DriveOptions& options, const GenerationCallback& callback) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   SearchSummary s;
+  const int workers = options.threads > 0 ? options.threads : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  std::unique_ptr<Pipeline> pipeline;
+  if (options.speculate && workers > 1 && search.last_generation() < options.generations)
+    pipeline = std::make_unique<Pipeline>(search, workers, options.generations);
   for (;;) {
     if (search.last_generation() >= options.generations) {
       s.termination = Termination::generations;
@@ -184,7 +319,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
                   std::to_string(search.last_generation());
       break;
     }
-    const Generation g = search.next(options.threads);
+    const Generation g = pipeline ? pipeline->next() : search.next(options.threads);
     ++s.generations_run;
     s.evaluations += static_cast<std::int64_t>(g.candidates.size());
     if (g.accepted >= 0) ++s.accepted;

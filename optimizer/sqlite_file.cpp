@@ -186,6 +186,14 @@ std::runtime_error file_error(const std::string& path, const std::string& what) 
   return std::runtime_error("--db '" + path + "': " + what);
 }
 
+void set_row_status(SQLite::Database& db, const char* table, std::int64_t id, const std::string& status,
+                    const std::string& what) {
+  SQLite::Statement u(db, std::string("UPDATE ") + table + " SET status = ?, updated = " + kNow + " WHERE id = ?");
+  u.bind(1, status);
+  u.bind(2, id);
+  if (u.exec() != 1) throw std::runtime_error(what + " " + std::to_string(id) + ": no such " + what);
+}
+
 std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMode mode) {
   const bool has_content = check_file(path, mode);
   if (has_content) {

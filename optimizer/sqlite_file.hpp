@@ -5,6 +5,7 @@
 
 #include <SQLiteCpp/SQLiteCpp.h>
 
+#include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -23,6 +24,11 @@ std::runtime_error file_error(const std::string& path, const std::string& what);
 /// schema is created or migrated to kHistorySchemaVersion. Throws std::runtime_error (one line
 /// naming the file) for anything that is not a readable softdrop database.
 std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMode mode);
+
+/// Sets `status` and `updated` of row `id` of `table` (runs or sweeps); throws naming `what` if
+/// there is no such row.
+void set_row_status(SQLite::Database& db, const char* table, std::int64_t id, const std::string& status,
+                    const std::string& what);
 
 /// Runs f, turning SQLite exceptions into one line naming the file.
 template <class F>

@@ -76,10 +76,7 @@ class SqliteHistory final : public History {
 
   void set_status(std::int64_t run, const std::string& status) override {
     guarded([&] {
-      SQLite::Statement u(db_, std::string("UPDATE runs SET status = ?, updated = ") + kNow + " WHERE id = ?");
-      u.bind(1, status);
-      u.bind(2, static_cast<std::int64_t>(run));
-      if (u.exec() != 1) throw std::runtime_error("run " + std::to_string(run) + ": no such run");
+      detail::set_row_status(db_, "runs", run, status, "run");
       return 0;
     });
   }

@@ -108,10 +108,7 @@ class SqliteSweepStore final : public SweepStore {
 
   void set_status(std::int64_t sweep, const std::string& status) override {
     guarded([&] {
-      SQLite::Statement u(db_, std::string("UPDATE sweeps SET status = ?, updated = ") + kNow + " WHERE id = ?");
-      u.bind(1, status);
-      u.bind(2, sweep);
-      if (u.exec() != 1) throw std::runtime_error("sweep " + std::to_string(sweep) + ": no such sweep");
+      detail::set_row_status(db_, "sweeps", sweep, status, "sweep");
       return 0;
     });
   }

@@ -24,6 +24,13 @@ inline std::string temp_path(const std::string& name) {
           ("softdrop_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
+/// temp_path(name) with no file there, nor SQLite's -wal and -shm companions.
+inline std::string fresh_path(const std::string& name) {
+  const std::string p = temp_path(name);
+  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(p + suffix);
+  return p;
+}
+
 /// Runs `softdrop ARGS` through the shell.
 inline Result run(const std::string& args) {
   const std::string err_path = temp_path("stderr.txt");

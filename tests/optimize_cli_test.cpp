@@ -29,11 +29,7 @@ using softdrop::test::run;
 const std::string kScene =
     " --grains 16 --width 160 --height 120 --medium-seed 2 --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet ";
 
-std::string fresh(const std::string& name) {
-  const std::string p = softdrop::test::temp_path(name);
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(p + suffix);
-  return p;
-}
+std::string fresh(const std::string& name) { return softdrop::test::fresh_path(name); }
 
 // Everything deterministic a run stored: the rows of every table without times and durations.
 std::string dump(const std::string& db_path, int run) {
@@ -93,9 +89,10 @@ bool has_run(const std::string& db_path) {
 }
 
 TEST(Optimize, KilledAtRandomInstantsAndResumedEqualsAnUninterruptedRun) {
-  const std::string gens = " --generations 30 --lambda 2 --threads 1 ";
+  // The reference runs one generation at a time; the killed runs speculate on 2 threads.
+  const std::string gens = " --generations 30 --lambda 2 --threads 2 ";
   const std::string ref = fresh("ref.db"), killed = fresh("killed.db");
-  const Result r = run("optimize --db " + ref + kScene + gens);
+  const Result r = run("optimize --db " + ref + kScene + " --generations 30 --lambda 2 --threads 1");
   ASSERT_EQ(r.code, 0) << r.err;
 
   std::mt19937 rng(2026);  // the test's kill instants are reproducible too

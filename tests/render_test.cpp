@@ -16,11 +16,7 @@
 namespace softdrop {
 namespace {
 
-std::string fresh(const std::string& name) {
-  const std::string p = test::temp_path(name);
-  std::filesystem::remove(p);
-  return p;
-}
+std::string fresh(const std::string& name) { return test::fresh_path(name); }
 
 struct Png {
   int width = 0, height = 0;

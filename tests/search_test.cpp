@@ -147,6 +147,41 @@ TEST(Search, LambdaFourGivesTheSameHistoryOnOneAndTwoThreads) {
   EXPECT_EQ(one.best().medium, two.best().medium);
 }
 
+TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
+  for (int lambda : {1, 2}) {
+    const SearchOptions o = test::small_search_options(lambda);
+    Configuration best;
+    initial_generation(test::small_search_medium(), o, &best);
+    Search plain(o, best, 0), fast(o, best, 0);
+    std::vector<Generation> a, b;
+    for (int i = 0; i < 16; ++i) a.push_back(plain.next(1));
+    DriveOptions d;
+    d.generations = 16;
+    d.threads = 3;  // more workers than candidates: they run ahead into later generations
+    const SearchSummary sum = drive(fast, d, [&](const Generation& g, const Configuration&) {
+      b.push_back(g);
+      return true;
+    });
+    ASSERT_EQ(b.size(), a.size());
+    int accepted = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      SCOPED_TRACE("lambda " + std::to_string(lambda) + " generation " + std::to_string(i + 1));
+      ASSERT_EQ(b[i].number, a[i].number);
+      ASSERT_EQ(b[i].accepted, a[i].accepted);
+      ASSERT_EQ(b[i].best_t, a[i].best_t);
+      accepted += a[i].accepted >= 0;
+      for (std::size_t k = 0; k < a[i].candidates.size(); ++k) {
+        EXPECT_EQ(b[i].candidates[k].medium, a[i].candidates[k].medium);
+        EXPECT_EQ(b[i].candidates[k].eval.tortuosity, a[i].candidates[k].eval.tortuosity);
+        EXPECT_EQ(b[i].candidates[k].eval.steps, a[i].candidates[k].eval.steps);
+      }
+    }
+    EXPECT_GT(accepted, 0) << "acceptances make the pipeline drop speculative work: that path must run";
+    EXPECT_EQ(fast.best().medium, plain.best().medium);
+    EXPECT_EQ(sum.evaluations, 16 * lambda);
+  }
+}
+
 TEST(Search, ResumingFromTheStoredBestContinuesTheSameHistory) {
   const SearchOptions o = test::small_search_options();
   Configuration best;

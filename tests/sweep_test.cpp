@@ -25,11 +25,7 @@
 namespace softdrop {
 namespace {
 
-std::string fresh(const std::string& name) {
-  const std::string p = test::temp_path(name);
-  for (const char* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(p + suffix);
-  return p;
-}
+std::string fresh(const std::string& name) { return test::fresh_path(name); }
 
 SweepOptions tiny() {
   SweepOptions o;

@@ -117,6 +117,10 @@ class Search {
   /// Runs generation last_generation() + 1 with up to `threads` threads (0: all cores) and updates
   /// the best. The result does not depend on `threads`.
   Generation next(int threads = 0);
+  /// Completes generation last_generation() + 1 from its evaluated candidates (all lambda of them,
+  /// in index order): keeps the best strict improvement and updates the best. next() and the
+  /// pipelined drive both end here.
+  Generation complete(std::vector<Candidate> candidates, double seconds);
 
   const Configuration& best() const { return best_; }
   std::int64_t last_generation() const { return last_; }
@@ -143,6 +147,10 @@ struct DriveOptions {
   double time_limit = 0;               ///< wall seconds (0: none)
   const std::atomic<bool>* stop = nullptr;  ///< raised asynchronously to stop after the generation
   int threads = 0;                     ///< 0: all cores
+  /// With more than one thread, idle threads evaluate candidates of the next generations before
+  /// the current one is decided, assuming it accepts nothing (most generations), and drop them
+  /// when it does accept. The history is the same as without it; it only keeps threads busy.
+  bool speculate = true;
 };
 
 /// What a drive did and why it ended (cf. Ceres' Solver::Summary).
@@ -162,7 +170,7 @@ struct SearchSummary {
 /// the progress line live in callbacks, so the search knows nothing of them).
 using GenerationCallback = std::function<bool(const Generation&, const Configuration& best)>;
 
-/// Runs generations until a stop condition holds.
+/// Runs generations until a stop condition holds. Results do not depend on threads or speculate.
 SearchSummary drive(Search& search, const DriveOptions& options, const GenerationCallback& callback);
 
 }  // namespace softdrop

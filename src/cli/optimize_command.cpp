@@ -59,6 +59,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->capture_default_str();
   g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
+  g->add_flag("--no-speculation", a.no_speculation,
+              "Evaluate one generation at a time (by default idle threads evaluate the next generations "
+              "ahead, assuming no acceptance; the history is the same either way)");
   g->add_option("--start-attempts", a.start_attempts,
                 "Random starting media to try until the droplet passes (generated media only)")
       ->capture_default_str();
@@ -219,6 +222,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   drive_options.time_limit = a.time_limit;
   drive_options.stop = stop.flag();
   drive_options.threads = a.threads;
+  drive_options.speculate = !a.no_speculation;
   const SearchSummary summary = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
     history->append(run, g, best);
     progress.update(g, best, g.number == a.generations);

@@ -17,6 +17,7 @@ struct OptimizeArgs {
   std::int64_t generations = 200;  ///< run up to this generation number
   double time_limit = 0;           ///< wall seconds, 0: none
   int threads = 0;
+  bool no_speculation = false;     ///< evaluate one generation at a time
   int start_attempts = 20;         ///< random starting media tried until the droplet passes
   SearchOptions search;
   MediumArgs medium;
