@@ -2,6 +2,7 @@
 
 #include <sqlite3.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <thread>
@@ -208,9 +209,13 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     if (!ours && mode == OpenMode::read_only) throw file_error(path, "empty SQLite database, no softdrop data");
   }
   return guarded(path, [&] {
-    auto db = std::make_unique<SQLite::Database>(
-        path, mode == OpenMode::read_only ? SQLite::OPEN_READONLY : SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE,
-        60'000);
+    // A reader of a checked, writable file still opens it read-write (and never writes): SQLite can
+    // then checkpoint and remove the -wal and -shm files when the last connection closes, which a
+    // read-only connection cannot.
+    const int flags = mode == OpenMode::create       ? SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE
+                      : ::access(path.c_str(), W_OK) == 0 ? SQLite::OPEN_READWRITE
+                                                          : SQLite::OPEN_READONLY;
+    auto db = std::make_unique<SQLite::Database>(path, flags, 60'000);
     db->exec("PRAGMA foreign_keys = ON");
     if (mode == OpenMode::read_only) return db;
     // Switching to WAL needs the file to itself and does not wait through the busy handler, so a
