@@ -87,6 +87,15 @@ void Simulation::centre_of_mass(double* cx, double* cy) const {
 
 // ---- Stages of a step -------------------------------------------------------------------------
 
+namespace {
+// x - W floor(x / W), the position of x in [0, W). Inside the box (0 < x < 0.999999 W) that
+// expression is x exactly (the quotient rounds below 1, so the floor is 0), so the division is
+// skipped there: same bits, a division fewer per mass in the common case.
+inline double wrap_periodic(double x, double W) {
+  return x > 0 && x < 0.999999 * W ? x : x - W * std::floor(x / W);
+}
+}  // namespace
+
 void Simulation::accumulate_gravity() {
   const double w = params_.mass * params_.gravity;
   std::fill(state_.fx.begin(), state_.fx.end(), 0.0);
@@ -146,7 +155,7 @@ void Simulation::accumulate_collisions() {
   for (int i = 0; i < n; ++i) {
     const double x = state_.x[i], y = state_.y[i];
     const double vx = (x - state_.px[i]) * inv_dt, vy = (y - state_.py[i]) * inv_dt;
-    const double xw = periodic ? x - W * std::floor(x / W) : x;
+    const double xw = periodic ? wrap_periodic(x, W) : x;
     const auto range = grid_.query(xw, y);
     for (const std::int32_t* it = range.begin; it != range.end; ++it) {
       const std::int32_t k = *it;
@@ -211,7 +220,7 @@ void Simulation::apply_contact_limit() {
   const bool periodic = medium_.periodic;
   const double *gx = grid_.gx().data(), *gy = grid_.gy().data(), *gr = grid_.gr().data();
   for (int i = 0; i < n; ++i) {
-    const double xw = periodic ? state_.x[i] - W * std::floor(state_.x[i] / W) : state_.x[i];
+    const double xw = periodic ? wrap_periodic(state_.x[i], W) : state_.x[i];
     const auto range = grid_.query(xw, state_.y[i]);
     for (const std::int32_t* it = range.begin; it != range.end; ++it) {
       const std::int32_t k = *it;
