@@ -95,11 +95,10 @@ Work sweep(int threads) {
   o.medium.width = o.medium.height = 300;
   Work w;
   const auto t0 = Clock::now();
-  for (const SweepUnit& u : sweep_units(o)) {
-    const SweepMedium m = run_sweep_unit(o, u, threads);
+  run_sweep_units(o, sweep_units(o), threads, [&](SweepMedium&& m) {  // as `softdrop sweep` runs
     w.droplets += static_cast<double>(m.droplets.size());
     for (const SweepDroplet& d : m.droplets) w.steps += static_cast<double>(d.steps);
-  }
+  });
   w.seconds = since(t0);
   w.mass_updates = w.steps * o.droplet.masses;
   return w;

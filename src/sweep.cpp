@@ -1,6 +1,12 @@
 #include "softdrop/sweep.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
 #include <cmath>
 #include <map>
 #include <stdexcept>
@@ -49,41 +55,172 @@ std::uint64_t sweep_medium_seed(const SweepOptions& o, const SweepUnit& u) {
   return derive_seed(derive_seed(o.seed, micro), static_cast<std::uint64_t>(u.medium));
 }
 
+namespace {
+
+// A unit's medium and the options of its droplets: the one definition both runners use.
+struct UnitSetup {
+  SweepMedium record;  // identity, seeds and medium figures; droplets and counts come later
+  Medium medium;
+  BatchOptions batch;
+  RunOptions run;
+};
+
+UnitSetup setup_unit(const SweepOptions& o, const SweepUnit& u) {
+  UnitSetup s;
+  s.record.unit = u;
+  s.record.target_porosity = o.porosities.at(static_cast<std::size_t>(u.porosity));
+  s.record.medium_seed = sweep_medium_seed(o, u);
+  MediumOptions mo = o.medium;
+  mo.porosity = s.record.target_porosity;
+  mo.seed = s.record.medium_seed;
+  s.medium = generate_medium(mo);
+  s.record.porosity = exact_porosity(s.medium);
+  s.record.grains = static_cast<int>(s.medium.grains.size());
+  s.batch.droplets = o.droplets;
+  s.batch.seed = derive_seed(s.record.medium_seed, 0x5354415254ULL);  // "START"
+  s.run = o.run;
+  s.run.path_interval = 0;
+  s.run.area_interval = 0;
+  s.run.snapshot_times.clear();
+  return s;
+}
+
+void finish_unit(SweepMedium* r, const std::vector<RunSummary>& runs) {
+  const BatchStats s = summarize(runs);
+  r->passed = s.passed;
+  r->stuck = s.stuck;
+  r->timeout = s.timeout;
+  r->diverged = s.diverged;
+  r->mean_t = s.mean_tortuosity;
+  r->standard_error = s.standard_error;
+  r->stuck_fraction = s.stuck_fraction;
+  r->droplets.clear();
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    r->droplets.push_back({static_cast<int>(i), runs[i].start_x, runs[i].outcome,
+                           runs[i].outcome == Outcome::passed ? runs[i].tortuosity : 0.0, runs[i].steps});
+}
+
+}  // namespace
+
 SweepMedium run_sweep_unit(const SweepOptions& o, const SweepUnit& u, int threads,
                            const std::function<void(int, int)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
-  SweepMedium r;
-  r.unit = u;
-  r.target_porosity = o.porosities.at(static_cast<std::size_t>(u.porosity));
-  r.medium_seed = sweep_medium_seed(o, u);
-  MediumOptions mo = o.medium;
-  mo.porosity = r.target_porosity;
-  mo.seed = r.medium_seed;
-  const Medium medium = generate_medium(mo);
-  r.porosity = exact_porosity(medium);
-  r.grains = static_cast<int>(medium.grains.size());
-  BatchOptions b;
-  b.droplets = o.droplets;
-  b.seed = derive_seed(r.medium_seed, 0x5354415254ULL);  // "START"
-  b.threads = threads;
-  RunOptions run = o.run;
-  run.path_interval = 0;
-  run.area_interval = 0;
-  run.snapshot_times.clear();
-  const std::vector<RunSummary> runs = run_batch(o.droplet, medium, run, b, progress);
-  const BatchStats s = summarize(runs);
-  r.passed = s.passed;
-  r.stuck = s.stuck;
-  r.timeout = s.timeout;
-  r.diverged = s.diverged;
-  r.mean_t = s.mean_tortuosity;
-  r.standard_error = s.standard_error;
-  r.stuck_fraction = s.stuck_fraction;
-  for (std::size_t i = 0; i < runs.size(); ++i)
-    r.droplets.push_back({static_cast<int>(i), runs[i].start_x, runs[i].outcome,
-                          runs[i].outcome == Outcome::passed ? runs[i].tortuosity : 0.0, runs[i].steps});
-  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return r;
+  UnitSetup s = setup_unit(o, u);
+  s.batch.threads = threads;
+  finish_unit(&s.record, run_batch(o.droplet, s.medium, s.run, s.batch, progress));
+  s.record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return std::move(s.record);
+}
+
+void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units, int threads,
+                     const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop) {
+  const int workers = threads > 0 ? threads : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  struct Open {
+    std::once_flag made;
+    std::unique_ptr<UnitSetup> setup;
+    std::exception_ptr error;
+    std::vector<RunSummary> runs;
+    int remaining = 0;
+    std::chrono::steady_clock::time_point t0;
+  };
+  std::vector<Open> open(units.size());
+  std::mutex m;
+  std::condition_variable cv;
+  std::size_t next_unit = 0, completed_units = 0;
+  int next_droplet = 0;
+  bool stopping = false;
+  std::exception_ptr error;
+  std::vector<std::size_t> ready;  // completed units waiting for on_done
+  const std::size_t window = static_cast<std::size_t>(workers) + 1;
+  std::size_t oldest_open = 0;     // units before it are complete
+  int active = 0;                  // droplets being simulated
+
+  auto worker = [&] {
+    std::unique_lock lock(m);
+    for (;;) {
+      cv.wait(lock, [&] {
+        return stopping || next_unit == units.size() || next_unit < oldest_open + window;
+      });
+      if (stopping || next_unit == units.size()) return;
+      // A stop request is honoured between units: the open units' droplets are all handed out by
+      // then, so they complete and are committed; no new unit starts.
+      if (next_droplet == 0 && stop && stop()) {
+        stopping = true;
+        cv.notify_all();
+        return;
+      }
+      const std::size_t u = next_unit;
+      const int d = next_droplet;
+      if (d == 0) {
+        open[u].runs.resize(static_cast<std::size_t>(o.droplets));
+        open[u].remaining = o.droplets;
+        open[u].t0 = std::chrono::steady_clock::now();
+      }
+      if (++next_droplet == o.droplets) next_droplet = 0, ++next_unit;
+      ++active;
+      lock.unlock();
+      try {
+        std::call_once(open[u].made, [&] { open[u].setup = std::make_unique<UnitSetup>(setup_unit(o, units[u])); });
+        const UnitSetup& s = *open[u].setup;
+        Simulation sim(o.droplet, s.medium);
+        open[u].runs[static_cast<std::size_t>(d)] = sim.run(batch_start_x(s.batch, s.medium, o.droplet, d), s.run);
+      } catch (...) {
+        lock.lock();
+        --active;
+        if (!error) error = std::current_exception();
+        stopping = true;
+        cv.notify_all();
+        return;
+      }
+      lock.lock();
+      --active;
+      cv.notify_all();
+      if (--open[u].remaining == 0) {
+        ready.push_back(u);
+        cv.notify_all();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 0; i < workers; ++i) pool.emplace_back(worker);
+  {
+    std::unique_lock lock(m);
+    for (;;) {
+      // Done when every unit is committed, on an error, or when stopping with no droplet in flight
+      // (then nothing more can complete).
+      cv.wait(lock, [&] {
+        return !ready.empty() || error || completed_units == units.size() || (stopping && active == 0);
+      });
+      if (error || completed_units == units.size()) break;
+      if (ready.empty()) break;
+      const std::size_t u = ready.back();
+      ready.pop_back();
+      lock.unlock();
+      SweepMedium record = std::move(open[u].setup->record);
+      finish_unit(&record, open[u].runs);
+      record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - open[u].t0).count();
+      open[u].setup.reset();
+      open[u].runs = {};
+      try {
+        on_done(std::move(record));
+      } catch (...) {
+        lock.lock();
+        error = std::current_exception();
+        stopping = true;
+        cv.notify_all();
+        break;
+      }
+      lock.lock();
+      ++completed_units;
+      open[u].remaining = -1;  // committed
+      while (oldest_open < units.size() && open[oldest_open].remaining == -1) ++oldest_open;
+      cv.notify_all();
+    }
+    stopping = true;
+  }
+  cv.notify_all();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
 }
 
 std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media) {

@@ -73,6 +73,42 @@ TEST(Sweep, UnitRecordsAreCompleteAndThreadIndependent) {
   EXPECT_EQ(a.mean_t, b.mean_t);
 }
 
+TEST(Sweep, UnitsRunAcrossThreadsEqualUnitsRunOneByOne) {
+  const SweepOptions o = tiny();
+  const auto units = sweep_units(o);
+  std::vector<SweepMedium> got;
+  run_sweep_units(o, units, 3, [&](SweepMedium&& m) { got.push_back(std::move(m)); });
+  ASSERT_EQ(got.size(), units.size());
+  std::sort(got.begin(), got.end(), [](const SweepMedium& a, const SweepMedium& b) {
+    return std::pair{a.unit.porosity, a.unit.medium} < std::pair{b.unit.porosity, b.unit.medium};
+  });
+  for (std::size_t i = 0; i < units.size(); ++i) {
+    const SweepMedium one = run_sweep_unit(o, units[i], 1);
+    SCOPED_TRACE("unit " + std::to_string(i));
+    EXPECT_EQ(got[i].unit, one.unit);
+    EXPECT_EQ(got[i].porosity, one.porosity);
+    EXPECT_EQ(got[i].mean_t, one.mean_t);
+    EXPECT_EQ(got[i].passed, one.passed);
+    ASSERT_EQ(got[i].droplets.size(), one.droplets.size());
+    for (std::size_t d = 0; d < one.droplets.size(); ++d) {
+      EXPECT_EQ(got[i].droplets[d].start_x, one.droplets[d].start_x);
+      EXPECT_EQ(got[i].droplets[d].tortuosity, one.droplets[d].tortuosity);
+      EXPECT_EQ(got[i].droplets[d].steps, one.droplets[d].steps);
+    }
+  }
+  // A stop request lets the units already started finish, complete, and starts no new one.
+  int calls = 0;
+  std::vector<SweepMedium> some;
+  run_sweep_units(o, units, 2, [&](SweepMedium&& m) { some.push_back(std::move(m)); },
+                  [&] { return ++calls > 2; });
+  EXPECT_GE(some.size(), 1u);
+  EXPECT_LT(some.size(), units.size());
+  for (const SweepMedium& m : some) EXPECT_EQ(m.droplets.size(), 4u);
+  // An error in the store's callback stops the run and reaches the caller.
+  EXPECT_THROW(run_sweep_units(o, units, 2, [](SweepMedium&&) { throw std::runtime_error("disk full"); }),
+               std::runtime_error);
+}
+
 TEST(Sweep, PointsPoolTheDropletsOfAPorosity) {
   SweepMedium m1, m2, m3;
   m1.target_porosity = m2.target_porosity = 0.8;

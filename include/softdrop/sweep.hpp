@@ -73,6 +73,15 @@ struct SweepMedium {
 SweepMedium run_sweep_unit(const SweepOptions& options, const SweepUnit& unit, int threads,
                            const std::function<void(int, int)>& progress = {});
 
+/// Runs `units` keeping every thread busy across unit boundaries: droplets of the next units start
+/// while the last droplets of earlier ones finish (at most threads + 1 units are open at once).
+/// `on_done` is called on the calling thread with each unit as it completes, in completion order,
+/// so that a store can commit it; each record equals run_sweep_unit's for that unit. `stop` is
+/// polled before each new unit: once it returns true no unit starts, and the units already started
+/// are finished and handed to on_done. `threads` 0 means all cores.
+void run_sweep_units(const SweepOptions& options, const std::vector<SweepUnit>& units, int threads,
+                     const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop = {});
+
 /// Per-porosity aggregate of medium records: droplets pooled over the porosity's media.
 struct SweepPoint {
   double target_porosity = 0;

@@ -159,31 +159,30 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd) {
               << a.sweep.media << " media x " << a.sweep.droplets << " droplets; shard " << shard << "/" << shards
               << ": " << shard_total - todo.size() << " of " << shard_total << " media already stored\n";
 
-  StopOnSignal stop("\nsoftdrop: stopping after the medium in flight (Ctrl-C again to drop it)\n");
+  StopOnSignal stop("\nsoftdrop: finishing the media in flight (Ctrl-C again to leave now; they are then redone next time)\n");
   const auto t0 = std::chrono::steady_clock::now();
   const bool tty = ::isatty(2) != 0;
   auto last = t0;
   long droplets_done = 0;
   std::size_t units_done = 0;
-  {
-    for (const SweepUnit& u : todo) {
-      if (stop.requested()) break;
-      const SweepMedium m = run_sweep_unit(a.sweep, u, a.threads);
-      store->add(id, m);
-      ++units_done;
-      droplets_done += static_cast<long>(m.droplets.size());
-      const auto now = std::chrono::steady_clock::now();
-      if (!a.quiet && (now - last > std::chrono::seconds(tty ? 1 : 10) || units_done == todo.size())) {
-        last = now;
-        const double s = std::chrono::duration<double>(now - t0).count();
-        const double eta = s / static_cast<double>(units_done) * static_cast<double>(todo.size() - units_done);
-        std::cerr << (tty ? "\r" : "") << "sweep: " << units_done << "/" << todo.size() << " media, "
-                  << fmt(static_cast<double>(droplets_done) / s, 3) << " droplets/s, phi " << fmt(m.target_porosity, 3)
-                  << " <T> " << fmt(m.mean_t, 5) << ", ETA " << fmt(eta, 3) << " s"
-                  << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
-      }
-    }
-  }
+  run_sweep_units(
+      a.sweep, todo, a.threads,
+      [&](SweepMedium&& m) {
+        store->add(id, m);
+        ++units_done;
+        droplets_done += static_cast<long>(m.droplets.size());
+        const auto now = std::chrono::steady_clock::now();
+        if (!a.quiet && (now - last > std::chrono::seconds(tty ? 1 : 10) || units_done == todo.size())) {
+          last = now;
+          const double s = std::chrono::duration<double>(now - t0).count();
+          const double eta = s / static_cast<double>(units_done) * static_cast<double>(todo.size() - units_done);
+          std::cerr << (tty ? "\r" : "") << "sweep: " << units_done << "/" << todo.size() << " media, "
+                    << fmt(static_cast<double>(droplets_done) / s, 3) << " droplets/s, phi "
+                    << fmt(m.target_porosity, 3) << " <T> " << fmt(m.mean_t, 5) << ", ETA " << fmt(eta, 3) << " s"
+                    << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
+        }
+      },
+      [&] { return stop.requested(); });
   const SweepRecord rec = store->sweep(id);
   store->set_status(id, rec.done == rec.units ? "complete" : stop.requested() ? "interrupted" : "running");
   points_table(sweep_points(store->media(id))).print(std::cout, a.format);
