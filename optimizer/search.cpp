@@ -5,6 +5,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -195,7 +196,7 @@ class Pipeline {
       : search_(search), upto_(last_allowed) {
     const int lambda = search.options().lambda;
     // Far enough ahead that a slow (stuck) candidate does not leave the other threads idle.
-    depth_ = std::max<std::int64_t>(2, (4 * workers + lambda - 1) / lambda);
+    depth_ = std::max<std::int64_t>(2, (16 * workers + lambda - 1) / lambda);
     parent_ = std::make_shared<const Configuration>(search.best());
     completed_ = next_gen_ = search.last_generation();
     ++next_gen_;
@@ -239,6 +240,7 @@ class Pipeline {
       completed_ = gen.number;
       if (gen.accepted >= 0) {  // everything speculated was made from the old best
         ++epoch_;
+        epoch_seen_.store(epoch_, std::memory_order_relaxed);
         parent_ = std::make_shared<const Configuration>(search_.best());
         done_.clear();
         next_gen_ = gen.number + 1;
@@ -265,7 +267,13 @@ class Pipeline {
       std::optional<Candidate> c;
       try {
         c = make_candidate(*parent, g, k, options);
-        c->eval = evaluate(c->medium, options);
+        // Speculative work made useless by an acceptance stops early instead of running on.
+        SearchOptions watched = options;
+        watched.run.cancelled = [&] { return epoch_seen_.load(std::memory_order_relaxed) != epoch; };
+        c->eval = evaluate(c->medium, watched);
+      } catch (const RunCancelled&) {
+        lock.lock();
+        continue;
       } catch (...) {
         lock.lock();
         if (!error_) error_ = std::current_exception();
@@ -285,6 +293,7 @@ class Pipeline {
   std::condition_variable cv_;
   std::shared_ptr<const Configuration> parent_;
   std::int64_t epoch_ = 0, completed_ = 0, next_gen_ = 0;
+  std::atomic<std::int64_t> epoch_seen_{0};  // epoch_, readable without the lock
   int next_k_ = 0;
   std::map<std::pair<std::int64_t, int>, Candidate> done_;
   std::exception_ptr error_;

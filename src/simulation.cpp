@@ -390,6 +390,7 @@ RunSummary Simulation::run_from_current(const RunOptions& options) {
       return finish(Outcome::passed, "centre of mass left the medium at y = 0", k);
     }
     if (k % options.check_interval == 0) {
+      if (options.cancelled && options.cancelled()) throw RunCancelled{};
       if (ring_self_intersects(state_))
         return finish(Outcome::diverged, "ring self-intersects at step " + std::to_string(k), k);
       if (any_grain_inside_ring()) {

@@ -146,3 +146,25 @@ TEST(Simulation, PolylineTortuosityInterpolatesCrossings) {
 
 }  // namespace
 }  // namespace softdrop
+
+namespace softdrop {
+namespace {
+
+TEST(Simulation, ACancelHookStopsTheRunAndOtherwiseChangesNothing) {
+  const Medium m = test::pore_of_three_grains();
+  DropletParams p;
+  RunOptions plain, watched, stopping;
+  int polls = 0;
+  watched.cancelled = [&] { ++polls; return false; };
+  stopping.cancelled = [] { return true; };
+  Simulation a(p, m), b(p, m), c(p, m);
+  const RunSummary ra = a.run(100, plain), rb = b.run(100, watched);
+  EXPECT_EQ(ra.tortuosity, rb.tortuosity);
+  EXPECT_EQ(ra.steps, rb.steps);
+  EXPECT_EQ(a.state_hash(), b.state_hash());
+  EXPECT_EQ(polls, ra.steps / plain.check_interval);
+  EXPECT_THROW(c.run(100, stopping), RunCancelled);
+}
+
+}  // namespace
+}  // namespace softdrop

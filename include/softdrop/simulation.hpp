@@ -4,6 +4,8 @@
 /// tortuosity of the centre-of-mass path and optional traces.
 
 #include <cstdint>
+#include <exception>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -33,8 +35,16 @@ struct RunOptions {
   int path_interval = 0;
   int area_interval = 0;                 ///< record the ring area S(t) every this many steps (0: no)
   std::vector<double> snapshot_times;    ///< record the ring boundary at these times (time units)
+  /// Polled every check_interval steps; when it returns true the run stops by throwing
+  /// RunCancelled (used to drop speculative work that became useless). Empty: never.
+  std::function<bool()> cancelled;
 
   bool IsValid(std::string* why) const;
+};
+
+/// Thrown by Simulation::run when RunOptions::cancelled returns true.
+struct RunCancelled : std::exception {
+  const char* what() const noexcept override { return "run cancelled"; }
 };
 
 /// A recorded ring boundary.
