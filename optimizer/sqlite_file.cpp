@@ -195,7 +195,9 @@ void set_row_status(SQLite::Database& db, const char* table, std::int64_t id, co
   if (u.exec() != 1) throw std::runtime_error(what + " " + std::to_string(id) + ": no such " + what);
 }
 
-std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMode mode) {
+namespace {
+// The read-only checks of open_database, run before anything may write to the file.
+void validate(const std::string& path, OpenMode mode) {
   const bool has_content = check_file(path, mode);
   if (has_content) {
     // Inspect read-only first: nothing is written to a file that turns out not to be ours.
@@ -208,6 +210,11 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     }
     if (!ours && mode == OpenMode::read_only) throw file_error(path, "empty SQLite database, no softdrop data");
   }
+}
+}  // namespace
+
+std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMode mode) {
+  validate(path, mode);
   return guarded(path, [&] {
     // A reader of a checked, writable file still opens it read-write (and never writes): SQLite can
     // then checkpoint and remove the -wal and -shm files when the last connection closes, which a
@@ -247,3 +254,7 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
 }
 
 }  // namespace softdrop::detail
+
+namespace softdrop {
+void check_database(const std::string& path) { detail::validate(path, OpenMode::create); }
+}  // namespace softdrop

@@ -216,6 +216,19 @@ TEST(Optimize, CtrlCFinishesTheGenerationInFlightAndTimeLimitStops) {
   EXPECT_LT(j["generations_run"].get<int>(), 100000);
 }
 
+TEST(Optimize, BadOptionsAndFailedStartsLeaveNoDatabase) {
+  const std::string db = fresh("never.db");
+  for (const std::string args : {"--lambda 0", "--step -1", "--grains -5", "--constraint-order shuffled",
+                                  "--grains 100000 --width 100 --height 100", "--time-limit -3"}) {
+    const Result r = run("optimize --db " + db + " " + args);
+    SCOPED_TRACE(args);
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_EQ(r.err.rfind("softdrop: error: ", 0), 0u) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(db));
+  }
+}
+
 TEST(Optimize, BadDatabaseFilesGiveOneLineAndStayUnchanged) {
   const std::string text = fresh("cli_text.db");
   std::ofstream(text) << "not a database at all, just some text that is long enough to have a header\n";

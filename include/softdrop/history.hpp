@@ -96,4 +96,8 @@ enum class OpenMode {
 /// one line naming the file, and the file is not modified.
 std::unique_ptr<History> open_history(const std::string& path, OpenMode mode);
 
+/// The checks open_history(path, OpenMode::create) makes, without creating or writing anything:
+/// lets a command refuse a bad file before long work, and create a new one only afterwards.
+void check_database(const std::string& path);
+
 }  // namespace softdrop

@@ -1,6 +1,5 @@
 #include "cli/common_options.hpp"
 
-#include <map>
 #include <stdexcept>
 
 namespace softdrop::cli {
@@ -53,11 +52,11 @@ CLI::Option_group* add_droplet_options(CLI::App* s, DropletParams& d) {
   g->add_option("--max-strain", d.max_strain, "Provot limit on |d - d0|/d0")->capture_default_str();
   g->add_option("--constraint-iterations", d.constraint_iterations, "Passes of the Provot constraint per step")
       ->capture_default_str();
-  g->add_option("--constraint-order", d.constraint_order,
-                "sequential (reference) or red-black (independent half-passes, ~3x faster, other rounding)")
-      ->transform(CLI::CheckedTransformer(std::map<std::string, ConstraintOrder>{
-          {"sequential", ConstraintOrder::sequential}, {"red-black", ConstraintOrder::red_black}}))
-      ->capture_default_str();
+  g->add_option_function<std::string>(
+       "--constraint-order", [&d](const std::string& v) { d.constraint_order = parse_constraint_order(v); },
+       "sequential (reference) or red-black (independent half-passes, ~2.6x faster steps, other rounding)")
+      ->check(CLI::IsMember({"sequential", "red-black"}))
+      ->default_str(to_string(d.constraint_order));
   g->add_option("--max-depth", d.max_depth, "Contact limit: deepest a mass may sit inside a grain (length units)")
       ->capture_default_str();
   g->add_option("--viscosity", d.viscosity,

@@ -4,8 +4,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -142,16 +142,18 @@ class SearchProgress {
   std::int64_t generations_ = 0, evaluations_ = 0, accepted_ = 0;
 };
 
-// Generation 0 of a new run: the loaded medium, or random media until the droplet passes.
+// Generation 0 of a new run: the loaded medium, or random media until the droplet passes. A medium
+// that cannot be generated at all (e.g. too many grains for the box) is an error, not a retry.
 Generation start(const OptimizeArgs& a, Configuration* best) {
   if (!a.medium.file.empty()) return initial_generation(load_medium(a.medium.file), a.search, best);
   std::string last_reason;
   for (int attempt = 0; attempt < a.start_attempts; ++attempt) {
     MediumOptions m = a.medium.options;
     if (attempt > 0) m.seed = derive_seed(a.medium.options.seed, static_cast<std::uint64_t>(attempt));
+    const Medium medium = generate_medium(m);
     try {
-      return initial_generation(generate_medium(m), a.search, best);
-    } catch (const std::runtime_error& e) {
+      return initial_generation(medium, a.search, best);
+    } catch (const std::runtime_error& e) {  // the droplet did not pass: try another medium
       last_reason = e.what();
       if (!a.quiet)
         std::cerr << "optimize: starting medium " << attempt + 1 << ": " << last_reason << "; trying another\n";
@@ -204,9 +206,13 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
     resolve_medium(a.medium);
     std::string why;
     if (!a.search.IsValid(&why)) throw std::invalid_argument(why);
-    history = open_history(a.db, OpenMode::create);
+    // An existing file is checked first; a new one is created only once generation 0 exists, so
+    // a start that fails leaves no file behind.
+    check_database(a.db);
+    if (!std::filesystem::exists(a.db)) check_output_path("--db", a.db);
     Configuration best;
     const Generation g0 = start(a, &best);
+    history = open_history(a.db, OpenMode::create);
     run = history->create_run(given.dump(), a.search, g0, best);
     search = std::make_unique<Search>(a.search, std::move(best), 0);
     if (!a.quiet)
