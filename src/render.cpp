@@ -4,7 +4,6 @@
 #include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
-#include <gif_lib.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -15,6 +14,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "animation_sinks.hpp"
 #include "validation.hpp"
 
 namespace softdrop {
@@ -28,7 +28,8 @@ ImageFormat image_format_for(const std::string& path) {
   if (ext == ".svg") return ImageFormat::svg;
   if (ext == ".pdf") return ImageFormat::pdf;
   if (ext == ".gif") return ImageFormat::gif;
-  throw std::invalid_argument("output '" + path + "': unknown picture format (use .png, .svg, .pdf or .gif)");
+  if (ext == ".mp4") return ImageFormat::mp4;
+  throw std::invalid_argument("output '" + path + "': unknown picture format (use .png, .svg, .pdf, or .gif / .mp4 for animations)");
 }
 
 Rgba parse_colour(const std::string& text) {
@@ -198,7 +199,9 @@ void write_picture(const std::string& path, int width, int height, const std::fu
     case ImageFormat::png: raw = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height); break;
     case ImageFormat::svg: raw = cairo_svg_surface_create(tmp.c_str(), width, height); break;
     case ImageFormat::pdf: raw = cairo_pdf_surface_create(tmp.c_str(), width, height); break;
-    case ImageFormat::gif: throw std::invalid_argument("output '" + path + "': a still picture cannot be a .gif (use .png, .svg or .pdf)");
+    case ImageFormat::gif:
+    case ImageFormat::mp4:
+      throw std::invalid_argument("output '" + path + "': a still picture is written as .png, .svg or .pdf");
   }
   SurfacePtr surface(raw, cairo_surface_destroy);
   auto failed = [&](const std::string& what) {
@@ -413,8 +416,9 @@ void render_animation(int frames, double fps, const std::function<void(int, Scen
                       const RenderStyle& style, const std::string& path) {
   std::string why;
   if (!style.IsValid(&why)) throw std::invalid_argument(why);
-  if (image_format_for(path) != ImageFormat::gif)
-    throw std::invalid_argument("output '" + path + "': an animation is written as .gif");
+  const ImageFormat format = image_format_for(path);
+  if (format != ImageFormat::gif && format != ImageFormat::mp4)
+    throw std::invalid_argument("output '" + path + "': an animation is written as .gif or .mp4");
   if (frames < 1 || frames > 100000) throw std::invalid_argument("frames = " + std::to_string(frames) + ": must be in [1, 1e5]");
   if (!std::isfinite(fps) || fps <= 0 || fps > 100) throw std::invalid_argument("fps = " + num(fps) + ": must be in (0, 100]");
 
@@ -422,48 +426,10 @@ void render_animation(int frames, double fps, const std::function<void(int, Scen
   frame(0, scene);
   if (!scene.medium.IsValid(&why)) throw std::invalid_argument(why);
   const Geometry g = geometry_of(scene, style);  // fixed for all frames
-  if (g.width > 65535 || g.height > 65535) throw std::invalid_argument("size: too large for a GIF");
-
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-  int error = 0;
-  // Opened here rather than by giflib, which would create the file readable by its owner only.
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);
-  if (fd < 0) throw std::runtime_error("output '" + path + "': cannot write " + tmp);
-  GifFileType* gif = EGifOpenFileHandle(fd, &error);
-  if (!gif) ::close(fd);
-  auto failed = [&](const std::string& what) {
-    if (gif) EGifCloseFile(gif, &error);
-    gif = nullptr;
-    std::filesystem::remove(tmp);
-    return std::runtime_error("output '" + path + "': " + what);
-  };
-  if (!gif) throw failed(std::string("cannot write (") + GifErrorString(error) + ")");
-  // A fixed palette: the 6 x 6 x 6 colour cube and 40 greys. Drawings have few colours, so the
-  // nearest-entry mapping below is enough (no dithering, no per-frame quantisation).
-  GifColorType colours[256];
-  for (int i = 0; i < 216; ++i)
-    colours[i] = {static_cast<GifByteType>(51 * (i / 36)), static_cast<GifByteType>(51 * (i / 6 % 6)),
-                  static_cast<GifByteType>(51 * (i % 6))};
-  for (int i = 216; i < 256; ++i) {
-    const auto v = static_cast<GifByteType>(std::lround((i - 216) * 255.0 / 39));
-    colours[i] = {v, v, v};
-  }
-  ColorMapObject* map = GifMakeMapObject(256, colours);
-  const bool ok = EGifPutScreenDesc(gif, g.width, g.height, 8, 0, map) == GIF_OK;
-  GifFreeMapObject(map);
-  if (!ok) throw failed("GIF screen descriptor");
-  EGifSetGifVersion(gif, true);
-  // Loop forever (NETSCAPE2.0 application extension).
-  const unsigned char loop_app[] = {'N', 'E', 'T', 'S', 'C', 'A', 'P', 'E', '2', '.', '0'};
-  const unsigned char loop_data[] = {1, 0, 0};
-  if (EGifPutExtensionLeader(gif, APPLICATION_EXT_FUNC_CODE) != GIF_OK ||
-      EGifPutExtensionBlock(gif, sizeof loop_app, loop_app) != GIF_OK ||
-      EGifPutExtensionBlock(gif, sizeof loop_data, loop_data) != GIF_OK || EGifPutExtensionTrailer(gif) != GIF_OK)
-    throw failed("GIF loop extension");
-
+  std::unique_ptr<detail::FrameSink> sink = format == ImageFormat::gif
+                                                ? detail::gif_sink(path, g.width, g.height, fps)
+                                                : detail::video_sink(path, g.width, g.height, fps);
   SurfacePtr surface(cairo_image_surface_create(CAIRO_FORMAT_RGB24, g.width, g.height), cairo_surface_destroy);
-  std::vector<GifByteType> row(static_cast<std::size_t>(g.width));
-  const int delay = std::max(2, static_cast<int>(std::lround(100.0 / fps)));  // centiseconds
   for (int f = 0; f < frames; ++f) {
     if (f > 0) {
       scene = Scene{};
@@ -474,40 +440,9 @@ void render_animation(int frames, double fps, const std::function<void(int, Scen
       draw_scene(cr.get(), scene, style, g);
     }
     cairo_surface_flush(surface.get());
-    GraphicsControlBlock gcb{};
-    gcb.DisposalMode = DISPOSE_DO_NOT;
-    gcb.DelayTime = delay;
-    gcb.TransparentColor = NO_TRANSPARENT_COLOR;
-    GifByteType ext[4];
-    const std::size_t n = EGifGCBToExtension(&gcb, ext);
-    if (EGifPutExtension(gif, GRAPHICS_EXT_FUNC_CODE, static_cast<int>(n), ext) != GIF_OK ||
-        EGifPutImageDesc(gif, 0, 0, g.width, g.height, false, nullptr) != GIF_OK)
-      throw failed("GIF frame header");
-    const unsigned char* data = cairo_image_surface_get_data(surface.get());
-    const int stride = cairo_image_surface_get_stride(surface.get());
-    for (int y = 0; y < g.height; ++y) {
-      const auto* px = reinterpret_cast<const std::uint32_t*>(data + static_cast<std::ptrdiff_t>(y) * stride);
-      for (int x = 0; x < g.width; ++x) {
-        const int r = static_cast<int>((px[x] >> 16) & 0xff), gg = static_cast<int>((px[x] >> 8) & 0xff),
-                  b = static_cast<int>(px[x] & 0xff);
-        int index;
-        if (std::abs(r - gg) < 8 && std::abs(gg - b) < 8)
-          index = 216 + static_cast<int>(std::lround((r + gg + b) / 3.0 * 39 / 255));
-        else
-          index = 36 * ((r + 25) / 51) + 6 * ((gg + 25) / 51) + (b + 25) / 51;
-        row[static_cast<std::size_t>(x)] = static_cast<GifByteType>(index);
-      }
-      if (EGifPutLine(gif, row.data(), g.width) != GIF_OK) throw failed("GIF pixels");
-    }
+    sink->add(cairo_image_surface_get_data(surface.get()), cairo_image_surface_get_stride(surface.get()));
   }
-  if (EGifCloseFile(gif, &error) != GIF_OK) {
-    gif = nullptr;
-    throw failed(std::string("GIF close (") + GifErrorString(error) + ")");
-  }
-  gif = nullptr;
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw failed(ec.message());
+  sink->finish();
 }
 
 }  // namespace softdrop

@@ -31,10 +31,10 @@ inline std::string fresh_path(const std::string& name) {
   return p;
 }
 
-/// Runs `softdrop ARGS` through the shell.
-inline Result run(const std::string& args) {
+/// Runs a shell command line, capturing its stdout, stderr and exit code.
+inline Result run_shell(const std::string& command) {
   const std::string err_path = temp_path("stderr.txt");
-  const std::string cmd = std::string(SOFTDROP_CLI) + " " + args + " 2>" + err_path;
+  const std::string cmd = command + " 2>" + err_path;
   Result r{};
   FILE* pipe = popen(cmd.c_str(), "r");
   std::array<char, 4096> buf{};
@@ -49,5 +49,8 @@ inline Result run(const std::string& args) {
   std::filesystem::remove(err_path);
   return r;
 }
+
+/// Runs `softdrop ARGS` through the shell.
+inline Result run(const std::string& args) { return run_shell(std::string(SOFTDROP_CLI) + " " + args); }
 
 }  // namespace softdrop::test

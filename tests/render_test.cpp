@@ -207,6 +207,24 @@ TEST(RenderCli, EveryPictureKindRenders) {
   DGifCloseFile(g, &error);
 }
 
+TEST(RenderCli, AnimationAsMp4ThroughFfmpeg) {
+  const std::string mp4 = fresh("anim.mp4");
+  const std::string args = "render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 --size 160 -o " + mp4;
+  // Without ffmpeg on the PATH: one clear line, no file.
+  const test::Result missing = test::run_shell("PATH=/nonexistent " + std::string(SOFTDROP_CLI) + " " + args);
+  EXPECT_EQ(missing.code, 1);
+  EXPECT_NE(missing.err.find("needs the ffmpeg program"), std::string::npos) << missing.err;
+  EXPECT_FALSE(std::filesystem::exists(mp4));
+  if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg is not installed";
+  const test::Result r = test::run(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(mp4, std::ios::binary);
+  std::string head(12, '\0');
+  in.read(head.data(), 12);
+  EXPECT_EQ(head.substr(4, 4), "ftyp") << "an ISO media file";
+  EXPECT_GT(std::filesystem::file_size(mp4), 1000u);
+}
+
 TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
   const std::string csv = fresh("trace.csv"), png = fresh("trace.png");
   const test::Result r = test::run("render trace --medium " + kPore + " --x0 100 --csv " + csv + " -o " + png + " --size 400");

@@ -1,7 +1,7 @@
 #pragma once
 /// \file render.hpp
 /// Pictures of media, droplets, paths and searches, drawn with Cairo: PNG, SVG and PDF from the
-/// same drawing code (chosen by the file extension), and animated GIFs encoded with giflib.
+/// same drawing code (chosen by the file extension), and animations as GIF (giflib) or MP4 (ffmpeg).
 /// One module shared by the CLI, the studies and the tests. Files are written atomically.
 
 #include <cstdint>
@@ -14,8 +14,8 @@
 namespace softdrop {
 
 /// Output format, from the file extension.
-enum class ImageFormat { png, svg, pdf, gif };
-/// .png, .svg, .pdf or .gif (case-insensitive); throws std::invalid_argument naming the path.
+enum class ImageFormat { png, svg, pdf, gif, mp4 };
+/// .png, .svg, .pdf, .gif or .mp4 (case-insensitive); throws std::invalid_argument naming the path.
 ImageFormat image_format_for(const std::string& path);
 
 /// A colour with alpha, components in [0, 1].
@@ -90,8 +90,9 @@ struct Chart {
 void render_chart(const Chart& chart, const RenderStyle& style, const std::string& path);
 
 /// An animation: frame(i, scene) fills the scene of frame i for i in [0, frames); frames are
-/// drawn as for render_scene and encoded as an animated GIF (a fixed 256-colour palette) that
-/// loops, at `fps` frames per second. Throws std::runtime_error naming the file on failure.
+/// drawn as for render_scene at `fps` frames per second and encoded by the extension: .gif with
+/// giflib (a fixed 256-colour palette, looping) or .mp4 with the ffmpeg program (H.264, yuv420p).
+/// Throws std::runtime_error naming the file on failure (ffmpeg missing included).
 void render_animation(int frames, double fps, const std::function<void(int, Scene&)>& frame,
                       const RenderStyle& style, const std::string& path);
 
