@@ -207,6 +207,17 @@ TEST(RenderCli, EveryPictureKindRenders) {
   DGifCloseFile(g, &error);
 }
 
+TEST(RenderCli, AConfigFileReachesTheNestedCommand) {
+  const std::string toml = fresh("render.toml"), out = fresh("from_config.png");
+  std::ofstream(toml) << "size = 212\nmedium = \"" << kPore << "\"\ngrain-colour = \"#ff0000\"\n";
+  const test::Result r = test::run("render medium --config " + toml + " -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_png(out).width, 212);
+  const test::Result before = test::run("--config " + toml + " render medium -o " + out + " --size 180");
+  ASSERT_EQ(before.code, 0) << before.err;
+  EXPECT_EQ(read_png(out).width, 180) << "the command line wins over the file";
+}
+
 TEST(RenderCli, AnimationAsMp4ThroughFfmpeg) {
   const std::string mp4 = fresh("anim.mp4");
   const std::string args = "render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 --size 160 -o " + mp4;

@@ -19,10 +19,14 @@ class SubcommandConfig : public CLI::ConfigTOML {
   explicit SubcommandConfig(const CLI::App& app) : app_(app) {}
   std::vector<CLI::ConfigItem> from_config(std::istream& input) const override {
     auto parsed = CLI::ConfigTOML::from_config(input);
-    std::string sub;
-    for (const CLI::App* s : app_.get_subcommands()) sub = s->get_name();
+    // The chain of chosen subcommands, e.g. render -> medium.
+    std::vector<std::string> chain;
+    for (const CLI::App* a = &app_; !a->get_subcommands().empty();) {
+      a = a->get_subcommands().back();
+      chain.push_back(a->get_name());
+    }
     for (auto& item : parsed)
-      if (item.parents.empty() && !sub.empty()) item.parents.push_back(sub);
+      if (item.parents.empty()) item.parents = chain;
     return parsed;
   }
 

@@ -17,6 +17,7 @@ namespace softdrop::cli {
 CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   CLI::App* r = app.add_subcommand("render", "Draw media, droplets, paths, searches and animations (PNG, SVG, PDF, GIF)");
   r->require_subcommand(1);
+  r->fallthrough();  // lets `render medium --config FILE` reach the program-level --config
   auto style = [&](CLI::App* s, const char* formats) {
     s->fallthrough();
     auto* g = s->add_option_group("Picture");
