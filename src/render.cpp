@@ -33,15 +33,16 @@ ImageFormat image_format_for(const std::string& path) {
 }
 
 Rgba parse_colour(const std::string& text) {
+  // The '#' is optional: config files (CLI11's TOML reader) take '#' for a comment even in quotes.
+  const std::size_t o = !text.empty() && text[0] == '#' ? 1 : 0;
+  const auto bad = [&] { return std::invalid_argument("colour '" + text + "': expected #rrggbb or #rrggbbaa"); };
+  if (text.size() - o != 6 && text.size() - o != 8) throw bad();
   auto hex = [&](std::size_t i) -> double {
-    const std::string two = text.substr(i, 2);
-    if (!std::isxdigit(static_cast<unsigned char>(two[0])) || !std::isxdigit(static_cast<unsigned char>(two[1])))
-      throw std::invalid_argument("colour '" + text + "': expected #rrggbb or #rrggbbaa");
+    const std::string two = text.substr(o + i, 2);
+    if (!std::isxdigit(static_cast<unsigned char>(two[0])) || !std::isxdigit(static_cast<unsigned char>(two[1]))) throw bad();
     return std::stoi(two, nullptr, 16) / 255.0;
   };
-  if (text.size() != 7 && text.size() != 9) throw std::invalid_argument("colour '" + text + "': expected #rrggbb or #rrggbbaa");
-  if (text[0] != '#') throw std::invalid_argument("colour '" + text + "': expected #rrggbb or #rrggbbaa");
-  return {hex(1), hex(3), hex(5), text.size() == 9 ? hex(7) : 1.0};
+  return {hex(0), hex(2), hex(4), text.size() - o == 8 ? hex(6) : 1.0};
 }
 
 bool RenderStyle::IsValid(std::string* why) const {

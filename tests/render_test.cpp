@@ -168,6 +168,9 @@ TEST(Render, BadFormatAndColourAreRefusedWithoutAFile) {
   EXPECT_THROW(parse_colour("red"), std::invalid_argument);
   EXPECT_THROW(parse_colour("#12345g"), std::invalid_argument);
   EXPECT_EQ(parse_colour("#ff000080"), (Rgba{1, 0, 0, 128 / 255.0}));
+  EXPECT_EQ(parse_colour("00ff00"), (Rgba{0, 1, 0, 1}));
+  EXPECT_THROW(parse_colour("#ff00"), std::invalid_argument);
+  EXPECT_THROW(parse_colour(""), std::invalid_argument);
 }
 
 // The command line, one invocation per picture kind, on small scenes.
@@ -209,7 +212,8 @@ TEST(RenderCli, EveryPictureKindRenders) {
 
 TEST(RenderCli, AConfigFileReachesTheNestedCommand) {
   const std::string toml = fresh("render.toml"), out = fresh("from_config.png");
-  std::ofstream(toml) << "size = 212\nmedium = \"" << kPore << "\"\ngrain-colour = \"#ff0000\"\n";
+  // In a config file a colour goes without its '#' (CLI11's TOML reader takes it for a comment).
+  std::ofstream(toml) << "size = 212\nmedium = \"" << kPore << "\"\ngrain-colour = \"ff0000\"\n";
   const test::Result r = test::run("render medium --config " + toml + " -o " + out);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_png(out).width, 212);

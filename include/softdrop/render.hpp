@@ -23,7 +23,8 @@ struct Rgba {
   double r = 0, g = 0, b = 0, a = 1;
   bool operator==(const Rgba&) const = default;
 };
-/// Parses "#rrggbb" or "#rrggbbaa"; throws std::invalid_argument naming the text.
+/// Parses "#rrggbb" or "#rrggbbaa" (the "#" may be left out); throws std::invalid_argument naming
+/// the text.
 Rgba parse_colour(const std::string& text);
 
 /// How pictures look. Lengths are in output pixels (points for SVG and PDF).
