@@ -206,6 +206,7 @@ class Pipeline {
     {
       std::lock_guard lock(m_);
       stop_ = true;
+      epoch_seen_.store(-1, std::memory_order_relaxed);  // cancels the runs still in flight
     }
     cv_.notify_all();
     for (std::thread& t : threads_) t.join();
