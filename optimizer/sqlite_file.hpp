@@ -9,6 +9,7 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "softdrop/history.hpp"
 
@@ -39,5 +40,20 @@ auto guarded(const std::string& path, F&& f) -> decltype(f()) {
     throw file_error(path, e.what());
   }
 }
+
+/// The connection part of each store: the checked, open database and error translation.
+class SqliteConnection {
+ protected:
+  SqliteConnection(const std::string& path, OpenMode mode)
+      : path_(path), db_ptr_(open_database(path, mode)), db_(*db_ptr_) {}
+  template <class F>
+  auto guarded(F&& f) -> decltype(f()) {
+    return detail::guarded(path_, std::forward<F>(f));
+  }
+
+  std::string path_;
+  std::unique_ptr<SQLite::Database> db_ptr_;
+  SQLite::Database& db_;
+};
 
 }  // namespace softdrop::detail

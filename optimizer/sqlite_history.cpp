@@ -14,10 +14,9 @@ using detail::kNow;
 
 std::int64_t to_i64(std::uint64_t v) { return static_cast<std::int64_t>(v); }
 
-class SqliteHistory final : public History {
+class SqliteHistory final : public History, private detail::SqliteConnection {
  public:
-  SqliteHistory(const std::string& path, OpenMode mode)
-      : path_(path), db_ptr_(detail::open_database(path, mode)), db_(*db_ptr_) {}
+  SqliteHistory(const std::string& path, OpenMode mode) : SqliteConnection(path, mode) {}
 
   std::int64_t create_run(const std::string& params_json, const SearchOptions& o, const Generation& g0,
                           const Configuration& best) override {
@@ -294,15 +293,6 @@ class SqliteHistory final : public History {
       pq.exec();
     }
   }
-
-  template <class F>
-  auto guarded(F&& f) -> decltype(f()) {
-    return detail::guarded(path_, std::forward<F>(f));
-  }
-
-  std::string path_;
-  std::unique_ptr<SQLite::Database> db_ptr_;
-  SQLite::Database& db_;
 };
 
 }  // namespace

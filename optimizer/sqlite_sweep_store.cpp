@@ -20,10 +20,9 @@ Outcome parse_outcome(const std::string& s) {
   throw std::runtime_error("unknown outcome '" + s + "'");
 }
 
-class SqliteSweepStore final : public SweepStore {
+class SqliteSweepStore final : public SweepStore, private detail::SqliteConnection {
  public:
-  SqliteSweepStore(const std::string& path, OpenMode mode)
-      : path_(path), db_ptr_(detail::open_database(path, mode)), db_(*db_ptr_) {}
+  SqliteSweepStore(const std::string& path, OpenMode mode) : SqliteConnection(path, mode) {}
 
   std::int64_t find_or_create(const std::string& params, const SweepOptions& o) override {
     return guarded([&] {
@@ -191,15 +190,6 @@ class SqliteSweepStore final : public SweepStore {
     r.done = q.getColumn(7).getInt64();
     return r;
   }
-
-  template <class F>
-  auto guarded(F&& f) -> decltype(f()) {
-    return detail::guarded(path_, std::forward<F>(f));
-  }
-
-  std::string path_;
-  std::unique_ptr<SQLite::Database> db_ptr_;
-  SQLite::Database& db_;
 };
 
 }  // namespace
