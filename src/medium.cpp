@@ -42,6 +42,10 @@ const char* to_string(MediumKind kind) {
   return kind == MediumKind::overlapping ? "overlapping" : "non-overlapping";
 }
 
+namespace {
+double mean_disc_area(const MediumOptions& o);
+}  // namespace
+
 bool MediumOptions::IsValid(std::string* why) const {
   if (!std::isfinite(porosity) || porosity <= 0 || porosity >= 1)
     return fail(why, "porosity = " + num(porosity) + ": must be in (0, 1)");
@@ -65,6 +69,14 @@ bool MediumOptions::IsValid(std::string* why) const {
   if (!std::isfinite(gap) || gap < 0) return fail(why, "gap = " + num(gap) + ": must be >= 0");
   if (max_failed_attempts <= 0)
     return fail(why, "max-failed-attempts = " + std::to_string(max_failed_attempts) + ": must be > 0");
+  // Refuse a porosity target that needs more grains than any medium may hold, before allocating.
+  if (grains == 0) {
+    const double solid = kind == MediumKind::overlapping ? -std::log(porosity) : 1 - porosity;
+    const double expected = solid * width * height / mean_disc_area(*this);
+    if (!(expected <= 1e7))
+      return fail(why, "width = " + num(width) + ", height = " + num(height) + ": porosity " + num(porosity) +
+                           " needs about " + num(std::round(expected)) + " grains, more than the limit of 1e7");
+  }
   return true;
 }
 

@@ -46,7 +46,7 @@ Rgba parse_colour(const std::string& text) {
 }
 
 bool RenderStyle::IsValid(std::string* why) const {
-  if (width < 16 || width > 20000) return fail(why, "size = " + std::to_string(width) + ": must be in [16, 20000] pixels");
+  if (width < 16 || width > 10000) return fail(why, "size = " + std::to_string(width) + ": must be in [16, 10000] pixels");
   if (!std::isfinite(grain_line) || grain_line <= 0) return fail(why, "grain-line = " + num(grain_line) + ": must be > 0");
   if (!std::isfinite(margin) || margin < 0) return fail(why, "margin = " + num(margin) + ": must be >= 0");
   return true;
