@@ -1,5 +1,7 @@
 #include "cli/output.hpp"
 
+#include "softdrop/render.hpp"
+
 #include <unistd.h>
 
 #include <csignal>
@@ -23,6 +25,11 @@ void check_output_path(const std::string& option, const std::string& path) {
                              "' does not exist");
   if (::access(dir.c_str(), W_OK) != 0)
     throw std::runtime_error(option + " '" + path + "': directory is not writable");
+}
+
+void check_picture_path(const std::string& option, const std::string& path) {
+  image_format_for(path);
+  check_output_path(option, path);
 }
 
 Progress::Progress(std::string label)

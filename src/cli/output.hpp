@@ -14,6 +14,9 @@ namespace softdrop::cli {
 /// or a directory itself). Called before any long work so that a bad path fails fast.
 void check_output_path(const std::string& option, const std::string& path);
 
+/// check_output_path for a picture, and its extension names a format render can write.
+void check_picture_path(const std::string& option, const std::string& path);
+
 /// Throttled progress line on stderr ("label: done/total"), at most about once per second, and
 /// always for the last item.
 class Progress {

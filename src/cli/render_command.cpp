@@ -190,11 +190,7 @@ int render_paths(RenderArgs& a) {
 
 int render_search(RenderArgs& a) {
   const RenderStyle style = style_of(a);
-  check_output_path("--output", a.output);
-  if (!a.curve.empty()) {
-    image_format_for(a.curve);
-    check_output_path("--curve", a.curve);
-  }
+  if (!a.curve.empty()) check_picture_path("--curve", a.curve);
   auto history = open_history(a.db, OpenMode::read_only);
   const RunRecord run = history->run(a.run_id);
   const Configuration best = history->configuration(a.run_id, a.generation);
@@ -242,7 +238,6 @@ int render_animation_command(RenderArgs& a) {
   if (!std::isfinite(a.speed) || a.speed <= 0) throw std::invalid_argument("speed = " + fmt(a.speed) + ": must be > 0");
   if (!std::isfinite(a.fps) || a.fps <= 0 || a.fps > 100) throw std::invalid_argument("fps = " + fmt(a.fps) + ": must be in (0, 100]");
   const RenderStyle style = style_of(a);
-  image_format_for(a.output);
   const Medium medium = medium_of(a);
   const double x0 = std::isnan(a.x0) ? 0.5 * medium.width : a.x0;
   // First the whole run (deterministic), to know its length; then a replay that draws frames.
@@ -355,7 +350,7 @@ int render_trace(RenderArgs& a) {
 
 int run_render(RenderArgs& a, const CLI::App& render) {
   const std::string which = render.get_subcommands().front()->get_name();
-  check_output_path("--output", a.output);
+  check_picture_path("--output", a.output);
   if (which == "medium") return render_medium(a);
   if (which == "snapshots") return render_snapshots(a);
   if (which == "paths") return render_paths(a);

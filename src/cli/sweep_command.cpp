@@ -112,7 +112,8 @@ std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& d
   if (all.size() == 1) return all[0].id;
   throw std::invalid_argument(all.empty() ? "--db '" + db + "': holds no sweep"
                                           : "--sweep: '" + db + "' holds " + std::to_string(all.size()) +
-                                                " sweeps; say which (softdrop sweep-report --db " + db + " lists them? use --sweep ID)");
+                                                " sweeps; choose one with --sweep ID (softdrop sweep-report --db " +
+                                                db + " lists them)");
 }
 
 Table points_table(const std::vector<SweepPoint>& points) {
@@ -284,10 +285,7 @@ std::vector<FitPoint> read_points_csv(const std::string& path) {
 }  // namespace
 
 int run_fit(const FitArgs& a) {
-  if (!a.plot.empty()) {
-    image_format_for(a.plot);
-    check_output_path("--plot", a.plot);
-  }
+  if (!a.plot.empty()) check_picture_path("--plot", a.plot);
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   std::vector<FitPoint> points;
   if (!a.points.empty()) {
@@ -370,10 +368,7 @@ int run_fit(const FitArgs& a) {
 
 int run_averagings(const AveragingArgs& a) {
   if (a.group < 1) throw std::invalid_argument("group = " + std::to_string(a.group) + ": must be >= 1");
-  if (!a.plot.empty()) {
-    image_format_for(a.plot);
-    check_output_path("--plot", a.plot);
-  }
+  if (!a.plot.empty()) check_picture_path("--plot", a.plot);
   if (!a.csv.empty()) check_output_path("--csv", a.csv);
   auto store = open_sweep_store(a.db, OpenMode::read_only);
   std::vector<MediumPoint> points;
