@@ -153,6 +153,17 @@ std::vector<std::string> search_param_keys() {
   return keys;
 }
 
+std::vector<std::string> simulation_param_keys() {
+  std::vector<std::string> keys;
+  DropletParams d;
+  visit_droplet(d, [&](const char* key, const auto&) { keys.emplace_back(key); });
+  RunOptions r;
+  visit_exit(r, [&](const char* key, const auto&) {
+    if (std::string(key) != "check-interval") keys.emplace_back(key);  // not an option of simulate
+  });
+  return keys;
+}
+
 std::string sweep_params_to_json(const SweepOptions& options) {
   SweepFields s{options, to_string(options.medium.kind),
                 options.medium.radii == RadiusDistribution::uniform ? "uniform" : "lognormal", !options.medium.periodic};

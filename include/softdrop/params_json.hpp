@@ -20,6 +20,10 @@ SearchOptions search_params_from_json(const std::string& json);
 /// The keys search_params_to_json writes.
 std::vector<std::string> search_param_keys();
 
+/// The keys of the droplet and of its exit conditions that `softdrop simulate` also takes: what a
+/// stored run hands to simulate to push the same droplet the same way.
+std::vector<std::string> simulation_param_keys();
+
 /// A sweep's options, the same way (keys: porosities, media, droplets, seed, the medium's and the
 /// droplet's option names). Two sweeps are the same sweep exactly when these texts are equal.
 std::string sweep_params_to_json(const SweepOptions& options);

@@ -97,11 +97,9 @@ int run_export(const ExportArgs& a) {
          << c.generation << ", T = " << fmt(c.eval.tortuosity) << ")\n";
     toml << "medium = " << nlohmann::json(a.output).dump() << "\n";
     toml << "x0 = " << nlohmann::json(0.5 * c.medium.width).dump() << "\n";
-    for (const char* key : {"masses", "mass", "radius", "nrt", "ks", "kd", "kc", "cc", "gravity", "dt", "max-strain",
-                            "constraint-iterations", "max-depth", "viscosity", "max-steps", "stuck-window",
-                            "stuck-distance"})
-      toml << key << " = " << params.at(key).dump() << "\n";
-    if (params.contains("constraint-order")) toml << "constraint-order = " << params.at("constraint-order").dump() << "\n";
+    search_params_from_json(run.params);  // names a required key the stored run lacks
+    for (const std::string& key : simulation_param_keys())
+      if (params.contains(key)) toml << key << " = " << params.at(key).dump() << "\n";  // older runs lack newer keys
     write_file_atomically(a.simulate_config, toml.str());
   }
   std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation << " (T = "
