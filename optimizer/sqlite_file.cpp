@@ -5,6 +5,9 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <limits>
+#include <stdexcept>
+#include <string>
 #include <thread>
 
 namespace softdrop::detail {
@@ -251,6 +254,37 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     t.commit();
     return db;
   });
+}
+
+namespace {
+[[noreturn]] void mistyped(const SQLite::Column& c, const char* expected) {
+  const char* type = c.isNull() ? "NULL" : c.isText() ? "text" : c.isBlob() ? "a blob" : c.isFloat() ? "a real" : "an integer";
+  throw std::runtime_error(std::string("column ") + c.getName() + " holds " + type + ", expected " + expected +
+                           " (damaged or edited file?)");
+}
+}  // namespace
+
+double as_real(const SQLite::Column& c) {
+  if (!c.isFloat() && !c.isInteger()) mistyped(c, "a number");
+  return c.getDouble();
+}
+
+std::int64_t as_int64(const SQLite::Column& c) {
+  if (!c.isInteger()) mistyped(c, "an integer");
+  return c.getInt64();
+}
+
+int as_int(const SQLite::Column& c) {
+  const std::int64_t v = as_int64(c);
+  if (v < std::numeric_limits<int>::min() || v > std::numeric_limits<int>::max())
+    throw std::runtime_error(std::string("column ") + c.getName() + " holds " + std::to_string(v) +
+                             ", out of range (damaged or edited file?)");
+  return static_cast<int>(v);
+}
+
+std::string as_text(const SQLite::Column& c) {
+  if (!c.isText()) mistyped(c, "text");
+  return c.getString();
 }
 
 }  // namespace softdrop::detail

@@ -31,12 +31,24 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
 void set_row_status(SQLite::Database& db, const char* table, std::int64_t id, const std::string& status,
                     const std::string& what);
 
-/// Runs f, turning SQLite exceptions into one line naming the file.
+/// Typed reads of a column: a value of another SQLite type (text or a blob where a number belongs,
+/// as in a damaged or hand-edited file) throws std::runtime_error naming the column instead of
+/// being converted silently (text would read as 0).
+double as_real(const SQLite::Column& c);         ///< INTEGER or REAL
+std::int64_t as_int64(const SQLite::Column& c);  ///< INTEGER
+int as_int(const SQLite::Column& c);             ///< INTEGER that fits an int
+std::string as_text(const SQLite::Column& c);    ///< TEXT
+
+/// Runs f, turning its errors (SQLite's, and damaged contents found while reading) into one line
+/// naming the file.
 template <class F>
 auto guarded(const std::string& path, F&& f) -> decltype(f()) {
   try {
     return f();
   } catch (const SQLite::Exception& e) {
+    throw file_error(path, e.what());
+  } catch (const std::runtime_error& e) {
+    if (std::string(e.what()).find(path) != std::string::npos) throw;
     throw file_error(path, e.what());
   }
 }

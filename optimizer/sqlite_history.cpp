@@ -1,6 +1,7 @@
 // The search history (History) on a softdrop SQLite database (see sqlite_file.hpp).
 #include <SQLiteCpp/SQLiteCpp.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -50,7 +51,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       SQLite::Statement last(db_, "SELECT generations FROM runs WHERE id = ?");
       last.bind(1, static_cast<std::int64_t>(run));
       if (!last.executeStep()) throw std::runtime_error("run " + std::to_string(run) + ": no such run");
-      const std::int64_t stored = last.getColumn(0).getInt64();
+      const std::int64_t stored = detail::as_int64(last.getColumn(0));
       // A statement left mid-result keeps a read snapshot open past COMMIT, and that snapshot
       // stops every automatic checkpoint: the WAL file would grow without bound.
       last.reset();
@@ -109,13 +110,13 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       q.bind(1, static_cast<std::int64_t>(run_id));
       while (q.executeStep()) {
         GenerationRecord g;
-        g.generation = q.getColumn(0).getInt64();
-        g.kind = q.getColumn(1).getString();
-        g.accepted = q.getColumn(2).isNull() ? -1 : q.getColumn(2).getInt();
-        g.best_t = q.getColumn(3).getDouble();
-        g.touched = q.getColumn(4).getInt();
-        g.seconds = q.getColumn(5).getDouble();
-        g.finished = q.getColumn(6).getString();
+        g.generation = detail::as_int64(q.getColumn(0));
+        g.kind = detail::as_text(q.getColumn(1));
+        g.accepted = q.getColumn(2).isNull() ? -1 : detail::as_int(q.getColumn(2));
+        g.best_t = detail::as_real(q.getColumn(3));
+        g.touched = detail::as_int(q.getColumn(4));
+        g.seconds = detail::as_real(q.getColumn(5));
+        g.finished = detail::as_text(q.getColumn(6));
         out.push_back(std::move(g));
       }
       SQLite::Statement c(db_, "SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, "
@@ -124,20 +125,20 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       c.bind(1, static_cast<std::int64_t>(run_id));
       std::size_t k = 0;
       while (c.executeStep()) {
-        const std::int64_t gen = c.getColumn(0).getInt64();
+        const std::int64_t gen = detail::as_int64(c.getColumn(0));
         while (k < out.size() && out[k].generation < gen) ++k;
         if (k == out.size() || out[k].generation != gen)
           throw std::runtime_error("candidate of missing generation " + std::to_string(gen));
         CandidateRecord r;
-        r.index = c.getColumn(1).getInt();
-        r.moved_grain = c.getColumn(2).isNull() ? -1 : c.getColumn(2).getInt();
-        r.moved = c.getColumn(3).getInt();
-        r.outcome = c.getColumn(4).getString();
-        r.reason = c.getColumn(5).getString();
-        r.tortuosity = c.getColumn(6).isNull() ? 0.0 : c.getColumn(6).getDouble();
-        r.steps = c.getColumn(7).getInt64();
-        r.touched = c.getColumn(8).getInt();
-        r.seconds = c.getColumn(9).getDouble();
+        r.index = detail::as_int(c.getColumn(1));
+        r.moved_grain = c.getColumn(2).isNull() ? -1 : detail::as_int(c.getColumn(2));
+        r.moved = detail::as_int(c.getColumn(3));
+        r.outcome = detail::as_text(c.getColumn(4));
+        r.reason = detail::as_text(c.getColumn(5));
+        r.tortuosity = c.getColumn(6).isNull() ? 0.0 : detail::as_real(c.getColumn(6));
+        r.steps = detail::as_int64(c.getColumn(7));
+        r.touched = detail::as_int(c.getColumn(8));
+        r.seconds = detail::as_real(c.getColumn(9));
         out[k].candidates.push_back(std::move(r));
       }
       t.commit();
@@ -158,8 +159,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
         throw std::runtime_error("--generation " + std::to_string(generation) + ": run " +
                                  std::to_string(run_id) + " has no configuration there");
       Configuration c;
-      c.generation = q.getColumn(0).getInt64();
-      const int candidate = q.getColumn(1).getInt();
+      c.generation = detail::as_int64(q.getColumn(0));
+      const int candidate = detail::as_int(q.getColumn(1));
       c.medium.width = r.width;
       c.medium.height = r.height;
       c.medium.periodic = r.periodic;
@@ -169,34 +170,38 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       e.bind(1, static_cast<std::int64_t>(run_id));
       e.bind(2, static_cast<std::int64_t>(c.generation));
       e.bind(3, candidate);
-      if (!e.executeStep()) throw std::runtime_error("accepted candidate missing");
-      if (e.getColumn(0).getString() != "passed") throw std::runtime_error("accepted candidate did not pass");
+      const std::string where = "run " + std::to_string(run_id) + ", generation " + std::to_string(c.generation) + ": ";
+      if (!e.executeStep()) throw std::runtime_error(where + "accepted candidate missing");
+      if (detail::as_text(e.getColumn(0)) != "passed") throw std::runtime_error(where + "accepted candidate did not pass");
       c.eval.outcome = Outcome::passed;
-      c.eval.reason = e.getColumn(1).getString();
-      c.eval.tortuosity = e.getColumn(2).getDouble();
-      c.eval.steps = e.getColumn(3).getInt64();
+      c.eval.reason = detail::as_text(e.getColumn(1));
+      c.eval.tortuosity = detail::as_real(e.getColumn(2));
+      if (!(c.eval.tortuosity > 0) || !std::isfinite(c.eval.tortuosity))
+        throw std::runtime_error(where + "stored tortuosity " + std::to_string(c.eval.tortuosity) + " is not a tortuosity");
+      c.eval.steps = detail::as_int64(e.getColumn(3));
 
       SQLite::Statement gq(db_, "SELECT grain, x, y, r, touched FROM grains WHERE run_id = ? AND generation = ? "
                                 "ORDER BY grain");
       gq.bind(1, static_cast<std::int64_t>(run_id));
       gq.bind(2, static_cast<std::int64_t>(c.generation));
       while (gq.executeStep()) {
-        const int i = gq.getColumn(0).getInt();
-        if (i != static_cast<int>(c.medium.grains.size())) throw std::runtime_error("grain numbering has a hole");
-        c.medium.grains.push_back({gq.getColumn(1).getDouble(), gq.getColumn(2).getDouble(), gq.getColumn(3).getDouble()});
-        if (gq.getColumn(4).getInt() != 0) c.eval.touched.push_back(i);
+        const int i = detail::as_int(gq.getColumn(0));
+        if (i != static_cast<int>(c.medium.grains.size())) throw std::runtime_error(where + "grain numbering has a hole");
+        c.medium.grains.push_back({detail::as_real(gq.getColumn(1)), detail::as_real(gq.getColumn(2)), detail::as_real(gq.getColumn(3))});
+        if (detail::as_int(gq.getColumn(4)) != 0) c.eval.touched.push_back(i);
       }
       if (static_cast<std::int64_t>(c.medium.grains.size()) != r.grains)
-        throw std::runtime_error("generation " + std::to_string(c.generation) + " stores " +
-                                 std::to_string(c.medium.grains.size()) + " grains, the run has " +
-                                 std::to_string(r.grains));
+        throw std::runtime_error(where + "stores " + std::to_string(c.medium.grains.size()) +
+                                 " grains, the run has " + std::to_string(r.grains));
+      // What is read back must be a medium the simulator accepts (an edited file might not be).
+      if (std::string why; !c.medium.IsValid(&why)) throw std::runtime_error(where + why);
 
       SQLite::Statement pq(db_, "SELECT x, y FROM paths WHERE run_id = ? AND generation = ? ORDER BY point");
       pq.bind(1, static_cast<std::int64_t>(run_id));
       pq.bind(2, static_cast<std::int64_t>(c.generation));
       while (pq.executeStep()) {
-        c.eval.path_x.push_back(pq.getColumn(0).getDouble());
-        c.eval.path_y.push_back(pq.getColumn(1).getDouble());
+        c.eval.path_x.push_back(detail::as_real(pq.getColumn(0)));
+        c.eval.path_y.push_back(detail::as_real(pq.getColumn(1)));
       }
       t.commit();
       return c;
@@ -210,22 +215,22 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
 
   static RunRecord read_run(SQLite::Statement& q) {
     RunRecord r;
-    r.id = q.getColumn(0).getInt64();
-    r.created = q.getColumn(1).getString();
-    r.updated = q.getColumn(2).getString();
-    r.version = q.getColumn(3).getString();
-    r.status = q.getColumn(4).getString();
-    r.params = q.getColumn(5).getString();
-    r.seed = static_cast<std::uint64_t>(q.getColumn(6).getInt64());
-    r.lambda = q.getColumn(7).getInt();
-    r.grains = q.getColumn(8).getInt64();
-    r.width = q.getColumn(9).getDouble();
-    r.height = q.getColumn(10).getDouble();
-    r.periodic = q.getColumn(11).getInt() != 0;
-    r.generations = q.getColumn(12).getInt64();
-    r.evaluations = q.getColumn(13).getInt64();
-    r.best_t = q.getColumn(14).getDouble();
-    r.best_generation = q.getColumn(15).getInt64();
+    r.id = detail::as_int64(q.getColumn(0));
+    r.created = detail::as_text(q.getColumn(1));
+    r.updated = detail::as_text(q.getColumn(2));
+    r.version = detail::as_text(q.getColumn(3));
+    r.status = detail::as_text(q.getColumn(4));
+    r.params = detail::as_text(q.getColumn(5));
+    r.seed = static_cast<std::uint64_t>(detail::as_int64(q.getColumn(6)));
+    r.lambda = detail::as_int(q.getColumn(7));
+    r.grains = detail::as_int64(q.getColumn(8));
+    r.width = detail::as_real(q.getColumn(9));
+    r.height = detail::as_real(q.getColumn(10));
+    r.periodic = detail::as_int(q.getColumn(11)) != 0;
+    r.generations = detail::as_int64(q.getColumn(12));
+    r.evaluations = detail::as_int64(q.getColumn(13));
+    r.best_t = detail::as_real(q.getColumn(14));
+    r.best_generation = detail::as_int64(q.getColumn(15));
     return r;
   }
 

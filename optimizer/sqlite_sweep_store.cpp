@@ -31,7 +31,7 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       {
         SQLite::Statement q(db_, "SELECT id FROM sweeps WHERE params = ?");
         q.bind(1, params);
-        if (q.executeStep()) id = q.getColumn(0).getInt64();
+        if (q.executeStep()) id = detail::as_int64(q.getColumn(0));
       }
       if (id == 0) {
         SQLite::Statement q(db_, std::string("INSERT INTO sweeps (created, updated, version, status, params, units) "
@@ -53,7 +53,7 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       SQLite::Statement q(db_, "SELECT porosity_index, medium_index FROM sweep_media WHERE sweep_id = ? "
                                "ORDER BY porosity_index, medium_index");
       q.bind(1, sweep);
-      while (q.executeStep()) out.push_back({q.getColumn(0).getInt(), q.getColumn(1).getInt()});
+      while (q.executeStep()) out.push_back({detail::as_int(q.getColumn(0)), detail::as_int(q.getColumn(1))});
       return out;
     });
   }
@@ -141,19 +141,19 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       q.bind(1, sweep_id);
       while (q.executeStep()) {
         SweepMedium m;
-        m.unit = {q.getColumn(0).getInt(), q.getColumn(1).getInt()};
-        m.target_porosity = q.getColumn(2).getDouble();
-        m.porosity = q.getColumn(3).getDouble();
-        m.grains = q.getColumn(4).getInt();
-        m.medium_seed = static_cast<std::uint64_t>(q.getColumn(5).getInt64());
-        m.passed = q.getColumn(6).getInt();
-        m.stuck = q.getColumn(7).getInt();
-        m.timeout = q.getColumn(8).getInt();
-        m.diverged = q.getColumn(9).getInt();
-        m.mean_t = q.getColumn(10).isNull() ? 0.0 : q.getColumn(10).getDouble();
-        m.standard_error = q.getColumn(11).isNull() ? 0.0 : q.getColumn(11).getDouble();
-        m.stuck_fraction = q.getColumn(12).getDouble();
-        m.seconds = q.getColumn(13).getDouble();
+        m.unit = {detail::as_int(q.getColumn(0)), detail::as_int(q.getColumn(1))};
+        m.target_porosity = detail::as_real(q.getColumn(2));
+        m.porosity = detail::as_real(q.getColumn(3));
+        m.grains = detail::as_int(q.getColumn(4));
+        m.medium_seed = static_cast<std::uint64_t>(detail::as_int64(q.getColumn(5)));
+        m.passed = detail::as_int(q.getColumn(6));
+        m.stuck = detail::as_int(q.getColumn(7));
+        m.timeout = detail::as_int(q.getColumn(8));
+        m.diverged = detail::as_int(q.getColumn(9));
+        m.mean_t = q.getColumn(10).isNull() ? 0.0 : detail::as_real(q.getColumn(10));
+        m.standard_error = q.getColumn(11).isNull() ? 0.0 : detail::as_real(q.getColumn(11));
+        m.stuck_fraction = detail::as_real(q.getColumn(12));
+        m.seconds = detail::as_real(q.getColumn(13));
         out.push_back(std::move(m));
       }
       SQLite::Statement d(db_, "SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps "
@@ -161,12 +161,12 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       d.bind(1, sweep_id);
       std::size_t k = 0;
       while (d.executeStep()) {
-        const SweepUnit u{d.getColumn(0).getInt(), d.getColumn(1).getInt()};
+        const SweepUnit u{detail::as_int(d.getColumn(0)), detail::as_int(d.getColumn(1))};
         while (k < out.size() && !(out[k].unit == u)) ++k;
         if (k == out.size()) throw std::runtime_error("droplet of a missing medium");
-        out[k].droplets.push_back({d.getColumn(2).getInt(), d.getColumn(3).getDouble(),
-                                   parse_outcome(d.getColumn(4).getString()),
-                                   d.getColumn(5).isNull() ? 0.0 : d.getColumn(5).getDouble(), d.getColumn(6).getInt64()});
+        out[k].droplets.push_back({detail::as_int(d.getColumn(2)), detail::as_real(d.getColumn(3)),
+                                   parse_outcome(detail::as_text(d.getColumn(4))),
+                                   d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)), detail::as_int64(d.getColumn(6))});
       }
       t.commit();
       return out;
@@ -180,14 +180,14 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
 
   static SweepRecord read(SQLite::Statement& q) {
     SweepRecord r;
-    r.id = q.getColumn(0).getInt64();
-    r.created = q.getColumn(1).getString();
-    r.updated = q.getColumn(2).getString();
-    r.version = q.getColumn(3).getString();
-    r.status = q.getColumn(4).getString();
-    r.params = q.getColumn(5).getString();
-    r.units = q.getColumn(6).getInt64();
-    r.done = q.getColumn(7).getInt64();
+    r.id = detail::as_int64(q.getColumn(0));
+    r.created = detail::as_text(q.getColumn(1));
+    r.updated = detail::as_text(q.getColumn(2));
+    r.version = detail::as_text(q.getColumn(3));
+    r.status = detail::as_text(q.getColumn(4));
+    r.params = detail::as_text(q.getColumn(5));
+    r.units = detail::as_int64(q.getColumn(6));
+    r.done = detail::as_int64(q.getColumn(7));
     return r;
   }
 };

@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -58,15 +59,17 @@ Medium load_json(const std::string& path, std::istream& in) {
     bad(path, std::string("not valid JSON (") + e.what() + ")");
   }
   if (!j.is_object()) bad(path, "top level must be an object");
-  if (j.value("format", "") != "softdrop-medium") bad(path, "\"format\" must be \"softdrop-medium\"");
-  if (j.value("version", 0) != 1) bad(path, "unsupported \"version\" (this program reads 1)");
   Medium m;
   try {
+    if (j.value("format", "") != "softdrop-medium") bad(path, "\"format\" must be \"softdrop-medium\"");
+    if (!j.contains("version") || j["version"] != 1) bad(path, "unsupported \"version\" (this program reads 1)");
     m.width = j.at("width").get<double>();
     m.height = j.at("height").get<double>();
     m.periodic = j.value("periodic", true);
     const auto& grains = j.at("grains");
     if (!grains.is_array()) bad(path, "\"grains\" must be an array");
+    if (grains.size() > kMaxFileGrains)
+      bad(path, std::to_string(grains.size()) + " grains, more than the limit of " + std::to_string(kMaxFileGrains));
     m.grains.reserve(grains.size());
     for (const auto& g : grains)
       m.grains.push_back({g.at("x").get<double>(), g.at("y").get<double>(), g.at("r").get<double>()});
@@ -104,6 +107,8 @@ Medium load_csv(const std::string& path, std::istream& in) {
     if (!std::getline(fields, fx, ',') || !std::getline(fields, fy, ',') ||
         !std::getline(fields, fr, ',') || std::getline(fields, extra, ','))
       bad(path, "line " + std::to_string(number) + ": expected 3 fields x,y,r");
+    if (m.grains.size() == kMaxFileGrains)
+      bad(path, "line " + std::to_string(number) + ": more than the limit of " + std::to_string(kMaxFileGrains) + " grains");
     m.grains.push_back({parse_number(path, number, trim(fx)), parse_number(path, number, trim(fy)),
                         parse_number(path, number, trim(fr))});
   }
@@ -114,13 +119,32 @@ Medium load_csv(const std::string& path, std::istream& in) {
 
 }  // namespace
 
+GrainFileFormat grain_file_format(const std::string& path) {
+  return ends_with(path, ".json") ? GrainFileFormat::json : GrainFileFormat::csv;
+}
+
+Medium read_medium(std::istream& in, GrainFileFormat format, const std::string& name) {
+  Medium m = format == GrainFileFormat::json ? load_json(name, in) : load_csv(name, in);
+  std::string why;
+  if (!m.IsValid(&why)) bad(name, why);
+  return m;
+}
+
 Medium load_medium(const std::string& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec) bad(path, "cannot open (" + ec.message() + ")");
+  if (std::filesystem::is_directory(status)) bad(path, "is a directory");
+  // Checked before reading, so an absurd file is refused without filling memory.
+  if (std::filesystem::is_regular_file(status)) {
+    const auto bytes = std::filesystem::file_size(path, ec);
+    if (!ec && bytes > kMaxGrainFileBytes)
+      bad(path, std::to_string(bytes >> 20) + " MiB, more than the limit of " + std::to_string(kMaxGrainFileBytes >> 20) +
+                    " MiB for a grain file");
+  }
   std::ifstream in(path);
   if (!in) bad(path, std::string("cannot open (") + std::strerror(errno) + ")");
-  Medium m = ends_with(path, ".json") ? load_json(path, in) : load_csv(path, in);
-  std::string why;
-  if (!m.IsValid(&why)) bad(path, why);
-  return m;
+  return read_medium(in, grain_file_format(path), path);
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {

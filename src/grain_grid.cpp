@@ -40,17 +40,35 @@ GrainGrid::GrainGrid(const Medium& medium, double cell_size) {
   if (area / (cell_size * cell_size) > max_cells) cell_size = std::sqrt(area / max_cells);
   x0_ = xmin;
   y0_ = ymin;
-  inv_cell_ = 1.0 / cell_size;
-  nx_ = std::max(1, static_cast<int>(std::ceil((xmax - xmin) * inv_cell_)));
-  ny_ = std::max(1, static_cast<int>(std::ceil((ymax - ymin) * inv_cell_)));
-  const std::int64_t cells = static_cast<std::int64_t>(nx_) * ny_;
-
-  auto cell_span = [&](std::size_t k, int* ix0, int* ix1, int* iy0, int* iy1) {
-    *ix0 = std::clamp(static_cast<int>((gx_[k] - gr_[k] - x0_) * inv_cell_), 0, nx_ - 1);
-    *ix1 = std::clamp(static_cast<int>((gx_[k] + gr_[k] - x0_) * inv_cell_), 0, nx_ - 1);
-    *iy0 = std::clamp(static_cast<int>((gy_[k] - gr_[k] - y0_) * inv_cell_), 0, ny_ - 1);
-    *iy1 = std::clamp(static_cast<int>((gy_[k] + gr_[k] - y0_) * inv_cell_), 0, ny_ - 1);
+  // Cell index of a coordinate, clamped in floating point first so that no cast can overflow.
+  auto cell_of = [&](double offset, int cells_along) {
+    const double c = std::floor(offset * inv_cell_);
+    if (!(c > 0)) return 0;  // also NaN, from an infinite extent
+    return c >= cells_along - 1 ? cells_along - 1 : static_cast<int>(c);
   };
+  auto cell_span = [&](std::size_t k, int* ix0, int* ix1, int* iy0, int* iy1) {
+    *ix0 = cell_of(gx_[k] - gr_[k] - x0_, nx_);
+    *ix1 = cell_of(gx_[k] + gr_[k] - x0_, nx_);
+    *iy0 = cell_of(gy_[k] - gr_[k] - y0_, ny_);
+    *iy1 = cell_of(gy_[k] + gr_[k] - y0_, ny_);
+  };
+  // A few large grains among many small ones would cover many cells each; grow the cells until
+  // the grid holds at most a bounded number of entries per grain, so memory stays linear.
+  const double max_entries = 64.0 * static_cast<double>(gx_.size()) + 4096.0;
+  for (;;) {
+    inv_cell_ = 1.0 / cell_size;
+    nx_ = static_cast<int>(std::clamp(std::ceil((xmax - xmin) * inv_cell_), 1.0, max_cells));
+    ny_ = static_cast<int>(std::clamp(std::ceil((ymax - ymin) * inv_cell_), 1.0, max_cells));
+    double entries = 0;
+    for (std::size_t k = 0; k < gx_.size() && entries <= max_entries; ++k) {
+      int ix0, ix1, iy0, iy1;
+      cell_span(k, &ix0, &ix1, &iy0, &iy1);
+      entries += static_cast<double>(ix1 - ix0 + 1) * static_cast<double>(iy1 - iy0 + 1);
+    }
+    if (entries <= max_entries || (nx_ == 1 && ny_ == 1)) break;
+    cell_size *= 2;
+  }
+  const std::int64_t cells = static_cast<std::int64_t>(nx_) * ny_;
   start_.assign(static_cast<std::size_t>(cells + 1), 0);
   for (std::size_t k = 0; k < gx_.size(); ++k) {
     int ix0, ix1, iy0, iy1;

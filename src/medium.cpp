@@ -22,6 +22,9 @@ bool Medium::IsValid(std::string* why) const {
     if (!std::isfinite(g.x) || !std::isfinite(g.y)) return fail(why, at + "non-finite centre");
     if (!std::isfinite(g.r) || g.r <= 0) return fail(why, at + "radius " + num(g.r) + " must be > 0");
     if (periodic && 2 * g.r >= width) return fail(why, at + "diameter must be smaller than width");
+    // Periodic images are made across one seam only, so a centre must lie in the box's x range.
+    if (periodic && !(g.x >= 0 && g.x <= width))
+      return fail(why, at + "centre x = " + num(g.x) + " must be in [0, width] in a periodic medium");
   }
   return true;
 }
@@ -58,8 +61,9 @@ bool MediumOptions::IsValid(std::string* why) const {
   if (!std::isfinite(r_max) || r_max < r_min)
     return fail(why, "r-max = " + num(r_max) + ": must be >= r-min");
   if (2 * r_max >= width) return fail(why, "r-max = " + num(r_max) + ": diameter must be < width");
-  if (kind == MediumKind::non_overlapping && 2 * r_max > height)
-    return fail(why, "r-max = " + num(r_max) + ": diameter must be <= height");
+  // Also for overlapping media: in a box lower than a grain, discs are mostly cut off and the
+  // grain count needed for a porosity target has no useful bound.
+  if (2 * r_max > height) return fail(why, "r-max = " + num(r_max) + ": diameter must be <= height");
   if (radii == RadiusDistribution::lognormal) {
     if (!std::isfinite(r_median) || r_median < r_min || r_median > r_max)
       return fail(why, "r-median = " + num(r_median) + ": must be in [r-min, r-max]");
@@ -134,7 +138,7 @@ Medium overlapping_medium(const MediumOptions& o) {
     return exact_porosity(prefix);
   };
   std::size_t hi = static_cast<std::size_t>(1.3 * expected) + 16;
-  constexpr std::size_t kMaxGrains = 50'000'000;
+  constexpr std::size_t kMaxGrains = 40'000'000;  // 4x the limit IsValid puts on the expected count
   for (;;) {
     while (pool.size() < hi) pool.push_back(random_grain(rng, o));
     if (porosity_of(hi) <= o.porosity) break;

@@ -18,75 +18,17 @@
 #include <thread>
 
 #include "cli_run.hpp"
-
-extern char** environ;
+#include "search_cli.hpp"
 
 namespace {
+using softdrop::test::dump;
+using softdrop::test::fresh;
+using softdrop::test::has_run;
+using softdrop::test::kScene;
 using softdrop::test::Result;
 using softdrop::test::run;
-
-// The small scene of search_fixtures.hpp, on the command line.
-const std::string kScene =
-    " --grains 16 --width 160 --height 120 --medium-seed 2 --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet ";
-
-std::string fresh(const std::string& name) { return softdrop::test::fresh_path(name); }
-
-// Everything deterministic a run stored: the rows of every table without times and durations.
-std::string dump(const std::string& db_path, int run) {
-  SQLite::Database db(db_path, SQLite::OPEN_READONLY);
-  std::ostringstream out;
-  out.precision(17);
-  auto table = [&](const std::string& sql) {
-    SQLite::Statement q(db, sql);
-    q.bind(1, run);
-    while (q.executeStep()) {
-      for (int c = 0; c < q.getColumnCount(); ++c) out << q.getColumn(c).getText() << '|';
-      out << '\n';
-    }
-  };
-  table("SELECT status, params, seed, lambda, grains, width, height, periodic, generations, evaluations, best_t, "
-        "best_generation FROM runs WHERE id = ?");
-  table("SELECT generation, kind, accepted_candidate, best_t, touched FROM generations WHERE run_id = ? "
-        "ORDER BY generation");
-  table("SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched "
-        "FROM candidates WHERE run_id = ? ORDER BY generation, candidate");
-  table("SELECT generation, grain, x, y, r, touched FROM grains WHERE run_id = ? ORDER BY generation, grain");
-  table("SELECT generation, point, x, y FROM paths WHERE run_id = ? ORDER BY generation, point");
-  return out.str();
-}
-
-pid_t spawn(const std::string& args) {
-  std::vector<std::string> words{SOFTDROP_CLI};
-  std::istringstream in(args);
-  for (std::string w; in >> w;) words.push_back(w);
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  EXPECT_EQ(posix_spawn(&pid, SOFTDROP_CLI, &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
-  return pid;
-}
-
-int wait_for(pid_t pid) {
-  int status = 0;
-  waitpid(pid, &status, 0);
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
-}
-
-bool has_run(const std::string& db_path) {
-  if (!std::filesystem::exists(db_path)) return false;
-  try {
-    SQLite::Database db(db_path, SQLite::OPEN_READONLY);
-    return db.execAndGet("SELECT count(*) FROM runs").getInt() > 0;
-  } catch (const SQLite::Exception&) {
-    return false;  // killed before the schema was committed
-  }
-}
+using softdrop::test::spawn;
+using softdrop::test::wait_for;
 
 TEST(Optimize, KilledAtRandomInstantsAndResumedEqualsAnUninterruptedRun) {
   // The reference runs one generation at a time; the killed runs speculate on 2 threads.

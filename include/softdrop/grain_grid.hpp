@@ -37,6 +37,9 @@ class GrainGrid {
   /// Index of the medium grain a stored disc is (an image maps to its original).
   const std::vector<std::int32_t>& grain_id() const { return id_; }
   double cell_size() const { return 1.0 / inv_cell_; }
+  /// Grain entries over all cells (a disc overlapping k cells counts k times): the grid's size,
+  /// kept at most 64 per stored disc (plus 4096) by coarsening the cells when needed.
+  std::size_t entries() const { return items_.size(); }
 
  private:
   double x0_ = 0, y0_ = 0, inv_cell_ = 1;

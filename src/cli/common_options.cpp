@@ -1,5 +1,7 @@
 #include "cli/common_options.hpp"
 
+#include "cli/output.hpp"
+
 #include <stdexcept>
 
 namespace softdrop::cli {
@@ -70,6 +72,32 @@ void add_exit_options(CLI::Option_group* g, RunOptions& r) {
   g->add_option("--stuck-window", r.stuck_window, "Stuck test window (time units)")->capture_default_str();
   g->add_option("--stuck-distance", r.stuck_distance, "Downward progress required per window (length units)")
       ->capture_default_str();
+}
+
+void check_threads(int threads) {
+  if (threads < 0 || threads > kMaxThreads)
+    throw std::invalid_argument("threads = " + std::to_string(threads) + ": must be in [0, " +
+                                std::to_string(kMaxThreads) + "] (0: all cores)");
+}
+
+void check_recording(const RunOptions& run, long droplets, int masses) {
+  const double steps = static_cast<double>(run.max_steps), n = static_cast<double>(droplets);
+  auto check = [&](const char* option, int interval, const char* sample) {
+    if (interval <= 0) return;
+    const double samples = n * (steps / interval + 1);
+    if (samples > kMaxRecordedSamples)
+      throw std::invalid_argument(std::string(option) + " = " + std::to_string(interval) + ": " + std::to_string(droplets) +
+                                  " droplets of up to " + std::to_string(run.max_steps) + " steps could keep " +
+                                  fmt(samples, 3) + " " + sample + " in memory, more than the limit of 1e8; raise --" +
+                                  option + " or lower --max-steps");
+  };
+  check("path-interval", run.path_interval, "path points");
+  check("trace-interval", run.area_interval, "area samples");
+  const double points = n * static_cast<double>(run.snapshot_times.size()) * masses;
+  if (points > kMaxRecordedSamples)
+    throw std::invalid_argument("snapshot-times: " + std::to_string(run.snapshot_times.size()) + " times for " +
+                                std::to_string(droplets) + " droplets of " + std::to_string(masses) +
+                                " masses would keep " + fmt(points, 3) + " points in memory, more than the limit of 1e8");
 }
 
 void resolve_medium(MediumArgs& a) {

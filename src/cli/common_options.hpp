@@ -29,6 +29,18 @@ CLI::Option_group* add_droplet_options(CLI::App* app, DropletParams& d);
 /// Registers --max-steps, --stuck-window, --stuck-distance in `group`.
 void add_exit_options(CLI::Option_group* group, RunOptions& r);
 
+/// Most worker threads a command accepts (--threads; 0 means all cores).
+constexpr int kMaxThreads = 4096;
+/// Throws std::invalid_argument unless 0 <= threads <= kMaxThreads.
+void check_threads(int threads);
+
+/// Most samples (path points, area samples, snapshot points) a command may keep in memory for
+/// all its droplets together: about 2.4 GB.
+constexpr double kMaxRecordedSamples = 1e8;
+/// Throws std::invalid_argument naming the option if `droplets` droplets of `masses` masses could
+/// record more than kMaxRecordedSamples samples with these run options (each can run max-steps).
+void check_recording(const RunOptions& run, long droplets, int masses);
+
 /// Parses the names into options.kind / radii / periodic and validates them (unless a file is
 /// given); throws std::invalid_argument naming the bad parameter.
 void resolve_medium(MediumArgs& a);

@@ -165,16 +165,25 @@ Generation start(const OptimizeArgs& a, Configuration* best) {
 
 }  // namespace
 
-int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
+void check_optimize(OptimizeArgs& a) {
   if (a.generations < 0 || a.generations > 1'000'000'000)
     throw std::invalid_argument("generations = " + std::to_string(a.generations) + ": must be in [0, 1e9]");
   if (!(a.time_limit >= 0) || !std::isfinite(a.time_limit))
     throw std::invalid_argument("time-limit = " + fmt(a.time_limit) + ": must be >= 0");
-  if (a.threads < 0) throw std::invalid_argument("threads = " + std::to_string(a.threads) + ": must be >= 0");
+  check_threads(a.threads);
   if (a.start_attempts < 1)
     throw std::invalid_argument("start-attempts = " + std::to_string(a.start_attempts) + ": must be >= 1");
   if (a.resume < 0) throw std::invalid_argument("resume = " + std::to_string(a.resume) + ": not a run id");
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
+  if (a.resume == 0) {  // a resumed run takes its options from the history
+    resolve_medium(a.medium);
+    std::string why;
+    if (!a.search.IsValid(&why)) throw std::invalid_argument(why);
+  }
+}
+
+int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
+  check_optimize(a);
   const nlohmann::json given = params_of(a);
 
   std::unique_ptr<History> history;
@@ -203,9 +212,6 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
       std::cerr << "optimize: resuming run " << run << " of " << a.db << " at generation " << rec.generations
                 << " (best T " << fmt(rec.best_t, 8) << ")\n";
   } else {
-    resolve_medium(a.medium);
-    std::string why;
-    if (!a.search.IsValid(&why)) throw std::invalid_argument(why);
     // An existing file is checked first; a new one is created only once generation 0 exists, so
     // a start that fails leaves no file behind.
     check_database(a.db);

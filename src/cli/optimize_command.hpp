@@ -30,6 +30,8 @@ struct OptimizeArgs {
 
 CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args);
 
+/// Checks the options without running; throws std::invalid_argument naming the bad parameter.
+void check_optimize(OptimizeArgs& args);
 /// Runs it; `command` is the parsed subcommand (to tell which options were given).
 int run_optimize(OptimizeArgs& args, const CLI::App& command);
 

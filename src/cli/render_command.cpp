@@ -137,6 +137,7 @@ int render_snapshots(RenderArgs& a) {
   RunOptions run = a.run;
   run.snapshot_times = a.times;
   run.path_interval = 20;
+  check_recording(run, 1, a.droplet.masses);
   const double x0 = std::isnan(a.x0) ? 0.5 * scene.medium.width : a.x0;
   const RunSummary r = sim.run(x0, run);
   const Rgba droplet = parse_colour(a.droplet_colour);
@@ -174,6 +175,7 @@ int render_paths(RenderArgs& a) {
   scene.medium = medium_of(a);
   RunOptions run = a.run;
   run.path_interval = 50;
+  check_recording(run, a.batch.droplets, a.droplet.masses);
   Progress progress("render: droplets done");
   const auto runs = run_batch(a.droplet, scene.medium, run, a.batch,
                               [&](int done, int total) { progress.update(done, total); });
@@ -288,8 +290,13 @@ int render_animation_command(RenderArgs& a) {
 
 // The ring's area every few steps, and when it enters (lowest mass reaches y = H) and leaves (highest
 // mass below y = 0) the medium. S0 is the area at the entry.
+constexpr int kTraceInterval = 20;  // steps between area samples of the trace
+
 int render_trace(RenderArgs& a) {
   check_droplet(a);
+  RunOptions recorded = a.run;
+  recorded.area_interval = kTraceInterval;
+  check_recording(recorded, 1, a.droplet.masses);
   const RenderStyle style = style_of(a);
   if (!a.csv.empty()) check_output_path("--csv", a.csv);
   const Medium medium = medium_of(a);
@@ -297,7 +304,7 @@ int render_trace(RenderArgs& a) {
   Simulation sim(a.droplet, medium);
   const RunSummary whole = sim.run(x0, a.run);  // deterministic: the replay below is the same run
   sim.place_above(x0);
-  const int every = 20;
+  const int every = kTraceInterval;
   std::vector<double> t, area;
   double enter = NAN, leave = NAN, s0 = NAN;
   // A droplet that passed is followed until its last mass is below y = 0 (at most 20 000 more steps).
@@ -348,9 +355,16 @@ int render_trace(RenderArgs& a) {
 
 }  // namespace
 
+void check_render(RenderArgs& a) {
+  check_picture_path("--output", a.output);
+  style_of(a);
+  check_droplet(a);
+  resolve_medium(a.medium);
+}
+
 int run_render(RenderArgs& a, const CLI::App& render) {
   const std::string which = render.get_subcommands().front()->get_name();
-  check_picture_path("--output", a.output);
+  check_render(a);
   if (which == "medium") return render_medium(a);
   if (which == "snapshots") return render_snapshots(a);
   if (which == "paths") return render_paths(a);

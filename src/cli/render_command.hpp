@@ -38,6 +38,8 @@ struct RenderArgs {
 /// Registers `render` and its six subcommands; returns `render`.
 CLI::App* add_render_command(CLI::App& app, RenderArgs& args);
 /// Runs the chosen subcommand of `render`.
+/// Checks the options shared by the pictures without drawing; throws std::invalid_argument.
+void check_render(RenderArgs& args);
 int run_render(RenderArgs& args, const CLI::App& render);
 
 }  // namespace softdrop::cli

@@ -48,19 +48,18 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
   return s;
 }
 
-namespace {
-
-void validate(SimulateArgs& a) {
+void check_simulate(SimulateArgs& a) {
   std::string why;
   if (!a.droplet.IsValid(&why)) throw std::invalid_argument(why);
   if (a.batch.droplets < 1 || a.batch.droplets > 10'000'000)
     throw std::invalid_argument("droplets = " + std::to_string(a.batch.droplets) + ": must be in [1, 1e7]");
-  if (a.batch.threads < 0) throw std::invalid_argument("threads = " + std::to_string(a.batch.threads) + ": must be >= 0");
+  check_threads(a.batch.threads);
   if (!a.paths_csv.empty() && a.run.path_interval == 0) a.run.path_interval = 100;
   if (!a.trace_csv.empty() && a.run.area_interval == 0) a.run.area_interval = 100;
   if (!a.snapshots_csv.empty() && a.run.snapshot_times.empty())
     throw std::invalid_argument("snapshots: --snapshot-times is required with --snapshots");
   if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
+  check_recording(a.run, a.batch.droplets, a.droplet.masses);
   resolve_medium(a.medium);
   if (!std::isnan(a.x0) && !std::isfinite(a.x0))
     throw std::invalid_argument("x0 = " + fmt(a.x0) + ": must be finite");
@@ -69,6 +68,8 @@ void validate(SimulateArgs& a) {
         {"--trace", a.trace_csv}, {"--snapshots", a.snapshots_csv}, {"--json", a.json_file}})
     if (!path.empty()) check_output_path(option, path);
 }
+
+namespace {
 
 nlohmann::json run_json(const RunSummary& r, int i) {
   return {{"droplet", i},
@@ -85,7 +86,7 @@ nlohmann::json run_json(const RunSummary& r, int i) {
 }  // namespace
 
 int run_simulate(SimulateArgs& a) {
-  validate(a);
+  check_simulate(a);
   const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
   if (!a.save_medium_file.empty()) save_medium(a.save_medium_file, medium);
   const double porosity = exact_porosity(medium);

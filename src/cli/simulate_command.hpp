@@ -28,6 +28,9 @@ struct SimulateArgs {
 CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args);
 
 /// Runs it; throws std::exception with a one-line message on bad input.
+/// Checks the options (and that output paths can be written) without running; throws
+/// std::invalid_argument naming the bad parameter.
+void check_simulate(SimulateArgs& args);
 int run_simulate(SimulateArgs& args);
 
 }  // namespace softdrop::cli

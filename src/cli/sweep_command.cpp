@@ -137,15 +137,19 @@ void list_sweeps(SweepStore& store, const std::string& format) {
 
 }  // namespace
 
-int run_sweep(SweepArgs& a, const CLI::App& cmd) {
+std::pair<int, int> check_sweep(SweepArgs& a, const CLI::App& cmd) {
   apply_preset(a, cmd);
   if (!a.medium.file.empty()) throw std::invalid_argument("medium: sweep generates its media; --medium is not used");
   resolve_medium(a.medium);
   a.sweep.medium = a.medium.options;
   std::string why;
   if (!a.sweep.IsValid(&why)) throw std::invalid_argument(why);
-  if (a.threads < 0) throw std::invalid_argument("threads = " + std::to_string(a.threads) + ": must be >= 0");
-  const auto [shard, shards] = parse_shard(a.shard);
+  check_threads(a.threads);
+  return parse_shard(a.shard);
+}
+
+int run_sweep(SweepArgs& a, const CLI::App& cmd) {
+  const auto [shard, shards] = check_sweep(a, cmd);
 
   auto store = open_sweep_store(a.db, OpenMode::create);
   const std::string params = sweep_params_to_json(a.sweep);

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli/common_options.hpp"
@@ -53,6 +54,9 @@ struct AveragingArgs {
 
 void add_study_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, SweepReportArgs& report,
                         FitArgs& fit, AveragingArgs& averaging);
+/// Applies --preset and checks the options without running; returns the shard (i, n). Throws
+/// std::invalid_argument naming the bad parameter.
+std::pair<int, int> check_sweep(SweepArgs& args, const CLI::App& command);
 int run_sweep(SweepArgs& args, const CLI::App& command);
 int run_sweep_merge(const SweepMergeArgs& args);
 int run_sweep_report(const SweepReportArgs& args);

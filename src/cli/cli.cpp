@@ -1,0 +1,79 @@
+#include "cli/cli.hpp"
+
+#include <memory>
+#include <vector>
+
+#include "softdrop/version.hpp"
+
+namespace softdrop::cli {
+namespace {
+
+// Reads a TOML/INI file whose plain keys (`porosity = 0.8`) are the long options of the
+// subcommand that was chosen, so a config file looks like the command line without dashes.
+class SubcommandConfig : public CLI::ConfigTOML {
+ public:
+  explicit SubcommandConfig(const CLI::App& app) : app_(app) {}
+  std::vector<CLI::ConfigItem> from_config(std::istream& input) const override {
+    auto parsed = CLI::ConfigTOML::from_config(input);
+    // The chain of chosen subcommands, e.g. render -> medium.
+    std::vector<std::string> chain;
+    for (const CLI::App* a = &app_; !a->get_subcommands().empty();) {
+      a = a->get_subcommands().back();
+      chain.push_back(a->get_name());
+    }
+    for (auto& item : parsed)
+      if (item.parents.empty()) item.parents = chain;
+    return parsed;
+  }
+
+ private:
+  const CLI::App& app_;
+};
+
+}  // namespace
+
+Cli::Cli() {
+  app.set_version_flag("--version", softdrop::kVersion);
+  app.require_subcommand(1);
+  // A later value overrides an earlier one, so scripts can append to a default command line.
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app.set_config("--config", "", "Read options from this TOML/INI file (keys: long option names)");
+  app.config_formatter(std::make_shared<SubcommandConfig>(app));
+  app.allow_config_extras(CLI::config_extras_mode::error);
+  app.add_flag("--check", check_only_, "Check the options and exit without running (exit 0: they are valid)");
+  simulate_cmd_ = add_simulate_command(app, simulate_);
+  optimize_cmd_ = add_optimize_command(app, optimize_);
+  history_cmd_ = add_history_command(app, history_);
+  export_cmd_ = add_export_command(app, export_);
+  add_study_commands(app, sweep_, sweep_merge_, sweep_report_, fit_, averagings_);
+  render_cmd_ = add_render_command(app, render_);
+}
+
+void Cli::parse(int argc, const char* const* argv) { app.parse(argc, argv); }
+
+void Cli::check() {
+  if (simulate_cmd_->parsed()) check_simulate(simulate_);
+  if (optimize_cmd_->parsed()) check_optimize(optimize_);
+  if (app.got_subcommand("sweep")) check_sweep(sweep_, *app.get_subcommand("sweep"));
+  if (render_cmd_->parsed()) check_render(render_);
+}
+
+int Cli::run() {
+  if (check_only_) {
+    check();
+    return 0;
+  }
+  if (simulate_cmd_->parsed()) return run_simulate(simulate_);
+  if (optimize_cmd_->parsed()) return run_optimize(optimize_, *optimize_cmd_);
+  if (history_cmd_->parsed()) return run_history(history_);
+  if (export_cmd_->parsed()) return run_export(export_);
+  if (app.got_subcommand("sweep")) return run_sweep(sweep_, *app.get_subcommand("sweep"));
+  if (app.got_subcommand("sweep-merge")) return run_sweep_merge(sweep_merge_);
+  if (app.got_subcommand("sweep-report")) return run_sweep_report(sweep_report_);
+  if (app.got_subcommand("fit")) return run_fit(fit_);
+  if (app.got_subcommand("averagings")) return run_averagings(averagings_);
+  if (render_cmd_->parsed()) return run_render(render_, *render_cmd_);
+  return 0;
+}
+
+}  // namespace softdrop::cli

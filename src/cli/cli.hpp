@@ -1,0 +1,52 @@
+#pragma once
+// The whole command line of softdrop: every subcommand's options, parsing, checking and running.
+// main() is a thin shell around it, and the fuzz targets drive the same object.
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "cli/history_command.hpp"
+#include "cli/optimize_command.hpp"
+#include "cli/render_command.hpp"
+#include "cli/simulate_command.hpp"
+#include "cli/sweep_command.hpp"
+
+namespace softdrop::cli {
+
+class Cli {
+ public:
+  Cli();
+  Cli(const Cli&) = delete;
+  Cli& operator=(const Cli&) = delete;
+
+  /// Parses the command line (argv[0] is the program name); throws CLI::ParseError.
+  void parse(int argc, const char* const* argv);
+  /// Checks the chosen command's options without running it or touching its files; throws
+  /// std::invalid_argument naming the bad parameter. Commands whose options are only files and
+  /// ids (history, export, sweep-merge, sweep-report, fit, averagings) check them when run.
+  void check();
+  /// Runs the chosen command (after check(), or only check() with --check); returns the exit code.
+  int run();
+
+  CLI::App app{"softdrop: soft-body droplets pushed through porous media of disc grains"};
+
+ private:
+  bool check_only_ = false;
+  SimulateArgs simulate_;
+  OptimizeArgs optimize_;
+  HistoryArgs history_;
+  ExportArgs export_;
+  SweepArgs sweep_;
+  SweepMergeArgs sweep_merge_;
+  SweepReportArgs sweep_report_;
+  FitArgs fit_;
+  AveragingArgs averagings_;
+  RenderArgs render_;
+  CLI::App* simulate_cmd_ = nullptr;
+  CLI::App* optimize_cmd_ = nullptr;
+  CLI::App* history_cmd_ = nullptr;
+  CLI::App* export_cmd_ = nullptr;
+  CLI::App* render_cmd_ = nullptr;
+};
+
+}  // namespace softdrop::cli

@@ -1,0 +1,196 @@
+// Hardening: absurd values are refused before any large allocation, damaged files (grain files,
+// histories) give one line naming the file and the problem, and --check validates without running.
+#include <gtest/gtest.h>
+
+#include <SQLiteCpp/SQLiteCpp.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "search_cli.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/grain_grid.hpp"
+
+#if defined(__SANITIZE_ADDRESS__)
+#define SOFTDROP_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SOFTDROP_ASAN 1
+#endif
+#endif
+
+namespace {
+using namespace softdrop::test;
+
+// Runs softdrop with its address space capped at 1 GiB, so a large allocation before the refusal
+// would fail the run with bad_alloc instead of the expected message. (AddressSanitizer reserves
+// terabytes of shadow memory, so the sanitizer build runs without the cap.)
+Result run_capped(const std::string& args) {
+#ifdef SOFTDROP_ASAN
+  return run(args);
+#else
+  return run_shell("ulimit -v 1048576; " + std::string(SOFTDROP_CLI) + " " + args);
+#endif
+}
+
+void expect_one_line_naming(const Result& r, const std::string& names) {
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("softdrop: error: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(names), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("bad_alloc"), std::string::npos) << r.err;
+}
+
+TEST(Limits, AbsurdValuesAreRefusedBeforeAnyLargeAllocation) {
+  const std::string huge_file = temp_path("huge.csv");
+  {  // a 1 GiB grain file (sparse: it takes no disk space)
+    std::ofstream(huge_file) << "# width=100\n";
+    std::filesystem::resize_file(huge_file, std::uintmax_t{1} << 30);
+  }
+  const std::string db = fresh("limits.db"), runs = fresh("limits_runs.csv");
+  struct Case {
+    std::string args, names;
+  };
+  for (const Case& c : {
+           Case{"optimize --db " + db + " --grains 1000000000", "grains = 1000000000"},
+           Case{"simulate --masses 100000000", "masses = 100000000"},
+           Case{"simulate --dt 1e300", "dt = 1"},
+           Case{"simulate --medium " + huge_file, "1024 MiB, more than the limit of 256 MiB"},
+           Case{"simulate --width 1e12 --height 1e12", "more than the limit of 1e7"},
+           Case{"simulate --width 1e300 --height 1e-300", "height"},
+           Case{"sweep --db " + db + " --media 1000000000 --droplets 1000000000", "media = 1000000000"},
+           Case{"optimize --db " + db + " --lambda 1000000000", "lambda = 1000000000"},
+           Case{"simulate --threads 100000", "threads = 100000"},
+           Case{"simulate --droplets 100000 --paths " + runs + " --path-interval 1", "path-interval = 1"},
+           Case{"simulate --snapshots " + runs + " --droplets 1000000 --masses 100000 --snapshot-times 1,2",
+                "snapshot-times"},
+           Case{"render paths --output " + temp_path("p.png") + " --droplets 1000000 --max-steps 1000000000",
+                "path-interval = 50"},
+       }) {
+    SCOPED_TRACE(c.args);
+    expect_one_line_naming(run_capped(c.args), c.names);
+    EXPECT_FALSE(std::filesystem::exists(db));
+    EXPECT_FALSE(std::filesystem::exists(runs));
+  }
+  std::filesystem::remove(huge_file);
+}
+
+TEST(GrainFileLimits, TooLargeIsRefusedBeforeReadingAndMistypedFieldsNameTheFile) {
+  const std::string big = temp_path("big.json");
+  std::ofstream(big) << "{";
+  std::filesystem::resize_file(big, softdrop::kMaxGrainFileBytes + 1);
+  EXPECT_THROW(
+      {
+        try {
+          softdrop::load_medium(big);
+        } catch (const std::runtime_error& e) {
+          EXPECT_NE(std::string(e.what()).find("grain file '" + big + "': 256 MiB, more than the limit"),
+                    std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      std::runtime_error);
+  std::filesystem::remove(big);
+
+  for (const std::string text : {R"({"format": 5, "version": 1})", R"({"format": "softdrop-medium", "version": "1"})",
+                                 R"({"format": "softdrop-medium", "version": 1, "width": "wide"})"}) {
+    std::istringstream in(text);
+    try {
+      softdrop::read_medium(in, softdrop::GrainFileFormat::json, "m.json");
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_EQ(std::string(e.what()).rfind("grain file 'm.json': ", 0), 0u) << e.what();
+    }
+  }
+}
+
+TEST(GrainFileLimits, PeriodicCentresMustLieInTheBox) {
+  for (const std::string x : {"-0.5", "100.5", "1e300"}) {
+    std::istringstream in("# width=100\n# height=50\n# periodic=true\nx,y,r\n" + x + ",25,3\n");
+    try {
+      softdrop::read_medium(in, softdrop::GrainFileFormat::csv, "m.csv");
+      ADD_FAILURE() << x << " was accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("must be in [0, width]"), std::string::npos) << e.what();
+    }
+  }
+  std::istringstream edge("# width=100\n# height=50\n# periodic=true\nx,y,r\n0,25,3\n100,25,3\n");
+  EXPECT_EQ(softdrop::read_medium(edge, softdrop::GrainFileFormat::csv, "m.csv").grains.size(), 2u);
+}
+
+TEST(GrainGridLimits, FewLargeGrainsAmongManySmallKeepTheGridLinearAndExact) {
+  // 20 000 small grains set the cell size; 150 grains 800 times wider would each cover
+  // ~10^5 cells of that size (1.5e7 entries). The grid coarsens instead, and stays exact.
+  softdrop::Medium m{2000, 2000, false, {}};
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 2000);
+  for (int i = 0; i < 20000; ++i) m.grains.push_back({u(rng), u(rng), 0.5});
+  for (int i = 0; i < 150; ++i) m.grains.push_back({u(rng), u(rng), 400});
+  const softdrop::GrainGrid grid(m);
+  EXPECT_LE(grid.entries(), 64 * m.grains.size() + 4096);
+  for (int k = 0; k < 2000; ++k) {  // every disc holding a point is listed in the point's cell
+    const double x = u(rng), y = u(rng);
+    const auto range = grid.query(x, y);
+    for (std::size_t i = 0; i < m.grains.size(); ++i) {
+      const auto& g = m.grains[i];
+      if ((x - g.x) * (x - g.x) + (y - g.y) * (y - g.y) < g.r * g.r) {
+        ASSERT_NE(std::find(range.begin, range.end, static_cast<std::int32_t>(i)), range.end) << i;
+      }
+    }
+  }
+}
+
+TEST(DamagedHistory, EditedValuesAreRefusedNamingTheFileAndNothingIsExported) {
+  const std::string seed = fresh("damaged_seed.db");
+  ASSERT_EQ(run("optimize --db " + seed + kScene + " --generations 3").code, 0);
+  struct Case {
+    std::string sql, names;
+  };
+  for (const Case& c : {
+           Case{"UPDATE grains SET x = 'left' WHERE grain = 2", "column x holds text, expected a number"},
+           Case{"UPDATE grains SET r = -1 WHERE grain = 3", "grain 3: radius -1"},
+           Case{"UPDATE grains SET x = 1e300 WHERE grain = 3", "grain 3: centre x"},
+           Case{"UPDATE candidates SET tortuosity = NULL", "column tortuosity holds NULL"},
+           Case{"UPDATE candidates SET tortuosity = -2", "is not a tortuosity"},
+           Case{"DELETE FROM grains WHERE grain = 5", "grain numbering has a hole"},
+           Case{"UPDATE runs SET grains = 1000000000000", "the run has 1000000000000"},
+           Case{"UPDATE runs SET width = x'00'", "column width holds a blob"},
+       }) {
+    SCOPED_TRACE(c.sql);
+    const std::string db = fresh("damaged.db"), out = fresh("damaged_best.json");
+    std::filesystem::copy_file(seed, db);
+    {
+      SQLite::Database w(db, SQLite::OPEN_READWRITE);
+      w.exec(c.sql);
+    }
+    const Result r = run("export --db " + db + " --run 1 -o " + out);
+    expect_one_line_naming(r, "'" + db + "': ");
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+    const Result resume = run("optimize --db " + db + " --resume 1 --generations 5 --quiet");
+    EXPECT_EQ(resume.code, 1) << resume.err;
+    EXPECT_NE(resume.err.find(db), std::string::npos) << resume.err;
+  }
+}
+
+TEST(CheckFlag, ValidatesTheOptionsWithoutRunningOrWriting) {
+  const std::string runs = fresh("check_runs.csv"), db = fresh("check.db");
+  Result r = run("--check simulate --porosity 0.7 --runs " + runs);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_FALSE(std::filesystem::exists(runs));
+  r = run("--check optimize --db " + db + kScene);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(db));
+  r = run("--check simulate --porosity 1.7");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("porosity = 1.7"), std::string::npos) << r.err;
+  r = run("--check sweep --db " + db + " --shard 3/2");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("shard = '3/2'"), std::string::npos) << r.err;
+}
+
+}  // namespace
