@@ -76,7 +76,7 @@ Candidate make_candidate(const Configuration& parent, std::int64_t generation, i
     const auto& touched = parent.eval.touched;
     c.moved_grain = touched.empty()
                         ? static_cast<int>(rng.below(static_cast<std::uint64_t>(n)))
-                        : touched[static_cast<std::size_t>(rng.below(touched.size()))];
+                        : touched[rng.below(touched.size())];
     c.moved = try_jump(c.moved_grain, options.single_step);
   } else {
     for (int i = 0; i < n; ++i) c.moved += try_jump(i, options.step);

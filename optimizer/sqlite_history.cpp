@@ -29,7 +29,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
                                    kNow + ", " + kNow + ", ?, 'running', ?, ?, ?, ?, ?, ?, ?, 0, ?, ?, 0)");
       q.bind(1, kVersion);
       q.bind(2, params_json);
-      q.bind(3, static_cast<std::int64_t>(to_i64(o.seed)));
+      q.bind(3, to_i64(o.seed));
       q.bind(4, o.lambda);
       q.bind(5, static_cast<std::int64_t>(best.medium.grains.size()));
       q.bind(6, best.medium.width);
@@ -49,7 +49,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     guarded([&] {
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
       SQLite::Statement last(db_, "SELECT generations FROM runs WHERE id = ?");
-      last.bind(1, static_cast<std::int64_t>(run));
+      last.bind(1, run);
       if (!last.executeStep()) throw std::runtime_error("run " + std::to_string(run) + ": no such run");
       const std::int64_t stored = detail::as_int64(last.getColumn(0));
       // A statement left mid-result keeps a read snapshot open past COMMIT, and that snapshot
@@ -67,7 +67,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       u.bind(2, static_cast<std::int64_t>(g.candidates.size()));
       u.bind(3, best.eval.tortuosity);
       u.bind(4, static_cast<std::int64_t>(best.generation));
-      u.bind(5, static_cast<std::int64_t>(run));
+      u.bind(5, run);
       u.exec();
       t.commit();
       return 0;
@@ -93,7 +93,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   RunRecord run(std::int64_t id) override {
     return guarded([&] {
       SQLite::Statement q(db_, std::string(kRunColumns) + " WHERE id = ?");
-      q.bind(1, static_cast<std::int64_t>(id));
+      q.bind(1, id);
       if (!q.executeStep()) throw std::runtime_error("--run " + std::to_string(id) + ": no such run in '" + path_ + "'");
       return read_run(q);
     });
@@ -107,7 +107,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       std::vector<GenerationRecord> out;
       SQLite::Statement q(db_, "SELECT generation, kind, accepted_candidate, best_t, touched, seconds, finished "
                                "FROM generations WHERE run_id = ? ORDER BY generation");
-      q.bind(1, static_cast<std::int64_t>(run_id));
+      q.bind(1, run_id);
       while (q.executeStep()) {
         GenerationRecord g;
         g.generation = detail::as_int64(q.getColumn(0));
@@ -122,7 +122,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       SQLite::Statement c(db_, "SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, "
                                "steps, touched, seconds FROM candidates WHERE run_id = ? "
                                "ORDER BY generation, candidate");
-      c.bind(1, static_cast<std::int64_t>(run_id));
+      c.bind(1, run_id);
       std::size_t k = 0;
       while (c.executeStep()) {
         const std::int64_t gen = detail::as_int64(c.getColumn(0));
@@ -153,7 +153,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       SQLite::Statement q(db_, "SELECT generation, accepted_candidate FROM generations WHERE run_id = ? AND "
                                "accepted_candidate IS NOT NULL AND generation <= ? "
                                "ORDER BY generation DESC LIMIT 1");
-      q.bind(1, static_cast<std::int64_t>(run_id));
+      q.bind(1, run_id);
       q.bind(2, static_cast<std::int64_t>(generation < 0 ? r.generations : generation));
       if (!q.executeStep())
         throw std::runtime_error("--generation " + std::to_string(generation) + ": run " +
@@ -167,8 +167,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
 
       SQLite::Statement e(db_, "SELECT outcome, reason, tortuosity, steps FROM candidates "
                                "WHERE run_id = ? AND generation = ? AND candidate = ?");
-      e.bind(1, static_cast<std::int64_t>(run_id));
-      e.bind(2, static_cast<std::int64_t>(c.generation));
+      e.bind(1, run_id);
+      e.bind(2, c.generation);
       e.bind(3, candidate);
       const std::string where = "run " + std::to_string(run_id) + ", generation " + std::to_string(c.generation) + ": ";
       if (!e.executeStep()) throw std::runtime_error(where + "accepted candidate missing");
@@ -182,8 +182,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
 
       SQLite::Statement gq(db_, "SELECT grain, x, y, r, touched FROM grains WHERE run_id = ? AND generation = ? "
                                 "ORDER BY grain");
-      gq.bind(1, static_cast<std::int64_t>(run_id));
-      gq.bind(2, static_cast<std::int64_t>(c.generation));
+      gq.bind(1, run_id);
+      gq.bind(2, c.generation);
       while (gq.executeStep()) {
         const int i = detail::as_int(gq.getColumn(0));
         if (i != static_cast<int>(c.medium.grains.size())) throw std::runtime_error(where + "grain numbering has a hole");
@@ -197,8 +197,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       if (std::string why; !c.medium.IsValid(&why)) throw std::runtime_error(where + why);
 
       SQLite::Statement pq(db_, "SELECT x, y FROM paths WHERE run_id = ? AND generation = ? ORDER BY point");
-      pq.bind(1, static_cast<std::int64_t>(run_id));
-      pq.bind(2, static_cast<std::int64_t>(c.generation));
+      pq.bind(1, run_id);
+      pq.bind(2, c.generation);
       while (pq.executeStep()) {
         c.eval.path_x.push_back(detail::as_real(pq.getColumn(0)));
         c.eval.path_y.push_back(detail::as_real(pq.getColumn(1)));

@@ -44,8 +44,11 @@ bool DropletParams::IsValid(std::string* why) const {
                          ": must be in [0, 100]");
   if (!std::isfinite(max_depth) || max_depth <= 0)
     return fail(why, "max-depth = " + num(max_depth) + ": must be > 0");
-  if (!std::isfinite(viscosity) || viscosity < 0 || viscosity * dt > 0.5)
-    return fail(why, "viscosity = " + num(viscosity) + ": must be >= 0 and viscosity * dt <= 0.5");
+  if (!std::isfinite(viscosity) || viscosity < 0)
+    return fail(why, "viscosity = " + num(viscosity) + ": must be >= 0");
+  if (viscosity * dt > 0.5)  // names both, since either may be the one the user changed
+    return fail(why, "viscosity = " + num(viscosity) + ", dt = " + num(dt) + ": viscosity * dt = " +
+                         num(viscosity * dt) + " must be <= 0.5");
   // Explicit integration is only stable when the stiffest oscillator is resolved in time.
   const double omega_dt = std::sqrt(std::max(ks, kc) / mass) * dt;
   if (omega_dt > 0.5)
