@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/cli.hpp"
+#include "parse_and_check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::vector<std::string> args{"softdrop"};
@@ -26,16 +26,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       return 0;
   std::vector<const char*> argv;
   for (const std::string& a : args) argv.push_back(a.c_str());
-  softdrop::cli::Cli cli;
-  try {
-    cli.parse(static_cast<int>(argv.size()), argv.data());
-  } catch (const CLI::ParseError&) {
-    return 0;
-  }
-  try {
-    cli.check();
-  } catch (const std::invalid_argument&) {
-  } catch (const std::runtime_error&) {  // e.g. an output path in a missing folder
-  }
+  parse_and_check(argv);
   return 0;
 }

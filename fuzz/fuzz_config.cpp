@@ -8,7 +8,7 @@
 #include <fstream>
 #include <string>
 
-#include "cli/cli.hpp"
+#include "parse_and_check.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size == 0) return 0;
@@ -24,16 +24,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   argv.push_back(commands[which]);
   argv.push_back("--config");
   argv.push_back(path.c_str());
-  softdrop::cli::Cli cli;
-  try {
-    cli.parse(static_cast<int>(argv.size()), argv.data());
-  } catch (const CLI::ParseError&) {
-    return 0;
-  }
-  try {
-    cli.check();
-  } catch (const std::invalid_argument&) {
-  } catch (const std::runtime_error&) {
-  }
+  parse_and_check(argv);
   return 0;
 }
