@@ -17,6 +17,8 @@
 #include <iterator>
 #include <string>
 
+#include "softdrop/averaging.hpp"
+#include "softdrop/fit.hpp"
 #include "softdrop/history.hpp"
 #include "softdrop/sweep.hpp"
 #include "softdrop/sweep_store.hpp"
@@ -34,11 +36,25 @@ void read_history(const std::string& path, softdrop::OpenMode mode) {
   }
 }
 
+// What sweep-report, fit and averagings do with a store's media.
 void read_sweeps(const std::string& path) {
   auto store = softdrop::open_sweep_store(path, softdrop::OpenMode::read_only);
   for (const softdrop::SweepRecord& s : store->sweeps()) {
     (void)store->done_units(s.id);
-    (void)softdrop::sweep_points(store->media(s.id));
+    const std::vector<softdrop::SweepMedium> media = store->media(s.id);
+    std::vector<softdrop::FitPoint> points;
+    for (const softdrop::SweepPoint& p : softdrop::sweep_points(media))
+      if (p.passed > 1 && p.standard_error > 0) points.push_back({p.porosity, p.mean_t, p.standard_error});
+    for (const auto law : {softdrop::FitLaw::power, softdrop::FitLaw::log}) {
+      try {
+        (void)softdrop::fit_law(law, points);
+      } catch (const std::invalid_argument&) {
+      }
+    }
+    std::vector<softdrop::MediumPoint> by_medium;
+    for (const softdrop::SweepMedium& m : media)
+      if (m.passed > 0) by_medium.push_back({m.porosity, m.mean_t});
+    (void)softdrop::group_averages(by_medium, softdrop::AveragingType::by_t, 2);
   }
 }
 

@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
 targets=("$@")
-((${#targets[@]})) || targets=(grain_file config cli history_db)
+((${#targets[@]})) || targets=(grain_file config cli history_db fit_points)
 if [[ ! -x build-asan/fuzz/fuzz_${targets[0]} ]]; then
   bash scripts/sanitize.sh -R '^$' > /dev/null  # configure and build only
 fi

@@ -4,13 +4,41 @@
 #include <nlopt.hpp>
 
 #include <cmath>
+#include <istream>
 #include <limits>
+#include <sstream>
 #include <stdexcept>
 
 #include "validation.hpp"
 
 namespace softdrop {
 using detail::num;
+
+std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name) {
+  std::string line;
+  std::vector<FitPoint> out;
+  int number = 0;
+  bool header = false;
+  auto bad = [&](const std::string& what) {
+    return std::runtime_error("--points '" + name + "' line " + std::to_string(number) + ": " + what);
+  };
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    if (!header) {
+      if (line.rfind("phi,t,se", 0) != 0) throw bad("expected the header phi,t,se");
+      header = true;
+      continue;
+    }
+    if (out.size() == kMaxFitPoints) throw bad("more than the limit of " + std::to_string(kMaxFitPoints) + " points");
+    std::istringstream s(line);
+    FitPoint p;
+    char c1 = 0, c2 = 0;
+    if (!(s >> p.phi >> c1 >> p.t >> c2 >> p.se) || c1 != ',' || c2 != ',') throw bad("expected three numbers phi,t,se");
+    out.push_back(p);
+  }
+  return out;
+}
 
 const char* to_string(FitLaw law) { return law == FitLaw::power ? "power" : "log"; }
 
@@ -71,6 +99,41 @@ std::vector<double> power_start(const std::vector<FitPoint>& pts) {
   return start;
 }
 
+// Runs one NLopt algorithm from *p. On success (or a round-off limited end, where *p holds the best
+// point) sets *p, *chi2 and *message and returns true; otherwise leaves the best point NLopt found
+// in *p (if it is finite and no worse than the start) and returns false with the reason.
+bool minimize(nlopt::algorithm algorithm, Problem& problem, std::vector<double>* p, double* chi2,
+              std::string* message) {
+  std::vector<double> none;
+  const std::vector<double> start = *p;
+  const double start_chi2 = chi2_of(start, none, &problem);
+  nlopt::opt opt(algorithm, static_cast<unsigned>(p->size()));
+  opt.set_min_objective(chi2_of, &problem);
+  opt.set_ftol_rel(1e-14);
+  opt.set_xtol_rel(1e-12);
+  opt.set_maxeval(20000);
+  try {
+    const nlopt::result status = opt.optimize(*p, *chi2);
+    *message = status == nlopt::FTOL_REACHED ? "converged (relative chi2 tolerance)"
+               : status == nlopt::XTOL_REACHED ? "converged (relative parameter tolerance)"
+               : status == nlopt::SUCCESS ? "converged"
+               : status == nlopt::MAXEVAL_REACHED ? "stopped at the evaluation limit"
+                                                  : "ended with NLopt status " + std::to_string(static_cast<int>(status));
+    return true;
+  } catch (const nlopt::roundoff_limited&) {
+    // Cannot improve further in floating point: *p holds the best point found.
+    *chi2 = chi2_of(*p, none, &problem);
+    *message = "converged (round-off limited)";
+    return true;
+  } catch (const std::exception& e) {  // nlopt's generic failure, invalid arguments, ...
+    *message = e.what();
+  }
+  bool finite = true;
+  for (double v : *p) finite = finite && std::isfinite(v);
+  if (!finite || !(chi2_of(*p, none, &problem) <= start_chi2)) *p = start;
+  return false;
+}
+
 }  // namespace
 
 FitResult fit_law(FitLaw law, const std::vector<FitPoint>& points) {
@@ -92,26 +155,21 @@ FitResult fit_law(FitLaw law, const std::vector<FitPoint>& points) {
   std::vector<double> p = law == FitLaw::power ? power_start(points) : std::vector<double>{0.5};
 
   Problem problem{law, &points};
-  nlopt::opt opt(nlopt::LD_LBFGS, static_cast<unsigned>(k));
-  opt.set_min_objective(chi2_of, &problem);
-  opt.set_ftol_rel(1e-14);
-  opt.set_xtol_rel(1e-12);
-  opt.set_maxeval(20000);
   double chi2 = 0;
-  try {
-    const nlopt::result status = opt.optimize(p, chi2);
-    r.message = status == nlopt::FTOL_REACHED ? "converged (relative chi2 tolerance)"
-                : status == nlopt::XTOL_REACHED ? "converged (relative parameter tolerance)"
-                : status == nlopt::SUCCESS ? "converged"
-                : status == nlopt::MAXEVAL_REACHED ? "stopped at the evaluation limit"
-                                                   : "ended with NLopt status " + std::to_string(static_cast<int>(status));
-  } catch (const nlopt::roundoff_limited&) {
-    // L-BFGS cannot improve further in floating point: p holds the best point found.
-    std::vector<double> none;
-    chi2 = chi2_of(p, none, &problem);
-    r.message = "converged (round-off limited)";
+  if (!minimize(nlopt::LD_LBFGS, problem, &p, &chi2, &r.message)) {
+    // L-BFGS's line search can fail outright in the long, narrow valley of (a, c) of the power
+    // law. Nelder-Mead needs no gradient; it restarts from L-BFGS's best point (or the start).
+    std::string first = r.message;
+    if (!minimize(nlopt::LN_NELDERMEAD, problem, &p, &chi2, &r.message))
+      throw std::runtime_error(std::string("fit ") + to_string(law) + ": NLopt failed (L-BFGS: " + first +
+                               "; Nelder-Mead: " + r.message + ")");
+    r.message += " by Nelder-Mead after L-BFGS " + first;
   }
   r.values = p;
+  if (law == FitLaw::power && std::abs(p[1]) < 1e-3)
+    r.warning = "power law: b = " + num(p[1]) + " -> 0, where a - c phi^b becomes (a - c) - c b ln(phi); only a - c = " +
+                num(p[0] - p[2]) + " and c b = " + num(p[2] * p[1]) +
+                " are determined, not a, b, c (the data follow the log law's shape)";
   r.chi2 = chi2;
   r.dof = static_cast<int>(points.size()) - static_cast<int>(k);
   r.reduced_chi2 = r.dof > 0 ? chi2 / r.dof : 0;

@@ -4,12 +4,14 @@
 
 #include <SQLiteCpp/SQLiteCpp.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
 
 #include "search_cli.hpp"
+#include "softdrop/fit.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/grain_grid.hpp"
 
@@ -119,6 +121,49 @@ TEST(GrainFileLimits, PeriodicCentresMustLieInTheBox) {
   }
   std::istringstream edge("# width=100\n# height=50\n# periodic=true\nx,y,r\n0,25,3\n100,25,3\n");
   EXPECT_EQ(softdrop::read_medium(edge, softdrop::GrainFileFormat::csv, "m.csv").grains.size(), 2u);
+}
+
+TEST(FitPointsFile, BadLinesAndTooManyPointsNameTheFileAndLine) {
+  std::istringstream good("# comment\nphi,t,se\n0.5,1.5,0.02\n0.9,1.1,0.01\n");
+  const auto points = softdrop::read_fit_points(good, "p.csv");
+  ASSERT_EQ(points.size(), 2u);
+  EXPECT_EQ(points[1].phi, 0.9);
+  EXPECT_EQ(points[1].se, 0.01);
+  struct Case {
+    std::string text, message;
+  };
+  for (const Case& c : {Case{"x,y\n", "--points 'p.csv' line 1: expected the header"},
+                        Case{"phi,t,se\n0.5;1.5;0.1\n", "--points 'p.csv' line 2: expected three numbers"},
+                        Case{"phi,t,se\n0.5,1.5\n", "line 2: expected three numbers"}}) {
+    std::istringstream in(c.text);
+    try {
+      softdrop::read_fit_points(in, "p.csv");
+      ADD_FAILURE() << c.text;
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+    }
+  }
+  std::string many = "phi,t,se\n";
+  for (std::size_t i = 0; i <= softdrop::kMaxFitPoints; ++i) many += "0.5,1.5,0.1\n";
+  std::istringstream in(many);
+  EXPECT_THROW(softdrop::read_fit_points(in, "p.csv"), std::runtime_error);
+}
+
+TEST(FitFailures, PowerLawRunningToTheLogLawIsFittedAndFlagged) {
+  // Found by fuzz_fit_points: on these points L-BFGS ended with NLopt's generic failure, so
+  // `softdrop fit` printed only "nlopt failure". The best power law lies at b -> 0.
+  const std::vector<softdrop::FitPoint> points{{0.45, 1.62, 0.02}, {0.5, 1.51, 0.018}, {0.6, 1.35, 0.015},
+                                               {0.7, 1.22, 0.01},  {0.8, 1.14, 0.008}, {0.9, 1.07, 0.005}};
+  const softdrop::FitResult power = softdrop::fit_law(softdrop::FitLaw::power, points);
+  const softdrop::FitResult log = softdrop::fit_law(softdrop::FitLaw::log, points);
+  EXPECT_NE(power.warning.find("b = "), std::string::npos) << power.message;
+  EXPECT_TRUE(log.warning.empty());
+  EXPECT_LT(std::abs(power.values[1]), 1e-3);
+  // The limit (a - c) - c b ln(phi) has a free intercept, so it fits at least as well as the log law.
+  EXPECT_LE(power.chi2, log.chi2);
+  EXPECT_TRUE(std::isfinite(power.values[0] - power.values[2]));
+  EXPECT_GT(power.values[2] * power.values[1], 0.5);  // the slope of T against -ln(phi)
+  EXPECT_LT(power.values[2] * power.values[1], 1.0);
 }
 
 TEST(GrainGridLimits, FewLargeGrainsAmongManySmallKeepTheGridLinearAndExact) {

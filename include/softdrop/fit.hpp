@@ -5,6 +5,8 @@
 /// optimum (the standard errors are taken as true, absolute errors); the two fits are compared by
 /// chi^2 and Akaike's information criterion AIC = chi^2 + 2 k.
 
+#include <cstddef>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -36,7 +38,19 @@ struct FitResult {
   double reduced_chi2 = 0;           ///< chi2 / dof (0 if dof = 0)
   double aic = 0;                    ///< chi2 + 2 k
   std::string message;               ///< how NLopt ended
+  /// Non-empty when the result is not a usable fit although NLopt ended normally: the power law
+  /// running to b -> 0, where a - c phi^b becomes (a - c) - c b ln(phi) and only a - c and c b
+  /// are determined (the data prefer the log law's shape).
+  std::string warning;
 };
+
+/// Most points a points file may hold.
+constexpr std::size_t kMaxFitPoints = 1'000'000;
+
+/// Reads a points file: optional `#` comment lines, the header `phi,t,se`, then one point per
+/// line. Throws std::runtime_error naming `name` and the line on a bad line or more than
+/// kMaxFitPoints points (the values themselves are checked by fit_law).
+std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name);
 
 /// Fits one law. Throws std::invalid_argument for fewer points than parameters, a non-finite
 /// value, phi outside (0, 1] or se <= 0 (naming the point).

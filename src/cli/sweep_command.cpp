@@ -258,48 +258,22 @@ int run_sweep_report(const SweepReportArgs& a) {
   return 0;
 }
 
-namespace {
-
-std::vector<FitPoint> read_points_csv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw std::runtime_error("--points '" + path + "': cannot read");
-  std::string line;
-  std::vector<FitPoint> out;
-  int number = 0;
-  bool header = false;
-  while (std::getline(in, line)) {
-    ++number;
-    if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      if (line.rfind("phi,t,se", 0) != 0)
-        throw std::runtime_error("--points '" + path + "' line " + std::to_string(number) + ": expected the header phi,t,se");
-      header = true;
-      continue;
-    }
-    std::istringstream s(line);
-    FitPoint p;
-    char c1 = 0, c2 = 0;
-    if (!(s >> p.phi >> c1 >> p.t >> c2 >> p.se) || c1 != ',' || c2 != ',')
-      throw std::runtime_error("--points '" + path + "' line " + std::to_string(number) + ": expected three numbers phi,t,se");
-    out.push_back(p);
-  }
-  return out;
-}
-
-}  // namespace
-
 int run_fit(const FitArgs& a) {
   if (!a.plot.empty()) check_picture_path("--plot", a.plot);
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   std::vector<FitPoint> points;
   if (!a.points.empty()) {
-    points = read_points_csv(a.points);
+    std::ifstream in(a.points);
+    if (!in) throw std::runtime_error("--points '" + a.points + "': cannot read");
+    points = read_fit_points(in, a.points);
   } else {
     auto store = open_sweep_store(a.db, OpenMode::read_only);
     for (const SweepPoint& p : sweep_points(store->media(pick_sweep(*store, a.sweep, a.db))))
       if (p.passed > 1 && p.standard_error > 0) points.push_back({p.porosity, p.mean_t, p.standard_error});
   }
   const FitResult power = fit_law(FitLaw::power, points), log = fit_law(FitLaw::log, points);
+  for (const FitResult* r : {&power, &log})
+    if (!r->warning.empty()) std::cerr << "fit: warning: " << r->warning << '\n';
 
   nlohmann::ordered_json j;
   j["version"] = kVersion;
@@ -314,6 +288,7 @@ int run_fit(const FitArgs& a) {
     f["aic"] = r->aic;
     f["residuals"] = r->residuals;
     f["message"] = r->message;
+    if (!r->warning.empty()) f["warning"] = r->warning;
     j[to_string(r->law)] = f;
   }
   j["delta_aic_log_minus_power"] = log.aic - power.aic;
