@@ -160,9 +160,14 @@ bool check_file(const std::string& path, OpenMode mode) {
 // Checks an open database is ours and readable. Returns false for an empty SQLite database.
 bool check_schema(SQLite::Database& db, const std::string& path) {
   try {
-    const int app = db.execAndGet("PRAGMA application_id").getInt();
-    const int version = db.execAndGet("PRAGMA user_version").getInt();
-    const int tables = db.execAndGet("SELECT count(*) FROM sqlite_master").getInt();
+    // One statement, so one read snapshot: read one by one, a process creating the schema at the
+    // same instant could commit between the reads (application_id 0 but tables present).
+    SQLite::Statement q(db, "SELECT (SELECT application_id FROM pragma_application_id), "
+                            "(SELECT user_version FROM pragma_user_version), (SELECT count(*) FROM sqlite_master)");
+    q.executeStep();
+    const int app = q.getColumn(0).getInt();
+    const int version = q.getColumn(1).getInt();
+    const int tables = q.getColumn(2).getInt();
     if (app == 0 && version == 0 && tables == 0) return false;
     if (app != kHistoryApplicationId)
       throw file_error(path, "an SQLite database, but not a softdrop database (application_id " +
