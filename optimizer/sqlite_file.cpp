@@ -185,6 +185,7 @@ bool check_schema(SQLite::Database& db, const std::string& path) {
     }
     return true;
   } catch (const SQLite::Exception& e) {
+    if ((e.getErrorCode() & 0xff) == SQLITE_READONLY) throw;  // validate() retries read-write
     throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
   }
 }
@@ -210,9 +211,20 @@ void validate(const std::string& path, OpenMode mode) {
   if (has_content) {
     // Inspect read-only first: nothing is written to a file that turns out not to be ours.
     bool ours = false;
+    auto probe = [&](int flags) {
+      SQLite::Database db(path, flags, 60'000);
+      ours = check_schema(db, path);
+    };
     try {
-      SQLite::Database probe(path, SQLite::OPEN_READONLY, 60'000);
-      ours = check_schema(probe, path);
+      try {
+        probe(SQLite::OPEN_READONLY);
+      } catch (const SQLite::Exception& e) {
+        // A WAL file whose writer was killed while updating the WAL index needs recovery, which a
+        // read-only connection cannot run (SQLITE_READONLY_RECOVERY). Recovery rebuilds only the
+        // -shm index from the -wal of what is already an SQLite WAL file, so run it read-write.
+        if ((e.getErrorCode() & 0xff) != SQLITE_READONLY || ::access(path.c_str(), W_OK) != 0) throw;
+        probe(SQLite::OPEN_READWRITE);
+      }
     } catch (const SQLite::Exception& e) {
       throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
     }

@@ -55,8 +55,9 @@ inline std::string dump(const std::string& db_path, int run, std::int64_t upto =
   return out.str();
 }
 
-/// Starts `softdrop ARGS` (words split at spaces) with stdout and stderr to /dev/null.
-inline pid_t spawn(const std::string& args) {
+/// Starts `softdrop ARGS` (words split at spaces) with stdout to /dev/null and stderr to
+/// `err_path` (default /dev/null).
+inline pid_t spawn(const std::string& args, const std::string& err_path = "/dev/null") {
   std::vector<std::string> words{SOFTDROP_CLI};
   std::istringstream in(args);
   for (std::string w; in >> w;) words.push_back(w);
@@ -66,7 +67,7 @@ inline pid_t spawn(const std::string& args) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  posix_spawn_file_actions_addopen(&actions, 2, err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
   pid_t pid = 0;
   EXPECT_EQ(posix_spawn(&pid, SOFTDROP_CLI, &actions, nullptr, argv.data(), environ), 0);
   posix_spawn_file_actions_destroy(&actions);

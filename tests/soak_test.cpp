@@ -6,6 +6,8 @@
 #include <SQLiteCpp/SQLiteCpp.h>
 
 #include <chrono>
+#include <fstream>
+#include <iterator>
 #include <iostream>
 #include <random>
 #include <thread>
@@ -30,11 +32,15 @@ TEST(Soak, ManyKillsOverALongSearchLoseNoCommittedGeneration) {
   for (int attempt = 0; attempt < kKills; ++attempt) {
     const bool resume = has_run(killed);
     (resume ? resumes : restarts)++;
-    const pid_t pid = spawn("optimize --db " + killed + kScene + gens + (resume ? " --resume 1" : ""));
+    const std::string err = temp_path("soak_stderr.txt");
+    const pid_t pid = spawn("optimize --db " + killed + kScene + gens + (resume ? " --resume 1" : ""), err);
     std::this_thread::sleep_for(std::chrono::milliseconds(std::uniform_int_distribution<int>(10, 300)(rng)));
     if (kill(pid, SIGKILL) == 0) ++kills;
     const int code = wait_for(pid);
-    ASSERT_TRUE(code == -SIGKILL || code == 0) << "exit " << code;
+    std::ifstream err_in(err);
+    const std::string message((std::istreambuf_iterator<char>(err_in)), {});
+    ASSERT_TRUE(code == -SIGKILL || code == 0) << "attempt " << attempt << (resume ? " (resume)" : " (fresh start)")
+                                               << ": exit " << code << ": " << message;
     if (const std::int64_t g = committed_generations(killed); g >= 0) committed.emplace_back(g, dump(killed, 1, g));
   }
   const Result fin = run("optimize --db " + killed + kScene + gens + (has_run(killed) ? " --resume 1" : ""));
