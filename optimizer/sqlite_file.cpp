@@ -219,9 +219,11 @@ void validate(const std::string& path, OpenMode mode) {
       try {
         probe(SQLite::OPEN_READONLY);
       } catch (const SQLite::Exception& e) {
-        // A WAL file whose writer was killed while updating the WAL index needs recovery, which a
-        // read-only connection cannot run (SQLITE_READONLY_RECOVERY). Recovery rebuilds only the
-        // -shm index from the -wal of what is already an SQLite WAL file, so run it read-write.
+        // A process killed inside a transaction of a rollback-journal file (a new file before it
+        // switches to WAL, or one edited with sqlite3) leaves a hot journal, which a read-only
+        // connection cannot roll back (SQLITE_READONLY_ROLLBACK; likewise _RECOVERY for a WAL
+        // index). Rolling back restores the file's last committed state, which every SQLite
+        // opener would do; the header check above already showed the file is SQLite.
         if ((e.getErrorCode() & 0xff) != SQLITE_READONLY || ::access(path.c_str(), W_OK) != 0) throw;
         probe(SQLite::OPEN_READWRITE);
       }

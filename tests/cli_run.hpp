@@ -11,7 +11,22 @@
 #include <sstream>
 #include <string>
 
+#if defined(__SANITIZE_ADDRESS__)
+#define SOFTDROP_TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SOFTDROP_TEST_ASAN 1
+#endif
+#endif
+
 namespace softdrop::test {
+
+/// Whether this test build runs under AddressSanitizer (slower; reserves terabytes of address space).
+#ifdef SOFTDROP_TEST_ASAN
+inline constexpr bool kAddressSanitizer = true;
+#else
+inline constexpr bool kAddressSanitizer = false;
+#endif
 
 struct Result {
   int code;  ///< exit code, -1 if killed by a signal

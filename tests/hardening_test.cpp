@@ -17,14 +17,6 @@
 #include "softdrop/grain_file.hpp"
 #include "softdrop/grain_grid.hpp"
 
-#if defined(__SANITIZE_ADDRESS__)
-#define SOFTDROP_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SOFTDROP_ASAN 1
-#endif
-#endif
-
 namespace {
 using namespace softdrop::test;
 
@@ -32,11 +24,8 @@ using namespace softdrop::test;
 // would fail the run with bad_alloc instead of the expected message. (AddressSanitizer reserves
 // terabytes of shadow memory, so the sanitizer build runs without the cap.)
 Result run_capped(const std::string& args) {
-#ifdef SOFTDROP_ASAN
-  return run(args);
-#else
+  if (kAddressSanitizer) return run(args);
   return run_shell("ulimit -v 1048576; " + std::string(SOFTDROP_CLI) + " " + args);
-#endif
 }
 
 void expect_one_line_naming(const Result& r, const std::string& names) {
