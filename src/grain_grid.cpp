@@ -53,28 +53,33 @@ GrainGrid::GrainGrid(const Medium& medium, double cell_size) {
     *iy1 = cell_of(gy_[k] + gr_[k] - y0_, ny_);
   };
   // A few large grains among many small ones would cover many cells each; grow the cells until
-  // the grid holds at most a bounded number of entries per grain, so memory stays linear.
+  // the grid holds at most a bounded number of entries per grain, so memory stays linear. The
+  // per-cell counts are made in the same pass; a grain's span is checked against the bound
+  // before its cells are counted, so no pass does more than max_entries work.
   const double max_entries = 64.0 * static_cast<double>(gx_.size()) + 4096.0;
+  std::int64_t cells = 0;
   for (;;) {
     inv_cell_ = 1.0 / cell_size;
     nx_ = static_cast<int>(std::clamp(std::ceil((xmax - xmin) * inv_cell_), 1.0, max_cells));
     ny_ = static_cast<int>(std::clamp(std::ceil((ymax - ymin) * inv_cell_), 1.0, max_cells));
+    cells = static_cast<std::int64_t>(nx_) * ny_;
+    start_.assign(static_cast<std::size_t>(cells + 1), 0);
+    const bool one_cell = nx_ == 1 && ny_ == 1;
     double entries = 0;
-    for (std::size_t k = 0; k < gx_.size() && entries <= max_entries; ++k) {
+    bool fits = true;
+    for (std::size_t k = 0; k < gx_.size(); ++k) {
       int ix0, ix1, iy0, iy1;
       cell_span(k, &ix0, &ix1, &iy0, &iy1);
       entries += static_cast<double>(ix1 - ix0 + 1) * static_cast<double>(iy1 - iy0 + 1);
+      if (entries > max_entries && !one_cell) {
+        fits = false;
+        break;
+      }
+      for (int iy = iy0; iy <= iy1; ++iy)
+        for (int ix = ix0; ix <= ix1; ++ix) ++start_[static_cast<std::size_t>(iy) * nx_ + ix + 1];
     }
-    if (entries <= max_entries || (nx_ == 1 && ny_ == 1)) break;
+    if (fits) break;
     cell_size *= 2;
-  }
-  const std::int64_t cells = static_cast<std::int64_t>(nx_) * ny_;
-  start_.assign(static_cast<std::size_t>(cells + 1), 0);
-  for (std::size_t k = 0; k < gx_.size(); ++k) {
-    int ix0, ix1, iy0, iy1;
-    cell_span(k, &ix0, &ix1, &iy0, &iy1);
-    for (int iy = iy0; iy <= iy1; ++iy)
-      for (int ix = ix0; ix <= ix1; ++ix) ++start_[static_cast<std::size_t>(iy) * nx_ + ix + 1];
   }
   for (std::int64_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
   items_.resize(static_cast<std::size_t>(start_[cells]));

@@ -128,7 +128,6 @@ int render_medium(RenderArgs& a) {
 }
 
 int render_snapshots(RenderArgs& a) {
-  check_droplet(a);
   if (a.times.empty()) throw std::invalid_argument("times: at least one snapshot time is needed");
   const RenderStyle style = style_of(a);
   Scene scene;
@@ -166,7 +165,6 @@ int render_snapshots(RenderArgs& a) {
 }
 
 int render_paths(RenderArgs& a) {
-  check_droplet(a);
   if (a.batch.droplets < 1 || a.batch.droplets > 1'000'000)
     throw std::invalid_argument("droplets = " + std::to_string(a.batch.droplets) + ": must be in [1, 1e6]");
   if (!(a.alpha >= 0 && a.alpha <= 1)) throw std::invalid_argument("alpha = " + fmt(a.alpha) + ": must be in [0, 1]");
@@ -236,7 +234,6 @@ int render_search(RenderArgs& a) {
 }
 
 int render_animation_command(RenderArgs& a) {
-  check_droplet(a);
   if (!std::isfinite(a.speed) || a.speed <= 0) throw std::invalid_argument("speed = " + fmt(a.speed) + ": must be > 0");
   if (!std::isfinite(a.fps) || a.fps <= 0 || a.fps > 100) throw std::invalid_argument("fps = " + fmt(a.fps) + ": must be in (0, 100]");
   const RenderStyle style = style_of(a);
@@ -293,7 +290,6 @@ int render_animation_command(RenderArgs& a) {
 constexpr int kTraceInterval = 20;  // steps between area samples of the trace
 
 int render_trace(RenderArgs& a) {
-  check_droplet(a);
   RunOptions recorded = a.run;
   recorded.area_interval = kTraceInterval;
   check_recording(recorded, 1, a.droplet.masses);
@@ -355,6 +351,7 @@ int render_trace(RenderArgs& a) {
 
 }  // namespace
 
+// Run before every picture (run_render), so the commands below need not check the droplet again.
 void check_render(RenderArgs& a) {
   check_picture_path("--output", a.output);
   style_of(a);
