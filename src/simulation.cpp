@@ -6,6 +6,10 @@
 #include <sstream>
 #include <stdexcept>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 #include "validation.hpp"
 
 namespace softdrop {
@@ -102,27 +106,86 @@ void Simulation::accumulate_gravity() {
   std::fill(state_.fy.begin(), state_.fy.end(), w);
 }
 
+namespace {
+// Force of spring (i, j) on i along the spring (> 0 pulls i towards j), and its components.
+struct SpringInput {
+  double ks, kd, inv_dt, d0;
+};
+inline void spring_force(const SpringInput& k, double xi, double yi, double xj, double yj, double pxi,
+                         double pyi, double pxj, double pyj, double* sx, double* sy, bool* zero) {
+  const double dx = xj - xi, dy = yj - yi;
+  const double d = std::sqrt(dx * dx + dy * dy);
+  *zero = d == 0;
+  if (*zero) return;
+  const double ux = dx / d, uy = dy / d;
+  // Relative velocity of j with respect to i, projected on the spring.
+  const double dvx = ((xj - pxj) - (xi - pxi)) * k.inv_dt;
+  const double dvy = ((yj - pyj) - (yi - pyi)) * k.inv_dt;
+  const double f = k.ks * (d - k.d0) + k.kd * (dvx * ux + dvy * uy);
+  *sx = f * ux;
+  *sy = f * uy;
+}
+}  // namespace
+
 void Simulation::accumulate_springs() {
+  // Two passes: the force of every spring (independent, two at a time with SSE2), then each mass
+  // gathers its two springs in the order of the scalar loop "for each spring i: f[i] += s,
+  // f[i+1] -= s" (mass m >= 1: (f - s[m-1]) + s[m]; mass 0: (f + s[0]) - s[n-1]), so the sums
+  // have the same bits.
   const int n = state_.size();
-  const double ks = params_.ks, kd = params_.kd, inv_dt = 1.0 / params_.dt, d0 = rest_length_;
+  const SpringInput in{params_.ks, params_.kd, 1.0 / params_.dt, rest_length_};
+  const std::size_t un = static_cast<std::size_t>(n);
+  if (spring_force_.size() != 4 * un) spring_force_.assign(4 * un, 0.0);
+  double* plus_x = spring_force_.data();  // added to the first end; -0 if the spring has no length
+  double* plus_y = plus_x + un;
+  double* minus_x = plus_y + un;          // subtracted from the second end; +0 then
+  double* minus_y = minus_x + un;
   double* fx = state_.fx.data();
   double* fy = state_.fy.data();
   const double *x = state_.x.data(), *y = state_.y.data();
   const double *px = state_.px.data(), *py = state_.py.data();
-  for (int i = 0; i < n; ++i) {
+  int i = 0;
+#if defined(__SSE2__)
+  {
+    const __m128d ks = _mm_set1_pd(in.ks), kd = _mm_set1_pd(in.kd), inv_dt = _mm_set1_pd(in.inv_dt);
+    const __m128d d0 = _mm_set1_pd(in.d0), zero = _mm_setzero_pd(), minus_zero = _mm_set1_pd(-0.0);
+    for (; i + 2 < n; i += 2) {  // springs (i, i+1) and (i+1, i+2), both inside the arrays
+      const __m128d xi = _mm_loadu_pd(x + i), xj = _mm_loadu_pd(x + i + 1);
+      const __m128d yi = _mm_loadu_pd(y + i), yj = _mm_loadu_pd(y + i + 1);
+      const __m128d pxi = _mm_loadu_pd(px + i), pxj = _mm_loadu_pd(px + i + 1);
+      const __m128d pyi = _mm_loadu_pd(py + i), pyj = _mm_loadu_pd(py + i + 1);
+      const __m128d dx = _mm_sub_pd(xj, xi), dy = _mm_sub_pd(yj, yi);
+      const __m128d d = _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)));
+      const __m128d ux = _mm_div_pd(dx, d), uy = _mm_div_pd(dy, d);
+      const __m128d dvx = _mm_mul_pd(_mm_sub_pd(_mm_sub_pd(xj, pxj), _mm_sub_pd(xi, pxi)), inv_dt);
+      const __m128d dvy = _mm_mul_pd(_mm_sub_pd(_mm_sub_pd(yj, pyj), _mm_sub_pd(yi, pyi)), inv_dt);
+      const __m128d f = _mm_add_pd(_mm_mul_pd(ks, _mm_sub_pd(d, d0)),
+                                   _mm_mul_pd(kd, _mm_add_pd(_mm_mul_pd(dvx, ux), _mm_mul_pd(dvy, uy))));
+      const __m128d sx = _mm_mul_pd(f, ux), sy = _mm_mul_pd(f, uy);
+      const __m128d has_length = _mm_cmpneq_pd(d, zero);
+      _mm_storeu_pd(plus_x + i, _mm_or_pd(_mm_and_pd(has_length, sx), _mm_andnot_pd(has_length, minus_zero)));
+      _mm_storeu_pd(plus_y + i, _mm_or_pd(_mm_and_pd(has_length, sy), _mm_andnot_pd(has_length, minus_zero)));
+      _mm_storeu_pd(minus_x + i, _mm_and_pd(has_length, sx));
+      _mm_storeu_pd(minus_y + i, _mm_and_pd(has_length, sy));
+    }
+  }
+#endif
+  for (; i < n; ++i) {
     const int j = i + 1 == n ? 0 : i + 1;
-    const double dx = x[j] - x[i], dy = y[j] - y[i];
-    const double d = std::sqrt(dx * dx + dy * dy);
-    if (d == 0) continue;
-    const double ux = dx / d, uy = dy / d;
-    // Relative velocity of j with respect to i, projected on the spring.
-    const double dvx = ((x[j] - px[j]) - (x[i] - px[i])) * inv_dt;
-    const double dvy = ((y[j] - py[j]) - (y[i] - py[i])) * inv_dt;
-    const double f = ks * (d - d0) + kd * (dvx * ux + dvy * uy);  // > 0 pulls i towards j
-    fx[i] += f * ux;
-    fy[i] += f * uy;
-    fx[j] -= f * ux;
-    fy[j] -= f * uy;
+    double sx = 0, sy = 0;
+    bool zero = false;
+    spring_force(in, x[i], y[i], x[j], y[j], px[i], py[i], px[j], py[j], &sx, &sy, &zero);
+    // Adding -0 and subtracting +0 leave every double (-0 included) as it is.
+    plus_x[i] = zero ? -0.0 : sx;
+    plus_y[i] = zero ? -0.0 : sy;
+    minus_x[i] = zero ? 0.0 : sx;
+    minus_y[i] = zero ? 0.0 : sy;
+  }
+  fx[0] = (fx[0] + plus_x[0]) - minus_x[n - 1];
+  fy[0] = (fy[0] + plus_y[0]) - minus_y[n - 1];
+  for (int m = 1; m < n; ++m) {
+    fx[m] = (fx[m] - minus_x[m - 1]) + plus_x[m];
+    fy[m] = (fy[m] - minus_y[m - 1]) + plus_y[m];
   }
 }
 
@@ -130,18 +193,22 @@ void Simulation::accumulate_pressure() {
   area_ = ring_area(state_);
   const int n = state_.size();
   // P l_e along the outward normal (dy, -dx) / l_e of a counter-clockwise edge, half to each end.
-  const double half_p = 0.5 * params_.nrt / area_;
+  // Each mass gathers its two edges in the order of the loop "for each edge i: f[i] += e,
+  // f[i+1] += e": mass m >= 1 adds e[m-1] then e[m]; mass 0 adds e[0] then e[n-1].
+  const double half_p = 0.5 * params_.nrt / area_, minus_half_p = -half_p;
   double* fx = state_.fx.data();
   double* fy = state_.fy.data();
   const double *x = state_.x.data(), *y = state_.y.data();
-  for (int i = 0; i < n; ++i) {
-    const int j = i + 1 == n ? 0 : i + 1;
-    const double ex = half_p * (y[j] - y[i]), ey = -half_p * (x[j] - x[i]);
-    fx[i] += ex;
-    fy[i] += ey;
-    fx[j] += ex;
-    fy[j] += ey;
+  const double ex_last = half_p * (y[0] - y[n - 1]), ey_last = minus_half_p * (x[0] - x[n - 1]);
+  const double ex_first = half_p * (y[1] - y[0]), ey_first = minus_half_p * (x[1] - x[0]);
+  for (int m = 1; m + 1 < n; ++m) {
+    fx[m] = (fx[m] + half_p * (y[m] - y[m - 1])) + half_p * (y[m + 1] - y[m]);
+    fy[m] = (fy[m] + minus_half_p * (x[m] - x[m - 1])) + minus_half_p * (x[m + 1] - x[m]);
   }
+  fx[n - 1] = (fx[n - 1] + half_p * (y[n - 1] - y[n - 2])) + ex_last;
+  fy[n - 1] = (fy[n - 1] + minus_half_p * (x[n - 1] - x[n - 2])) + ey_last;
+  fx[0] = (fx[0] + ex_first) + ex_last;
+  fy[0] = (fy[0] + ey_first) + ey_last;
 }
 
 void Simulation::accumulate_collisions() {

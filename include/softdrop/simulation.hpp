@@ -131,6 +131,9 @@ class Simulation {
   double rest_length_ = 0, area0_ = 0, area_ = 0, start_y_ = 0;
   double last_penetration_ = 0;
   std::vector<std::uint8_t> touched_;  ///< per medium grain
+  /// Spring forces of the step, 4 x N: on the first end (-0 for a spring of zero length) and for
+  /// the second end (+0 then), x and y. Apart so that the springs can go two at a time.
+  std::vector<double> spring_force_;
 };
 
 /// Length of the polyline (xs, ys) between its first downward crossing of y = top and its first
