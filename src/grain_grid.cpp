@@ -92,6 +92,11 @@ GrainGrid::GrainGrid(const Medium& medium, double cell_size) {
         items_[static_cast<std::size_t>(fill[static_cast<std::size_t>(iy) * nx_ + ix]++)] =
             static_cast<std::int32_t>(k);
   }
+  discs_.reserve(items_.size());
+  for (const std::int32_t k : items_) {
+    const auto u = static_cast<std::size_t>(k);
+    discs_.push_back({gx_[u], gy_[u], gr_[u], id_[u]});
+  }
 }
 
 }  // namespace softdrop

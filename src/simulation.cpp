@@ -216,17 +216,14 @@ void Simulation::accumulate_collisions() {
   const double kc = params_.kc, cc = params_.cc, inv_dt = 1.0 / params_.dt;
   const double W = medium_.width;
   const bool periodic = medium_.periodic;
-  const double *gx = grid_.gx().data(), *gy = grid_.gy().data(), *gr = grid_.gr().data();
-  const std::int32_t* gid = grid_.grain_id().data();
   double deepest = 0;
   for (int i = 0; i < n; ++i) {
     const double x = state_.x[i], y = state_.y[i];
     const double vx = (x - state_.px[i]) * inv_dt, vy = (y - state_.py[i]) * inv_dt;
     const double xw = periodic ? wrap_periodic(x, W) : x;
-    const auto range = grid_.query(xw, y);
-    for (const std::int32_t* it = range.begin; it != range.end; ++it) {
-      const std::int32_t k = *it;
-      const double dx = xw - gx[k], dy = y - gy[k], r = gr[k];
+    const auto range = grid_.discs_near(xw, y);
+    for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) {
+      const double dx = xw - g->x, dy = y - g->y, r = g->r;
       const double d2 = dx * dx + dy * dy;
       if (d2 >= r * r) continue;
       const double d = std::sqrt(d2);
@@ -236,7 +233,7 @@ void Simulation::accumulate_collisions() {
       const double f = std::max(0.0, kc * depth - cc * (vx * nx + vy * ny));
       state_.fx[i] += f * nx;
       state_.fy[i] += f * ny;
-      touched_[static_cast<std::size_t>(gid[k])] = 1;
+      touched_[static_cast<std::size_t>(g->grain)] = 1;
       deepest = std::max(deepest, depth);
     }
     if (!periodic) {  // solid side walls
@@ -285,13 +282,11 @@ void Simulation::apply_contact_limit() {
   const int n = state_.size();
   const double W = medium_.width, limit = params_.max_depth;
   const bool periodic = medium_.periodic;
-  const double *gx = grid_.gx().data(), *gy = grid_.gy().data(), *gr = grid_.gr().data();
   for (int i = 0; i < n; ++i) {
     const double xw = periodic ? wrap_periodic(state_.x[i], W) : state_.x[i];
-    const auto range = grid_.query(xw, state_.y[i]);
-    for (const std::int32_t* it = range.begin; it != range.end; ++it) {
-      const std::int32_t k = *it;
-      const double dx = xw - gx[k], dy = state_.y[i] - gy[k], inner = gr[k] - limit;
+    const auto range = grid_.discs_near(xw, state_.y[i]);
+    for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) {
+      const double dx = xw - g->x, dy = state_.y[i] - g->y, inner = g->r - limit;
       const double d2 = dx * dx + dy * dy;
       if (inner <= 0 || d2 >= inner * inner) continue;
       const double d = std::sqrt(d2);

@@ -30,6 +30,23 @@ class GrainGrid {
     return {items_.data() + start_[c], items_.data() + start_[c + 1]};
   }
 
+  /// A stored disc as listed in a cell: its copy in the cell's own run of entries, so that the
+  /// simulator's contact loops read one contiguous block per mass instead of following indices.
+  struct Disc {
+    double x, y, r;
+    std::int32_t grain;  ///< index of the medium grain (an image maps to its original)
+  };
+  struct DiscRange {
+    const Disc* begin;
+    const Disc* end;
+  };
+  /// The same discs as query(x, y), as copies.
+  DiscRange discs_near(double x, double y) const {
+    const Range r = query(x, y);
+    if (r.begin == nullptr) return {nullptr, nullptr};
+    return {discs_.data() + (r.begin - items_.data()), discs_.data() + (r.end - items_.data())};
+  }
+
   /// Stored discs (grains and their periodic images), flat arrays.
   const std::vector<double>& gx() const { return gx_; }
   const std::vector<double>& gy() const { return gy_; }
@@ -46,6 +63,7 @@ class GrainGrid {
   int nx_ = 0, ny_ = 0;
   std::vector<std::int64_t> start_;
   std::vector<std::int32_t> items_;
+  std::vector<Disc> discs_;  ///< items_ with the discs' data, entry for entry
   std::vector<double> gx_, gy_, gr_;
   std::vector<std::int32_t> id_;
 };
