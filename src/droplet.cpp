@@ -93,12 +93,18 @@ namespace {
 // its ends.
 inline int constrain_ends(double* xi, double* yi, double* xj, double* yj, double dmin, double dmax) {
   const double dx = *xj - *xi, dy = *yj - *yi;
-  const double d2 = dx * dx + dy * dy;
-  if (d2 <= dmax * dmax && d2 >= dmin * dmin) return 0;
+  const double d2 = dx * dx + dy * dy, dmax2 = dmax * dmax;
+  if (d2 <= dmax2 && d2 >= dmin * dmin) return 0;
   const double d = std::sqrt(d2);
   if (d == 0) return 0;
-  const double target = d > dmax ? dmax : dmin;
-  const double c = 0.5 * (d - target) / d;  // > 0 pulls the ends together, < 0 pushes apart
+  // Stretched or compressed is decided on d2, as the test above was: a d2 just above dmax^2 can
+  // have a square root that rounds to dmax, and "d > dmax" would then call it compressed and pull
+  // the spring down to dmin.
+  const double target = d2 > dmax2 ? dmax : dmin;
+  // > 0 pulls the ends together, < 0 pushes apart. (d - target) / (d + d) is 0.5 (d - target) / d
+  // to the bit (halving and doubling are exact), with the halving off the chain of dependent
+  // operations.
+  const double c = (d - target) / (d + d);
   *xi += c * dx;
   *yi += c * dy;
   *xj -= c * dx;
@@ -131,9 +137,9 @@ inline int constrain_two(const PairLimits& l, __m128d* xi, __m128d* yi, __m128d*
   const int mask = _mm_movemask_pd(out);
   if (mask == 0) return 0;
   const __m128d d = _mm_sqrt_pd(d2);
-  const __m128d longer = _mm_cmpgt_pd(d, l.dmax);
+  const __m128d longer = _mm_cmpgt_pd(d2, l.dmax2);
   const __m128d target = _mm_or_pd(_mm_and_pd(longer, l.dmax), _mm_andnot_pd(longer, l.dmin));
-  const __m128d c = _mm_div_pd(_mm_mul_pd(_mm_set1_pd(0.5), _mm_sub_pd(d, target)), d);
+  const __m128d c = _mm_div_pd(_mm_sub_pd(d, target), _mm_add_pd(d, d));
   const __m128d cx = _mm_and_pd(out, _mm_mul_pd(c, dx)), cy = _mm_and_pd(out, _mm_mul_pd(c, dy));
   // Lanes in limits add -0 and subtract +0, which leave every double (-0 included) as it is.
   const __m128d keep = _mm_andnot_pd(out, _mm_set1_pd(-0.0));
@@ -173,6 +179,42 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
   return changed;
 }
 
+// One pass of the sequential (reference) order, springs (0,1), (1,2), ..., (n-1, 0): each spring
+// sees its neighbour's correction, a serial chain of square roots and divisions. The chain is
+// latency-bound, so the mass shared with the next spring stays in a register instead of going
+// through memory (a store and a reload on every link); the operations are constrain_ends()'s.
+int sequential_pass(double* x, double* y, int n, double dmin, double dmax) {
+  const double dmax2 = dmax * dmax, dmin2 = dmin * dmin;
+  int changed = 0;
+  double xi = x[0], yi = y[0];
+  for (int i = 0; i < n; ++i) {
+    const bool last = i + 1 == n;
+    // The closing spring's far end is mass 0, as the first spring left it.
+    double xj = last ? x[0] : x[i + 1], yj = last ? y[0] : y[i + 1];
+    const double dx = xj - xi, dy = yj - yi;
+    const double d2 = dx * dx + dy * dy;
+    if (!(d2 <= dmax2 && d2 >= dmin2)) {
+      const double d = std::sqrt(d2);
+      if (d != 0) {
+        const double target = d2 > dmax2 ? dmax : dmin;  // as in constrain_ends
+        const double c = (d - target) / (d + d);
+        xi += c * dx;
+        yi += c * dy;
+        xj -= c * dx;
+        yj -= c * dy;
+        ++changed;
+      }
+    }
+    x[i] = xi;
+    y[i] = yi;
+    xi = xj;
+    yi = yj;
+  }
+  x[0] = xi;  // the closing spring's correction of mass 0
+  y[0] = yi;
+  return changed;
+}
+
 }  // namespace
 
 int apply_length_constraint(DropletState* state, double rest_length, double max_strain, int iterations,
@@ -185,8 +227,7 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
   for (int pass = 0; pass < iterations; ++pass) {
     int changed = 0;
     if (order == ConstraintOrder::sequential) {
-      // Each spring sees its neighbour's correction: a serial chain of square roots and divisions.
-      for (int i = 0; i < n; ++i) changed += constrain(x, y, i, i + 1 == n ? 0 : i + 1, dmin, dmax);
+      changed = sequential_pass(x, y, n, dmin, dmax);
     } else {
       // Springs (0,1), (2,3), ... share no mass, nor do (1,2), (3,4), ...: each half-pass is a set
       // of independent corrections. The spring that closes the ring, (n-1, 0), is outside the

@@ -163,7 +163,7 @@ void red_black_reference(DropletState* s, double d0, double strain, int passes) 
     if (d2 <= dmax * dmax && d2 >= dmin * dmin) return;
     const double d = std::sqrt(d2);
     if (d == 0) return;
-    const double c = 0.5 * (d - (d > dmax ? dmax : dmin)) / d;
+    const double c = 0.5 * (d - (d2 > dmax * dmax ? dmax : dmin)) / d;
     s->x[i] += c * dx;
     s->y[i] += c * dy;
     s->x[j] -= c * dx;
@@ -189,6 +189,68 @@ TEST(Droplet, RedBlackIsExactlyTheDocumentedOrder) {
     red_black_reference(&b, p.rest_length(), p.max_strain, 3);
     EXPECT_EQ(a.x, b.x) << masses << " masses";
     EXPECT_EQ(a.y, b.y) << masses << " masses";
+  }
+}
+
+// The sequential order written out plainly: springs (0,1), (1,2), ..., (n-1, 0), each seeing the
+// previous one's correction. The library's version (which keeps the shared mass in a register and
+// computes 0.5 (d - target) / d as (d - target) / (d + d)) must give exactly these bits.
+TEST(Droplet, SequentialIsExactlyTheDocumentedOrder) {
+  for (int masses : {8, 9, 16, 40, 41, 128}) {
+    DropletParams p;
+    p.masses = masses;
+    DropletState a;
+    place_droplet(p, 3, 4, &a);
+    Rng rng(static_cast<std::uint64_t>(masses) + 100);
+    for (int i = 0; i < a.size(); ++i) a.x[i] += rng.uniform(-0.4, 0.4), a.y[i] += rng.uniform(-0.4, 0.4);
+    DropletState b = a;
+    const int moved = apply_length_constraint(&a, p.rest_length(), p.max_strain, 3);
+    const double d0 = p.rest_length(), dmax = (1 + p.max_strain) * d0, dmin = (1 - p.max_strain) * d0;
+    int expected = 0;
+    for (int pass = 0; pass < 3; ++pass) {
+      int changed = 0;
+      for (int i = 0; i < masses; ++i) {
+        const int j = (i + 1) % masses;
+        const double dx = b.x[j] - b.x[i], dy = b.y[j] - b.y[i];
+        const double d2 = dx * dx + dy * dy;
+        if (d2 <= dmax * dmax && d2 >= dmin * dmin) continue;
+        const double d = std::sqrt(d2);
+        const double c = 0.5 * (d - (d2 > dmax * dmax ? dmax : dmin)) / d;
+        b.x[i] += c * dx;
+        b.y[i] += c * dy;
+        b.x[j] -= c * dx;
+        b.y[j] -= c * dy;
+        ++changed;
+      }
+      expected += changed;
+      if (changed == 0) break;
+    }
+    EXPECT_EQ(moved, expected) << masses << " masses";
+    EXPECT_EQ(a.x, b.x) << masses << " masses";
+    EXPECT_EQ(a.y, b.y) << masses << " masses";
+  }
+}
+
+// A spring whose squared length is just above dmax^2 can have a square root that rounds to dmax
+// exactly. It is stretched, not compressed: it must stay at dmax, not be pulled down to dmin (which
+// deciding on "d > dmax" did, a 20 % jolt to one spring in about one step of 10^10).
+TEST(Droplet, ASpringWhoseLengthRoundsToTheLimitIsNotPulledToTheOtherLimit) {
+  const double d0 = 1.0, strain = 0.1, dmax = (1 + strain) * d0, dmax2 = dmax * dmax;
+  double dy = 0;
+  for (int k = 1; k < 100000 && dy == 0; ++k) {
+    const double t = 1e-10 * k, d2 = dmax * dmax + t * t;
+    if (d2 > dmax2 && std::sqrt(d2) == dmax) dy = t;
+  }
+  ASSERT_GT(dy, 0) << "no spring length with d^2 > dmax^2 and sqrt(d^2) == dmax found";
+  for (ConstraintOrder order : {ConstraintOrder::sequential, ConstraintOrder::red_black}) {
+    DropletState s;
+    s.resize(3);
+    s.x = {0, dmax, 0.5 * dmax};  // edge 0-1 of length dmax by its rounded root; the others ~1.0
+    s.y = {0, dy, 0.8};
+    s.px = s.x;
+    s.py = s.y;
+    apply_length_constraint(&s, d0, strain, 1, order);
+    EXPECT_NEAR(edge(s, 0), dmax, 1e-12) << to_string(order);
   }
 }
 
