@@ -116,10 +116,6 @@ inline int constrain(double* x, double* y, int i, int j, double dmin, double dma
   return constrain_ends(x + i, y + i, x + j, y + j, dmin, dmax);
 }
 
-}  // namespace
-
-namespace {
-
 #if defined(__SSE2__)
 // Two springs at once, lane by lane the operations of constrain_ends() in the same order on the
 // same values, so the bits are those of the scalar code. Returns the number of springs moved.
