@@ -5,7 +5,9 @@
 //
 // Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
-// 5000 grains); medium-200-red-black (medium-200 with the red-black constraint order); sweep
+// 5000 grains); medium-200-red-black (medium-200 with the red-black constraint order); batch
+// (`simulate --droplets 24` on the medium-200 medium: one droplet at a time on 1 thread, 3
+// stepped together on 1 thread, and on all threads); sweep
 // (droplets through media, on 1 thread and on all); search-l1 and search-l2 (the default search
 // at lambda 1 and 2, on 1 thread and on all threads with speculation, as `optimize` runs it).
 #include <sys/resource.h>
@@ -84,6 +86,24 @@ Work free_fall() {
   w.seconds = since(t0);
   w.steps = static_cast<double>(steps);
   w.mass_updates = w.steps * p.masses;
+  return w;
+}
+
+// `simulate --droplets 24` on the medium-200 medium: whole runs, `lanes` droplets stepped together
+// on each thread (run_interleaved).
+Work batch(const Medium& medium, int threads, int lanes) {
+  DropletParams p;
+  BatchOptions b;
+  b.droplets = 24;
+  b.threads = threads;
+  b.lanes = lanes;
+  const auto t0 = Clock::now();
+  const std::vector<RunSummary> runs = run_batch(p, medium, RunOptions{}, b);
+  Work w;
+  w.seconds = since(t0);
+  for (const RunSummary& r : runs) w.steps += static_cast<double>(r.steps), ++w.droplets;
+  w.mass_updates = w.steps * p.masses;
+  w.grains = static_cast<long>(medium.grains.size());
   return w;
 }
 
@@ -188,6 +208,9 @@ int main(int argc, char** argv) {
       {"medium-200", [&] { return stepping(m200, 300'000); }},
       {"medium-5000", [&] { return stepping(m5000, 300'000); }},
       {"medium-200-red-black", [&] { return stepping(m200, 300'000, ConstraintOrder::red_black); }},
+      {"batch-1lane-1thread", [&] { return batch(m200, 1, 1); }},
+      {"batch-1thread", [&] { return batch(m200, 1, BatchOptions{}.lanes); }},
+      {"batch", [&] { return batch(m200, threads, BatchOptions{}.lanes); }},
       {"sweep-1thread", [] { return sweep(1); }},
       {"sweep", [&] { return sweep(threads); }},
       {"search-l1-1thread", [] { return search(1, 1); }},

@@ -65,13 +65,16 @@ bool SearchOptions::IsValid(std::string* why) const {
   return true;
 }
 
-Evaluation evaluate(const Medium& medium, const SearchOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
-  RunOptions run = options.run;
-  run.area_interval = 0;
-  run.snapshot_times.clear();
-  Simulation sim(options.droplet, medium);
-  RunSummary s = sim.run(0.5 * medium.width, run);
+namespace {
+// The run options of an evaluation: no area trace, no snapshots.
+RunOptions evaluation_run(const RunOptions& run) {
+  RunOptions r = run;
+  r.area_interval = 0;
+  r.snapshot_times.clear();
+  return r;
+}
+
+Evaluation as_evaluation(RunSummary&& s, std::chrono::steady_clock::time_point t0) {
   Evaluation e;
   e.outcome = s.outcome;
   e.reason = std::move(s.reason);
@@ -82,6 +85,13 @@ Evaluation evaluate(const Medium& medium, const SearchOptions& options) {
   e.path_y = std::move(s.path_y);
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return e;
+}
+}  // namespace
+
+Evaluation evaluate(const Medium& medium, const SearchOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Simulation sim(options.droplet, medium);
+  return as_evaluation(sim.run(0.5 * medium.width, evaluation_run(options.run)), t0);
 }
 
 namespace {
@@ -192,8 +202,8 @@ namespace {
 // generation was made from the old best, so it is dropped and handed out again.
 class Pipeline {
  public:
-  Pipeline(Search& search, int workers, std::int64_t last_allowed)
-      : search_(search), upto_(last_allowed) {
+  Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
+      : search_(search), upto_(last_allowed), lanes_(lanes) {
     const int lambda = search.options().lambda;
     // Far enough ahead that a slow (stuck) candidate does not leave the other threads idle.
     depth_ = std::max<std::int64_t>(2, (16 * workers + lambda - 1) / lambda);
@@ -253,42 +263,75 @@ class Pipeline {
   }
 
  private:
+  // A worker steps up to `lanes_` candidates together (run_interleaved); each evaluation gets the
+  // bits it gets alone.
   void work() {
     const SearchOptions& options = search_.options();
-    std::unique_lock lock(m_);
-    for (;;) {
-      cv_.wait(lock, [&] { return stop_ || (next_gen_ <= upto_ && next_gen_ <= completed_ + depth_); });
-      if (stop_) return;
-      const std::int64_t g = next_gen_;
-      const int k = next_k_;
+    struct Job {
+      std::int64_t g = 0, epoch = 0;
+      int k = 0;
+      Candidate c;
+      std::unique_ptr<Simulation> sim;
+      RunOptions run;
+      std::chrono::steady_clock::time_point t0;
+    };
+    std::map<std::int64_t, Job> jobs;  // by id; nodes stay put, so sims may point into them
+    std::int64_t next_id = 0;
+    auto fail = [&](std::exception_ptr e) {
+      std::lock_guard lock(m_);
+      if (!error_) error_ = std::move(e);
+      cv_.notify_all();
+    };
+    auto next = [&](DropletJob* job, bool may_wait) {
+      std::unique_lock lock(m_);
+      auto ready = [&] { return stop_ || (next_gen_ <= upto_ && next_gen_ <= completed_ + depth_); };
+      if (may_wait) cv_.wait(lock, ready);
+      if (stop_ || !ready()) return false;
+      Job j;
+      j.g = next_gen_;
+      j.k = next_k_;
       if (++next_k_ == options.lambda) next_k_ = 0, ++next_gen_;
       const std::shared_ptr<const Configuration> parent = parent_;
-      const std::int64_t epoch = epoch_;
+      j.epoch = epoch_;
       lock.unlock();
-      std::optional<Candidate> c;
+      const std::int64_t id = next_id++;
       try {
-        c = make_candidate(*parent, g, k, options);
+        j.c = make_candidate(*parent, j.g, j.k, options);
+        j.t0 = std::chrono::steady_clock::now();
+        j.run = evaluation_run(options.run);
         // Speculative work made useless by an acceptance stops early instead of running on.
-        SearchOptions watched = options;
-        watched.run.cancelled = [&] { return epoch_seen_.load(std::memory_order_relaxed) != epoch; };
-        c->eval = evaluate(c->medium, watched);
-      } catch (const RunCancelled&) {
-        lock.lock();
-        continue;
+        j.run.cancelled = [this, epoch = j.epoch] { return epoch_seen_.load(std::memory_order_relaxed) != epoch; };
+        Job& placed = jobs.emplace(id, std::move(j)).first->second;
+        placed.sim = std::make_unique<Simulation>(options.droplet, placed.c.medium);
+        *job = {placed.sim.get(), 0.5 * placed.c.medium.width, &placed.run, id};
+        return true;
       } catch (...) {
-        lock.lock();
-        if (!error_) error_ = std::current_exception();
-        cv_.notify_all();
-        continue;
+        jobs.erase(id);  // if it got that far
+        fail(std::current_exception());
+        return false;
       }
-      lock.lock();
-      if (epoch == epoch_) done_.emplace(std::pair{g, k}, std::move(*c));
+    };
+    auto done = [&](std::int64_t id, RunSummary&& summary) {
+      auto it = jobs.find(id);
+      Job& j = it->second;
+      j.c.eval = as_evaluation(std::move(summary), j.t0);
+      {
+        std::lock_guard lock(m_);
+        if (j.epoch == epoch_) done_.emplace(std::pair{j.g, j.k}, std::move(j.c));
+      }
       cv_.notify_all();
+      jobs.erase(it);
+    };
+    try {
+      run_interleaved(lanes_, next, done, [&](std::int64_t id) { jobs.erase(id); });
+    } catch (...) {
+      fail(std::current_exception());
     }
   }
 
   Search& search_;
   const std::int64_t upto_;
+  const int lanes_;
   std::int64_t depth_ = 1;
   std::mutex m_;
   std::condition_variable cv_;
@@ -310,8 +353,8 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   SearchSummary s;
   const int workers = options.threads > 0 ? options.threads : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
   std::unique_ptr<Pipeline> pipeline;
-  if (options.speculate && workers > 1 && search.last_generation() < options.generations)
-    pipeline = std::make_unique<Pipeline>(search, workers, options.generations);
+  if (options.speculate && (workers > 1 || options.lanes > 1) && search.last_generation() < options.generations)
+    pipeline = std::make_unique<Pipeline>(search, workers, options.lanes, options.generations);
   for (;;) {
     if (search.last_generation() >= options.generations) {
       s.termination = Termination::generations;

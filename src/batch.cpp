@@ -2,9 +2,14 @@
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
+#include <atomic>
 #include <cmath>
+#include <memory>
 #include <mutex>
+#include <stdexcept>
+#include <string>
 
 #include "softdrop/random.hpp"
 
@@ -22,27 +27,55 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
                                   const RunOptions& run_options, const BatchOptions& options,
                                   const std::function<void(int, int)>& progress) {
   const int k = options.droplets;
+  if (options.lanes < 1 || options.lanes > 64)
+    throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [1, 64]");
   std::vector<RunSummary> results(static_cast<std::size_t>(k));
   std::mutex progress_mutex;
   int done = 0;
-  // Each droplet is a sequential simulation of its own, so results do not depend on the schedule.
-  auto body = [&](const tbb::blocked_range<int>& range) {
-    Simulation sim(params, medium);
-    for (int i = range.begin(); i != range.end(); ++i) {
-      results[static_cast<std::size_t>(i)] =
-          sim.run(batch_start_x(options, medium, params, i), run_options);
+  std::atomic<int> next_droplet{0};
+  // Each thread takes droplets from one counter and steps `lanes` of them together; each droplet is
+  // a sequential simulation of its own, so results do not depend on the schedule.
+  auto worker = [&](int) {
+    std::vector<std::unique_ptr<Simulation>> pool;  // simulations not running a droplet
+    std::vector<std::pair<std::int64_t, std::unique_ptr<Simulation>>> running;  // by droplet, <= lanes
+    auto next = [&](DropletJob* job, bool) {
+      const int i = next_droplet.fetch_add(1);
+      if (i >= k) return false;
+      std::unique_ptr<Simulation> sim;
+      if (pool.empty()) {
+        sim = std::make_unique<Simulation>(params, medium);
+      } else {
+        sim = std::move(pool.back());
+        pool.pop_back();
+      }
+      job->sim = sim.get();
+      job->x0 = batch_start_x(options, medium, params, i);
+      job->options = &run_options;
+      job->id = i;
+      running.emplace_back(i, std::move(sim));
+      return true;
+    };
+    auto finished = [&](std::int64_t id, RunSummary&& summary) {
+      results[static_cast<std::size_t>(id)] = std::move(summary);
+      for (auto it = running.begin(); it != running.end(); ++it)
+        if (it->first == id) {
+          pool.push_back(std::move(it->second));
+          running.erase(it);
+          break;
+        }
       if (progress) {
         std::lock_guard lock(progress_mutex);
         progress(++done, k);
       }
-    }
+    };
+    run_interleaved(options.lanes, next, finished);
   };
   if (options.threads > 0) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
                               static_cast<std::size_t>(options.threads));
-    tbb::parallel_for(tbb::blocked_range<int>(0, k, 1), body);
+    tbb::parallel_for(0, options.threads, worker);
   } else {
-    tbb::parallel_for(tbb::blocked_range<int>(0, k, 1), body);
+    tbb::parallel_for(0, tbb::this_task_arena::max_concurrency(), worker);
   }
   return results;
 }

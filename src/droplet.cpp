@@ -175,40 +175,88 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
   return changed;
 }
 
+// Link i of a sequential pass: spring (i, i+1) (or (n-1, 0)), whose first end (xi, yi) is held in
+// registers as the previous link left it. Stores mass i, leaves mass i+1 in (xi, yi), and returns 1
+// if it moved the ends. The operations are constrain_ends()'s.
+inline int sequential_link(double* x, double* y, int i, int n, double* xi, double* yi, double dmin,
+                           double dmax, double dmin2, double dmax2) {
+  // The closing spring's far end is mass 0, as the first spring left it.
+  const int j = i + 1 == n ? 0 : i + 1;
+  double xj = x[j], yj = y[j];
+  const double dx = xj - *xi, dy = yj - *yi;
+  const double d2 = dx * dx + dy * dy;
+  int moved = 0;
+  if (!(d2 <= dmax2 && d2 >= dmin2)) {
+    const double d = std::sqrt(d2);
+    if (d != 0) {
+      const double target = d2 > dmax2 ? dmax : dmin;  // as in constrain_ends
+      const double c = (d - target) / (d + d);
+      *xi += c * dx;
+      *yi += c * dy;
+      xj -= c * dx;
+      yj -= c * dy;
+      moved = 1;
+    }
+  }
+  x[i] = *xi;
+  y[i] = *yi;
+  *xi = xj;
+  *yi = yj;
+  return moved;
+}
+
 // One pass of the sequential (reference) order, springs (0,1), (1,2), ..., (n-1, 0): each spring
 // sees its neighbour's correction, a serial chain of square roots and divisions. The chain is
 // latency-bound, so the mass shared with the next spring stays in a register instead of going
-// through memory (a store and a reload on every link); the operations are constrain_ends()'s.
+// through memory (a store and a reload on every link).
 int sequential_pass(double* x, double* y, int n, double dmin, double dmax) {
   const double dmax2 = dmax * dmax, dmin2 = dmin * dmin;
   int changed = 0;
   double xi = x[0], yi = y[0];
-  for (int i = 0; i < n; ++i) {
-    const bool last = i + 1 == n;
-    // The closing spring's far end is mass 0, as the first spring left it.
-    double xj = last ? x[0] : x[i + 1], yj = last ? y[0] : y[i + 1];
-    const double dx = xj - xi, dy = yj - yi;
-    const double d2 = dx * dx + dy * dy;
-    if (!(d2 <= dmax2 && d2 >= dmin2)) {
-      const double d = std::sqrt(d2);
-      if (d != 0) {
-        const double target = d2 > dmax2 ? dmax : dmin;  // as in constrain_ends
-        const double c = (d - target) / (d + d);
-        xi += c * dx;
-        yi += c * dy;
-        xj -= c * dx;
-        yj -= c * dy;
-        ++changed;
-      }
-    }
-    x[i] = xi;
-    y[i] = yi;
-    xi = xj;
-    yi = yj;
-  }
+  for (int i = 0; i < n; ++i) changed += sequential_link(x, y, i, n, &xi, &yi, dmin, dmax, dmin2, dmax2);
   x[0] = xi;  // the closing spring's correction of mass 0
   y[0] = yi;
   return changed;
+}
+
+// The sequential order on K rings of n masses at once, link i of every ring before link i + 1:
+// the rings' chains are independent, so the processor overlaps them, and each ring gets exactly
+// the operations it would get alone. A ring stops when one of its passes changes nothing.
+template <int K>
+void sequential_passes_interleaved(DropletState* const* rings, int n, int iterations, double dmin,
+                                   double dmax, int* corrections) {
+  const double dmax2 = dmax * dmax, dmin2 = dmin * dmin;
+  double* x[K];
+  double* y[K];
+  bool active[K];
+  for (int r = 0; r < K; ++r) {
+    x[r] = rings[r]->x.data();
+    y[r] = rings[r]->y.data();
+    active[r] = true;
+    corrections[r] = 0;
+  }
+  for (int pass = 0; pass < iterations; ++pass) {
+    double xi[K], yi[K];
+    int changed[K];
+    for (int r = 0; r < K; ++r) {
+      xi[r] = x[r][0];
+      yi[r] = y[r][0];
+      changed[r] = 0;
+    }
+    for (int i = 0; i < n; ++i)
+      for (int r = 0; r < K; ++r)
+        if (active[r]) changed[r] += sequential_link(x[r], y[r], i, n, &xi[r], &yi[r], dmin, dmax, dmin2, dmax2);
+    bool any = false;
+    for (int r = 0; r < K; ++r) {
+      if (!active[r]) continue;
+      x[r][0] = xi[r];
+      y[r][0] = yi[r];
+      corrections[r] += changed[r];
+      active[r] = changed[r] != 0;
+      any = any || active[r];
+    }
+    if (!any) break;
+  }
 }
 
 }  // namespace
@@ -238,6 +286,25 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
     if (changed == 0) break;
   }
   return corrections;
+}
+
+void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
+                                         double max_strain, int iterations, int* corrections) {
+  const double dmax = (1 + max_strain) * rest_length;
+  const double dmin = (1 - max_strain) * rest_length;
+  int r = 0;
+  while (r < count) {
+    const int n = rings[r]->size();
+    int same = 1;  // rings of one size go together, up to 4
+    while (same < 4 && r + same < count && rings[r + same]->size() == n) ++same;
+    switch (same) {
+      case 4: sequential_passes_interleaved<4>(rings + r, n, iterations, dmin, dmax, corrections + r); break;
+      case 3: sequential_passes_interleaved<3>(rings + r, n, iterations, dmin, dmax, corrections + r); break;
+      case 2: sequential_passes_interleaved<2>(rings + r, n, iterations, dmin, dmax, corrections + r); break;
+      default: sequential_passes_interleaved<1>(rings + r, n, iterations, dmin, dmax, corrections + r); break;
+    }
+    r += same;
+  }
 }
 
 double ring_area(const DropletState& s) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -331,11 +332,9 @@ void Simulation::apply_constraint() {
 }
 
 bool Simulation::step() {
-  compute_forces();
-  integrate();
+  before_constraint();
   apply_constraint();
-  apply_contact_limit();
-  return std::isfinite(area_) && area_ > 0;
+  return after_constraint();
 }
 
 // ---- Checks and the run loop ------------------------------------------------------------------
@@ -374,106 +373,220 @@ RunSummary Simulation::run(double cx, const RunOptions& options) {
   return run_from_current(options);
 }
 
-RunSummary Simulation::run_from_current(const RunOptions& options) {
-  std::string why;
-  if (!options.IsValid(&why)) throw std::invalid_argument(why);
-  RunSummary s;
-  const double dt = params_.dt, H = medium_.height;
-  double cx, cy;
-  centre_of_mass(&cx, &cy);
-  s.start_x = cx;
-  s.start_y = cy;
-  area_ = ring_area(state_);
-  const std::int64_t window =
-      std::max<std::int64_t>(1, std::llround(options.stuck_window / dt));
-  std::vector<std::int64_t> snapshot_steps;
-  for (double t : options.snapshot_times) snapshot_steps.push_back(std::llround(t / dt));
-  std::sort(snapshot_steps.begin(), snapshot_steps.end());
-  std::size_t next_snapshot = 0;
-  auto record = [&](std::int64_t k) {
-    const double t = static_cast<double>(k) * dt;
-    if (options.path_interval > 0 && k % options.path_interval == 0) {
-      s.path_t.push_back(t);
-      s.path_x.push_back(cx);
-      s.path_y.push_back(cy);
-    }
-    if (options.area_interval > 0 && k % options.area_interval == 0) {
-      s.area_t.push_back(t);
-      s.area.push_back(ring_area(state_));
-    }
-    while (next_snapshot < snapshot_steps.size() && snapshot_steps[next_snapshot] <= k) {
-      s.snapshots.push_back({t, state_.x, state_.y});
-      ++next_snapshot;
-    }
-  };
-  auto finish = [&](Outcome o, std::string reason, std::int64_t k) {
-    s.outcome = o;
-    s.reason = std::move(reason);
-    s.steps = k;
-    for (std::size_t g = 0; g < touched_.size(); ++g)
-      if (touched_[g]) s.touched.push_back(static_cast<std::int32_t>(g));
-    if (options.path_interval > 0 && (s.path_t.empty() || s.path_t.back() != static_cast<double>(k) * dt)) {
-      s.path_t.push_back(static_cast<double>(k) * dt);
-      s.path_x.push_back(cx);
-      s.path_y.push_back(cy);
-    }
-    return s;
-  };
-  record(0);
-  bool entered = cy < H;
-  double checkpoint_y = cy;
-  for (std::int64_t k = 1; k <= options.max_steps; ++k) {
-    const double pcx = cx, pcy = cy;
-    const bool ok = step();
-    centre_of_mass(&cx, &cy);
-    if (!ok || !std::isfinite(cx) || !std::isfinite(cy)) {
+// One droplet's run between its steps: the path, the recordings and the exit tests. A driver
+// steps the simulation and calls after_step(); run_from_current drives one droplet,
+// run_interleaved several.
+class RunStepper {
+ public:
+  RunStepper(Simulation* sim, const RunOptions& options) : sim_(sim), o_(options) {
+    std::string why;
+    if (!options.IsValid(&why)) throw std::invalid_argument(why);
+    dt_ = sim->params_.dt;
+    H_ = sim->medium_.height;
+    sim->centre_of_mass(&cx_, &cy_);
+    s_.start_x = cx_;
+    s_.start_y = cy_;
+    sim->area_ = ring_area(sim->state_);
+    window_ = std::max<std::int64_t>(1, std::llround(options.stuck_window / dt_));
+    for (double t : options.snapshot_times) snapshot_steps_.push_back(std::llround(t / dt_));
+    std::sort(snapshot_steps_.begin(), snapshot_steps_.end());
+    record(0);
+    entered_ = cy_ < H_;
+    checkpoint_y_ = cy_;
+  }
+
+  bool finished() const { return finished_; }
+  Simulation* simulation() const { return sim_; }
+
+  /// Book-keeping of the step just taken (ok: the step's own validity test); may end the run.
+  void after_step(bool ok) {
+    const std::int64_t k = ++k_;
+    const double pcx = cx_, pcy = cy_;
+    sim_->centre_of_mass(&cx_, &cy_);
+    if (!ok || !std::isfinite(cx_) || !std::isfinite(cy_)) {
       std::ostringstream r;
-      r << "ring became invalid at step " << k << " (area " << area_ << ")";
+      r << "ring became invalid at step " << k << " (area " << sim_->area_ << ")";
       return finish(Outcome::diverged, r.str(), k);
     }
-    s.min_area_ratio = std::min(s.min_area_ratio, area_ / area0_);
-    s.max_penetration = std::max(s.max_penetration, last_penetration_);
+    s_.min_area_ratio = std::min(s_.min_area_ratio, sim_->area_ / sim_->area0_);
+    s_.max_penetration = std::max(s_.max_penetration, sim_->last_penetration_);
     // Path length inside the medium, with the crossings of y = H and y = 0 interpolated.
-    if (!entered && cy < H) {
-      entered = true;
-      const double f = (pcy - H) / (pcy - cy);
-      s.path_length += distance(pcx + f * (cx - pcx), H, cx, cy);
-    } else if (entered) {
-      if (cy < 0) {
-        const double f = pcy / (pcy - cy);
-        s.path_length += distance(pcx, pcy, pcx + f * (cx - pcx), 0);
+    if (!entered_ && cy_ < H_) {
+      entered_ = true;
+      const double f = (pcy - H_) / (pcy - cy_);
+      s_.path_length += distance(pcx + f * (cx_ - pcx), H_, cx_, cy_);
+    } else if (entered_) {
+      if (cy_ < 0) {
+        const double f = pcy / (pcy - cy_);
+        s_.path_length += distance(pcx, pcy, pcx + f * (cx_ - pcx), 0);
       } else {
-        s.path_length += distance(pcx, pcy, cx, cy);
+        s_.path_length += distance(pcx, pcy, cx_, cy_);
       }
     }
     record(k);
-    if (cy < 0) {
-      s.tortuosity = s.path_length / H;
+    if (cy_ < 0) {
+      s_.tortuosity = s_.path_length / H_;
       return finish(Outcome::passed, "centre of mass left the medium at y = 0", k);
     }
-    if (k % options.check_interval == 0) {
-      if (options.cancelled && options.cancelled()) throw RunCancelled{};
-      if (ring_self_intersects(state_))
+    if (k % o_.check_interval == 0) {
+      if (o_.cancelled && o_.cancelled()) throw RunCancelled{};
+      if (ring_self_intersects(sim_->state_))
         return finish(Outcome::diverged, "ring self-intersects at step " + std::to_string(k), k);
-      if (any_grain_inside_ring()) {
-        s.grain_inside_ring = true;
-        return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k),
-                      k);
+      if (sim_->any_grain_inside_ring()) {
+        s_.grain_inside_ring = true;
+        return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k), k);
       }
     }
-    if (k % window == 0) {
-      if (checkpoint_y - cy < options.stuck_distance) {
+    if (k % window_ == 0) {
+      if (checkpoint_y_ - cy_ < o_.stuck_distance) {
         std::ostringstream r;
-        r << "centre of mass moved down " << checkpoint_y - cy << " < " << options.stuck_distance
-          << " in the last " << options.stuck_window << " time units, at y = " << cy;
+        r << "centre of mass moved down " << checkpoint_y_ - cy_ << " < " << o_.stuck_distance
+          << " in the last " << o_.stuck_window << " time units, at y = " << cy_;
         return finish(Outcome::stuck, r.str(), k);
       }
-      checkpoint_y = cy;
+      checkpoint_y_ = cy_;
+    }
+    if (k == o_.max_steps)
+      finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent", k);
+  }
+
+  RunSummary take() { return std::move(s_); }
+
+ private:
+  void record(std::int64_t k) {
+    const double t = static_cast<double>(k) * dt_;
+    if (o_.path_interval > 0 && k % o_.path_interval == 0) {
+      s_.path_t.push_back(t);
+      s_.path_x.push_back(cx_);
+      s_.path_y.push_back(cy_);
+    }
+    if (o_.area_interval > 0 && k % o_.area_interval == 0) {
+      s_.area_t.push_back(t);
+      s_.area.push_back(ring_area(sim_->state_));
+    }
+    while (next_snapshot_ < snapshot_steps_.size() && snapshot_steps_[next_snapshot_] <= k) {
+      s_.snapshots.push_back({t, sim_->state_.x, sim_->state_.y});
+      ++next_snapshot_;
     }
   }
-  return finish(Outcome::timeout,
-                "step budget of " + std::to_string(options.max_steps) + " steps spent",
-                options.max_steps);
+  void finish(Outcome o, std::string reason, std::int64_t k) {
+    finished_ = true;
+    s_.outcome = o;
+    s_.reason = std::move(reason);
+    s_.steps = k;
+    for (std::size_t g = 0; g < sim_->touched_.size(); ++g)
+      if (sim_->touched_[g]) s_.touched.push_back(static_cast<std::int32_t>(g));
+    if (o_.path_interval > 0 && (s_.path_t.empty() || s_.path_t.back() != static_cast<double>(k) * dt_)) {
+      s_.path_t.push_back(static_cast<double>(k) * dt_);
+      s_.path_x.push_back(cx_);
+      s_.path_y.push_back(cy_);
+    }
+  }
+
+  Simulation* sim_;
+  const RunOptions& o_;
+  RunSummary s_;
+  double dt_ = 0, H_ = 0, cx_ = 0, cy_ = 0, checkpoint_y_ = 0;
+  std::int64_t window_ = 1, k_ = 0;
+  std::vector<std::int64_t> snapshot_steps_;
+  std::size_t next_snapshot_ = 0;
+  bool entered_ = false, finished_ = false;
+};
+
+RunSummary Simulation::run_from_current(const RunOptions& options) {
+  RunStepper run(this, options);
+  while (!run.finished()) run.after_step(step());
+  return run.take();
+}
+
+bool Simulation::before_constraint() {
+  compute_forces();
+  integrate();
+  return params_.constraint_order == ConstraintOrder::sequential;
+}
+
+bool Simulation::after_constraint() {
+  apply_contact_limit();
+  return std::isfinite(area_) && area_ > 0;
+}
+
+void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
+                     const std::function<void(std::int64_t id, RunSummary&&)>& done,
+                     const std::function<void(std::int64_t id)>& cancelled) {
+  if (lanes < 1 || lanes > 64) throw std::invalid_argument("lanes = " + std::to_string(lanes) + ": must be in [1, 64]");
+  std::vector<DropletJob> jobs(static_cast<std::size_t>(lanes));
+  std::vector<std::optional<RunStepper>> runs(static_cast<std::size_t>(lanes));
+  std::vector<DropletState*> rings;
+  std::vector<RunStepper*> constrained;
+  std::vector<int> corrections;
+  int busy = 0;
+  bool exhausted = false;
+  auto fill = [&](bool may_wait) {
+    for (std::size_t l = 0; l < runs.size() && !exhausted; ++l) {
+      if (runs[l]) continue;
+      if (!next(&jobs[l], may_wait && busy == 0)) {
+        if (may_wait && busy == 0) exhausted = true;
+        return;  // none now (or none left)
+      }
+      jobs[l].sim->place_above(jobs[l].x0);
+      runs[l].emplace(jobs[l].sim, *jobs[l].options);
+      ++busy;
+    }
+  };
+  for (;;) {
+    fill(false);
+    if (busy == 0) {
+      fill(true);
+      if (busy == 0) return;
+    }
+    // One step of every busy lane: forces and integration each, the sequential constraints of the
+    // rings that share the first one's constraint parameters together, then the contact limits.
+    rings.clear();
+    constrained.clear();
+    const Simulation* first = nullptr;
+    for (auto& r : runs) {
+      if (!r) continue;
+      Simulation* sim = r->simulation();
+      if (sim->before_constraint()) {
+        if (!first) first = sim;
+        const DropletParams &a = first->params(), &b = sim->params();
+        if (a.masses == b.masses && a.radius == b.radius && a.max_strain == b.max_strain &&
+            a.constraint_iterations == b.constraint_iterations) {
+          rings.push_back(&sim->mutable_state());
+          constrained.push_back(&*r);
+          continue;
+        }
+      }
+      sim->apply_constraint();
+    }
+    if (!rings.empty()) {
+      corrections.resize(rings.size());
+      apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), first->rest_length(),
+                                          first->params().max_strain, first->params().constraint_iterations,
+                                          corrections.data());
+    }
+    for (std::size_t l = 0; l < runs.size(); ++l) {
+      if (!runs[l]) continue;
+      const bool ok = runs[l]->simulation()->after_constraint();
+      if (cancelled) {
+        try {
+          runs[l]->after_step(ok);
+        } catch (const RunCancelled&) {
+          runs[l].reset();
+          --busy;
+          cancelled(jobs[l].id);
+          continue;
+        }
+      } else {
+        runs[l]->after_step(ok);
+      }
+      if (runs[l]->finished()) {
+        done(jobs[l].id, runs[l]->take());
+        runs[l].reset();
+        --busy;
+      }
+    }
+  }
 }
 
 std::uint64_t Simulation::state_hash() const {

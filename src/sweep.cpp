@@ -135,19 +135,25 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
   std::size_t oldest_open = 0;     // units before it are complete
   int active = 0;                  // droplets being simulated
 
+  // Each worker steps up to `lanes` droplets together (run_interleaved); a droplet's summary does
+  // not depend on which worker or lane ran it, nor on its lane mates.
+  const int lanes = BatchOptions{}.lanes;
+  const std::int64_t per_unit = o.droplets;
   auto worker = [&] {
-    std::unique_lock lock(m);
-    for (;;) {
-      cv.wait(lock, [&] {
+    std::vector<std::pair<std::int64_t, std::unique_ptr<Simulation>>> running;  // by job id
+    auto next = [&](DropletJob* job, bool may_wait) {
+      std::unique_lock lock(m);
+      auto can_take = [&] {
         return stopping || next_unit == units.size() || next_unit < oldest_open + window;
-      });
-      if (stopping || next_unit == units.size()) return;
+      };
+      if (may_wait) cv.wait(lock, can_take);
+      if (!can_take() || stopping || next_unit == units.size()) return false;
       // A stop request is honoured between units: the open units' droplets are all handed out by
       // then, so they complete and are committed; no new unit starts.
       if (next_droplet == 0 && stop && stop()) {
         stopping = true;
         cv.notify_all();
-        return;
+        return false;
       }
       const std::size_t u = next_unit;
       const int d = next_droplet;
@@ -162,23 +168,40 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
       try {
         std::call_once(open[u].made, [&] { open[u].setup = std::make_unique<UnitSetup>(setup_unit(o, units[u])); });
         const UnitSetup& s = *open[u].setup;
-        Simulation sim(o.droplet, s.medium);
-        open[u].runs[static_cast<std::size_t>(d)] = sim.run(batch_start_x(s.batch, s.medium, o.droplet, d), s.run);
+        auto sim = std::make_unique<Simulation>(o.droplet, s.medium);
+        job->sim = sim.get();
+        job->x0 = batch_start_x(s.batch, s.medium, o.droplet, d);
+        job->options = &s.run;
+        job->id = static_cast<std::int64_t>(u) * per_unit + d;
+        running.emplace_back(job->id, std::move(sim));
       } catch (...) {
         lock.lock();
         --active;
-        if (!error) error = std::current_exception();
-        stopping = true;
-        cv.notify_all();
-        return;
+        throw;
       }
-      lock.lock();
+      return true;
+    };
+    auto done = [&](std::int64_t id, RunSummary&& summary) {
+      const auto u = static_cast<std::size_t>(id / per_unit);
+      open[u].runs[static_cast<std::size_t>(id % per_unit)] = std::move(summary);
+      for (auto it = running.begin(); it != running.end(); ++it)
+        if (it->first == id) {
+          running.erase(it);
+          break;
+        }
+      std::lock_guard lock(m);
       --active;
       cv.notify_all();
-      if (--open[u].remaining == 0) {
-        ready.push_back(u);
-        cv.notify_all();
-      }
+      if (--open[u].remaining == 0) ready.push_back(u);
+    };
+    try {
+      run_interleaved(lanes, next, done);
+    } catch (...) {
+      std::lock_guard lock(m);
+      active -= static_cast<int>(running.size());  // droplets this worker will not finish
+      if (!error) error = std::current_exception();
+      stopping = true;
+      cv.notify_all();
     }
   };
   std::vector<std::thread> pool;

@@ -66,9 +66,10 @@ TEST(Determinism, GoldenStateHashRedBlack) {
   constexpr std::uint64_t kGolden[2] = {0x7646cf9af78e10eeULL, 0x2a3723c9e256a3a0ULL};
   DropletParams p;
   p.constraint_order = ConstraintOrder::red_black;
+  const Medium pore = test::pore_of_three_grains();  // outlives the simulation, which refers to it
   for (int masses : {40, 41}) {  // an odd ring closes with a spring outside both half-passes
     p.masses = masses;
-    Simulation sim(p, test::pore_of_three_grains());
+    Simulation sim(p, pore);
     sim.place_above(100);
     for (int k = 0; k < 5000; ++k) sim.step();
     const std::uint64_t h = sim.state_hash();

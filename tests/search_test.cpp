@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <tuple>
 
 #include "search_fixtures.hpp"
 #include "softdrop/search.hpp"
@@ -148,7 +149,10 @@ TEST(Search, LambdaFourGivesTheSameHistoryOnOneAndTwoThreads) {
 }
 
 TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
-  for (int lambda : {1, 2}) {
+  // More workers than candidates run ahead into later generations; lanes step several candidates
+  // together on each worker (one thread with 3 lanes speculates too).
+  for (auto [lambda, threads, lanes] : {std::tuple{1, 3, 1}, std::tuple{2, 3, 1}, std::tuple{1, 1, 3},
+                                        std::tuple{2, 2, 3}, std::tuple{1, 2, 4}}) {
     const SearchOptions o = test::small_search_options(lambda);
     Configuration best;
     initial_generation(test::small_search_medium(), o, &best);
@@ -157,7 +161,8 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
     for (int i = 0; i < 16; ++i) a.push_back(plain.next(1));
     DriveOptions d;
     d.generations = 16;
-    d.threads = 3;  // more workers than candidates: they run ahead into later generations
+    d.threads = threads;
+    d.lanes = lanes;
     const SearchSummary sum = drive(fast, d, [&](const Generation& g, const Configuration&) {
       b.push_back(g);
       return true;
@@ -165,7 +170,8 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
     ASSERT_EQ(b.size(), a.size());
     int accepted = 0;
     for (std::size_t i = 0; i < a.size(); ++i) {
-      SCOPED_TRACE("lambda " + std::to_string(lambda) + " generation " + std::to_string(i + 1));
+      SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads, " +
+                   std::to_string(lanes) + " lanes, generation " + std::to_string(i + 1));
       ASSERT_EQ(b[i].number, a[i].number);
       ASSERT_EQ(b[i].accepted, a[i].accepted);
       ASSERT_EQ(b[i].best_t, a[i].best_t);

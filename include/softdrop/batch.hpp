@@ -17,6 +17,9 @@ struct BatchOptions {
   int droplets = 1;          ///< K droplets
   std::uint64_t seed = 1;    ///< droplet i starts at x drawn from stream derive_seed(seed, i)
   int threads = 0;           ///< worker threads, 0 = all cores
+  /// Droplets each thread steps together (run_interleaved): the sequential constraint's chains of
+  /// 3 droplets take about the time of one. Results do not depend on it.
+  int lanes = 3;
   /// Start x of every droplet; NaN draws it uniformly in [0, W) (walls: [R, W - R]).
   double start_x = std::numeric_limits<double>::quiet_NaN();
 };

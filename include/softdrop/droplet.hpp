@@ -74,6 +74,14 @@ void place_droplet(const DropletParams& params, double cx, double cy, DropletSta
 int apply_length_constraint(DropletState* state, double rest_length, double max_strain,
                             int iterations, ConstraintOrder order = ConstraintOrder::sequential);
 
+/// The sequential order on several rings at once: each ring ends exactly as
+/// apply_length_constraint(ring, ..., ConstraintOrder::sequential) leaves it, and corrections[r]
+/// is its return value. The sequential pass is a chain of dependent square roots and divisions;
+/// the chains of different rings are independent, so stepping rings together (up to 4 of one size
+/// at a time, link by link) lets the processor overlap them.
+void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
+                                         double max_strain, int iterations, int* corrections);
+
 /// Signed enclosed area (shoelace), positive for counter-clockwise order.
 double ring_area(const DropletState& state);
 

@@ -147,10 +147,13 @@ struct DriveOptions {
   double time_limit = 0;               ///< wall seconds (0: none)
   const std::atomic<bool>* stop = nullptr;  ///< raised asynchronously to stop after the generation
   int threads = 0;                     ///< 0: all cores
-  /// With more than one thread, idle threads evaluate candidates of the next generations before
+  /// Threads (or, on one thread, its lanes) evaluate candidates of the next generations before
   /// the current one is decided, assuming it accepts nothing (most generations), and drop them
   /// when it does accept. The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
+  /// Candidates each speculating thread steps together (run_interleaved): about 1.9 times the
+  /// evaluations per thread, with more speculative work dropped when a generation accepts.
+  int lanes = 3;
 };
 
 /// What a drive did and why it ended (cf. Ceres' Solver::Summary).

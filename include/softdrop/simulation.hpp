@@ -78,6 +78,8 @@ class Simulation {
  public:
   /// The medium must outlive the simulation. Throws std::invalid_argument for invalid params.
   Simulation(const DropletParams& params, const Medium& medium);
+  /// A temporary medium would be gone before the first step: refused at compile time.
+  Simulation(const DropletParams& params, Medium&& medium) = delete;
 
   /// Puts the inflated droplet at rest with its centre at (cx, cy) and clears the touched set.
   void place(double cx, double cy);
@@ -121,7 +123,18 @@ class Simulation {
   void apply_constraint();       ///< the Provot length constraint (params().constraint_order)
   void apply_contact_limit();    ///< inverse dynamics: masses no deeper than max_depth
 
+  /// step() in two halves around the constraint, for drivers that constrain several rings
+  /// together (run_interleaved): before_constraint() computes the forces and integrates, and says
+  /// whether the constraint order is sequential; after_constraint() applies the contact limit and
+  /// returns step()'s validity test. before_constraint(), apply_constraint(), after_constraint()
+  /// is step().
+  bool before_constraint();
+  bool after_constraint();
+  /// d0, the springs' rest length.
+  double rest_length() const { return rest_length_; }
+
  private:
+  friend class RunStepper;
   bool any_grain_inside_ring() const;
 
   DropletParams params_;
@@ -135,6 +148,29 @@ class Simulation {
   /// the second end (+0 then), x and y. Apart so that the springs can go two at a time.
   std::vector<double> spring_force_;
 };
+
+/// A droplet for run_interleaved: the simulation to run it in (placed above the medium at x0 by the
+/// driver, as Simulation::run does), its options, and the caller's id, handed back with the result.
+struct DropletJob {
+  Simulation* sim = nullptr;
+  double x0 = 0;
+  const RunOptions* options = nullptr;
+  std::int64_t id = 0;
+};
+
+/// Runs droplets on this thread `lanes` at a time, stepped together: their sequential Provot
+/// constraints, a chain of dependent square roots and divisions each, go link by link side by side
+/// (apply_length_constraint_interleaved), so the processor overlaps the chains. Every droplet gets
+/// exactly the operations of Simulation::run, so its summary has the same bits.
+/// `next(job, may_wait)` fills in the next droplet and returns true, or returns false: when
+/// may_wait is false, there is none at the moment (it is asked again after the next step); when
+/// may_wait is true (every lane is idle), there are none left and the driver returns. A lane's
+/// simulation must not be handed out again before its `done(id, summary)`. A run whose options
+/// cancel it (RunOptions::cancelled) goes to `cancelled(id)` instead, and its lane takes the next
+/// droplet; without that callback RunCancelled leaves the driver, as other exceptions do.
+void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
+                     const std::function<void(std::int64_t id, RunSummary&&)>& done,
+                     const std::function<void(std::int64_t id)>& cancelled = nullptr);
 
 /// Length of the polyline (xs, ys) between its first downward crossing of y = top and its first
 /// crossing of y = 0 (crossing points interpolated), divided by `top`. Returns 0 if it does not

@@ -1,0 +1,175 @@
+// Droplets stepped together (run_interleaved, apply_length_constraint_interleaved) must get exactly
+// the numbers they get alone: the interleaving only lets the processor overlap independent chains.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <stdexcept>
+
+#include "fixtures.hpp"
+#include "softdrop/batch.hpp"
+#include "softdrop/random.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop {
+namespace {
+
+std::uint64_t bits(double v) {
+  std::uint64_t b;
+  std::memcpy(&b, &v, sizeof b);
+  return b;
+}
+
+void expect_same(const RunSummary& a, const RunSummary& b, const std::string& what) {
+  SCOPED_TRACE(what);
+  EXPECT_EQ(a.outcome, b.outcome);
+  EXPECT_EQ(a.reason, b.reason);
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(bits(a.tortuosity), bits(b.tortuosity));
+  EXPECT_EQ(bits(a.path_length), bits(b.path_length));
+  EXPECT_EQ(bits(a.min_area_ratio), bits(b.min_area_ratio));
+  EXPECT_EQ(bits(a.max_penetration), bits(b.max_penetration));
+  EXPECT_EQ(a.touched, b.touched);
+  EXPECT_EQ(a.path_x, b.path_x);
+  EXPECT_EQ(a.path_y, b.path_y);
+  EXPECT_EQ(a.area, b.area);
+  ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
+  for (std::size_t i = 0; i < a.snapshots.size(); ++i) EXPECT_EQ(a.snapshots[i].x, b.snapshots[i].x);
+}
+
+TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
+  // Rings of mixed sizes (grouped by size, up to 4 at a time), stretched and squeezed at random.
+  std::vector<DropletState> alone, together;
+  for (int masses : {40, 40, 40, 40, 40, 41, 41, 16, 40}) {
+    DropletParams p;
+    p.masses = masses;
+    DropletState s;
+    place_droplet(p, 3, 4, &s);
+    Rng rng(alone.size() + 7);
+    for (int i = 0; i < s.size(); ++i) s.x[i] += rng.uniform(-0.5, 0.5), s.y[i] += rng.uniform(-0.5, 0.5);
+    alone.push_back(s);
+    together.push_back(s);
+  }
+  const DropletParams p;
+  std::vector<DropletState*> rings;
+  for (auto& s : together) rings.push_back(&s);
+  std::vector<int> corrections(rings.size());
+  // The same rest length for all, as run_interleaved groups them; 3 passes, some rings converge first.
+  apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), p.rest_length(), p.max_strain, 3,
+                                      corrections.data());
+  for (std::size_t r = 0; r < alone.size(); ++r) {
+    const int c = apply_length_constraint(&alone[r], p.rest_length(), p.max_strain, 3);
+    EXPECT_EQ(corrections[r], c) << "ring " << r;
+    EXPECT_EQ(together[r].x, alone[r].x) << "ring " << r;
+    EXPECT_EQ(together[r].y, alone[r].y) << "ring " << r;
+  }
+}
+
+TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
+  // Mixed lanes: the reference order, a red-black droplet (constrained on its own), another ring
+  // size; recordings on; droplets of very different lengths, so lanes are refilled mid-run.
+  MediumOptions mo;
+  mo.porosity = 0.8;
+  mo.width = mo.height = 200;
+  mo.seed = 3;
+  const Medium medium = generate_medium(mo);
+  const Medium pore = test::pore_of_three_grains();
+  RunOptions o;
+  o.stuck_window = 0.1;
+  o.path_interval = 50;
+  o.area_interval = 100;
+  o.snapshot_times = {0.001, 0.01};
+  struct Case {
+    DropletParams p;
+    const Medium* m;
+    double x0;
+  };
+  std::vector<Case> cases;
+  for (int i = 0; i < 9; ++i) {
+    DropletParams p;
+    if (i % 4 == 1) p.constraint_order = ConstraintOrder::red_black;
+    if (i % 3 == 2) p.masses = 32;
+    cases.push_back({p, i % 5 == 4 ? &pore : &medium, 20.0 + 19.0 * i});
+  }
+  std::vector<RunSummary> solo;
+  for (const Case& c : cases) solo.push_back(Simulation(c.p, *c.m).run(c.x0, o));
+  for (int lanes : {1, 2, 3, 5}) {
+    std::vector<std::unique_ptr<Simulation>> sims;
+    for (const Case& c : cases) sims.push_back(std::make_unique<Simulation>(c.p, *c.m));
+    std::size_t next = 0;
+    std::map<std::int64_t, RunSummary> got;
+    run_interleaved(
+        lanes,
+        [&](DropletJob* job, bool) {
+          if (next == cases.size()) return false;
+          *job = {sims[next].get(), cases[next].x0, &o, static_cast<std::int64_t>(next)};
+          ++next;
+          return true;
+        },
+        [&](std::int64_t id, RunSummary&& s) { got.emplace(id, std::move(s)); });
+    ASSERT_EQ(got.size(), cases.size()) << lanes << " lanes";
+    for (std::size_t i = 0; i < cases.size(); ++i)
+      expect_same(got.at(static_cast<std::int64_t>(i)), solo[i],
+                  "droplet " + std::to_string(i) + ", " + std::to_string(lanes) + " lanes");
+  }
+  int outcomes[4] = {};
+  for (const RunSummary& s : solo) ++outcomes[static_cast<int>(s.outcome)];
+  EXPECT_GT(outcomes[static_cast<int>(Outcome::passed)], 0);
+  EXPECT_GT(outcomes[static_cast<int>(Outcome::stuck)], 0);
+}
+
+TEST(Interleaved, BatchResultsDoNotDependOnLanesOrThreads) {
+  MediumOptions mo;
+  mo.porosity = 0.75;
+  mo.seed = 5;
+  const Medium m = generate_medium(mo);
+  DropletParams p;
+  RunOptions o;
+  o.stuck_window = 0.2;
+  BatchOptions b;
+  b.droplets = 10;
+  b.threads = 1;
+  b.lanes = 1;
+  const auto reference = run_batch(p, m, o, b);
+  for (auto [threads, lanes] : {std::pair{1, 3}, std::pair{2, 3}, std::pair{2, 4}, std::pair{1, 10}}) {
+    b.threads = threads;
+    b.lanes = lanes;
+    const auto runs = run_batch(p, m, o, b);
+    ASSERT_EQ(runs.size(), reference.size());
+    for (std::size_t i = 0; i < runs.size(); ++i)
+      expect_same(runs[i], reference[i],
+                  "droplet " + std::to_string(i) + ", " + std::to_string(threads) + " threads, " +
+                      std::to_string(lanes) + " lanes");
+  }
+  b.lanes = 0;
+  EXPECT_THROW(run_batch(p, m, o, b), std::invalid_argument);
+}
+
+TEST(Interleaved, ACancelledRunLeavesTheDriver) {
+  const Medium pore = test::pore_of_three_grains();
+  DropletParams p;
+  RunOptions o;
+  o.check_interval = 16;
+  int checks = 0;
+  o.cancelled = [&] { return ++checks > 3; };
+  Simulation a(p, pore), b(p, pore);
+  int handed = 0, finished = 0;
+  EXPECT_THROW(run_interleaved(
+                   2,
+                   [&](DropletJob* job, bool) {
+                     if (handed == 2) return false;
+                     *job = {handed == 0 ? &a : &b, 100, &o, handed};
+                     ++handed;
+                     return true;
+                   },
+                   [&](std::int64_t, RunSummary&&) { ++finished; }),
+               RunCancelled);
+  EXPECT_EQ(finished, 0);
+  EXPECT_THROW(run_interleaved(0, [](DropletJob*, bool) { return false; }, [](std::int64_t, RunSummary&&) {}),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace softdrop
