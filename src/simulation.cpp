@@ -517,17 +517,13 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   std::vector<DropletJob> jobs(static_cast<std::size_t>(lanes));
   std::vector<std::optional<RunStepper>> runs(static_cast<std::size_t>(lanes));
   std::vector<DropletState*> rings;
-  std::vector<RunStepper*> constrained;
   std::vector<int> corrections;
   int busy = 0;
-  bool exhausted = false;
+  // Fills idle lanes; may wait only while every lane is idle, and then a refusal means "no more".
   auto fill = [&](bool may_wait) {
-    for (std::size_t l = 0; l < runs.size() && !exhausted; ++l) {
+    for (std::size_t l = 0; l < runs.size(); ++l) {
       if (runs[l]) continue;
-      if (!next(&jobs[l], may_wait && busy == 0)) {
-        if (may_wait && busy == 0) exhausted = true;
-        return;  // none now (or none left)
-      }
+      if (!next(&jobs[l], may_wait && busy == 0)) return;
       jobs[l].sim->place_above(jobs[l].x0);
       runs[l].emplace(jobs[l].sim, *jobs[l].options);
       ++busy;
@@ -542,7 +538,6 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     // One step of every busy lane: forces and integration each, the sequential constraints of the
     // rings that share the first one's constraint parameters together, then the contact limits.
     rings.clear();
-    constrained.clear();
     const Simulation* first = nullptr;
     for (auto& r : runs) {
       if (!r) continue;
@@ -553,7 +548,6 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
         if (a.masses == b.masses && a.radius == b.radius && a.max_strain == b.max_strain &&
             a.constraint_iterations == b.constraint_iterations) {
           rings.push_back(&sim->mutable_state());
-          constrained.push_back(&*r);
           continue;
         }
       }
