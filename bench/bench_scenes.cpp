@@ -24,6 +24,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_media.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/search.hpp"
@@ -41,14 +42,6 @@ struct Work {
 };
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
-
-Medium overlapping(double side, std::uint64_t seed) {
-  MediumOptions mo;
-  mo.porosity = 0.7;
-  mo.width = mo.height = side;
-  mo.seed = seed;
-  return generate_medium(mo);
-}
 
 // Steps of one droplet, re-dropped from a new x every 20 000 steps so that every step is in the
 // medium (as bench_step does); `steps` in total.
@@ -202,7 +195,7 @@ int main(int argc, char** argv) {
     std::cerr << "bench_scenes: --repeats and --threads must be >= 1\n";
     return 2;
   }
-  const Medium m200 = overlapping(500, 1), m5000 = overlapping(2500, 1);
+  const Medium m200 = bench::medium_200(), m5000 = bench::medium_200(2500);
   const std::vector<std::pair<std::string, std::function<Work()>>> scenes{
       {"free-fall", free_fall},
       {"medium-200", [&] { return stepping(m200, 300'000); }},

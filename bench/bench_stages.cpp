@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "bench_media.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -18,17 +19,12 @@ using softdrop::Simulation;
 // the state stays realistic.
 void stage(benchmark::State& state, const std::function<void(Simulation&)>& body,
            softdrop::ConstraintOrder order = softdrop::ConstraintOrder::sequential) {
-  softdrop::MediumOptions mo;
-  mo.porosity = 0.7;
-  mo.seed = 1;
-  const softdrop::Medium medium = softdrop::generate_medium(mo);
+  const softdrop::Medium medium = softdrop::bench::medium_200();
   softdrop::DropletParams p;
   p.masses = static_cast<int>(state.range(0));
   p.constraint_order = order;
-  Simulation sim(p, medium);
-  sim.place_above(137);
-  for (int i = 0; i < 3000; ++i) sim.step();
-  sim.compute_forces();
+  const std::unique_ptr<Simulation> in_contact = softdrop::bench::droplet_in_contact(p, medium);
+  Simulation& sim = *in_contact;
   const softdrop::DropletState saved = sim.state();
   long n = 0;
   for (auto _ : state) {
@@ -67,19 +63,11 @@ void BM_WholeStep(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.step
 // Time per iteration covers all K rings; mass-updates/s counts all of them.
 void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
   const int rings = static_cast<int>(state.range(1));
-  softdrop::MediumOptions mo;
-  mo.porosity = 0.7;
-  mo.seed = 1;
-  const softdrop::Medium medium = softdrop::generate_medium(mo);
+  const softdrop::Medium medium = softdrop::bench::medium_200();
   softdrop::DropletParams p;
   p.masses = static_cast<int>(state.range(0));
   std::vector<std::unique_ptr<Simulation>> sims;
-  for (int r = 0; r < rings; ++r) {
-    sims.push_back(std::make_unique<Simulation>(p, medium));
-    sims.back()->place_above(137);
-    for (int i = 0; i < 3000; ++i) sims.back()->step();
-    sims.back()->compute_forces();
-  }
+  for (int r = 0; r < rings; ++r) sims.push_back(softdrop::bench::droplet_in_contact(p, medium));
   const softdrop::DropletState saved = sims[0]->state();
   std::vector<softdrop::DropletState*> states;
   for (auto& sim : sims) states.push_back(&sim->mutable_state());

@@ -2,6 +2,7 @@
 // Run: build/bench/bench_step --benchmark_out=bench/results/step.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 
+#include "bench_media.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/simulation.hpp"
@@ -11,10 +12,7 @@ namespace {
 // An overlapping medium of about 200 grains at porosity 0.7; the droplet is dropped again from
 // the top whenever it leaves the medium or comes to rest, so every step is a step in the medium.
 void BM_StepMedium200(benchmark::State& state) {
-  softdrop::MediumOptions mo;
-  mo.porosity = 0.7;
-  mo.seed = 1;
-  const softdrop::Medium medium = softdrop::generate_medium(mo);
+  const softdrop::Medium medium = softdrop::bench::medium_200();
   softdrop::DropletParams p;
   p.masses = static_cast<int>(state.range(0));
   softdrop::Simulation sim(p, medium);
