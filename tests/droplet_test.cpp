@@ -180,10 +180,7 @@ TEST(Droplet, RedBlackIsExactlyTheDocumentedOrder) {
   for (int masses : {8, 9, 16, 40, 41, 128}) {
     DropletParams p;
     p.masses = masses;
-    DropletState a;
-    place_droplet(p, 3, 4, &a);
-    Rng rng(static_cast<std::uint64_t>(masses));
-    for (int i = 0; i < a.size(); ++i) a.x[i] += rng.uniform(-0.4, 0.4), a.y[i] += rng.uniform(-0.4, 0.4);
+    DropletState a = test::jiggled_ring(masses, static_cast<std::uint64_t>(masses));
     DropletState b = a;
     apply_length_constraint(&a, p.rest_length(), p.max_strain, 3, ConstraintOrder::red_black);
     red_black_reference(&b, p.rest_length(), p.max_strain, 3);
@@ -199,10 +196,7 @@ TEST(Droplet, SequentialIsExactlyTheDocumentedOrder) {
   for (int masses : {8, 9, 16, 40, 41, 128}) {
     DropletParams p;
     p.masses = masses;
-    DropletState a;
-    place_droplet(p, 3, 4, &a);
-    Rng rng(static_cast<std::uint64_t>(masses) + 100);
-    for (int i = 0; i < a.size(); ++i) a.x[i] += rng.uniform(-0.4, 0.4), a.y[i] += rng.uniform(-0.4, 0.4);
+    DropletState a = test::jiggled_ring(masses, static_cast<std::uint64_t>(masses) + 100);
     DropletState b = a;
     const int moved = apply_length_constraint(&a, p.rest_length(), p.max_strain, 3);
     const double d0 = p.rest_length(), dmax = (1 + p.max_strain) * d0, dmin = (1 - p.max_strain) * d0;

@@ -3,9 +3,23 @@
 
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"
+#include "softdrop/random.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace softdrop::test {
+
+/// The inflated ring of `masses` (default parameters otherwise) centred at (3, 4), every mass
+/// moved by up to +-amplitude in x and y from stream `seed`: springs stretched and compressed.
+inline DropletState jiggled_ring(int masses, std::uint64_t seed, double amplitude = 0.4) {
+  DropletParams p;
+  p.masses = masses;
+  DropletState s;
+  place_droplet(p, 3, 4, &s);
+  Rng rng(seed);
+  for (int i = 0; i < s.size(); ++i)
+    s.x[i] += rng.uniform(-amplitude, amplitude), s.y[i] += rng.uniform(-amplitude, amplitude);
+  return s;
+}
 
 /// An empty periodic box.
 inline Medium empty_medium(double width = 500, double height = 500) {

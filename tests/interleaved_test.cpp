@@ -10,7 +10,6 @@
 
 #include "fixtures.hpp"
 #include "softdrop/batch.hpp"
-#include "softdrop/random.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace softdrop {
@@ -43,14 +42,8 @@ TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
   // Rings of mixed sizes (grouped by size, up to 4 at a time), stretched and squeezed at random.
   std::vector<DropletState> alone, together;
   for (int masses : {40, 40, 40, 40, 40, 41, 41, 16, 40}) {
-    DropletParams p;
-    p.masses = masses;
-    DropletState s;
-    place_droplet(p, 3, 4, &s);
-    Rng rng(alone.size() + 7);
-    for (int i = 0; i < s.size(); ++i) s.x[i] += rng.uniform(-0.5, 0.5), s.y[i] += rng.uniform(-0.5, 0.5);
-    alone.push_back(s);
-    together.push_back(s);
+    alone.push_back(test::jiggled_ring(masses, alone.size() + 7, 0.5));
+    together.push_back(alone.back());
   }
   const DropletParams p;
   std::vector<DropletState*> rings;
