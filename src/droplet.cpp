@@ -175,6 +175,17 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
   return changed;
 }
 
+// One pass of the red-black order. Springs (0,1), (2,3), ... share no mass, nor do (1,2), (3,4),
+// ...: each half-pass is a set of independent corrections. The spring that closes the ring,
+// (n-1, 0), is outside the contiguous runs: for an even ring it ends the second half-pass; for an
+// odd one it touches the first spring's mass, so it goes last.
+int red_black_pass(double* x, double* y, int n, double dmin, double dmax) {
+  const int pairs = n / 2;
+  int changed = constrain_disjoint_pairs(x, y, pairs, dmin, dmax);
+  changed += constrain_disjoint_pairs(x + 1, y + 1, n % 2 == 0 ? pairs - 1 : pairs, dmin, dmax);
+  return changed + constrain(x, y, n - 1, 0, dmin, dmax);
+}
+
 // Link i of a sequential pass: spring (i, i+1) (or (n-1, 0)), whose first end (xi, yi) is held in
 // registers as the previous link left it. Stores mass i, leaves mass i+1 in (xi, yi), and returns 1
 // if it moved the ends. The operations are constrain_ends()'s.
@@ -273,14 +284,7 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
     if (order == ConstraintOrder::sequential) {
       changed = sequential_pass(x, y, n, dmin, dmax);
     } else {
-      // Springs (0,1), (2,3), ... share no mass, nor do (1,2), (3,4), ...: each half-pass is a set
-      // of independent corrections. The spring that closes the ring, (n-1, 0), is outside the
-      // contiguous runs: for an even ring it ends the second half-pass; for an odd one it touches
-      // the first spring's mass, so it goes last.
-      const int pairs = n / 2;
-      changed += constrain_disjoint_pairs(x, y, pairs, dmin, dmax);
-      changed += constrain_disjoint_pairs(x + 1, y + 1, n % 2 == 0 ? pairs - 1 : pairs, dmin, dmax);
-      changed += constrain(x, y, n - 1, 0, dmin, dmax);
+      changed = red_black_pass(x, y, n, dmin, dmax);
     }
     corrections += changed;
     if (changed == 0) break;
