@@ -230,46 +230,6 @@ int sequential_pass(double* x, double* y, int n, double dmin, double dmax) {
   return changed;
 }
 
-// The sequential order on K rings of n masses at once, link i of every ring before link i + 1:
-// the rings' chains are independent, so the processor overlaps them, and each ring gets exactly
-// the operations it would get alone. A ring stops when one of its passes changes nothing.
-template <int K>
-void sequential_passes_interleaved(DropletState* const* rings, int n, int iterations, double dmin,
-                                   double dmax, int* corrections) {
-  const double dmax2 = dmax * dmax, dmin2 = dmin * dmin;
-  double* x[K];
-  double* y[K];
-  bool active[K];
-  for (int r = 0; r < K; ++r) {
-    x[r] = rings[r]->x.data();
-    y[r] = rings[r]->y.data();
-    active[r] = true;
-    corrections[r] = 0;
-  }
-  for (int pass = 0; pass < iterations; ++pass) {
-    double xi[K], yi[K];
-    int changed[K];
-    for (int r = 0; r < K; ++r) {
-      xi[r] = x[r][0];
-      yi[r] = y[r][0];
-      changed[r] = 0;
-    }
-    for (int i = 0; i < n; ++i)
-      for (int r = 0; r < K; ++r)
-        if (active[r]) changed[r] += sequential_link(x[r], y[r], i, n, &xi[r], &yi[r], dmin, dmax, dmin2, dmax2);
-    bool any = false;
-    for (int r = 0; r < K; ++r) {
-      if (!active[r]) continue;
-      x[r][0] = xi[r];
-      y[r][0] = yi[r];
-      corrections[r] += changed[r];
-      active[r] = changed[r] != 0;
-      any = any || active[r];
-    }
-    if (!any) break;
-  }
-}
-
 }  // namespace
 
 int apply_length_constraint(DropletState* state, double rest_length, double max_strain, int iterations,
@@ -292,6 +252,84 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
   return corrections;
 }
 
+namespace {
+#if defined(__SSE2__)
+// The sequential order on K pairs of rings of n masses, one pair per SSE2 register (ring a in the
+// low lane, b in the high one; a ring with no partner is paired with itself, both lanes then doing
+// the same work on the same memory), the K pairs' chains side by side. Each lane does
+// sequential_link()'s operations on its own ring, without branches: a spring in limits adds -0
+// and subtracts +0, which leave every double as it is. Passes go on until no ring changes; a pass
+// that changes nothing changes nothing again, so the extra passes of a ring that has stopped keep
+// its bits. Counts corrections per ring.
+template <int K>
+void sequential_passes_paired(double* const* xa, double* const* ya, double* const* xb, double* const* yb, int n,
+                              int iterations, double dmin, double dmax, int* count_a, int* count_b) {
+  const PairLimits l(dmin, dmax);
+  const __m128d zero = _mm_setzero_pd(), minus_zero = _mm_set1_pd(-0.0);
+  bool active[K];
+  for (int r = 0; r < K; ++r) {
+    active[r] = true;
+    count_a[r] = count_b[r] = 0;
+  }
+  for (int pass = 0; pass < iterations; ++pass) {
+    __m128d xi[K], yi[K];
+    int changed_a[K], changed_b[K];
+    for (int r = 0; r < K; ++r) {
+      xi[r] = _mm_loadh_pd(_mm_load_sd(xa[r]), xb[r]);
+      yi[r] = _mm_loadh_pd(_mm_load_sd(ya[r]), yb[r]);
+      changed_a[r] = changed_b[r] = 0;
+    }
+    for (int i = 0; i < n; ++i) {
+      const int j = i + 1 == n ? 0 : i + 1;
+      for (int r = 0; r < K; ++r) {
+        if (!active[r]) continue;
+        __m128d xj = _mm_loadh_pd(_mm_load_sd(xa[r] + j), xb[r] + j);
+        __m128d yj = _mm_loadh_pd(_mm_load_sd(ya[r] + j), yb[r] + j);
+        const __m128d dx = _mm_sub_pd(xj, xi[r]), dy = _mm_sub_pd(yj, yi[r]);
+        const __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
+        const __m128d inside = _mm_and_pd(_mm_cmple_pd(d2, l.dmax2), _mm_cmpge_pd(d2, l.dmin2));
+        const __m128d out = _mm_andnot_pd(inside, _mm_cmpneq_pd(d2, zero));
+        const int mask = _mm_movemask_pd(out);
+        if (mask != 0) {
+          const __m128d d = _mm_sqrt_pd(d2);
+          const __m128d longer = _mm_cmpgt_pd(d2, l.dmax2);
+          const __m128d target = _mm_or_pd(_mm_and_pd(longer, l.dmax), _mm_andnot_pd(longer, l.dmin));
+          const __m128d c = _mm_div_pd(_mm_sub_pd(d, target), _mm_add_pd(d, d));
+          const __m128d cx = _mm_and_pd(out, _mm_mul_pd(c, dx)), cy = _mm_and_pd(out, _mm_mul_pd(c, dy));
+          const __m128d keep = _mm_andnot_pd(out, minus_zero);
+          xi[r] = _mm_add_pd(xi[r], _mm_or_pd(cx, keep));
+          yi[r] = _mm_add_pd(yi[r], _mm_or_pd(cy, keep));
+          xj = _mm_sub_pd(xj, cx);
+          yj = _mm_sub_pd(yj, cy);
+          changed_a[r] += mask & 1;
+          changed_b[r] += mask >> 1;
+        }
+        _mm_storel_pd(xa[r] + i, xi[r]);
+        _mm_storeh_pd(xb[r] + i, xi[r]);
+        _mm_storel_pd(ya[r] + i, yi[r]);
+        _mm_storeh_pd(yb[r] + i, yi[r]);
+        xi[r] = xj;
+        yi[r] = yj;
+      }
+    }
+    bool any = false;
+    for (int r = 0; r < K; ++r) {
+      if (!active[r]) continue;
+      _mm_storel_pd(xa[r], xi[r]);  // the closing spring's correction of mass 0
+      _mm_storeh_pd(xb[r], xi[r]);
+      _mm_storel_pd(ya[r], yi[r]);
+      _mm_storeh_pd(yb[r], yi[r]);
+      count_a[r] += changed_a[r];
+      count_b[r] += changed_b[r];
+      active[r] = changed_a[r] + changed_b[r] != 0;
+      any = any || active[r];
+    }
+    if (!any) break;
+  }
+}
+#endif
+}  // namespace
+
 void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
                                          double max_strain, int iterations, int* corrections) {
   const double dmax = (1 + max_strain) * rest_length;
@@ -299,14 +337,33 @@ void apply_length_constraint_interleaved(DropletState* const* rings, int count, 
   int r = 0;
   while (r < count) {
     const int n = rings[r]->size();
-    int same = 1;  // rings of one size go together, up to 4
-    while (same < 4 && r + same < count && rings[r + same]->size() == n) ++same;
-    switch (same) {
-      case 4: sequential_passes_interleaved<4>(rings + r, n, iterations, dmin, dmax, corrections + r); break;
-      case 3: sequential_passes_interleaved<3>(rings + r, n, iterations, dmin, dmax, corrections + r); break;
-      case 2: sequential_passes_interleaved<2>(rings + r, n, iterations, dmin, dmax, corrections + r); break;
-      default: sequential_passes_interleaved<1>(rings + r, n, iterations, dmin, dmax, corrections + r); break;
+    int same = 1;  // rings of one size go together, up to 6: 3 pairs, 3 chains side by side
+    while (same < 6 && r + same < count && rings[r + same]->size() == n) ++same;
+#if defined(__SSE2__)
+    const int pairs = (same + 1) / 2;
+    double *xa[3], *ya[3], *xb[3], *yb[3];
+    int count_a[3], count_b[3];
+    for (int p = 0; p < pairs; ++p) {
+      DropletState* a = rings[r + 2 * p];
+      DropletState* b = 2 * p + 1 < same ? rings[r + 2 * p + 1] : a;
+      xa[p] = a->x.data();
+      ya[p] = a->y.data();
+      xb[p] = b->x.data();
+      yb[p] = b->y.data();
     }
+    switch (pairs) {
+      case 3: sequential_passes_paired<3>(xa, ya, xb, yb, n, iterations, dmin, dmax, count_a, count_b); break;
+      case 2: sequential_passes_paired<2>(xa, ya, xb, yb, n, iterations, dmin, dmax, count_a, count_b); break;
+      default: sequential_passes_paired<1>(xa, ya, xb, yb, n, iterations, dmin, dmax, count_a, count_b); break;
+    }
+    for (int p = 0; p < pairs; ++p) {
+      corrections[r + 2 * p] = count_a[p];
+      if (2 * p + 1 < same) corrections[r + 2 * p + 1] = count_b[p];
+    }
+#else
+    for (int k = 0; k < same; ++k)
+      corrections[r + k] = apply_length_constraint(rings[r + k], rest_length, max_strain, iterations);
+#endif
     r += same;
   }
 }

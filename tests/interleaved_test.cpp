@@ -88,7 +88,7 @@ TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
   }
   std::vector<RunSummary> solo;
   for (const Case& c : cases) solo.push_back(Simulation(c.p, *c.m).run(c.x0, o));
-  for (int lanes : {1, 2, 3, 5}) {
+  for (int lanes : {1, 2, 3, 5, 7}) {
     std::vector<std::unique_ptr<Simulation>> sims;
     for (const Case& c : cases) sims.push_back(std::make_unique<Simulation>(c.p, *c.m));
     std::size_t next = 0;
@@ -126,7 +126,7 @@ TEST(Interleaved, BatchResultsDoNotDependOnLanesOrThreads) {
   b.threads = 1;
   b.lanes = 1;
   const auto reference = run_batch(p, m, o, b);
-  for (auto [threads, lanes] : {std::pair{1, 3}, std::pair{2, 3}, std::pair{2, 4}, std::pair{1, 10}}) {
+  for (auto [threads, lanes] : {std::pair{1, 3}, std::pair{2, 6}, std::pair{2, 4}, std::pair{1, 10}}) {
     b.threads = threads;
     b.lanes = lanes;
     const auto runs = run_batch(p, m, o, b);

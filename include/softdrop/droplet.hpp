@@ -77,8 +77,8 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
 /// The sequential order on several rings at once: each ring ends exactly as
 /// apply_length_constraint(ring, ..., ConstraintOrder::sequential) leaves it, and corrections[r]
 /// is its return value. The sequential pass is a chain of dependent square roots and divisions;
-/// the chains of different rings are independent, so stepping rings together (up to 4 of one size
-/// at a time, link by link) lets the processor overlap them.
+/// the chains of different rings are independent. Rings of one size go link by link together, up
+/// to 6 at a time: two per SSE2 register, three registers' chains side by side.
 void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
                                          double max_strain, int iterations, int* corrections);
 

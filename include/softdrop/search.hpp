@@ -151,8 +151,9 @@ struct DriveOptions {
   /// the current one is decided, assuming it accepts nothing (most generations), and drop them
   /// when it does accept. The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
-  /// Candidates each speculating thread steps together (run_interleaved): about 1.9 times the
-  /// evaluations per thread, with more speculative work dropped when a generation accepts.
+  /// Candidates each speculating thread steps together (run_interleaved). More lanes evaluate
+  /// faster but run further ahead, so more speculative work is dropped when a generation accepts;
+  /// 3 did best among 2, 3, 4 and 6 on the benchmark search (bench_scenes search-l1, search-l2).
   int lanes = 3;
 };
 
