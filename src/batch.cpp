@@ -39,6 +39,9 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
     std::vector<std::unique_ptr<Simulation>> pool;  // simulations not running a droplet
     std::vector<std::pair<std::int64_t, std::unique_ptr<Simulation>>> running;  // by droplet, <= lanes
     auto next = [&](DropletJob* job, bool) {
+      // Asked again after every step while a lane is idle: look before taking, so the counter
+      // stays near k however long the last droplets run.
+      if (next_droplet.load(std::memory_order_relaxed) >= k) return false;
       const int i = next_droplet.fetch_add(1);
       if (i >= k) return false;
       std::unique_ptr<Simulation> sim;

@@ -73,6 +73,7 @@ void Simulation::place(double cx, double cy) {
   // Start at rest at t = 0: x(-dt) = x(0) + g dt^2 / 2 makes Verlet exact for free fall.
   for (int i = 0; i < state_.size(); ++i) state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
   std::fill(touched_.begin(), touched_.end(), 0);
+  spring_force_.assign(4 * state_.x.size(), 0.0);  // so that step() allocates nothing
   area_ = ring_area(state_);
   last_penetration_ = 0;
 }
