@@ -118,7 +118,8 @@ inline int constrain(double* x, double* y, int i, int j, double dmin, double dma
 
 #if defined(__SSE2__)
 // Two springs at once, lane by lane the operations of constrain_ends() in the same order on the
-// same values, so the bits are those of the scalar code. Returns the number of springs moved.
+// same values, so the bits are those of the scalar code. Returns the lanes whose spring moved, as
+// _mm_movemask_pd gives them (bit 0: low lane, bit 1: high lane).
 struct PairLimits {
   __m128d dmax = {}, dmin = {}, dmax2 = {}, dmin2 = {};
   PairLimits(double lo, double hi)
@@ -143,7 +144,7 @@ inline int constrain_two(const PairLimits& l, __m128d* xi, __m128d* yi, __m128d*
   *yi = _mm_add_pd(*yi, _mm_or_pd(cy, keep));
   *xj = _mm_sub_pd(*xj, cx);
   *yj = _mm_sub_pd(*yj, cy);
-  return (mask & 1) + (mask >> 1);
+  return mask;
 }
 #endif
 
@@ -164,7 +165,7 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
     __m128d yi = _mm_unpacklo_pd(ya, yb), yj = _mm_unpackhi_pd(ya, yb);
     const int moved = constrain_two(l, &xi, &yi, &xj, &yj);
     if (moved == 0) continue;
-    changed += moved;
+    changed += (moved & 1) + (moved >> 1);
     _mm_storeu_pd(px, _mm_unpacklo_pd(xi, xj));
     _mm_storeu_pd(px + 2, _mm_unpackhi_pd(xi, xj));
     _mm_storeu_pd(py, _mm_unpacklo_pd(yi, yj));
@@ -188,27 +189,13 @@ int red_black_pass(double* x, double* y, int n, double dmin, double dmax) {
 
 // Link i of a sequential pass: spring (i, i+1) (or (n-1, 0)), whose first end (xi, yi) is held in
 // registers as the previous link left it. Stores mass i, leaves mass i+1 in (xi, yi), and returns 1
-// if it moved the ends. The operations are constrain_ends()'s.
+// if it moved the ends.
 inline int sequential_link(double* x, double* y, int i, int n, double* xi, double* yi, double dmin,
-                           double dmax, double dmin2, double dmax2) {
+                           double dmax) {
   // The closing spring's far end is mass 0, as the first spring left it.
   const int j = i + 1 == n ? 0 : i + 1;
   double xj = x[j], yj = y[j];
-  const double dx = xj - *xi, dy = yj - *yi;
-  const double d2 = dx * dx + dy * dy;
-  int moved = 0;
-  if (!(d2 <= dmax2 && d2 >= dmin2)) {
-    const double d = std::sqrt(d2);
-    if (d != 0) {
-      const double target = d2 > dmax2 ? dmax : dmin;  // as in constrain_ends
-      const double c = (d - target) / (d + d);
-      *xi += c * dx;
-      *yi += c * dy;
-      xj -= c * dx;
-      yj -= c * dy;
-      moved = 1;
-    }
-  }
+  const int moved = constrain_ends(xi, yi, &xj, &yj, dmin, dmax);
   x[i] = *xi;
   y[i] = *yi;
   *xi = xj;
@@ -221,10 +208,9 @@ inline int sequential_link(double* x, double* y, int i, int n, double* xi, doubl
 // latency-bound, so the mass shared with the next spring stays in a register instead of going
 // through memory (a store and a reload on every link).
 int sequential_pass(double* x, double* y, int n, double dmin, double dmax) {
-  const double dmax2 = dmax * dmax, dmin2 = dmin * dmin;
   int changed = 0;
   double xi = x[0], yi = y[0];
-  for (int i = 0; i < n; ++i) changed += sequential_link(x, y, i, n, &xi, &yi, dmin, dmax, dmin2, dmax2);
+  for (int i = 0; i < n; ++i) changed += sequential_link(x, y, i, n, &xi, &yi, dmin, dmax);
   x[0] = xi;  // the closing spring's correction of mass 0
   y[0] = yi;
   return changed;
@@ -257,15 +243,13 @@ namespace {
 // The sequential order on K pairs of rings of n masses, one pair per SSE2 register (ring a in the
 // low lane, b in the high one; a ring with no partner is paired with itself, both lanes then doing
 // the same work on the same memory), the K pairs' chains side by side. Each lane does
-// sequential_link()'s operations on its own ring, without branches: a spring in limits adds -0
-// and subtracts +0, which leave every double as it is. Passes go on until no ring changes; a pass
+// sequential_link()'s operations on its own ring (constrain_two). Passes go on until no ring changes; a pass
 // that changes nothing changes nothing again, so the extra passes of a ring that has stopped keep
 // its bits. Counts corrections per ring.
 template <int K>
 void sequential_passes_paired(double* const* xa, double* const* ya, double* const* xb, double* const* yb, int n,
                               int iterations, double dmin, double dmax, int* count_a, int* count_b) {
   const PairLimits l(dmin, dmax);
-  const __m128d zero = _mm_setzero_pd(), minus_zero = _mm_set1_pd(-0.0);
   bool active[K];
   for (int r = 0; r < K; ++r) {
     active[r] = true;
@@ -285,25 +269,9 @@ void sequential_passes_paired(double* const* xa, double* const* ya, double* cons
         if (!active[r]) continue;
         __m128d xj = _mm_loadh_pd(_mm_load_sd(xa[r] + j), xb[r] + j);
         __m128d yj = _mm_loadh_pd(_mm_load_sd(ya[r] + j), yb[r] + j);
-        const __m128d dx = _mm_sub_pd(xj, xi[r]), dy = _mm_sub_pd(yj, yi[r]);
-        const __m128d d2 = _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
-        const __m128d inside = _mm_and_pd(_mm_cmple_pd(d2, l.dmax2), _mm_cmpge_pd(d2, l.dmin2));
-        const __m128d out = _mm_andnot_pd(inside, _mm_cmpneq_pd(d2, zero));
-        const int mask = _mm_movemask_pd(out);
-        if (mask != 0) {
-          const __m128d d = _mm_sqrt_pd(d2);
-          const __m128d longer = _mm_cmpgt_pd(d2, l.dmax2);
-          const __m128d target = _mm_or_pd(_mm_and_pd(longer, l.dmax), _mm_andnot_pd(longer, l.dmin));
-          const __m128d c = _mm_div_pd(_mm_sub_pd(d, target), _mm_add_pd(d, d));
-          const __m128d cx = _mm_and_pd(out, _mm_mul_pd(c, dx)), cy = _mm_and_pd(out, _mm_mul_pd(c, dy));
-          const __m128d keep = _mm_andnot_pd(out, minus_zero);
-          xi[r] = _mm_add_pd(xi[r], _mm_or_pd(cx, keep));
-          yi[r] = _mm_add_pd(yi[r], _mm_or_pd(cy, keep));
-          xj = _mm_sub_pd(xj, cx);
-          yj = _mm_sub_pd(yj, cy);
-          changed_a[r] += mask & 1;
-          changed_b[r] += mask >> 1;
-        }
+        const int moved = constrain_two(l, &xi[r], &yi[r], &xj, &yj);
+        changed_a[r] += moved & 1;
+        changed_b[r] += moved >> 1;
         _mm_storel_pd(xa[r] + i, xi[r]);
         _mm_storeh_pd(xb[r] + i, xi[r]);
         _mm_storel_pd(ya[r] + i, yi[r]);
