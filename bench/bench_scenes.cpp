@@ -6,10 +6,11 @@
 // Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
 // 5000 grains); medium-200-red-black (medium-200 with the red-black constraint order); batch
-// (`simulate --droplets 24` on the medium-200 medium: one droplet at a time on 1 thread, 3
-// stepped together on 1 thread, and on all threads); sweep
-// (droplets through media, on 1 thread and on all); search-l1 and search-l2 (the default search
-// at lambda 1 and 2, on 1 thread and on all threads with speculation, as `optimize` runs it).
+// (`simulate --droplets 24` on the medium-200 medium: one droplet at a time on 1 thread, 6
+// stepped together on 1 thread, and on all threads); sweep and sweep-long (16 and 64 droplets
+// through each of 4 media, on 1 thread and on all; the paper's sweep has 200 per medium);
+// search-l1 and search-l2 (the default search at lambda 1 and 2, on 1 thread and on all threads
+// with speculation, as `optimize` runs it).
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -100,11 +101,12 @@ Work batch(const Medium& medium, int threads, int lanes) {
   return w;
 }
 
-Work sweep(int threads) {
+// 2 porosities x 2 media x `per_medium` droplets, as `softdrop sweep` runs them.
+Work sweep(int threads, int per_medium) {
   SweepOptions o;
   o.porosities = {0.75, 0.9};
   o.media = 2;
-  o.droplets = 16;
+  o.droplets = per_medium;
   o.medium.width = o.medium.height = 300;
   Work w;
   const auto t0 = Clock::now();
@@ -204,8 +206,10 @@ int main(int argc, char** argv) {
       {"batch-1lane-1thread", [&] { return batch(m200, 1, 1); }},
       {"batch-1thread", [&] { return batch(m200, 1, BatchOptions{}.lanes); }},
       {"batch", [&] { return batch(m200, threads, BatchOptions{}.lanes); }},
-      {"sweep-1thread", [] { return sweep(1); }},
-      {"sweep", [&] { return sweep(threads); }},
+      {"sweep-1thread", [] { return sweep(1, 16); }},
+      {"sweep", [&] { return sweep(threads, 16); }},
+      {"sweep-long-1thread", [] { return sweep(1, 64); }},
+      {"sweep-long", [&] { return sweep(threads, 64); }},
       {"search-l1-1thread", [] { return search(1, 1); }},
       {"search-l1", [&] { return search(1, threads); }},
       {"search-l2-1thread", [] { return search(2, 1); }},

@@ -33,18 +33,21 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
   std::mutex progress_mutex;
   int done = 0;
   std::atomic<int> next_droplet{0};
+  // Droplet i's simulation while it runs. Any thread may finish a droplet (the lane exchange hands
+  // the last ones to idle threads), so they are kept by droplet, not by thread.
+  std::vector<std::unique_ptr<Simulation>> running(static_cast<std::size_t>(k));
+  LaneExchange exchange;
   // Each thread takes droplets from one counter and steps `lanes` of them together; each droplet is
   // a sequential simulation of its own, so results do not depend on the schedule.
   auto worker = [&](int) {
     std::vector<std::unique_ptr<Simulation>> pool;  // simulations not running a droplet
-    std::vector<std::pair<std::int64_t, std::unique_ptr<Simulation>>> running;  // by droplet, <= lanes
     auto next = [&](DropletJob* job, bool) {
       // Asked again after every step while a lane is idle: look before taking, so the counter
       // stays near k however long the last droplets run.
       if (next_droplet.load(std::memory_order_relaxed) >= k) return false;
       const int i = next_droplet.fetch_add(1);
       if (i >= k) return false;
-      std::unique_ptr<Simulation> sim;
+      std::unique_ptr<Simulation>& sim = running[static_cast<std::size_t>(i)];
       if (pool.empty()) {
         sim = std::make_unique<Simulation>(params, medium);
       } else {
@@ -55,23 +58,17 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
       job->x0 = batch_start_x(options, medium, params, i);
       job->options = &run_options;
       job->id = i;
-      running.emplace_back(i, std::move(sim));
       return true;
     };
     auto finished = [&](std::int64_t id, RunSummary&& summary) {
       results[static_cast<std::size_t>(id)] = std::move(summary);
-      for (auto it = running.begin(); it != running.end(); ++it)
-        if (it->first == id) {
-          pool.push_back(std::move(it->second));
-          running.erase(it);
-          break;
-        }
+      pool.push_back(std::move(running[static_cast<std::size_t>(id)]));
       if (progress) {
         std::lock_guard lock(progress_mutex);
         progress(++done, k);
       }
     };
-    run_interleaved(options.lanes, next, finished);
+    run_interleaved(options.lanes, next, finished, nullptr, &exchange);
   };
   if (options.threads > 0) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism,

@@ -120,6 +120,9 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
     std::unique_ptr<UnitSetup> setup;
     std::exception_ptr error;
     std::vector<RunSummary> runs;
+    // Droplet d's simulation while it runs. Any worker may finish a droplet (the lane exchange
+    // hands the last ones to idle workers), so they are kept by droplet, not by worker.
+    std::vector<std::unique_ptr<Simulation>> sims;
     int remaining = 0;
     std::chrono::steady_clock::time_point t0;
   };
@@ -134,13 +137,13 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
   const std::size_t window = static_cast<std::size_t>(workers) + 1;
   std::size_t oldest_open = 0;     // units before it are complete
   int active = 0;                  // droplets being simulated
+  LaneExchange exchange;
 
   // Each worker steps up to `lanes` droplets together (run_interleaved); a droplet's summary does
   // not depend on which worker or lane ran it, nor on its lane mates.
   const int lanes = BatchOptions{}.lanes;
   const std::int64_t per_unit = o.droplets;
   auto worker = [&] {
-    std::vector<std::pair<std::int64_t, std::unique_ptr<Simulation>>> running;  // by job id
     auto next = [&](DropletJob* job, bool may_wait) {
       std::unique_lock lock(m);
       auto can_take = [&] {
@@ -159,6 +162,7 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
       const int d = next_droplet;
       if (d == 0) {
         open[u].runs.resize(static_cast<std::size_t>(o.droplets));
+        open[u].sims.resize(static_cast<std::size_t>(o.droplets));
         open[u].remaining = o.droplets;
         open[u].t0 = std::chrono::steady_clock::now();
       }
@@ -168,12 +172,12 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
       try {
         std::call_once(open[u].made, [&] { open[u].setup = std::make_unique<UnitSetup>(setup_unit(o, units[u])); });
         const UnitSetup& s = *open[u].setup;
-        auto sim = std::make_unique<Simulation>(o.droplet, s.medium);
+        std::unique_ptr<Simulation>& sim = open[u].sims[static_cast<std::size_t>(d)];
+        sim = std::make_unique<Simulation>(o.droplet, s.medium);
         job->sim = sim.get();
         job->x0 = batch_start_x(s.batch, s.medium, o.droplet, d);
         job->options = &s.run;
         job->id = static_cast<std::int64_t>(u) * per_unit + d;
-        running.emplace_back(job->id, std::move(sim));
       } catch (...) {
         lock.lock();
         --active;
@@ -184,21 +188,18 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
     auto done = [&](std::int64_t id, RunSummary&& summary) {
       const auto u = static_cast<std::size_t>(id / per_unit);
       open[u].runs[static_cast<std::size_t>(id % per_unit)] = std::move(summary);
-      for (auto it = running.begin(); it != running.end(); ++it)
-        if (it->first == id) {
-          running.erase(it);
-          break;
-        }
+      open[u].sims[static_cast<std::size_t>(id % per_unit)].reset();
       std::lock_guard lock(m);
       --active;
       cv.notify_all();
       if (--open[u].remaining == 0) ready.push_back(u);
     };
     try {
-      run_interleaved(lanes, next, done);
+      run_interleaved(lanes, next, done, nullptr, &exchange);
     } catch (...) {
+      // The droplets this worker was stepping will not finish; with the error set, the loop below
+      // no longer waits for them.
       std::lock_guard lock(m);
-      active -= static_cast<int>(running.size());  // droplets this worker will not finish
       if (!error) error = std::current_exception();
       stopping = true;
       cv.notify_all();
@@ -224,6 +225,8 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
       record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - open[u].t0).count();
       open[u].setup.reset();
       open[u].runs = {};
+      open[u].sims.clear();
+      open[u].sims.shrink_to_fit();
       try {
         on_done(std::move(record));
       } catch (...) {

@@ -4,9 +4,12 @@
 
 #include <cmath>
 #include <cstring>
+#include <latch>
 #include <map>
+#include <mutex>
 #include <memory>
 #include <stdexcept>
+#include <thread>
 
 #include "fixtures.hpp"
 #include "softdrop/batch.hpp"
@@ -138,6 +141,69 @@ TEST(Interleaved, BatchResultsDoNotDependOnLanesOrThreads) {
   }
   b.lanes = 0;
   EXPECT_THROW(run_batch(p, m, o, b), std::invalid_argument);
+}
+
+TEST(Interleaved, DropletsHandedToAnIdleThreadKeepTheirBits) {
+  // Thread A has all 8 droplets and steps 6 at a time; thread B joins once A is stepping, has none
+  // of its own, so it waits at the exchange and A hands it running droplets. Every droplet still
+  // gets its solo bits.
+  MediumOptions mo;
+  mo.porosity = 0.8;
+  mo.width = mo.height = 200;
+  mo.seed = 3;
+  const Medium medium = generate_medium(mo);
+  const DropletParams p;
+  RunOptions o;
+  o.stuck_window = 0.1;
+  o.path_interval = 50;
+  constexpr int kDroplets = 8;
+  std::vector<RunSummary> solo;
+  std::vector<std::unique_ptr<Simulation>> sims;
+  for (int i = 0; i < kDroplets; ++i) {
+    solo.push_back(Simulation(p, medium).run(15.0 + 23.0 * i, o));
+    sims.push_back(std::make_unique<Simulation>(p, medium));
+  }
+  LaneExchange exchange;
+  std::mutex m;
+  std::map<std::int64_t, RunSummary> got;
+  int finished_by_b = 0;
+  std::latch a_is_stepping(1);
+  std::once_flag once;
+  RunOptions oa = o;  // asked every check_interval steps; says A has stepped
+  oa.cancelled = [&] {
+    std::call_once(once, [&] { a_is_stepping.count_down(); });
+    return false;
+  };
+  std::thread a([&] {
+    int next = 0;
+    run_interleaved(
+        6,
+        [&](DropletJob* job, bool) {
+          if (next == kDroplets) return false;
+          *job = {sims[static_cast<std::size_t>(next)].get(), 15.0 + 23.0 * next, &oa, next};
+          ++next;
+          return true;
+        },
+        [&](std::int64_t id, RunSummary&& s) {
+          std::lock_guard lock(m);
+          got.emplace(id, std::move(s));
+        },
+        nullptr, &exchange);
+  });
+  a_is_stepping.wait();
+  run_interleaved(
+      6, [&](DropletJob*, bool) { return false; },
+      [&](std::int64_t id, RunSummary&& s) {
+        std::lock_guard lock(m);
+        got.emplace(id, std::move(s));
+        ++finished_by_b;
+      },
+      nullptr, &exchange);
+  a.join();
+  ASSERT_EQ(got.size(), static_cast<std::size_t>(kDroplets));
+  for (int i = 0; i < kDroplets; ++i) expect_same(got.at(i), solo[static_cast<std::size_t>(i)], "droplet " + std::to_string(i));
+  EXPECT_GE(exchange.handovers(), 1);
+  EXPECT_GE(finished_by_b, 1);
 }
 
 TEST(Interleaved, ACancelledRunLeavesTheDriver) {
