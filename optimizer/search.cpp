@@ -156,8 +156,8 @@ Generation Search::next(int threads) {
     c.eval = evaluate(c.medium, options_);
     g.candidates[static_cast<std::size_t>(k)] = std::move(c);
   };
-  if (options_.lambda == 1) {
-    work(0);
+  if (options_.lambda == 1 || threads == 1) {
+    for (int k = 0; k < options_.lambda; ++k) work(k);
   } else {
     tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
     arena.execute([&] { tbb::parallel_for(0, options_.lambda, work); });

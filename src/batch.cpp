@@ -1,15 +1,14 @@
 #include "softdrop/batch.hpp"
 
-#include <tbb/global_control.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
+#include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <exception>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "softdrop/random.hpp"
 
@@ -27,6 +26,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
                                   const RunOptions& run_options, const BatchOptions& options,
                                   const std::function<void(int, int)>& progress) {
   const int k = options.droplets;
+  if (k < 0) throw std::invalid_argument("droplets = " + std::to_string(k) + ": must be >= 0");
   if (options.lanes < 1 || options.lanes > 64)
     throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [1, 64]");
   std::vector<RunSummary> results(static_cast<std::size_t>(k));
@@ -39,7 +39,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
   LaneExchange exchange;
   // Each thread takes droplets from one counter and steps `lanes` of them together; each droplet is
   // a sequential simulation of its own, so results do not depend on the schedule.
-  auto worker = [&](int) {
+  auto worker = [&] {
     std::vector<std::unique_ptr<Simulation>> pool;  // simulations not running a droplet
     auto next = [&](DropletJob* job, bool) {
       // Asked again after every step while a lane is idle: look before taking, so the counter
@@ -70,13 +70,32 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
     };
     run_interleaved(options.lanes, next, finished, nullptr, &exchange);
   };
-  if (options.threads > 0) {
-    tbb::global_control limit(tbb::global_control::max_allowed_parallelism,
-                              static_cast<std::size_t>(options.threads));
-    tbb::parallel_for(0, options.threads, worker);
-  } else {
-    tbb::parallel_for(0, tbb::this_task_arena::max_concurrency(), worker);
+  // Long-lived workers that may block at the lane exchange: plain threads, the calling thread one
+  // of them, no more than there are droplets.
+  const int workers = std::min(k, options.threads > 0 ? options.threads
+                                                      : static_cast<int>(std::max(1U, std::thread::hardware_concurrency())));
+  std::exception_ptr error;
+  auto fail = [&](std::exception_ptr e) {
+    std::lock_guard lock(progress_mutex);
+    if (!error) error = std::move(e);
+    next_droplet.store(k);  // the others start no new droplet
+  };
+  auto guarded = [&] {
+    try {
+      worker();
+    } catch (...) {
+      fail(std::current_exception());
+    }
+  };
+  std::vector<std::thread> pool;
+  try {
+    for (int t = 1; t < workers; ++t) pool.emplace_back(guarded);
+  } catch (...) {  // a thread could not start: stop handing out droplets, finish the running ones, report
+    fail(std::current_exception());
   }
+  guarded();
+  for (std::thread& t : pool) t.join();
+  if (error) std::rethrow_exception(error);
   return results;
 }
 
