@@ -41,6 +41,16 @@ void expect_same(const RunSummary& a, const RunSummary& b, const std::string& wh
   for (std::size_t i = 0; i < a.snapshots.size(); ++i) EXPECT_EQ(a.snapshots[i].x, b.snapshots[i].x);
 }
 
+// A generated overlapping medium, 200 x 200 at porosity 0.8: droplets pass, get stuck and run for
+// very different numbers of steps.
+Medium medium_of_porosity_08() {
+  MediumOptions mo;
+  mo.porosity = 0.8;
+  mo.width = mo.height = 200;
+  mo.seed = 3;
+  return generate_medium(mo);
+}
+
 TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
   // Rings of mixed sizes (grouped by size, up to 4 at a time), stretched and squeezed at random.
   std::vector<DropletState> alone, together;
@@ -66,11 +76,7 @@ TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
 TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
   // Mixed lanes: the reference order, a red-black droplet (constrained on its own), another ring
   // size; recordings on; droplets of very different lengths, so lanes are refilled mid-run.
-  MediumOptions mo;
-  mo.porosity = 0.8;
-  mo.width = mo.height = 200;
-  mo.seed = 3;
-  const Medium medium = generate_medium(mo);
+  const Medium medium = medium_of_porosity_08();
   const Medium pore = test::pore_of_three_grains();
   RunOptions o;
   o.stuck_window = 0.1;
@@ -147,11 +153,7 @@ TEST(Interleaved, DropletsHandedToAnIdleThreadKeepTheirBits) {
   // Thread A has all 8 droplets and steps 6 at a time; thread B joins once A is stepping, has none
   // of its own, so it waits at the exchange and A hands it running droplets. Every droplet still
   // gets its solo bits.
-  MediumOptions mo;
-  mo.porosity = 0.8;
-  mo.width = mo.height = 200;
-  mo.seed = 3;
-  const Medium medium = generate_medium(mo);
+  const Medium medium = medium_of_porosity_08();
   const DropletParams p;
   RunOptions o;
   o.stuck_window = 0.1;
