@@ -17,24 +17,33 @@ using softdrop::Simulation;
 // A droplet that has fallen into the medium-200 scene for 3 000 steps: it touches grains. The
 // stage runs on a copy of that state, restored every 256 iterations (out of the timing) so that
 // the state stays realistic.
+// Times `body`, putting the simulations back in their first state every 256 iterations (untimed),
+// so that the droplets stay in contact with the grains however long the benchmark runs.
+void timed_in_contact(benchmark::State& state, const std::vector<std::unique_ptr<Simulation>>& sims,
+                      const std::function<void()>& body) {
+  std::vector<softdrop::DropletState> saved;
+  for (const auto& sim : sims) saved.push_back(sim->state());
+  long n = 0;
+  for (auto _ : state) {
+    body();
+    if (++n % 256 == 0) {
+      state.PauseTiming();
+      for (std::size_t i = 0; i < sims.size(); ++i) sims[i]->mutable_state() = saved[i];
+      state.ResumeTiming();
+    }
+  }
+}
+
 void stage(benchmark::State& state, const std::function<void(Simulation&)>& body,
            softdrop::ConstraintOrder order = softdrop::ConstraintOrder::sequential) {
   const softdrop::Medium medium = softdrop::bench::medium_200();
   softdrop::DropletParams p;
   p.masses = static_cast<int>(state.range(0));
   p.constraint_order = order;
-  const std::unique_ptr<Simulation> in_contact = softdrop::bench::droplet_in_contact(p, medium);
-  Simulation& sim = *in_contact;
-  const softdrop::DropletState saved = sim.state();
-  long n = 0;
-  for (auto _ : state) {
-    body(sim);
-    if (++n % 256 == 0) {
-      state.PauseTiming();
-      sim.mutable_state() = saved;
-      state.ResumeTiming();
-    }
-  }
+  std::vector<std::unique_ptr<Simulation>> sims;
+  sims.push_back(softdrop::bench::droplet_in_contact(p, medium));
+  Simulation& sim = *sims[0];
+  timed_in_contact(state, sims, [&] { body(sim); });
   state.counters["mass-updates/s"] =
       benchmark::Counter(static_cast<double>(state.iterations()) * p.masses, benchmark::Counter::kIsRate);
 }
@@ -68,21 +77,14 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
   p.masses = static_cast<int>(state.range(0));
   std::vector<std::unique_ptr<Simulation>> sims;
   for (int r = 0; r < rings; ++r) sims.push_back(softdrop::bench::droplet_in_contact(p, medium));
-  const softdrop::DropletState saved = sims[0]->state();
   std::vector<softdrop::DropletState*> states;
   for (auto& sim : sims) states.push_back(&sim->mutable_state());
   std::vector<int> corrections(static_cast<std::size_t>(rings));
-  long n = 0;
-  for (auto _ : state) {
+  timed_in_contact(state, sims, [&] {
     for (auto& sim : sims) sim->integrate();
     softdrop::apply_length_constraint_interleaved(states.data(), rings, p.rest_length(), p.max_strain,
                                                   p.constraint_iterations, corrections.data());
-    if (++n % 256 == 0) {
-      state.PauseTiming();
-      for (auto& sim : sims) sim->mutable_state() = saved;
-      state.ResumeTiming();
-    }
-  }
+  });
   state.counters["mass-updates/s"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
 }
