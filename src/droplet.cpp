@@ -1,10 +1,19 @@
 #include "softdrop/droplet.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
+#endif
+// AVX code is compiled for functions marked SOFTDROP_AVX only, and run only where the processor
+// has AVX, so the default build still runs on any x86-64.
+#if defined(__x86_64__) && defined(__SSE2__) && (defined(__GNUC__) || defined(__clang__))
+#define SOFTDROP_AVX_DISPATCH 1
+#define SOFTDROP_AVX __attribute__((target("avx")))
+#include <immintrin.h>
 #endif
 
 #include "validation.hpp"
@@ -148,15 +157,99 @@ inline int constrain_two(const PairLimits& l, __m128d* xi, __m128d* yi, __m128d*
 }
 #endif
 
+// The vector width in use: the processor's widest, unless narrowed by
+// limit_constraint_vector_width.
+int machine_width() {
+#if defined(SOFTDROP_AVX_DISPATCH)
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx")) return 4;
+#endif
+#if defined(__SSE2__)
+  return 2;
+#else
+  return 1;
+#endif
+}
+std::atomic<int> width_limit{4};
+int vector_width() {
+  static const int machine = machine_width();
+  return std::min(machine, width_limit.load(std::memory_order_relaxed));
+}
+
+#if defined(SOFTDROP_AVX_DISPATCH)
+// Four springs at once: constrain_two() with four lanes, the same operations on each.
+struct QuadLimits {
+  __m256d dmax, dmin, dmax2, dmin2;
+};
+SOFTDROP_AVX inline void set_quad_limits(QuadLimits* l, double lo, double hi) {
+  l->dmax = _mm256_set1_pd(hi);
+  l->dmin = _mm256_set1_pd(lo);
+  l->dmax2 = _mm256_set1_pd(hi * hi);
+  l->dmin2 = _mm256_set1_pd(lo * lo);
+}
+SOFTDROP_AVX inline int constrain_four(const QuadLimits& l, __m256d* xi, __m256d* yi, __m256d* xj, __m256d* yj) {
+  const __m256d dx = _mm256_sub_pd(*xj, *xi), dy = _mm256_sub_pd(*yj, *yi);
+  const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
+  // The SSE2 comparisons: cmple, cmpge, cmpgt are ordered; cmpneq is unordered (true for NaN).
+  const __m256d inside =
+      _mm256_and_pd(_mm256_cmp_pd(d2, l.dmax2, _CMP_LE_OS), _mm256_cmp_pd(d2, l.dmin2, _CMP_GE_OS));
+  const __m256d out = _mm256_andnot_pd(inside, _mm256_cmp_pd(d2, _mm256_setzero_pd(), _CMP_NEQ_UQ));
+  const int mask = _mm256_movemask_pd(out);
+  if (mask == 0) return 0;
+  const __m256d d = _mm256_sqrt_pd(d2);
+  const __m256d longer = _mm256_cmp_pd(d2, l.dmax2, _CMP_GT_OS);
+  const __m256d target = _mm256_or_pd(_mm256_and_pd(longer, l.dmax), _mm256_andnot_pd(longer, l.dmin));
+  const __m256d c = _mm256_div_pd(_mm256_sub_pd(d, target), _mm256_add_pd(d, d));
+  const __m256d cx = _mm256_and_pd(out, _mm256_mul_pd(c, dx)), cy = _mm256_and_pd(out, _mm256_mul_pd(c, dy));
+  const __m256d keep = _mm256_andnot_pd(out, _mm256_set1_pd(-0.0));
+  *xi = _mm256_add_pd(*xi, _mm256_or_pd(cx, keep));
+  *yi = _mm256_add_pd(*yi, _mm256_or_pd(cy, keep));
+  *xj = _mm256_sub_pd(*xj, cx);
+  *yj = _mm256_sub_pd(*yj, cy);
+  return mask;
+}
+
+// The red-black half-pass four springs at a time, from spring 0 while four remain; returns the
+// corrections and sets *done to the springs it did.
+SOFTDROP_AVX int constrain_disjoint_quads(double* x, double* y, int count, double dmin, double dmax, int* done) {
+  QuadLimits l;
+  set_quad_limits(&l, dmin, dmax);
+  int changed = 0, k = 0;
+  for (; k + 4 <= count; k += 4) {
+    double* px = x + 2 * k;
+    double* py = y + 2 * k;
+    // (x_i0 x_j0 | x_i1 x_j1), (x_i2 x_j2 | x_i3 x_j3): unpacking works within 128-bit halves, so
+    // the lanes hold springs (0, 2 | 1, 3), and unpacking back restores the layout.
+    const __m256d xa = _mm256_loadu_pd(px), xb = _mm256_loadu_pd(px + 4);
+    const __m256d ya = _mm256_loadu_pd(py), yb = _mm256_loadu_pd(py + 4);
+    __m256d xi = _mm256_unpacklo_pd(xa, xb), xj = _mm256_unpackhi_pd(xa, xb);
+    __m256d yi = _mm256_unpacklo_pd(ya, yb), yj = _mm256_unpackhi_pd(ya, yb);
+    const int moved = constrain_four(l, &xi, &yi, &xj, &yj);
+    if (moved == 0) continue;
+    changed += __builtin_popcount(static_cast<unsigned>(moved));
+    _mm256_storeu_pd(px, _mm256_unpacklo_pd(xi, xj));
+    _mm256_storeu_pd(px + 4, _mm256_unpackhi_pd(xi, xj));
+    _mm256_storeu_pd(py, _mm256_unpacklo_pd(yi, yj));
+    _mm256_storeu_pd(py + 4, _mm256_unpackhi_pd(yi, yj));
+  }
+  *done = k;
+  return changed;
+}
+#endif
+
 // Springs (x[2k], x[2k + 1]) for k < count: one half-pass of the red-black order. They share no
 // mass, so their order does not matter; two at a time (a de-interleaved, aligned layout that keeps
 // every load forwardable from the previous store was tried: no faster, the half-pass is bound by
 // the throughput of the square roots and divisions).
 int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, double dmax) {
   int changed = 0, k = 0;
+  const int width = vector_width();
+#if defined(SOFTDROP_AVX_DISPATCH)
+  if (width >= 4) changed = constrain_disjoint_quads(x, y, count, dmin, dmax, &k);
+#endif
 #if defined(__SSE2__)
   const PairLimits l(dmin, dmax);
-  for (; k + 2 <= count; k += 2) {
+  for (; width >= 2 && k + 2 <= count; k += 2) {
     double* px = x + 2 * k;
     double* py = y + 2 * k;
     const __m128d xa = _mm_loadu_pd(px), xb = _mm_loadu_pd(px + 2);  // (x_i0, x_j0), (x_i1, x_j1)
@@ -296,17 +389,116 @@ void sequential_passes_paired(double* const* xa, double* const* ya, double* cons
   }
 }
 #endif
+#if defined(SOFTDROP_AVX_DISPATCH)
+// Lanes of one AVX register: mass i of rings base .. base + 3 (x[ring] is a ring's array).
+SOFTDROP_AVX inline void load_lanes(double* const* x, int base, int i, __m256d* v) {
+  *v = _mm256_set_pd(x[base + 3][i], x[base + 2][i], x[base + 1][i], x[base][i]);
+}
+SOFTDROP_AVX inline void store_lanes(double* const* x, int base, int i, const __m256d& v) {
+  const __m128d lo = _mm256_castpd256_pd128(v), hi = _mm256_extractf128_pd(v, 1);
+  _mm_storel_pd(x[base] + i, lo);
+  _mm_storeh_pd(x[base + 1] + i, lo);
+  _mm_storel_pd(x[base + 2] + i, hi);
+  _mm_storeh_pd(x[base + 3] + i, hi);
+}
+
+// sequential_passes_paired with four rings per AVX register: lane l of register r is ring
+// 4 r + l (x[4 r + l], y[4 r + l]; a padding lane repeats a ring, doing the same work on the same
+// memory), K registers' chains side by side. counts[4 r + l] gets the ring's corrections.
+template <int K>
+SOFTDROP_AVX void sequential_passes_quad(double* const* x, double* const* y, int n, int iterations, double dmin,
+                                         double dmax, int* counts) {
+  QuadLimits l;
+  set_quad_limits(&l, dmin, dmax);
+  bool active[K];
+  for (int r = 0; r < K; ++r) active[r] = true;
+  for (int t = 0; t < 4 * K; ++t) counts[t] = 0;
+  for (int pass = 0; pass < iterations; ++pass) {
+    __m256d xi[K], yi[K];
+    int changed[4 * K] = {};
+    for (int r = 0; r < K; ++r) {
+      load_lanes(x, 4 * r, 0, &xi[r]);
+      load_lanes(y, 4 * r, 0, &yi[r]);
+    }
+    for (int i = 0; i < n; ++i) {
+      const int j = i + 1 == n ? 0 : i + 1;
+      for (int r = 0; r < K; ++r) {
+        if (!active[r]) continue;
+        __m256d xj, yj;
+        load_lanes(x, 4 * r, j, &xj);
+        load_lanes(y, 4 * r, j, &yj);
+        const int moved = constrain_four(l, &xi[r], &yi[r], &xj, &yj);
+        for (int b = 0; b < 4; ++b) changed[4 * r + b] += (moved >> b) & 1;
+        store_lanes(x, 4 * r, i, xi[r]);
+        store_lanes(y, 4 * r, i, yi[r]);
+        xi[r] = xj;
+        yi[r] = yj;
+      }
+    }
+    bool any = false;
+    for (int r = 0; r < K; ++r) {
+      if (!active[r]) continue;
+      store_lanes(x, 4 * r, 0, xi[r]);  // the closing spring's correction of mass 0
+      store_lanes(y, 4 * r, 0, yi[r]);
+      int sum = 0;
+      for (int b = 0; b < 4; ++b) counts[4 * r + b] += changed[4 * r + b], sum += changed[4 * r + b];
+      active[r] = sum != 0;
+      any = any || active[r];
+    }
+    if (!any) break;
+  }
+}
+
+// Rings r0 .. r0 + same - 1 (one size, same <= 12), four per register.
+void sequential_rings_avx(DropletState* const* rings, int same, int iterations, double dmin, double dmax,
+                          int* corrections) {
+  const int quads = (same + 3) / 4;
+  double *x[12], *y[12];
+  int counts[12];
+  for (int t = 0; t < 4 * quads; ++t) {
+    DropletState* ring = rings[std::min(t, same - 1)];
+    x[t] = ring->x.data();
+    y[t] = ring->y.data();
+  }
+  const int n = rings[0]->size();
+  switch (quads) {
+    case 3: sequential_passes_quad<3>(x, y, n, iterations, dmin, dmax, counts); break;
+    case 2: sequential_passes_quad<2>(x, y, n, iterations, dmin, dmax, counts); break;
+    default: sequential_passes_quad<1>(x, y, n, iterations, dmin, dmax, counts); break;
+  }
+  for (int t = 0; t < same; ++t) corrections[t] = counts[t];
+}
+#endif
+
 }  // namespace
+
+int interleaved_ring_capacity() {
+  const int width = vector_width();
+  return width >= 4 ? 12 : width >= 2 ? 6 : 1;
+}
 
 void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
                                          double max_strain, int iterations, int* corrections) {
   const double dmax = (1 + max_strain) * rest_length;
   const double dmin = (1 - max_strain) * rest_length;
+  const int width = vector_width(), capacity = interleaved_ring_capacity();
   int r = 0;
   while (r < count) {
     const int n = rings[r]->size();
-    int same = 1;  // rings of one size go together, up to 6: 3 pairs, 3 chains side by side
-    while (same < 6 && r + same < count && rings[r + same]->size() == n) ++same;
+    int same = 1;  // rings of one size go together: a lane each, up to 3 registers side by side
+    while (same < capacity && r + same < count && rings[r + same]->size() == n) ++same;
+    if (width == 1) {
+      corrections[r] = apply_length_constraint(rings[r], rest_length, max_strain, iterations);
+      r += same;
+      continue;
+    }
+#if defined(SOFTDROP_AVX_DISPATCH)
+    if (width >= 4) {
+      sequential_rings_avx(rings + r, same, iterations, dmin, dmax, corrections + r);
+      r += same;
+      continue;
+    }
+#endif
 #if defined(__SSE2__)
     const int pairs = (same + 1) / 2;
     double *xa[3], *ya[3], *xb[3], *yb[3];
@@ -328,12 +520,19 @@ void apply_length_constraint_interleaved(DropletState* const* rings, int count, 
       corrections[r + 2 * p] = count_a[p];
       if (2 * p + 1 < same) corrections[r + 2 * p + 1] = count_b[p];
     }
-#else
-    for (int k = 0; k < same; ++k)
-      corrections[r + k] = apply_length_constraint(rings[r + k], rest_length, max_strain, iterations);
 #endif
     r += same;
   }
+}
+
+VectorWidth constraint_vector_width() { return static_cast<VectorWidth>(vector_width()); }
+
+VectorWidth limit_constraint_vector_width(VectorWidth width) {
+  const int w = static_cast<int>(width);
+  if (w != 1 && w != 2 && w != 4)
+    throw std::invalid_argument("vector width " + std::to_string(w) + ": must be 1, 2 or 4");
+  width_limit.store(w, std::memory_order_relaxed);
+  return constraint_vector_width();
 }
 
 double ring_area(const DropletState& s) {

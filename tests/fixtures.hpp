@@ -21,6 +21,23 @@ inline DropletState jiggled_ring(int masses, std::uint64_t seed, double amplitud
   return s;
 }
 
+/// Narrows the constraint's vector width for a scope (every width gives the same bits; tests
+/// check that), then lets it use the widest the processor has again.
+class VectorWidthLimit {
+ public:
+  explicit VectorWidthLimit(VectorWidth width) : in_use_(limit_constraint_vector_width(width)) {}
+  ~VectorWidthLimit() { limit_constraint_vector_width(VectorWidth::avx); }
+  VectorWidthLimit(const VectorWidthLimit&) = delete;
+  VectorWidthLimit& operator=(const VectorWidthLimit&) = delete;
+  VectorWidth in_use() const { return in_use_; }
+
+ private:
+  VectorWidth in_use_;
+};
+
+/// Every vector width the constraint has.
+inline constexpr VectorWidth kVectorWidths[] = {VectorWidth::scalar, VectorWidth::sse2, VectorWidth::avx};
+
 /// An empty periodic box.
 inline Medium empty_medium(double width = 500, double height = 500) {
   return Medium{width, height, true, {}};

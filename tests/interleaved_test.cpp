@@ -52,24 +52,31 @@ Medium medium_of_porosity_08() {
 }
 
 TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
-  // Rings of mixed sizes (grouped by size, up to 4 at a time), stretched and squeezed at random.
-  std::vector<DropletState> alone, together;
-  for (int masses : {40, 40, 40, 40, 40, 41, 41, 16, 40}) {
-    alone.push_back(test::jiggled_ring(masses, alone.size() + 7, 0.5));
-    together.push_back(alone.back());
-  }
+  // Rings of mixed sizes (grouped by size, up to 12 at a time: 3 AVX registers of 4, or 3 SSE2
+  // registers of 2), stretched and squeezed at random, at every vector width.
+  std::vector<int> sizes(14, 40);
+  for (int masses : {41, 41, 16, 40, 40, 40}) sizes.push_back(masses);
   const DropletParams p;
-  std::vector<DropletState*> rings;
-  for (auto& s : together) rings.push_back(&s);
-  std::vector<int> corrections(rings.size());
-  // The same rest length for all, as run_interleaved groups them; 3 passes, some rings converge first.
-  apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), p.rest_length(), p.max_strain, 3,
-                                      corrections.data());
-  for (std::size_t r = 0; r < alone.size(); ++r) {
-    const int c = apply_length_constraint(&alone[r], p.rest_length(), p.max_strain, 3);
-    EXPECT_EQ(corrections[r], c) << "ring " << r;
-    EXPECT_EQ(together[r].x, alone[r].x) << "ring " << r;
-    EXPECT_EQ(together[r].y, alone[r].y) << "ring " << r;
+  for (VectorWidth width : test::kVectorWidths) {
+    const test::VectorWidthLimit limit(width);
+    SCOPED_TRACE("vector width " + std::to_string(static_cast<int>(limit.in_use())));
+    std::vector<DropletState> alone, together;
+    for (int masses : sizes) {
+      alone.push_back(test::jiggled_ring(masses, alone.size() + 7, 0.5));
+      together.push_back(alone.back());
+    }
+    std::vector<DropletState*> rings;
+    for (auto& s : together) rings.push_back(&s);
+    std::vector<int> corrections(rings.size());
+    // The same rest length for all, as run_interleaved groups them; 3 passes, some rings converge first.
+    apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), p.rest_length(), p.max_strain,
+                                        3, corrections.data());
+    for (std::size_t r = 0; r < alone.size(); ++r) {
+      const int c = apply_length_constraint(&alone[r], p.rest_length(), p.max_strain, 3);
+      EXPECT_EQ(corrections[r], c) << "ring " << r;
+      EXPECT_EQ(together[r].x, alone[r].x) << "ring " << r;
+      EXPECT_EQ(together[r].y, alone[r].y) << "ring " << r;
+    }
   }
 }
 
@@ -147,6 +154,7 @@ TEST(Interleaved, BatchResultsDoNotDependOnLanesOrThreads) {
   }
   b.lanes = 0;
   EXPECT_THROW(run_batch(p, m, o, b), std::invalid_argument);
+  EXPECT_THROW(limit_constraint_vector_width(static_cast<VectorWidth>(3)), std::invalid_argument);
 }
 
 TEST(Interleaved, DropletsHandedToAnIdleThreadKeepTheirBits) {

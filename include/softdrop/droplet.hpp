@@ -77,10 +77,23 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
 /// The sequential order on several rings at once: each ring ends exactly as
 /// apply_length_constraint(ring, ..., ConstraintOrder::sequential) leaves it, and corrections[r]
 /// is its return value. The sequential pass is a chain of dependent square roots and divisions;
-/// the chains of different rings are independent. Rings of one size go link by link together, up
-/// to 6 at a time: two per SSE2 register, three registers' chains side by side.
+/// the chains of different rings are independent. Rings of one size go link by link together, a
+/// ring per vector lane and up to three registers' chains side by side: up to 12 rings with AVX,
+/// 6 with SSE2.
 void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
                                          double max_strain, int iterations, int* corrections);
+
+/// Rings apply_length_constraint_interleaved takes at once with the vector width in use.
+int interleaved_ring_capacity();
+
+/// Vector width of the constraint's code: doubles per instruction. Every width gives the same
+/// bits, since each lane does the scalar operations in the same order; the widest the processor
+/// has (AVX on most x86-64 since 2011, else SSE2, which every x86-64 has) is found at start-up.
+enum class VectorWidth { scalar = 1, sse2 = 2, avx = 4 };
+VectorWidth constraint_vector_width();
+/// Uses at most `width` from now on (never more than the processor has), for all threads; returns
+/// the width in use. For tests and benchmarks that check or time the narrower paths.
+VectorWidth limit_constraint_vector_width(VectorWidth width);
 
 /// Signed enclosed area (shoelace), positive for counter-clockwise order.
 double ring_area(const DropletState& state);
