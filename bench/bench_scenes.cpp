@@ -6,10 +6,10 @@
 // Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
 // 5000 grains); medium-200-red-black (medium-200 with the red-black constraint order); batch
-// (`simulate --droplets 24` on the medium-200 medium: one droplet at a time on 1 thread, 6
-// stepped together on 1 thread, and on all threads); sweep and sweep-long (16 and 64 droplets
-// through each of 4 media, on 1 thread and on all; the paper's sweep has 200 per medium);
-// search-l1 and search-l2 (the default search at lambda 1 and 2, on 1 thread and on all threads
+// (`simulate --droplets 24` on the medium-200 medium: one droplet at a time on 1 thread, the
+// default lanes stepped together (12 with AVX, 6 with SSE2) on 1 thread, and on all threads);
+// sweep and sweep-long (16 and 64 droplets through each of 4 media, on 1 thread and on all; the
+// paper's sweep has 200 per medium); search-l1 and search-l2 (the default search at lambda 1 and 2, on 1 thread and on all threads
 // with speculation, as `optimize` runs it).
 #include <sys/resource.h>
 #include <sys/utsname.h>
@@ -222,7 +222,8 @@ int main(int argc, char** argv) {
 #else
       << "debug"
 #endif
-      << " build\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
+      << " build\n# constraint vector width: " << static_cast<int>(constraint_vector_width())
+      << " doubles (4: AVX, 2: SSE2)\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
          "droplets_per_s,evaluations_per_s,peak_rss_mb\n";
   bool any = false;
   for (const auto& [name, run] : scenes) {
