@@ -216,6 +216,26 @@ TEST(Interleaved, DropletsHandedToAnIdleThreadKeepTheirBits) {
   EXPECT_GE(finished_by_b, 1);
 }
 
+TEST(Interleaved, AWorkerThatFailsStopsTheBatchWithoutHangingTheOthers) {
+  // The progress callback fails once 3 droplets are done, on whichever thread: that worker leaves
+  // the lane exchange mid-batch, the others finish what they step, and run_batch reports the error.
+  const Medium medium = medium_of_porosity_08();
+  BatchOptions b;
+  b.droplets = 30;
+  b.threads = 2;
+  RunOptions o;
+  o.stuck_window = 0.1;
+  int calls = 0;
+  EXPECT_THROW(run_batch(DropletParams{}, medium, o, b,
+                         [&](int done, int) {
+                           ++calls;
+                           if (done >= 3) throw std::runtime_error("progress sink failed");
+                         }),
+               std::runtime_error);
+  EXPECT_GE(calls, 3);
+  EXPECT_LT(calls, 30);  // no new droplet starts after the failure
+}
+
 TEST(Interleaved, ACancelledRunLeavesTheDriver) {
   const Medium pore = test::pore_of_three_grains();
   DropletParams p;
