@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bench_media.hpp"
@@ -64,14 +65,27 @@ void BM_ConstraintSequential(benchmark::State& s) {
 void BM_ConstraintRedBlack(benchmark::State& s) {
   stage(s, [](Simulation& sim) { sim.integrate(); sim.apply_constraint(); }, softdrop::ConstraintOrder::red_black);
 }
+// The red-black constraint at a given vector width (1 scalar, 2 SSE2, 4 AVX; the same bits): what
+// each width buys where the processor has it.
+void BM_ConstraintRedBlackAtWidth(benchmark::State& s) {
+  const softdrop::VectorWidth used =
+      softdrop::limit_constraint_vector_width(static_cast<softdrop::VectorWidth>(s.range(1)));
+  s.SetLabel("width " + std::to_string(static_cast<int>(used)));
+  stage(s, [](Simulation& sim) { sim.integrate(); sim.apply_constraint(); }, softdrop::ConstraintOrder::red_black);
+  softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx);
+}
 void BM_ContactLimit(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.apply_contact_limit(); }); }
 void BM_WholeStep(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.step(); }); }
 
 // The sequential constraint on K rings at once (apply_length_constraint_interleaved), as a batch of
-// droplets steps them: K copies of the stage's state, each integrated, then constrained together.
-// Time per iteration covers all K rings; mass-updates/s counts all of them.
+// droplets steps them: K copies of the stage's state, each integrated, then constrained together,
+// at vector width W (the widest the processor has, at most W). Time per iteration covers all K
+// rings; mass-updates/s counts all of them.
 void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
   const int rings = static_cast<int>(state.range(1));
+  const softdrop::VectorWidth used =
+      softdrop::limit_constraint_vector_width(static_cast<softdrop::VectorWidth>(state.range(2)));
+  state.SetLabel("width " + std::to_string(static_cast<int>(used)));
   const softdrop::Medium medium = softdrop::bench::medium_200();
   softdrop::DropletParams p;
   p.masses = static_cast<int>(state.range(0));
@@ -87,8 +101,11 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
   });
   state.counters["mass-updates/s"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
+  softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx);
 }
-BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 2, 3, 4, 6, 8, 10, 12}});
+BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 2, 3, 4, 6, 8, 10, 12}, {4}});
+BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {6}, {2}});
+BENCHMARK(BM_ConstraintRedBlackAtWidth)->ArgsProduct({{40}, {1, 2, 4}});
 
 #define SIZES ->Arg(16)->Arg(40)->Arg(128)
 BENCHMARK(BM_SpringsAndPressure) SIZES;
