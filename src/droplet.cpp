@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
+#include <type_traits>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -332,43 +333,49 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
 }
 
 namespace {
+// The interleaved sequential order keeps its rings as lanes of vector registers: lane l of
+// register r is ring kLanes r + l, with x[kLanes r + l] and y[...] that ring's arrays. A padding
+// lane repeats a ring, doing the same work on the same memory. Each lane does sequential_link()'s
+// operations on its own ring, K registers' chains side by side. Passes go on until no ring
+// changes; a pass that changes nothing changes nothing again, so the extra passes of a ring that
+// has stopped keep its bits. counts[ring] gets the ring's corrections. The SSE2 and AVX versions
+// below are the same loop on two vector types (an AVX body must be compiled apart, for AVX only).
 #if defined(__SSE2__)
-// The sequential order on K pairs of rings of n masses, one pair per SSE2 register (ring a in the
-// low lane, b in the high one; a ring with no partner is paired with itself, both lanes then doing
-// the same work on the same memory), the K pairs' chains side by side. Each lane does
-// sequential_link()'s operations on its own ring (constrain_two). Passes go on until no ring changes; a pass
-// that changes nothing changes nothing again, so the extra passes of a ring that has stopped keep
-// its bits. Counts corrections per ring.
+inline void load_lanes(double* const* x, int base, int i, __m128d* v) {
+  *v = _mm_loadh_pd(_mm_load_sd(x[base] + i), x[base + 1] + i);
+}
+inline void store_lanes(double* const* x, int base, int i, const __m128d& v) {
+  _mm_storel_pd(x[base] + i, v);
+  _mm_storeh_pd(x[base + 1] + i, v);
+}
+
+// Two rings per SSE2 register.
 template <int K>
-void sequential_passes_paired(double* const* xa, double* const* ya, double* const* xb, double* const* yb, int n,
-                              int iterations, double dmin, double dmax, int* count_a, int* count_b) {
+void sequential_passes_paired(double* const* x, double* const* y, int n, int iterations, double dmin, double dmax,
+                              int* counts) {
   const PairLimits l(dmin, dmax);
   bool active[K];
-  for (int r = 0; r < K; ++r) {
-    active[r] = true;
-    count_a[r] = count_b[r] = 0;
-  }
+  for (int r = 0; r < K; ++r) active[r] = true;
+  for (int t = 0; t < 2 * K; ++t) counts[t] = 0;
   for (int pass = 0; pass < iterations; ++pass) {
     __m128d xi[K], yi[K];
-    int changed_a[K], changed_b[K];
+    int changed[2 * K] = {};
     for (int r = 0; r < K; ++r) {
-      xi[r] = _mm_loadh_pd(_mm_load_sd(xa[r]), xb[r]);
-      yi[r] = _mm_loadh_pd(_mm_load_sd(ya[r]), yb[r]);
-      changed_a[r] = changed_b[r] = 0;
+      load_lanes(x, 2 * r, 0, &xi[r]);
+      load_lanes(y, 2 * r, 0, &yi[r]);
     }
     for (int i = 0; i < n; ++i) {
       const int j = i + 1 == n ? 0 : i + 1;
       for (int r = 0; r < K; ++r) {
         if (!active[r]) continue;
-        __m128d xj = _mm_loadh_pd(_mm_load_sd(xa[r] + j), xb[r] + j);
-        __m128d yj = _mm_loadh_pd(_mm_load_sd(ya[r] + j), yb[r] + j);
+        __m128d xj, yj;
+        load_lanes(x, 2 * r, j, &xj);
+        load_lanes(y, 2 * r, j, &yj);
         const int moved = constrain_two(l, &xi[r], &yi[r], &xj, &yj);
-        changed_a[r] += moved & 1;
-        changed_b[r] += moved >> 1;
-        _mm_storel_pd(xa[r] + i, xi[r]);
-        _mm_storeh_pd(xb[r] + i, xi[r]);
-        _mm_storel_pd(ya[r] + i, yi[r]);
-        _mm_storeh_pd(yb[r] + i, yi[r]);
+        changed[2 * r] += moved & 1;
+        changed[2 * r + 1] += moved >> 1;
+        store_lanes(x, 2 * r, i, xi[r]);
+        store_lanes(y, 2 * r, i, yi[r]);
         xi[r] = xj;
         yi[r] = yj;
       }
@@ -376,13 +383,11 @@ void sequential_passes_paired(double* const* xa, double* const* ya, double* cons
     bool any = false;
     for (int r = 0; r < K; ++r) {
       if (!active[r]) continue;
-      _mm_storel_pd(xa[r], xi[r]);  // the closing spring's correction of mass 0
-      _mm_storeh_pd(xb[r], xi[r]);
-      _mm_storel_pd(ya[r], yi[r]);
-      _mm_storeh_pd(yb[r], yi[r]);
-      count_a[r] += changed_a[r];
-      count_b[r] += changed_b[r];
-      active[r] = changed_a[r] + changed_b[r] != 0;
+      store_lanes(x, 2 * r, 0, xi[r]);  // the closing spring's correction of mass 0
+      store_lanes(y, 2 * r, 0, yi[r]);
+      counts[2 * r] += changed[2 * r];
+      counts[2 * r + 1] += changed[2 * r + 1];
+      active[r] = changed[2 * r] + changed[2 * r + 1] != 0;
       any = any || active[r];
     }
     if (!any) break;
@@ -390,7 +395,6 @@ void sequential_passes_paired(double* const* xa, double* const* ya, double* cons
 }
 #endif
 #if defined(SOFTDROP_AVX_DISPATCH)
-// Lanes of one AVX register: mass i of rings base .. base + 3 (x[ring] is a ring's array).
 SOFTDROP_AVX inline void load_lanes(double* const* x, int base, int i, __m256d* v) {
   *v = _mm256_set_pd(x[base + 3][i], x[base + 2][i], x[base + 1][i], x[base][i]);
 }
@@ -402,9 +406,7 @@ SOFTDROP_AVX inline void store_lanes(double* const* x, int base, int i, const __
   _mm_storeh_pd(x[base + 3] + i, hi);
 }
 
-// sequential_passes_paired with four rings per AVX register: lane l of register r is ring
-// 4 r + l (x[4 r + l], y[4 r + l]; a padding lane repeats a ring, doing the same work on the same
-// memory), K registers' chains side by side. counts[4 r + l] gets the ring's corrections.
+// Four rings per AVX register.
 template <int K>
 SOFTDROP_AVX void sequential_passes_quad(double* const* x, double* const* y, int n, int iterations, double dmin,
                                          double dmax, int* counts) {
@@ -448,27 +450,27 @@ SOFTDROP_AVX void sequential_passes_quad(double* const* x, double* const* y, int
     if (!any) break;
   }
 }
+#endif
 
-// Rings r0 .. r0 + same - 1 (one size, same <= 12), four per register.
-void sequential_rings_avx(DropletState* const* rings, int same, int iterations, double dmin, double dmax,
-                          int* corrections) {
-  const int quads = (same + 3) / 4;
-  double *x[12], *y[12];
-  int counts[12];
-  for (int t = 0; t < 4 * quads; ++t) {
+// Rings [0, same) of one size (same <= 3 kLanes) as lanes, kLanes per register, padded with the
+// last ring; passes(registers, x, y, counts) runs them, with registers a std::integral_constant.
+template <int kLanes, class Passes>
+void sequential_rings(DropletState* const* rings, int same, int* corrections, const Passes& passes) {
+  const int registers = (same + kLanes - 1) / kLanes;
+  double *x[3 * kLanes], *y[3 * kLanes];
+  int counts[3 * kLanes];
+  for (int t = 0; t < kLanes * registers; ++t) {
     DropletState* ring = rings[std::min(t, same - 1)];
     x[t] = ring->x.data();
     y[t] = ring->y.data();
   }
-  const int n = rings[0]->size();
-  switch (quads) {
-    case 3: sequential_passes_quad<3>(x, y, n, iterations, dmin, dmax, counts); break;
-    case 2: sequential_passes_quad<2>(x, y, n, iterations, dmin, dmax, counts); break;
-    default: sequential_passes_quad<1>(x, y, n, iterations, dmin, dmax, counts); break;
+  switch (registers) {
+    case 3: passes(std::integral_constant<int, 3>{}, x, y, counts); break;
+    case 2: passes(std::integral_constant<int, 2>{}, x, y, counts); break;
+    default: passes(std::integral_constant<int, 1>{}, x, y, counts); break;
   }
   for (int t = 0; t < same; ++t) corrections[t] = counts[t];
 }
-#endif
 
 }  // namespace
 
@@ -494,32 +496,17 @@ void apply_length_constraint_interleaved(DropletState* const* rings, int count, 
     }
 #if defined(SOFTDROP_AVX_DISPATCH)
     if (width >= 4) {
-      sequential_rings_avx(rings + r, same, iterations, dmin, dmax, corrections + r);
+      sequential_rings<4>(rings + r, same, corrections + r, [&](auto k, double** x, double** y, int* counts) {
+        sequential_passes_quad<decltype(k)::value>(x, y, n, iterations, dmin, dmax, counts);
+      });
       r += same;
       continue;
     }
 #endif
 #if defined(__SSE2__)
-    const int pairs = (same + 1) / 2;
-    double *xa[3], *ya[3], *xb[3], *yb[3];
-    int count_a[3], count_b[3];
-    for (int p = 0; p < pairs; ++p) {
-      DropletState* a = rings[r + 2 * p];
-      DropletState* b = 2 * p + 1 < same ? rings[r + 2 * p + 1] : a;
-      xa[p] = a->x.data();
-      ya[p] = a->y.data();
-      xb[p] = b->x.data();
-      yb[p] = b->y.data();
-    }
-    switch (pairs) {
-      case 3: sequential_passes_paired<3>(xa, ya, xb, yb, n, iterations, dmin, dmax, count_a, count_b); break;
-      case 2: sequential_passes_paired<2>(xa, ya, xb, yb, n, iterations, dmin, dmax, count_a, count_b); break;
-      default: sequential_passes_paired<1>(xa, ya, xb, yb, n, iterations, dmin, dmax, count_a, count_b); break;
-    }
-    for (int p = 0; p < pairs; ++p) {
-      corrections[r + 2 * p] = count_a[p];
-      if (2 * p + 1 < same) corrections[r + 2 * p + 1] = count_b[p];
-    }
+    sequential_rings<2>(rings + r, same, corrections + r, [&](auto k, double** x, double** y, int* counts) {
+      sequential_passes_paired<decltype(k)::value>(x, y, n, iterations, dmin, dmax, counts);
+    });
 #endif
     r += same;
   }
