@@ -19,6 +19,7 @@
 
 #include "softdrop/spacing.hpp"
 #include "validation.hpp"
+#include "worker_threads.hpp"
 
 namespace softdrop {
 using detail::fail;
@@ -351,7 +352,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   SearchSummary s;
-  const int workers = options.threads > 0 ? options.threads : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  const int workers = detail::worker_threads(options.threads);
   std::unique_ptr<Pipeline> pipeline;
   if (options.speculate && (workers > 1 || options.lanes > 1) && search.last_generation() < options.generations)
     pipeline = std::make_unique<Pipeline>(search, workers, options.lanes, options.generations);

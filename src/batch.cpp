@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "softdrop/random.hpp"
+#include "worker_threads.hpp"
 
 namespace softdrop {
 
@@ -72,8 +73,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
   };
   // Long-lived workers that may block at the lane exchange: plain threads, the calling thread one
   // of them, no more than there are droplets.
-  const int workers = std::min(k, options.threads > 0 ? options.threads
-                                                      : static_cast<int>(std::max(1U, std::thread::hardware_concurrency())));
+  const int workers = std::min(k, detail::worker_threads(options.threads));
   std::exception_ptr error;
   auto fail = [&](std::exception_ptr e) {
     std::lock_guard lock(progress_mutex);

@@ -15,6 +15,7 @@
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
 #include "validation.hpp"
+#include "worker_threads.hpp"
 
 namespace softdrop {
 using detail::fail;
@@ -114,7 +115,7 @@ SweepMedium run_sweep_unit(const SweepOptions& o, const SweepUnit& u, int thread
 
 void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units, int threads,
                      const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop) {
-  const int workers = threads > 0 ? threads : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+  const int workers = detail::worker_threads(threads);
   struct Open {
     std::once_flag made;
     std::unique_ptr<UnitSetup> setup;
