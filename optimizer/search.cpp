@@ -10,6 +10,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -67,6 +68,10 @@ bool SearchOptions::IsValid(std::string* why) const {
 }
 
 namespace {
+// Whether a candidate's evaluation makes it the best so far: a strict improvement of a passed
+// droplet (ties go to the earlier candidate, so the choice does not depend on threads).
+bool improves(const Evaluation& e, double best_t) { return e.outcome == Outcome::passed && e.tortuosity > best_t; }
+
 // The run options of an evaluation: no area trace, no snapshots.
 RunOptions evaluation_run(const RunOptions& run) {
   RunOptions r = run;
@@ -175,10 +180,9 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
   if (static_cast<int>(g.candidates.size()) != options_.lambda)
     throw std::logic_error("Search::complete: " + std::to_string(g.candidates.size()) + " candidates for lambda " +
                            std::to_string(options_.lambda));
-  // The best strict improvement; ties go to the lowest index, so the choice is thread-independent.
   double best_t = best_.eval.tortuosity;
   for (const Candidate& c : g.candidates)
-    if (c.eval.outcome == Outcome::passed && c.eval.tortuosity > best_t) {
+    if (improves(c.eval, best_t)) {
       best_t = c.eval.tortuosity;
       g.accepted = c.index;
     }
@@ -198,9 +202,20 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
 namespace {
 
 // Speculative evaluation: worker threads take candidates (g, k) in order, up to `depth`
-// generations ahead of the last completed one, each from the best as of the last completed
-// generation. When a generation accepts a candidate, the best changes: every result of a later
-// generation was made from the old best, so it is dropped and handed out again.
+// generations ahead of the last completed one, each made from the parent the pipeline expects
+// generation g to have. A lineage is one such parent and the generations handed out from it, from
+// `start` on. A newer lineage ends the older one at its own start (`dead_from`): the older one's
+// candidates of those generations are dropped, or cancelled while they run. A lineage begins
+// - when a completed generation accepts a candidate nobody predicted: what was made from the old
+//   best after it is useless;
+// - as a prediction: once a finished candidate of the next generation to complete beats the best,
+//   that generation will accept one (this one, or a better one still running), so the old best has
+//   no future after it. The pipeline goes on from the candidate that wins among those finished,
+//   instead of from the old best. A candidate finishing later may win instead: the prediction
+//   changes to it and the work made from the first is dropped. The last candidate to arrive
+//   settles it, so a generation always completes as predicted.
+// Every candidate that reaches a generation was made from that generation's true parent, so the
+// history is that of one generation at a time.
 class Pipeline {
  public:
   Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
@@ -208,16 +223,18 @@ class Pipeline {
     const int lambda = search.options().lambda;
     // Far enough ahead that a slow (stuck) candidate does not leave the other threads idle.
     depth_ = std::max<std::int64_t>(2, (16 * workers + lambda - 1) / lambda);
-    parent_ = std::make_shared<const Configuration>(search.best());
-    completed_ = next_gen_ = search.last_generation();
-    ++next_gen_;
+    completed_ = search.last_generation();
+    base_ = std::make_shared<const Configuration>(search.best());
+    line_ = std::make_shared<Lineage>();
+    line_->parent = base_;
+    line_->start = next_gen_ = completed_ + 1;
     for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
   }
   ~Pipeline() {
     {
       std::lock_guard lock(m_);
       stop_ = true;
-      epoch_seen_.store(-1, std::memory_order_relaxed);  // cancels the runs still in flight
+      stopping_.store(true, std::memory_order_relaxed);  // cancels the runs still in flight
     }
     cv_.notify_all();
     for (std::thread& t : threads_) t.join();
@@ -250,27 +267,80 @@ class Pipeline {
     {
       std::lock_guard lock(m_);
       completed_ = gen.number;
-      if (gen.accepted >= 0) {  // everything speculated was made from the old best
-        ++epoch_;
-        epoch_seen_.store(epoch_, std::memory_order_relaxed);
-        parent_ = std::make_shared<const Configuration>(search_.best());
-        done_.clear();
-        next_gen_ = gen.number + 1;
-        next_k_ = 0;
+      if (predicted_gen_ == gen.number) {
+        // predict() saw the last of these candidates arrive, so it chose as complete() did.
+        if (gen.accepted != predicted_k_)
+          throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) + " accepted " +
+                                 std::to_string(gen.accepted) + ", predicted " + std::to_string(predicted_k_));
+        predicted_gen_ = -1;
+      } else if (gen.accepted >= 0) {
+        begin_lineage(std::make_shared<const Configuration>(search_.best()), gen.number + 1);
       }
+      base_ = line_->parent;  // no lineage starts after completed_ + 1, so this is its parent
+      predict();              // its candidates may all have finished already
     }
     cv_.notify_all();
     return gen;
   }
 
+  SpeculationStats stats() {
+    std::lock_guard lock(m_);
+    return stats_;
+  }
+
  private:
+  struct Lineage {
+    std::shared_ptr<const Configuration> parent;
+    std::int64_t start = 0;
+    std::atomic<std::int64_t> dead_from{std::numeric_limits<std::int64_t>::max()};
+  };
+
+  // Under m_. Generations from `start` on are made from `parent`; every generation before `start`
+  // has been handed out whole.
+  void begin_lineage(std::shared_ptr<const Configuration> parent, std::int64_t start) {
+    line_->dead_from.store(start, std::memory_order_relaxed);
+    line_ = std::make_shared<Lineage>();
+    line_->parent = std::move(parent);
+    line_->start = start;
+    for (auto it = done_.lower_bound({start, 0}); it != done_.end(); it = done_.erase(it)) ++stats_.dropped;
+    next_gen_ = start;
+    next_k_ = 0;
+  }
+
+  // Under m_. Predicts the acceptance of generation completed_ + 1 from its finished candidates,
+  // once all of them have been handed out.
+  void predict() {
+    const std::int64_t g = completed_ + 1;
+    if (g > upto_ || next_gen_ <= g) return;
+    const Candidate* winner = nullptr;
+    double best_t = base_->eval.tortuosity;
+    for (int k = 0; k < search_.options().lambda; ++k) {  // Search::complete's choice, among these
+      const auto it = done_.find({g, k});
+      if (it != done_.end() && improves(it->second.eval, best_t)) {
+        winner = &it->second;
+        best_t = winner->eval.tortuosity;
+      }
+    }
+    if (winner == nullptr || (predicted_gen_ == g && predicted_k_ == winner->index)) return;
+    if (predicted_gen_ == g) ++stats_.mispredictions;
+    ++stats_.predictions;
+    predicted_gen_ = g;
+    predicted_k_ = winner->index;
+    auto parent = std::make_shared<Configuration>();  // what Search::complete will make the best
+    parent->generation = g;
+    parent->medium = winner->medium;
+    parent->eval = winner->eval;
+    begin_lineage(std::move(parent), g + 1);
+  }
+
   // A worker steps up to `lanes_` candidates together (run_interleaved); each evaluation gets the
   // bits it gets alone.
   void work() {
     const SearchOptions& options = search_.options();
     struct Job {
-      std::int64_t g = 0, epoch = 0;
+      std::int64_t g = 0;
       int k = 0;
+      std::shared_ptr<Lineage> line;
       Candidate c;
       std::unique_ptr<Simulation> sim;
       RunOptions run;
@@ -292,16 +362,17 @@ class Pipeline {
       j.g = next_gen_;
       j.k = next_k_;
       if (++next_k_ == options.lambda) next_k_ = 0, ++next_gen_;
-      const std::shared_ptr<const Configuration> parent = parent_;
-      j.epoch = epoch_;
+      j.line = line_;
       lock.unlock();
       const std::int64_t id = next_id++;
       try {
-        j.c = make_candidate(*parent, j.g, j.k, options);
+        j.c = make_candidate(*j.line->parent, j.g, j.k, options);
         j.t0 = std::chrono::steady_clock::now();
         j.run = evaluation_run(options.run);
-        // Speculative work made useless by an acceptance stops early instead of running on.
-        j.run.cancelled = [this, epoch = j.epoch] { return epoch_seen_.load(std::memory_order_relaxed) != epoch; };
+        // Work made useless by a new lineage stops early instead of running on.
+        j.run.cancelled = [this, line = j.line.get(), g = j.g] {
+          return stopping_.load(std::memory_order_relaxed) || g >= line->dead_from.load(std::memory_order_relaxed);
+        };
         Job& placed = jobs.emplace(id, std::move(j)).first->second;
         placed.sim = std::make_unique<Simulation>(options.droplet, placed.c.medium);
         *job = {placed.sim.get(), 0.5 * placed.c.medium.width, &placed.run, id};
@@ -318,13 +389,25 @@ class Pipeline {
       j.c.eval = as_evaluation(std::move(summary), j.t0);
       {
         std::lock_guard lock(m_);
-        if (j.epoch == epoch_) done_.emplace(std::pair{j.g, j.k}, std::move(j.c));
+        if (j.g < j.line->dead_from.load(std::memory_order_relaxed)) {
+          done_.emplace(std::pair{j.g, j.k}, std::move(j.c));
+          if (j.g == completed_ + 1) predict();
+        } else {
+          ++stats_.dropped;
+        }
       }
       cv_.notify_all();
       jobs.erase(it);
     };
+    auto cancelled = [&](std::int64_t id) {
+      if (!stopping_.load(std::memory_order_relaxed)) {
+        std::lock_guard lock(m_);
+        ++stats_.dropped;
+      }
+      jobs.erase(id);
+    };
     try {
-      run_interleaved(lanes_, next, done, [&](std::int64_t id) { jobs.erase(id); });
+      run_interleaved(lanes_, next, done, cancelled);
     } catch (...) {
       fail(std::current_exception());
     }
@@ -336,13 +419,17 @@ class Pipeline {
   std::int64_t depth_ = 1;
   std::mutex m_;
   std::condition_variable cv_;
-  std::shared_ptr<const Configuration> parent_;
-  std::int64_t epoch_ = 0, completed_ = 0, next_gen_ = 0;
-  std::atomic<std::int64_t> epoch_seen_{0};  // epoch_, readable without the lock
+  std::shared_ptr<Lineage> line_;              // the newest lineage: generations from its start on
+  std::shared_ptr<const Configuration> base_;  // the best after completed_
+  std::int64_t completed_ = 0, next_gen_ = 0;
   int next_k_ = 0;
+  std::int64_t predicted_gen_ = -1;  // the generation of the standing prediction, -1: none
+  int predicted_k_ = -1;
   std::map<std::pair<std::int64_t, int>, Candidate> done_;
   std::exception_ptr error_;
   bool stop_ = false;
+  std::atomic<bool> stopping_{false};  // stop_, readable without the lock
+  SpeculationStats stats_;
   std::vector<std::thread> threads_;
 };
 
@@ -383,6 +470,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
       break;
     }
   }
+  if (pipeline) s.speculation = pipeline->stats();
   s.last_generation = search.last_generation();
   s.best_t = search.best().eval.tortuosity;
   s.seconds = elapsed();

@@ -188,6 +188,70 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
   }
 }
 
+TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
+  // Once a finished candidate of the generation being decided beats the best, the pipeline goes on
+  // from it; another candidate finishing later may still win. On one thread the lanes finish in a
+  // fixed order (shortest run first), so both cases happen at the same places on every run.
+  const SearchOptions o = test::small_search_options(4);
+  Configuration best;
+  initial_generation(test::small_search_medium(), o, &best);
+  Search plain(o, best, 0);
+  std::vector<Generation> a;
+  for (int i = 0; i < 16; ++i) a.push_back(plain.next(1));
+  int accepted = 0, won_by_a_later_finisher = 0;
+  for (const Generation& g : a) {
+    if (g.accepted < 0) continue;
+    ++accepted;
+    // A candidate with fewer steps than the winner finished first on one thread; it predicted
+    // wrongly if it beat the old best too.
+    const std::int64_t winner_steps = g.candidates[static_cast<std::size_t>(g.accepted)].eval.steps;
+    for (const Candidate& c : g.candidates)
+      if (c.index != g.accepted && c.eval.outcome == Outcome::passed && c.eval.steps < winner_steps) {
+        ++won_by_a_later_finisher;
+        break;
+      }
+  }
+  ASSERT_GT(accepted, 0);
+  for (auto [threads, lanes] : {std::pair{1, 4}, std::pair{2, 3}}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(lanes) + " lanes");
+    Search fast(o, best, 0);
+    DriveOptions d;
+    d.generations = 16;
+    d.threads = threads;
+    d.lanes = lanes;
+    std::vector<Generation> b;
+    const SearchSummary sum = drive(fast, d, [&](const Generation& g, const Configuration&) {
+      b.push_back(g);
+      return true;
+    });
+    ASSERT_EQ(b.size(), a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      ASSERT_EQ(b[i].accepted, a[i].accepted) << "generation " << i + 1;
+      ASSERT_EQ(b[i].best_t, a[i].best_t) << "generation " << i + 1;
+      for (std::size_t k = 0; k < a[i].candidates.size(); ++k)
+        EXPECT_EQ(b[i].candidates[k].medium, a[i].candidates[k].medium) << "generation " << i + 1;
+    }
+    EXPECT_EQ(fast.best().medium, plain.best().medium);
+    EXPECT_EQ(sum.accepted, accepted);
+    // Every accepting generation was predicted before it completed, at least once.
+    EXPECT_GE(sum.speculation.predictions, accepted);
+    EXPECT_LE(sum.speculation.mispredictions, sum.speculation.predictions);
+    EXPECT_GT(sum.speculation.dropped, 0) << "acceptances drop work made from the old best";
+    if (threads == 1) {
+      EXPECT_GT(won_by_a_later_finisher, 0) << "the scene must overturn a prediction";
+      EXPECT_GE(sum.speculation.mispredictions, 1);
+    }
+  }
+  DriveOptions none;
+  none.generations = 4;
+  none.speculate = false;
+  none.threads = 1;  // one generation at a time, in order
+  Search slow(o, best, 0);
+  const SearchSummary sum = drive(slow, none, nullptr);
+  EXPECT_EQ(sum.speculation.predictions, 0);
+  EXPECT_EQ(sum.speculation.dropped, 0);
+}
+
 TEST(Search, ResumingFromTheStoredBestContinuesTheSameHistory) {
   const SearchOptions o = test::small_search_options();
   Configuration best;

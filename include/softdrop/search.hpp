@@ -149,12 +149,26 @@ struct DriveOptions {
   int threads = 0;                     ///< 0: all cores
   /// Threads (or, on one thread, its lanes) evaluate candidates of the next generations before
   /// the current one is decided, assuming it accepts nothing (most generations), and drop them
-  /// when it does accept. The history is the same as without it; it only keeps threads busy.
+  /// when it does accept. Once a finished candidate of the generation being decided beats the
+  /// best, they go on from that candidate instead (and drop that work if another candidate wins).
+  /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
   /// Candidates each speculating thread steps together (run_interleaved). More lanes evaluate
   /// faster but run further ahead, so more speculative work is dropped when a generation accepts;
   /// 3 did best among 2, 3, 4 and 6 on the benchmark search (bench_scenes search-l1, search-l2).
   int lanes = 3;
+};
+
+/// What the speculating evaluation did besides the history: work that did not count.
+struct SpeculationStats {
+  /// Evaluations begun and then dropped, finished or cancelled mid-run, because they were made
+  /// from a parent their generation did not have (not counting those cut short by the end).
+  std::int64_t dropped = 0;
+  /// Times the pipeline went on from a candidate of the generation being decided that beat the
+  /// best before that generation was complete.
+  std::int64_t predictions = 0;
+  /// Predictions overturned by a candidate of the same generation that finished later and won.
+  std::int64_t mispredictions = 0;
 };
 
 /// What a drive did and why it ended (cf. Ceres' Solver::Summary).
@@ -167,6 +181,7 @@ struct SearchSummary {
   std::int64_t accepted = 0;
   double seconds = 0;
   double best_t = 0;
+  SpeculationStats speculation;  ///< all zero without speculation
   double evaluations_per_second() const { return seconds > 0 ? static_cast<double>(evaluations) / seconds : 0; }
 };
 

@@ -259,6 +259,9 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   j["touched_grains"] = best.eval.touched.size();
   j["wall_seconds"] = summary.seconds;
   j["evaluations_per_second"] = summary.evaluations_per_second();
+  j["speculation"] = {{"dropped_evaluations", summary.speculation.dropped},
+                      {"predictions", summary.speculation.predictions},
+                      {"mispredictions", summary.speculation.mispredictions}};
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (a.format == "json") {
     std::cout << j.dump(2) << '\n';
@@ -269,7 +272,10 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
               << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n"
               << "this session " << summary.generations_run << " generations, " << summary.accepted
               << " accepted, " << summary.evaluations << " evaluations, "
-              << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
+              << fmt(summary.evaluations_per_second(), 3) << " eval/s\n"
+              << "speculation  " << summary.speculation.dropped << " evaluations dropped, "
+              << summary.speculation.predictions << " acceptances predicted ("
+              << summary.speculation.mispredictions << " overturned)\n";
   }
   return summary.termination == Termination::interrupted ? 130 : 0;
 }
