@@ -81,7 +81,10 @@ GrainGrid::GrainGrid(const Medium& medium, double cell_size) {
     if (fits) break;
     cell_size *= 2;
   }
-  for (std::int64_t c = 0; c < cells; ++c) start_[c + 1] += start_[c];
+  for (std::int64_t c = 0; c < cells; ++c) {
+    max_cell_ = std::max(max_cell_, static_cast<std::size_t>(start_[c + 1]));
+    start_[c + 1] += start_[c];
+  }
   items_.resize(static_cast<std::size_t>(start_[cells]));
   std::vector<std::int64_t> fill(start_.begin(), start_.end() - 1);
   for (std::size_t k = 0; k < gx_.size(); ++k) {

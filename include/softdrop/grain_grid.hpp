@@ -57,10 +57,13 @@ class GrainGrid {
   /// Grain entries over all cells (a disc overlapping k cells counts k times): the grid's size,
   /// kept at most 64 per stored disc (plus 4096) by coarsening the cells when needed.
   std::size_t entries() const { return items_.size(); }
+  /// The most entries any one cell lists: at most this many discs are near a point.
+  std::size_t max_cell_entries() const { return max_cell_; }
 
  private:
   double x0_ = 0, y0_ = 0, inv_cell_ = 1;
   int nx_ = 0, ny_ = 0;
+  std::size_t max_cell_ = 0;
   std::vector<std::int64_t> start_;
   std::vector<std::int32_t> items_;
   std::vector<Disc> discs_;  ///< items_ with the discs' data, entry for entry

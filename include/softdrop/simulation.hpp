@@ -148,6 +148,16 @@ class Simulation {
   /// Spring forces of the step, 4 x N: on the first end (-0 for a spring of zero length) and for
   /// the second end (+0 then), x and y. Apart so that the springs can go two at a time.
   std::vector<double> spring_force_;
+  /// The grains each mass is inside, as the contact limit found them at the end of the last step,
+  /// for the next step's collisions (positions do not move in between): contacts_ holds up to
+  /// max_cell_entries() discs per mass, contact_count_ how many, and contact_x_, contact_y_ the
+  /// position they were found at. The collisions use them only for a mass still at that position
+  /// to the bit, so a state changed in between, a pushed mass or a new placement is looked up again.
+  GrainGrid::DiscRange cached_contacts(int i) const;
+  std::vector<GrainGrid::Disc> contacts_;
+  std::vector<std::int32_t> contact_count_;
+  std::vector<double> contact_x_, contact_y_;
+  std::size_t contact_capacity_ = 0;
 };
 
 /// A droplet for run_interleaved: the simulation to run it in (placed above the medium at x0 by the
