@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "fixtures.hpp"
 
@@ -164,6 +166,42 @@ TEST(Simulation, ACancelHookStopsTheRunAndOtherwiseChangesNothing) {
   EXPECT_EQ(a.state_hash(), b.state_hash());
   EXPECT_EQ(polls, ra.steps / plain.check_interval);
   EXPECT_THROW(c.run(100, stopping), RunCancelled);
+}
+
+TEST(Simulation, CollisionsFromTheContactLimitsRecordEqualAFreshLookup) {
+  // The contact limit records which grains each mass is inside; the next step's collisions use
+  // that record for masses that have not moved. The forces must be those of a simulation that
+  // looks every mass up afresh, including after the state is changed from outside.
+  DropletParams p;
+  const Medium pore = test::pore_of_three_grains();
+  Simulation sim(p, pore);
+  sim.place_above(100);
+  int in_contact = 0, moved = 0;
+  for (int k = 0; k < 3000; ++k) {
+    if (k % 97 == 50) {  // move one mass (not its velocity): it must be looked up again
+      DropletState& s = sim.mutable_state();
+      const std::size_t i = static_cast<std::size_t>(k) % s.x.size();
+      s.x[i] += 0.25;
+      s.px[i] += 0.25;
+      s.y[i] -= 0.25;
+      s.py[i] -= 0.25;
+      ++moved;
+    }
+    Simulation fresh(p, pore);
+    fresh.mutable_state() = sim.state();
+    sim.compute_forces();
+    fresh.compute_forces();
+    for (int i = 0; i < sim.state().size(); ++i) {
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(sim.state().fx[i]), std::bit_cast<std::uint64_t>(fresh.state().fx[i]))
+          << "step " << k << ", mass " << i;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(sim.state().fy[i]), std::bit_cast<std::uint64_t>(fresh.state().fy[i]))
+          << "step " << k << ", mass " << i;
+    }
+    in_contact += sim.last_penetration() > 0;
+    ASSERT_TRUE(sim.step()) << "step " << k;
+  }
+  EXPECT_GT(in_contact, 200) << "the droplet must spend a while inside grains";
+  EXPECT_GT(moved, 30);
 }
 
 }  // namespace
