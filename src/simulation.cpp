@@ -70,6 +70,9 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
   double top = medium.height;
   for (const Grain& g : medium.grains) top = std::max(top, g.y + g.r);
   start_y_ = top + params.radius + 0.05 * params.radius;
+  // Far above the rounding of any distance in the box (about 1e-15 of its size), far below any
+  // distance that matters.
+  clearance_margin_ = 1e-9 * (medium.width + start_y_);
   place(0.5 * medium.width, start_y_);
 }
 
@@ -84,6 +87,10 @@ void Simulation::place(double cx, double cy) {
   contact_count_.assign(state_.x.size(), 0);
   contact_x_.assign(state_.x.size(), std::numeric_limits<double>::quiet_NaN());  // matches no position
   contact_y_.assign(state_.y.size(), std::numeric_limits<double>::quiet_NaN());
+  clear_x_.assign(state_.x.size(), 0.0);
+  clear_y_.assign(state_.x.size(), 0.0);
+  clear_r2_.assign(state_.x.size(), -1.0);
+  clear_cell_.assign(state_.x.size(), -1);
   area_ = ring_area(state_);
   last_penetration_ = 0;
 }
@@ -308,15 +315,31 @@ void Simulation::apply_contact_limit() {
   for (int i = 0; i < n; ++i) {
     const double x = state_.x[i], y = state_.y[i];
     const double xw = periodic ? wrap_periodic(x, W) : x;
-    const auto range = grid_.discs_near(xw, y);
-    // The discs the mass is inside, tested as accumulate_collisions() will test them next step.
+    const std::int64_t cell = grid_.cell_of(xw, y);
+    // The same cell, and not further from where the mass was last found clear than its clearance:
+    // no disc of the cell is within reach, and each test below would say so.
+    const double ex = xw - clear_x_[i], ey = y - clear_y_[i];
+    if (cell == clear_cell_[i] && ex * ex + ey * ey < clear_r2_[i]) {
+      contact_count_[i] = 0;
+      contact_x_[i] = x;
+      contact_y_[i] = y;
+      continue;
+    }
+    const auto range = grid_.discs_in(cell);
+    // The discs the mass is inside, tested as accumulate_collisions() will test them next step,
+    // and how far it is from the surface of the nearest other one.
     GrainGrid::Disc* inside = contacts_.data() + static_cast<std::size_t>(i) * contact_capacity_;
     int count = 0;
+    double gap = std::numeric_limits<double>::infinity();
     bool pushed = false;
     for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) {
       const double dx = xw - g->x, dy = state_.y[i] - g->y, inner = g->r - limit;
       const double d2 = dx * dx + dy * dy;
-      if (!(d2 >= g->r * g->r)) inside[count++] = *g;
+      if (!(d2 >= g->r * g->r)) {
+        inside[count++] = *g;
+      } else {
+        gap = std::min(gap, std::sqrt(d2) - g->r);
+      }
       if (inner <= 0 || d2 >= inner * inner) continue;
       const double d = std::sqrt(d2);
       const double nx = d > 0 ? dx / d : 0.0, ny = d > 0 ? dy / d : 1.0;
@@ -334,6 +357,11 @@ void Simulation::apply_contact_limit() {
     contact_count_[i] = pushed ? 0 : count;
     contact_x_[i] = pushed ? std::numeric_limits<double>::quiet_NaN() : x;
     contact_y_[i] = y;
+    const double reach = gap - clearance_margin_;
+    clear_r2_[i] = count == 0 && reach > 0 ? reach * reach : -1.0;
+    clear_x_[i] = xw;
+    clear_y_[i] = y;
+    clear_cell_[i] = cell;
   }
 }
 

@@ -23,11 +23,16 @@ class GrainGrid {
     const std::int32_t* end;
   };
   Range query(double x, double y) const {
+    const std::int64_t c = cell_of(x, y);
+    if (c < 0) return {nullptr, nullptr};
+    return {items_.data() + start_[c], items_.data() + start_[c + 1]};
+  }
+  /// The cell holding (x, y), -1 outside the grid (or for NaN).
+  std::int64_t cell_of(double x, double y) const {
     const double fx = (x - x0_) * inv_cell_;
     const double fy = (y - y0_) * inv_cell_;
-    if (!(fx >= 0 && fy >= 0 && fx < nx_ && fy < ny_)) return {nullptr, nullptr};
-    const std::int64_t c = static_cast<std::int64_t>(fy) * nx_ + static_cast<std::int64_t>(fx);
-    return {items_.data() + start_[c], items_.data() + start_[c + 1]};
+    if (!(fx >= 0 && fy >= 0 && fx < nx_ && fy < ny_)) return -1;
+    return static_cast<std::int64_t>(fy) * nx_ + static_cast<std::int64_t>(fx);
   }
 
   /// A stored disc as listed in a cell: its copy in the cell's own run of entries, so that the
@@ -41,10 +46,11 @@ class GrainGrid {
     const Disc* end;
   };
   /// The same discs as query(x, y), as copies.
-  DiscRange discs_near(double x, double y) const {
-    const Range r = query(x, y);
-    if (r.begin == nullptr) return {nullptr, nullptr};
-    return {discs_.data() + (r.begin - items_.data()), discs_.data() + (r.end - items_.data())};
+  DiscRange discs_near(double x, double y) const { return discs_in(cell_of(x, y)); }
+  /// The discs of cell c (from cell_of); none for -1.
+  DiscRange discs_in(std::int64_t c) const {
+    if (c < 0) return {nullptr, nullptr};
+    return {discs_.data() + start_[c], discs_.data() + start_[c + 1]};
   }
 
   /// Stored discs (grains and their periodic images), flat arrays.

@@ -158,6 +158,13 @@ class Simulation {
   std::vector<std::int32_t> contact_count_;
   std::vector<double> contact_x_, contact_y_;
   std::size_t contact_capacity_ = 0;
+  /// Where each mass is known to be clear of every grain: within sqrt(clear_r2_) of the wrapped
+  /// position (clear_x_, clear_y_), in cell clear_cell_, no disc of the cell is within reach, by
+  /// a margin that covers rounding (clearance_margin_). The contact limit skips the tests of a mass
+  /// still there; -1 (or NaN) in clear_r2_: not known.
+  std::vector<double> clear_x_, clear_y_, clear_r2_;
+  std::vector<std::int64_t> clear_cell_;
+  double clearance_margin_ = 0;
 };
 
 /// A droplet for run_interleaved: the simulation to run it in (placed above the medium at x0 by the
