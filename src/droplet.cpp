@@ -6,17 +6,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-// AVX code is compiled for functions marked SOFTDROP_AVX only, and run only where the processor
-// has AVX, so the default build still runs on any x86-64.
-#if defined(__x86_64__) && defined(__SSE2__) && (defined(__GNUC__) || defined(__clang__))
-#define SOFTDROP_AVX_DISPATCH 1
-#define SOFTDROP_AVX __attribute__((target("avx")))
-#include <immintrin.h>
-#endif
-
+#include "simd_dispatch.hpp"
 #include "validation.hpp"
 
 namespace softdrop {

@@ -86,9 +86,10 @@ void apply_length_constraint_interleaved(DropletState* const* rings, int count, 
 /// Rings apply_length_constraint_interleaved takes at once with the vector width in use.
 int interleaved_ring_capacity();
 
-/// Vector width of the constraint's code: doubles per instruction. Every width gives the same
-/// bits, since each lane does the scalar operations in the same order; the widest the processor
-/// has (AVX on most x86-64 since 2011, else SSE2, which every x86-64 has) is found at start-up.
+/// Vector width of the step's vector code (the constraint and the spring forces): doubles per
+/// instruction. Every width gives the same bits, since each lane does the scalar operations in the
+/// same order; the widest the processor has (AVX on most x86-64 since 2011, else SSE2, which every
+/// x86-64 has) is found at start-up.
 enum class VectorWidth { scalar = 1, sse2 = 2, avx = 4 };
 VectorWidth constraint_vector_width();
 /// Uses at most `width` from now on (never more than the processor has), for all threads; returns
