@@ -439,10 +439,13 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   SearchSummary s;
+  if (options.lanes < 0 || options.lanes > 64)
+    throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [0, 64]");
   const int workers = detail::worker_threads(options.threads);
+  const int lanes = options.lanes > 0 ? options.lanes : workers == 1 ? 4 : 3;
   std::unique_ptr<Pipeline> pipeline;
-  if (options.speculate && (workers > 1 || options.lanes > 1) && search.last_generation() < options.generations)
-    pipeline = std::make_unique<Pipeline>(search, workers, options.lanes, options.generations);
+  if (options.speculate && (workers > 1 || lanes > 1) && search.last_generation() < options.generations)
+    pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);
   for (;;) {
     if (search.last_generation() >= options.generations) {
       s.termination = Termination::generations;

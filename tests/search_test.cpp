@@ -252,6 +252,25 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
   EXPECT_EQ(sum.speculation.dropped, 0);
 }
 
+TEST(Search, DriveRefusesLanesOutOfRangeByName) {
+  const SearchOptions o = test::small_search_options();
+  Configuration best;
+  initial_generation(test::small_search_medium(), o, &best);
+  Search s(o, best, 0);
+  for (int lanes : {-1, 65}) {
+    DriveOptions d;
+    d.generations = 1;
+    d.lanes = lanes;
+    try {
+      drive(s, d, nullptr);
+      ADD_FAILURE() << "lanes = " << lanes << " was accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()), "lanes = " + std::to_string(lanes) + ": must be in [0, 64]");
+    }
+  }
+  EXPECT_EQ(s.last_generation(), 0) << "nothing ran";
+}
+
 TEST(Search, ResumingFromTheStoredBestContinuesTheSameHistory) {
   const SearchOptions o = test::small_search_options();
   Configuration best;

@@ -153,10 +153,12 @@ struct DriveOptions {
   /// best, they go on from that candidate instead (and drop that work if another candidate wins).
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
-  /// Candidates each speculating thread steps together (run_interleaved). More lanes evaluate
-  /// faster but run further ahead, so more speculative work is dropped when a generation accepts;
-  /// 3 did best among 2, 3, 4 and 6 on the benchmark search (bench_scenes search-l1, search-l2).
-  int lanes = 3;
+  /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 4 on one
+  /// thread, 3 on more. More lanes evaluate faster but run further ahead, so more speculative work
+  /// is dropped when a generation accepts. On the benchmark searches (bench_scenes search-l1,
+  /// search-l2) one thread did best with 4 (of 2 to 8: λ = 2 gained 17 % over 3) and two threads
+  /// with 3 (4 gave +1 % at λ = 2, -2.5 % at λ = 1).
+  int lanes = 0;
 };
 
 /// What the speculating evaluation did besides the history: work that did not count.
