@@ -375,7 +375,7 @@ void Simulation::apply_contact_limit() {
       const double d2 = dx * dx + dy * dy;
       if (!(d2 >= g->r * g->r)) {
         inside[count++] = *g;
-      } else {
+      } else if (count == 0) {  // a mass inside a grain has no clearance to know
         gap = std::min(gap, std::sqrt(d2) - g->r);
       }
       if (inner <= 0 || d2 >= inner * inner) continue;
