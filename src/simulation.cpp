@@ -82,7 +82,9 @@ void Simulation::place(double cx, double cy) {
   for (int i = 0; i < state_.size(); ++i) state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
   std::fill(touched_.begin(), touched_.end(), 0);
   spring_force_.assign(4 * state_.x.size(), 0.0);  // so that step() allocates nothing
-  contact_capacity_ = grid_.max_cell_entries();
+  // A point is rarely inside more than a few discs; a mass inside more than this is looked up
+  // again by the collisions. (A cell's full count could be thousands in a coarse grid.)
+  contact_capacity_ = std::min<std::size_t>(grid_.max_cell_entries(), 8);
   contacts_.assign(state_.x.size() * contact_capacity_, GrainGrid::Disc{});
   contact_count_.assign(state_.x.size(), 0);
   contact_x_.assign(state_.x.size(), std::numeric_limits<double>::quiet_NaN());  // matches no position
@@ -374,7 +376,8 @@ void Simulation::apply_contact_limit() {
       const double dx = xw - g->x, dy = state_.y[i] - g->y, inner = g->r - limit;
       const double d2 = dx * dx + dy * dy;
       if (!(d2 >= g->r * g->r)) {
-        inside[count++] = *g;
+        if (static_cast<std::size_t>(count) < contact_capacity_) inside[count] = *g;
+        ++count;
       } else if (count == 0) {  // a mass inside a grain has no clearance to know
         gap = std::min(gap, std::sqrt(d2) - g->r);
       }
@@ -390,10 +393,12 @@ void Simulation::apply_contact_limit() {
       state_.py[i] = state_.y[i] - (vy - vn * ny);
       pushed = true;
     }
-    // A pushed mass has moved since the tests: its collisions look it up again. (A NaN position
-    // that matches the marker finds no discs either way.)
-    contact_count_[i] = pushed ? 0 : count;
-    contact_x_[i] = pushed ? std::numeric_limits<double>::quiet_NaN() : x;
+    // A pushed mass has moved since the tests, and one inside too many discs has no full record:
+    // their collisions look them up again. (A NaN position that matches the marker finds no
+    // discs either way.)
+    const bool recorded = !pushed && static_cast<std::size_t>(count) <= contact_capacity_;
+    contact_count_[i] = recorded ? count : 0;
+    contact_x_[i] = recorded ? x : std::numeric_limits<double>::quiet_NaN();
     contact_y_[i] = y;
     const double reach = gap - clearance_margin_;
     clear_r2_[i] = count == 0 && reach > 0 ? reach * reach : -1.0;

@@ -150,9 +150,10 @@ class Simulation {
   std::vector<double> spring_force_;
   /// The grains each mass is inside, as the contact limit found them at the end of the last step,
   /// for the next step's collisions (positions do not move in between): contacts_ holds up to
-  /// max_cell_entries() discs per mass, contact_count_ how many, and contact_x_, contact_y_ the
-  /// position they were found at. The collisions use them only for a mass still at that position
-  /// to the bit, so a state changed in between, a pushed mass or a new placement is looked up again.
+  /// contact_capacity_ discs per mass, contact_count_ how many, and contact_x_, contact_y_ the
+  /// position they were found at (NaN: no record). The collisions use them only for a mass still at
+  /// that position to the bit, so a state changed in between, a pushed mass, one inside more discs
+  /// than the capacity or a new placement is looked up again.
   GrainGrid::DiscRange cached_contacts(int i) const;
   std::vector<GrainGrid::Disc> contacts_;
   std::vector<std::int32_t> contact_count_;
