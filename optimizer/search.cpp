@@ -233,8 +233,7 @@ class Pipeline {
   ~Pipeline() {
     {
       std::lock_guard lock(m_);
-      stop_ = true;
-      stopping_.store(true, std::memory_order_relaxed);  // cancels the runs still in flight
+      stopping_.store(true, std::memory_order_relaxed);  // also cancels the runs still in flight
     }
     cv_.notify_all();
     for (std::thread& t : threads_) t.join();
@@ -355,9 +354,11 @@ class Pipeline {
     };
     auto next = [&](DropletJob* job, bool may_wait) {
       std::unique_lock lock(m_);
-      auto ready = [&] { return stop_ || (next_gen_ <= upto_ && next_gen_ <= completed_ + depth_); };
+      auto ready = [&] {
+        return stopping_.load(std::memory_order_relaxed) || (next_gen_ <= upto_ && next_gen_ <= completed_ + depth_);
+      };
       if (may_wait) cv_.wait(lock, ready);
-      if (stop_ || !ready()) return false;
+      if (stopping_.load(std::memory_order_relaxed) || !ready()) return false;
       Job j;
       j.g = next_gen_;
       j.k = next_k_;
@@ -427,8 +428,7 @@ class Pipeline {
   int predicted_k_ = -1;
   std::map<std::pair<std::int64_t, int>, Candidate> done_;
   std::exception_ptr error_;
-  bool stop_ = false;
-  std::atomic<bool> stopping_{false};  // stop_, readable without the lock
+  std::atomic<bool> stopping_{false};  // set under m_ (for the waits), read anywhere
   SpeculationStats stats_;
   std::vector<std::thread> threads_;
 };

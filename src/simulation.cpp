@@ -12,9 +12,6 @@
 #include <sstream>
 #include <stdexcept>
 
-#if defined(__SSE2__)
-#endif
-
 #include "simd_dispatch.hpp"
 #include "validation.hpp"
 
@@ -113,12 +110,12 @@ void Simulation::centre_of_mass(double* cx, double* cy) const {
 // ---- Stages of a step -------------------------------------------------------------------------
 
 namespace {
-// x - W floor(x / W), the position of x in [0, W). Inside the box (0 < x < 0.999999 W) that
-// expression is x exactly (the quotient rounds below 1, so the floor is 0), so the division is
-// skipped there: same bits, a division fewer per mass in the common case.
 // Equal to the bit (unlike ==, which does not tell -0 from +0, and NaN from itself).
 inline bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
+// x - W floor(x / W), the position of x in [0, W). Inside the box (0 < x < 0.999999 W) that
+// expression is x exactly (the quotient rounds below 1, so the floor is 0), so the division is
+// skipped there: same bits, a division fewer per mass in the common case.
 inline double wrap_periodic(double x, double W) {
   return x > 0 && x < 0.999999 * W ? x : x - W * std::floor(x / W);
 }
