@@ -204,8 +204,8 @@ namespace {
 // Speculative evaluation: worker threads take candidates (g, k) in order, up to `depth`
 // generations ahead of the last completed one, each made from the parent the pipeline expects
 // generation g to have. A lineage is one such parent and the generations handed out from it, from
-// `start` on. A newer lineage ends the older one at its own start (`dead_from`): the older one's
-// candidates of those generations are dropped, or cancelled while they run. A lineage begins
+// the one where it begins on. A newer lineage ends the older one there (`dead_from`): the older
+// one's candidates of those generations are dropped, or cancelled while they run. A lineage begins
 // - when a completed generation accepts a candidate nobody predicted: what was made from the old
 //   best after it is useless;
 // - as a prediction: once a finished candidate of the next generation to complete beats the best,
@@ -227,7 +227,7 @@ class Pipeline {
     base_ = std::make_shared<const Configuration>(search.best());
     line_ = std::make_shared<Lineage>();
     line_->parent = base_;
-    line_->start = next_gen_ = completed_ + 1;
+    next_gen_ = completed_ + 1;
     for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
   }
   ~Pipeline() {
@@ -290,7 +290,6 @@ class Pipeline {
  private:
   struct Lineage {
     std::shared_ptr<const Configuration> parent;
-    std::int64_t start = 0;
     std::atomic<std::int64_t> dead_from{std::numeric_limits<std::int64_t>::max()};
   };
 
@@ -300,7 +299,6 @@ class Pipeline {
     line_->dead_from.store(start, std::memory_order_relaxed);
     line_ = std::make_shared<Lineage>();
     line_->parent = std::move(parent);
-    line_->start = start;
     for (auto it = done_.lower_bound({start, 0}); it != done_.end(); it = done_.erase(it)) ++stats_.dropped;
     next_gen_ = start;
     next_k_ = 0;
