@@ -206,14 +206,18 @@ namespace {
 // generation g to have. A lineage is one such parent and the generations handed out from it, from
 // the one where it begins on. A newer lineage ends the older one there (`dead_from`): the older
 // one's candidates of those generations are dropped, or cancelled while they run. A lineage begins
-// - when a completed generation accepts a candidate nobody predicted: what was made from the old
-//   best after it is useless;
-// - as a prediction: once a finished candidate of the next generation to complete beats the best,
-//   that generation will accept one (this one, or a better one still running), so the old best has
-//   no future after it. The pipeline goes on from the candidate that wins among those finished,
-//   instead of from the old best. A candidate finishing later may win instead: the prediction
-//   changes to it and the work made from the first is dropped. The last candidate to arrive
-//   settles it, so a generation always completes as predicted.
+// - as a prediction: once a finished candidate of a generation beats that generation's parent, the
+//   generation will accept one (this one, or a better one still running), provided its parent is
+//   right, so that parent has no future after it. The pipeline goes on from the candidate that wins
+//   among those finished. This holds for any generation handed out whole, not only the next one to
+//   complete: a later generation's parent is the one its earlier, undecided generations predict
+//   (the last prediction before it, or the best if none), so its own prediction is conditional on
+//   theirs. A candidate finishing later may win instead: the prediction changes to it and the work
+//   made from the first is dropped. A prediction made for an earlier generation ends those of the
+//   later ones with their lineage. The last candidate of a generation to arrive settles its
+//   prediction, so a generation always completes as predicted;
+// - when a completed generation accepts a candidate nobody predicted (kept as a safeguard; the
+//   above leaves no such case).
 // Every candidate that reaches a generation was made from that generation's true parent, so the
 // history is that of one generation at a time.
 class Pipeline {
@@ -221,12 +225,17 @@ class Pipeline {
   Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
       : search_(search), upto_(last_allowed), lanes_(lanes) {
     const int lambda = search.options().lambda;
-    // Far enough ahead that a slow (stuck) candidate does not leave the other threads idle.
-    depth_ = std::max<std::int64_t>(2, (16 * workers + lambda - 1) / lambda);
+    // Far enough ahead that a slow (stuck) candidate does not leave the lanes empty: four times the
+    // generations in flight. bench_scenes search-l2 with 8 lanes, evaluations/s by depth over the
+    // generations in flight: 1 thread 41.7 at 2, 42.3 from 3 to 8; 2 threads 61.4 at 1, 67.2 at
+    // 1.5, 73.2 to 73.5 from 2 to 4.
+    depth_ = std::max<std::int64_t>(2, 4 * workers * lanes / lambda);
     completed_ = search.last_generation();
     base_ = std::make_shared<const Configuration>(search.best());
     line_ = std::make_shared<Lineage>();
     line_->parent = base_;
+    line_->start = completed_ + 1;
+    lines_.push_back(line_);
     next_gen_ = completed_ + 1;
     for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
   }
@@ -266,17 +275,19 @@ class Pipeline {
     {
       std::lock_guard lock(m_);
       completed_ = gen.number;
-      if (predicted_gen_ == gen.number) {
+      const auto p = predicted_.find(gen.number);
+      if (p != predicted_.end()) {
         // predict() saw the last of these candidates arrive, so it chose as complete() did.
-        if (gen.accepted != predicted_k_)
+        if (gen.accepted != p->second.k)
           throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) + " accepted " +
-                                 std::to_string(gen.accepted) + ", predicted " + std::to_string(predicted_k_));
-        predicted_gen_ = -1;
+                                 std::to_string(gen.accepted) + ", predicted " + std::to_string(p->second.k));
+        base_ = p->second.parent;
+        predicted_.erase(p);
       } else if (gen.accepted >= 0) {
-        begin_lineage(std::make_shared<const Configuration>(search_.best()), gen.number + 1);
+        base_ = std::make_shared<const Configuration>(search_.best());
+        begin_lineage(base_, gen.number + 1);
       }
-      base_ = line_->parent;  // no lineage starts after completed_ + 1, so this is its parent
-      predict();              // its candidates may all have finished already
+      predict();  // the next generation's candidates may all have finished already
     }
     cv_.notify_all();
     return gen;
@@ -290,44 +301,71 @@ class Pipeline {
  private:
   struct Lineage {
     std::shared_ptr<const Configuration> parent;
+    std::int64_t start = 0;  // the first generation made from parent
     std::atomic<std::int64_t> dead_from{std::numeric_limits<std::int64_t>::max()};
+  };
+  struct Prediction {
+    int k = -1;                                    // the candidate expected to be accepted
+    std::shared_ptr<const Configuration> parent;   // it, as the next generation's parent
   };
 
   // Under m_. Generations from `start` on are made from `parent`; every generation before `start`
-  // has been handed out whole.
+  // has been handed out whole. The predictions from `start` on were made from the parent ended here.
   void begin_lineage(std::shared_ptr<const Configuration> parent, std::int64_t start) {
-    line_->dead_from.store(start, std::memory_order_relaxed);
+    // A prediction for an earlier generation ends the lineages begun after it as well.
+    for (const std::shared_ptr<Lineage>& l : lines_)
+      if (l->dead_from.load(std::memory_order_relaxed) > start) l->dead_from.store(start, std::memory_order_relaxed);
+    // Drop those with nothing left to end: wholly ended, or ended where the generations completed.
+    std::erase_if(lines_, [this](const std::shared_ptr<Lineage>& l) {
+      const std::int64_t dead_from = l->dead_from.load(std::memory_order_relaxed);
+      return dead_from <= l->start || dead_from <= completed_ + 1;
+    });
     line_ = std::make_shared<Lineage>();
     line_->parent = std::move(parent);
+    line_->start = start;
+    lines_.push_back(line_);
     for (auto it = done_.lower_bound({start, 0}); it != done_.end(); it = done_.erase(it)) ++stats_.dropped;
+    for (auto it = predicted_.lower_bound(start); it != predicted_.end(); it = predicted_.erase(it))
+      ++stats_.mispredictions;
     next_gen_ = start;
     next_k_ = 0;
   }
 
-  // Under m_. Predicts the acceptance of generation completed_ + 1 from its finished candidates,
-  // once all of them have been handed out.
+  // Under m_. Goes through the generations handed out whole, from the next to complete on, each
+  // with the parent the predictions before it give, and predicts the acceptance of the first whose
+  // finished candidates beat that parent and which has no prediction, or a different one, yet.
   void predict() {
-    const std::int64_t g = completed_ + 1;
-    if (g > upto_ || next_gen_ <= g) return;
-    const Candidate* winner = nullptr;
-    double best_t = base_->eval.tortuosity;
-    for (int k = 0; k < search_.options().lambda; ++k) {  // Search::complete's choice, among these
-      const auto it = done_.find({g, k});
-      if (it != done_.end() && improves(it->second.eval, best_t)) {
-        winner = &it->second;
-        best_t = winner->eval.tortuosity;
+    std::shared_ptr<const Configuration> parent = base_;
+    for (std::int64_t g = completed_ + 1; g < next_gen_ && g <= upto_; ++g) {
+      const Candidate* winner = nullptr;
+      double best_t = parent->eval.tortuosity;
+      for (int k = 0; k < search_.options().lambda; ++k) {  // Search::complete's choice, among these
+        const auto it = done_.find({g, k});
+        if (it != done_.end() && improves(it->second.eval, best_t)) {
+          winner = &it->second;
+          best_t = winner->eval.tortuosity;
+        }
       }
+      if (winner == nullptr) continue;  // no prediction: g is assumed to accept nothing
+      auto p = predicted_.find(g);
+      if (p != predicted_.end() && p->second.k == winner->index) {
+        parent = p->second.parent;
+        continue;
+      }
+      if (p != predicted_.end()) {
+        ++stats_.mispredictions;
+        predicted_.erase(p);
+      }
+      ++stats_.predictions;
+      if (g > completed_ + 1) ++stats_.predictions_ahead;
+      auto next = std::make_shared<Configuration>();  // what Search::complete will make the best
+      next->generation = g;
+      next->medium = winner->medium;
+      next->eval = winner->eval;
+      predicted_.emplace(g, Prediction{winner->index, next});
+      begin_lineage(std::move(next), g + 1);  // nothing after g + 1 is left to look at
+      return;
     }
-    if (winner == nullptr || (predicted_gen_ == g && predicted_k_ == winner->index)) return;
-    if (predicted_gen_ == g) ++stats_.mispredictions;
-    ++stats_.predictions;
-    predicted_gen_ = g;
-    predicted_k_ = winner->index;
-    auto parent = std::make_shared<Configuration>();  // what Search::complete will make the best
-    parent->generation = g;
-    parent->medium = winner->medium;
-    parent->eval = winner->eval;
-    begin_lineage(std::move(parent), g + 1);
   }
 
   // A worker steps up to `lanes_` candidates together (run_interleaved); each evaluation gets the
@@ -390,7 +428,7 @@ class Pipeline {
         std::lock_guard lock(m_);
         if (j.g < j.line->dead_from.load(std::memory_order_relaxed)) {
           done_.emplace(std::pair{j.g, j.k}, std::move(j.c));
-          if (j.g == completed_ + 1) predict();
+          predict();
         } else {
           ++stats_.dropped;
         }
@@ -419,11 +457,11 @@ class Pipeline {
   std::mutex m_;
   std::condition_variable cv_;
   std::shared_ptr<Lineage> line_;              // the newest lineage: generations from its start on
+  std::vector<std::shared_ptr<Lineage>> lines_;  // the lineages with generations not yet ended
   std::shared_ptr<const Configuration> base_;  // the best after completed_
   std::int64_t completed_ = 0, next_gen_ = 0;
   int next_k_ = 0;
-  std::int64_t predicted_gen_ = -1;  // the generation of the standing prediction, -1: none
-  int predicted_k_ = -1;
+  std::map<std::int64_t, Prediction> predicted_;  // standing predictions, by generation
   std::map<std::pair<std::int64_t, int>, Candidate> done_;
   std::exception_ptr error_;
   std::atomic<bool> stopping_{false};  // set under m_ (for the waits), read anywhere
@@ -440,7 +478,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   if (options.lanes < 0 || options.lanes > 64)
     throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [0, 64]");
   const int workers = detail::worker_threads(options.threads);
-  const int lanes = options.lanes > 0 ? options.lanes : workers == 1 ? 4 : 3;
+  const int lanes = options.lanes > 0 ? options.lanes : std::min(8, 4 * search.options().lambda);
   std::unique_ptr<Pipeline> pipeline;
   if (options.speculate && (workers > 1 || lanes > 1) && search.last_generation() < options.generations)
     pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);

@@ -149,15 +149,23 @@ struct DriveOptions {
   int threads = 0;                     ///< 0: all cores
   /// Threads (or, on one thread, its lanes) evaluate candidates of the next generations before
   /// the current one is decided, assuming it accepts nothing (most generations), and drop them
-  /// when it does accept. Once a finished candidate of the generation being decided beats the
-  /// best, they go on from that candidate instead (and drop that work if another candidate wins).
+  /// when it does accept. Once a finished candidate of a generation beats its parent, they go on
+  /// from that candidate instead (and drop that work if another candidate wins, or an earlier
+  /// generation accepts after all).
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
-  /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 4 on one
-  /// thread, 3 on more. More lanes evaluate faster but run further ahead, so more speculative work
-  /// is dropped when a generation accepts. On the benchmark searches (bench_scenes search-l1,
-  /// search-l2) one thread did best with 4 (of 2 to 8: λ = 2 gained 17 % over 3) and two threads
-  /// with 3 (4 gave +1 % at λ = 2, -2.5 % at λ = 1).
+  /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 4 at
+  /// λ = 1, 8 at larger λ. More lanes evaluate faster but run further ahead, so more speculative
+  /// work is dropped when a generation accepts. Evaluations/s by lanes, bench_scenes (60 or 120
+  /// generations) and `optimize --lambda 4 --generations 40`:
+  ///
+  ///   | search           | 3     | 4     | 6     | 8     | 12   |
+  ///   | λ = 1, 1 thread  | 58.0  | 64.1  | 66.0  | 63.6  | 57.8 |
+  ///   | λ = 1, 2 threads | 105.2 | 109.4 | 106.9 | 99.3  | 83.8 |
+  ///   | λ = 2, 1 thread  | 30.3  | 34.1  | 39.4  | 41.7  | 38.9 |
+  ///   | λ = 2, 2 threads | 57.5  | 63.9  | 69.1  | 73.5  | 63.2 |
+  ///   | λ = 4, 1 thread  |       |       | 91.2  | 96.4  | 93.3 |
+  ///   | λ = 4, 2 threads |       |       | 156   | 149   | 139  |
   int lanes = 0;
 };
 
@@ -166,11 +174,17 @@ struct SpeculationStats {
   /// Evaluations begun and then dropped, finished or cancelled mid-run, because they were made
   /// from a parent their generation did not have (not counting those cut short by the end).
   std::int64_t dropped = 0;
-  /// Times the pipeline went on from a candidate of the generation being decided that beat the
-  /// best before that generation was complete.
+  /// Times the pipeline went on from a finished candidate that beat its generation's parent before
+  /// that generation was complete. The parent is the best, or for a generation after an undecided
+  /// one, what the predictions before it make the best.
   std::int64_t predictions = 0;
-  /// Predictions overturned by a candidate of the same generation that finished later and won.
+  /// Predictions that did not come true: overturned by a candidate of the same generation that
+  /// finished later and won, or ended with their parent by a prediction for an earlier generation.
+  /// A drive that reaches its last generation has predictions == accepted + mispredictions.
   std::int64_t mispredictions = 0;
+  /// Predictions for a generation after the next one to complete: made from the parent the
+  /// predictions before it give, while those were not yet settled.
+  std::int64_t predictions_ahead = 0;
 };
 
 /// What a drive did and why it ended (cf. Ceres' Solver::Summary).

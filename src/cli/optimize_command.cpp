@@ -261,7 +261,8 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   j["evaluations_per_second"] = summary.evaluations_per_second();
   j["speculation"] = {{"dropped_evaluations", summary.speculation.dropped},
                       {"predictions", summary.speculation.predictions},
-                      {"mispredictions", summary.speculation.mispredictions}};
+                      {"mispredictions", summary.speculation.mispredictions},
+                      {"predictions_ahead", summary.speculation.predictions_ahead}};
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (a.format == "json") {
     std::cout << j.dump(2) << '\n';
@@ -275,6 +276,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n"
               << "speculation  " << summary.speculation.dropped << " evaluations dropped, "
               << summary.speculation.predictions << " acceptances predicted ("
+              << summary.speculation.predictions_ahead << " ahead of an undecided generation, "
               << summary.speculation.mispredictions << " overturned)\n";
   }
   return summary.termination == Termination::interrupted ? 130 : 0;
