@@ -24,6 +24,55 @@ double periodic_dx(double a, double b, double w) {
   return d - w * std::round(d / w);
 }
 
+// The reference history: generations 1..n one at a time on one thread.
+struct Reference {
+  std::vector<Generation> history;
+  Configuration best;
+};
+Reference one_at_a_time(const SearchOptions& o, const Configuration& best, int n) {
+  Search plain(o, best, 0);
+  Reference r;
+  for (int i = 0; i < n; ++i) r.history.push_back(plain.next(1));
+  r.best = plain.best();
+  return r;
+}
+
+// A drive up to generation d.generations from `best`, with its history.
+struct Driven {
+  std::vector<Generation> history;
+  SearchSummary summary;
+  Configuration best;
+};
+Driven drive_recorded(const SearchOptions& o, const Configuration& best, const DriveOptions& d) {
+  Search s(o, best, 0);
+  Driven r;
+  r.summary = drive(s, d, [&](const Generation& g, const Configuration&) {
+    r.history.push_back(g);
+    return true;
+  });
+  r.best = s.best();
+  return r;
+}
+
+// The same decisions, best and candidates, generation by generation, as the reference.
+void expect_same_history(const Reference& a, const Driven& b) {
+  ASSERT_EQ(b.history.size(), a.history.size());
+  for (std::size_t i = 0; i < a.history.size(); ++i) {
+    SCOPED_TRACE("generation " + std::to_string(i + 1));
+    const Generation &x = a.history[i], &y = b.history[i];
+    ASSERT_EQ(y.number, x.number);
+    ASSERT_EQ(y.accepted, x.accepted);
+    ASSERT_EQ(y.best_t, x.best_t);
+    ASSERT_EQ(y.candidates.size(), x.candidates.size());
+    for (std::size_t k = 0; k < x.candidates.size(); ++k) {
+      EXPECT_EQ(y.candidates[k].medium, x.candidates[k].medium);
+      EXPECT_EQ(y.candidates[k].eval.tortuosity, x.candidates[k].eval.tortuosity);
+      EXPECT_EQ(y.candidates[k].eval.steps, x.candidates[k].eval.steps);
+    }
+  }
+  EXPECT_EQ(b.best.medium, a.best.medium);
+}
+
 TEST(Mutation, AllGrainMoveKeepsSpacingRadiiAndStepBound) {
   const SearchOptions o = test::small_search_options();
   const Configuration parent = start(o);
@@ -150,41 +199,24 @@ TEST(Search, LambdaFourGivesTheSameHistoryOnOneAndTwoThreads) {
 
 TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
   // More workers than candidates run ahead into later generations; lanes step several candidates
-  // together on each worker (one thread with 3 lanes speculates too).
+  // together on each worker (one thread with 3 lanes speculates too); 4 and 8 are the defaults.
   for (auto [lambda, threads, lanes] : {std::tuple{1, 3, 1}, std::tuple{2, 3, 1}, std::tuple{1, 1, 3},
-                                        std::tuple{2, 2, 3}, std::tuple{1, 2, 4}}) {
+                                        std::tuple{2, 2, 3}, std::tuple{1, 2, 4}, std::tuple{2, 2, 8}}) {
+    SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads, " +
+                 std::to_string(lanes) + " lanes");
     const SearchOptions o = test::small_search_options(lambda);
-    Configuration best;
-    initial_generation(test::small_search_medium(), o, &best);
-    Search plain(o, best, 0), fast(o, best, 0);
-    std::vector<Generation> a, b;
-    for (int i = 0; i < 16; ++i) a.push_back(plain.next(1));
+    const Configuration best = start(o);
+    const Reference a = one_at_a_time(o, best, 16);
     DriveOptions d;
     d.generations = 16;
     d.threads = threads;
     d.lanes = lanes;
-    const SearchSummary sum = drive(fast, d, [&](const Generation& g, const Configuration&) {
-      b.push_back(g);
-      return true;
-    });
-    ASSERT_EQ(b.size(), a.size());
+    const Driven b = drive_recorded(o, best, d);
+    expect_same_history(a, b);
     int accepted = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads, " +
-                   std::to_string(lanes) + " lanes, generation " + std::to_string(i + 1));
-      ASSERT_EQ(b[i].number, a[i].number);
-      ASSERT_EQ(b[i].accepted, a[i].accepted);
-      ASSERT_EQ(b[i].best_t, a[i].best_t);
-      accepted += a[i].accepted >= 0;
-      for (std::size_t k = 0; k < a[i].candidates.size(); ++k) {
-        EXPECT_EQ(b[i].candidates[k].medium, a[i].candidates[k].medium);
-        EXPECT_EQ(b[i].candidates[k].eval.tortuosity, a[i].candidates[k].eval.tortuosity);
-        EXPECT_EQ(b[i].candidates[k].eval.steps, a[i].candidates[k].eval.steps);
-      }
-    }
+    for (const Generation& g : a.history) accepted += g.accepted >= 0;
     EXPECT_GT(accepted, 0) << "acceptances make the pipeline drop speculative work: that path must run";
-    EXPECT_EQ(fast.best().medium, plain.best().medium);
-    EXPECT_EQ(sum.evaluations, 16 * lambda);
+    EXPECT_EQ(b.summary.evaluations, 16 * lambda);
   }
 }
 
@@ -193,13 +225,10 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
   // from it; another candidate finishing later may still win. On one thread the lanes finish in a
   // fixed order (shortest run first), so both cases happen at the same places on every run.
   const SearchOptions o = test::small_search_options(4);
-  Configuration best;
-  initial_generation(test::small_search_medium(), o, &best);
-  Search plain(o, best, 0);
-  std::vector<Generation> a;
-  for (int i = 0; i < 16; ++i) a.push_back(plain.next(1));
+  const Configuration best = start(o);
+  const Reference a = one_at_a_time(o, best, 16);
   int accepted = 0, won_by_a_later_finisher = 0;
-  for (const Generation& g : a) {
+  for (const Generation& g : a.history) {
     if (g.accepted < 0) continue;
     ++accepted;
     // A candidate with fewer steps than the winner finished first on one thread; it predicted
@@ -214,24 +243,13 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
   ASSERT_GT(accepted, 0);
   for (auto [threads, lanes] : {std::pair{1, 4}, std::pair{2, 3}}) {
     SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(lanes) + " lanes");
-    Search fast(o, best, 0);
     DriveOptions d;
     d.generations = 16;
     d.threads = threads;
     d.lanes = lanes;
-    std::vector<Generation> b;
-    const SearchSummary sum = drive(fast, d, [&](const Generation& g, const Configuration&) {
-      b.push_back(g);
-      return true;
-    });
-    ASSERT_EQ(b.size(), a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      ASSERT_EQ(b[i].accepted, a[i].accepted) << "generation " << i + 1;
-      ASSERT_EQ(b[i].best_t, a[i].best_t) << "generation " << i + 1;
-      for (std::size_t k = 0; k < a[i].candidates.size(); ++k)
-        EXPECT_EQ(b[i].candidates[k].medium, a[i].candidates[k].medium) << "generation " << i + 1;
-    }
-    EXPECT_EQ(fast.best().medium, plain.best().medium);
+    const Driven b = drive_recorded(o, best, d);
+    expect_same_history(a, b);
+    const SearchSummary& sum = b.summary;
     EXPECT_EQ(sum.accepted, accepted);
     // Every accepting generation was predicted before it completed, at least once.
     EXPECT_GE(sum.speculation.predictions, accepted);
@@ -258,32 +276,18 @@ TEST(Search, PredictionsAheadOfUndecidedGenerationsKeepTheHistory) {
   // finishes an improvement while an earlier one still runs. It then goes on from that candidate,
   // assuming the earlier ones accept nothing, and drops that work if one of them does.
   const SearchOptions o = test::small_search_options(1);
-  Configuration best;
-  initial_generation(test::small_search_medium(), o, &best);
-  Search plain(o, best, 0);
-  std::vector<Generation> a;
-  for (int i = 0; i < 24; ++i) a.push_back(plain.next(1));
+  const Configuration best = start(o);
+  const Reference a = one_at_a_time(o, best, 24);
   for (int threads : {1, 2}) {
     SCOPED_TRACE(std::to_string(threads) + " threads");
-    Search fast(o, best, 0);
     DriveOptions d;
     d.generations = 24;
     d.threads = threads;
     d.lanes = 8;
-    std::vector<Generation> b;
-    const SearchSummary sum = drive(fast, d, [&](const Generation& g, const Configuration&) {
-      b.push_back(g);
-      return true;
-    });
-    ASSERT_EQ(b.size(), a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-      ASSERT_EQ(b[i].accepted, a[i].accepted) << "generation " << i + 1;
-      ASSERT_EQ(b[i].best_t, a[i].best_t) << "generation " << i + 1;
-      EXPECT_EQ(b[i].candidates[0].medium, a[i].candidates[0].medium) << "generation " << i + 1;
-    }
-    EXPECT_EQ(fast.best().medium, plain.best().medium);
-    EXPECT_EQ(sum.speculation.predictions, sum.accepted + sum.speculation.mispredictions);
-    EXPECT_GT(sum.speculation.predictions_ahead, 0);
+    const Driven b = drive_recorded(o, best, d);
+    expect_same_history(a, b);
+    EXPECT_EQ(b.summary.speculation.predictions, b.summary.accepted + b.summary.speculation.mispredictions);
+    EXPECT_GT(b.summary.speculation.predictions_ahead, 0);
   }
 }
 
