@@ -10,7 +10,8 @@
 // default lanes stepped together (12 with AVX, 6 with SSE2) on 1 thread, and on all threads);
 // sweep and sweep-long (16 and 64 droplets through each of 4 media, on 1 thread and on all; the
 // paper's sweep has 200 per medium); search-l1 and search-l2 (the default search at lambda 1 and 2, on 1 thread and on all threads
-// with speculation, as `optimize` runs it).
+// with speculation, as `optimize` runs it: 120 and 60 generations); search-l2-long (the same at
+// lambda 2 over 400 generations, where the acceptances thin out and the end of the run weighs less).
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -119,7 +120,8 @@ Work sweep(int threads, int per_medium) {
   return w;
 }
 
-Work search(int lambda, int threads) {
+// The default search: 120 evaluations (120 / lambda generations), or `generations` of them.
+Work search(int lambda, int threads, int generations = 0) {
   SearchOptions o;
   o.lambda = lambda;
   MediumOptions mo;
@@ -137,7 +139,7 @@ Work search(int lambda, int threads) {
   Search s(o, best, 0);
   Work w;
   DriveOptions d;
-  d.generations = 120 / lambda;
+  d.generations = generations > 0 ? generations : 120 / lambda;
   d.threads = threads;  // as optimize does: with 2 threads, idle ones speculate on later generations
   const auto t0 = Clock::now();
   drive(s, d, [&](const Generation& gen, const Configuration&) {
@@ -214,6 +216,8 @@ int main(int argc, char** argv) {
       {"search-l1", [&] { return search(1, threads); }},
       {"search-l2-1thread", [] { return search(2, 1); }},
       {"search-l2", [&] { return search(2, threads); }},
+      {"search-l2-long-1thread", [] { return search(2, 1, 400); }},
+      {"search-l2-long", [&] { return search(2, threads, 400); }},
   };
   std::ostringstream csv;
   csv << "# machine: " << machine() << "\n# compiler: GCC " << __VERSION__ << ", "
