@@ -1,29 +1,27 @@
-// The search loop: evaluate candidates in parallel, keep the best strict improvement.
+// The search: evaluation of a candidate, generation 0, and one generation at a time (its candidates
+// in parallel), keeping the best strict improvement. The speculating drive is in
+// speculative_drive.cpp.
 #include "softdrop/search.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
-#include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <condition_variable>
-#include <exception>
-#include <limits>
-#include <map>
-#include <memory>
-#include <mutex>
-#include <optional>
 #include <stdexcept>
-#include <thread>
+#include <string>
+#include <utility>
+#include <vector>
 
+#include "evaluation.hpp"
 #include "softdrop/spacing.hpp"
 #include "validation.hpp"
-#include "worker_threads.hpp"
 
 namespace softdrop {
+using detail::as_evaluation;
+using detail::evaluation_run;
 using detail::fail;
+using detail::improves;
 using detail::num;
 
 const char* to_string(MoveKind kind) {
@@ -67,12 +65,8 @@ bool SearchOptions::IsValid(std::string* why) const {
   return true;
 }
 
-namespace {
-// Whether a candidate's evaluation makes it the best so far: a strict improvement of a passed
-// droplet (ties go to the earlier candidate, so the choice does not depend on threads).
-bool improves(const Evaluation& e, double best_t) { return e.outcome == Outcome::passed && e.tortuosity > best_t; }
 
-// The run options of an evaluation: no area trace, no snapshots.
+namespace detail {
 RunOptions evaluation_run(const RunOptions& run) {
   RunOptions r = run;
   r.area_interval = 0;
@@ -92,7 +86,7 @@ Evaluation as_evaluation(RunSummary&& s, std::chrono::steady_clock::time_point t
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return e;
 }
-}  // namespace
+}  // namespace detail
 
 Evaluation evaluate(const Medium& medium, const SearchOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -197,323 +191,6 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
   g.touched = static_cast<int>(best_.eval.touched.size());
   g.seconds = seconds;
   return g;
-}
-
-namespace {
-
-// Speculative evaluation: worker threads take candidates (g, k) in order, up to `depth`
-// generations ahead of the last completed one, each made from the parent the pipeline expects
-// generation g to have. A lineage is one such parent and the generations handed out from it, from
-// the one where it begins on. A newer lineage ends the older one there (`dead_from`): the older
-// one's candidates of those generations are dropped, or cancelled while they run. A lineage begins
-// - as a prediction: once a finished candidate of a generation beats that generation's parent, the
-//   generation will accept one (this one, or a better one still running), provided its parent is
-//   right, so that parent has no future after it. The pipeline goes on from the candidate that wins
-//   among those finished. This holds for any generation handed out whole, not only the next one to
-//   complete: a later generation's parent is the one its earlier, undecided generations predict
-//   (the last prediction before it, or the best if none), so its own prediction is conditional on
-//   theirs. A candidate finishing later may win instead: the prediction changes to it and the work
-//   made from the first is dropped. A prediction made for an earlier generation ends those of the
-//   later ones with their lineage. The last candidate of a generation to arrive settles its
-//   prediction, so a generation always completes as predicted;
-// - when a completed generation accepts a candidate nobody predicted (kept as a safeguard; the
-//   above leaves no such case).
-// Every candidate that reaches a generation was made from that generation's true parent, so the
-// history is that of one generation at a time.
-class Pipeline {
- public:
-  Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
-      : search_(search), upto_(last_allowed), lanes_(lanes) {
-    const int lambda = search.options().lambda;
-    // Far enough ahead that a slow (stuck) candidate does not leave the lanes empty: four times the
-    // generations in flight. bench_scenes search-l2 with 8 lanes, evaluations/s by depth over the
-    // generations in flight: 1 thread 41.7 at 2, 42.3 from 3 to 8; 2 threads 61.4 at 1, 67.2 at
-    // 1.5, 73.2 to 73.5 from 2 to 4.
-    depth_ = std::max<std::int64_t>(2, 4 * workers * lanes / lambda);
-    completed_ = search.last_generation();
-    base_ = std::make_shared<const Configuration>(search.best());
-    line_ = std::make_shared<Lineage>();
-    line_->parent = base_;
-    line_->start = completed_ + 1;
-    lines_.push_back(line_);
-    next_gen_ = completed_ + 1;
-    for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
-  }
-  ~Pipeline() {
-    {
-      std::lock_guard lock(m_);
-      stopping_.store(true, std::memory_order_relaxed);  // also cancels the runs still in flight
-    }
-    cv_.notify_all();
-    for (std::thread& t : threads_) t.join();
-  }
-  Pipeline(const Pipeline&) = delete;
-  Pipeline& operator=(const Pipeline&) = delete;
-
-  Generation next() {
-    const auto t0 = std::chrono::steady_clock::now();
-    const int lambda = search_.options().lambda;
-    std::vector<Candidate> candidates;
-    {
-      std::unique_lock lock(m_);
-      const std::int64_t g = completed_ + 1;
-      cv_.wait(lock, [&] {
-        if (error_) return true;
-        for (int k = 0; k < lambda; ++k)
-          if (!done_.count({g, k})) return false;
-        return true;
-      });
-      if (error_) std::rethrow_exception(error_);
-      for (int k = 0; k < lambda; ++k) {
-        auto it = done_.find({g, k});
-        candidates.push_back(std::move(it->second));
-        done_.erase(it);
-      }
-    }
-    const Generation gen =
-        search_.complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    {
-      std::lock_guard lock(m_);
-      completed_ = gen.number;
-      const auto p = predicted_.find(gen.number);
-      if (p != predicted_.end()) {
-        // predict() saw the last of these candidates arrive, so it chose as complete() did.
-        if (gen.accepted != p->second.k)
-          throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) + " accepted " +
-                                 std::to_string(gen.accepted) + ", predicted " + std::to_string(p->second.k));
-        base_ = p->second.parent;
-        predicted_.erase(p);
-      } else if (gen.accepted >= 0) {
-        base_ = std::make_shared<const Configuration>(search_.best());
-        begin_lineage(base_, gen.number + 1);
-      }
-      predict();  // the next generation's candidates may all have finished already
-    }
-    cv_.notify_all();
-    return gen;
-  }
-
-  SpeculationStats stats() {
-    std::lock_guard lock(m_);
-    return stats_;
-  }
-
- private:
-  struct Lineage {
-    std::shared_ptr<const Configuration> parent;
-    std::int64_t start = 0;  // the first generation made from parent
-    std::atomic<std::int64_t> dead_from{std::numeric_limits<std::int64_t>::max()};
-  };
-  struct Prediction {
-    int k = -1;                                    // the candidate expected to be accepted
-    std::shared_ptr<const Configuration> parent;   // it, as the next generation's parent
-  };
-
-  // Under m_. Generations from `start` on are made from `parent`; every generation before `start`
-  // has been handed out whole. The predictions from `start` on were made from the parent ended here.
-  void begin_lineage(std::shared_ptr<const Configuration> parent, std::int64_t start) {
-    // A prediction for an earlier generation ends the lineages begun after it as well.
-    for (const std::shared_ptr<Lineage>& l : lines_)
-      if (l->dead_from.load(std::memory_order_relaxed) > start) l->dead_from.store(start, std::memory_order_relaxed);
-    // Drop those with nothing left to end: wholly ended, or ended where the generations completed.
-    std::erase_if(lines_, [this](const std::shared_ptr<Lineage>& l) {
-      const std::int64_t dead_from = l->dead_from.load(std::memory_order_relaxed);
-      return dead_from <= l->start || dead_from <= completed_ + 1;
-    });
-    line_ = std::make_shared<Lineage>();
-    line_->parent = std::move(parent);
-    line_->start = start;
-    lines_.push_back(line_);
-    for (auto it = done_.lower_bound({start, 0}); it != done_.end(); it = done_.erase(it)) ++stats_.dropped;
-    for (auto it = predicted_.lower_bound(start); it != predicted_.end(); it = predicted_.erase(it))
-      ++stats_.mispredictions;
-    next_gen_ = start;
-    next_k_ = 0;
-  }
-
-  // Under m_. Goes through the generations handed out whole, from the next to complete on, each
-  // with the parent the predictions before it give, and predicts the acceptance of the first whose
-  // finished candidates beat that parent and which has no prediction, or a different one, yet.
-  void predict() {
-    std::shared_ptr<const Configuration> parent = base_;
-    for (std::int64_t g = completed_ + 1; g < next_gen_ && g <= upto_; ++g) {
-      const Candidate* winner = nullptr;
-      double best_t = parent->eval.tortuosity;
-      for (int k = 0; k < search_.options().lambda; ++k) {  // Search::complete's choice, among these
-        const auto it = done_.find({g, k});
-        if (it != done_.end() && improves(it->second.eval, best_t)) {
-          winner = &it->second;
-          best_t = winner->eval.tortuosity;
-        }
-      }
-      if (winner == nullptr) continue;  // no prediction: g is assumed to accept nothing
-      auto p = predicted_.find(g);
-      if (p != predicted_.end() && p->second.k == winner->index) {
-        parent = p->second.parent;
-        continue;
-      }
-      if (p != predicted_.end()) {
-        ++stats_.mispredictions;
-        predicted_.erase(p);
-      }
-      ++stats_.predictions;
-      if (g > completed_ + 1) ++stats_.predictions_ahead;
-      auto next = std::make_shared<Configuration>();  // what Search::complete will make the best
-      next->generation = g;
-      next->medium = winner->medium;
-      next->eval = winner->eval;
-      predicted_.emplace(g, Prediction{winner->index, next});
-      begin_lineage(std::move(next), g + 1);  // nothing after g + 1 is left to look at
-      return;
-    }
-  }
-
-  // A worker steps up to `lanes_` candidates together (run_interleaved); each evaluation gets the
-  // bits it gets alone.
-  void work() {
-    const SearchOptions& options = search_.options();
-    struct Job {
-      std::int64_t g = 0;
-      int k = 0;
-      std::shared_ptr<Lineage> line;
-      Candidate c;
-      std::unique_ptr<Simulation> sim;
-      RunOptions run;
-      std::chrono::steady_clock::time_point t0;
-    };
-    std::map<std::int64_t, Job> jobs;  // by id; nodes stay put, so sims may point into them
-    std::int64_t next_id = 0;
-    auto fail = [&](std::exception_ptr e) {
-      std::lock_guard lock(m_);
-      if (!error_) error_ = std::move(e);
-      cv_.notify_all();
-    };
-    auto next = [&](DropletJob* job, bool may_wait) {
-      std::unique_lock lock(m_);
-      auto ready = [&] {
-        return stopping_.load(std::memory_order_relaxed) || (next_gen_ <= upto_ && next_gen_ <= completed_ + depth_);
-      };
-      if (may_wait) cv_.wait(lock, ready);
-      if (stopping_.load(std::memory_order_relaxed) || !ready()) return false;
-      Job j;
-      j.g = next_gen_;
-      j.k = next_k_;
-      if (++next_k_ == options.lambda) next_k_ = 0, ++next_gen_;
-      j.line = line_;
-      lock.unlock();
-      const std::int64_t id = next_id++;
-      try {
-        j.c = make_candidate(*j.line->parent, j.g, j.k, options);
-        j.t0 = std::chrono::steady_clock::now();
-        j.run = evaluation_run(options.run);
-        // Work made useless by a new lineage stops early instead of running on.
-        j.run.cancelled = [this, line = j.line.get(), g = j.g] {
-          return stopping_.load(std::memory_order_relaxed) || g >= line->dead_from.load(std::memory_order_relaxed);
-        };
-        Job& placed = jobs.emplace(id, std::move(j)).first->second;
-        placed.sim = std::make_unique<Simulation>(options.droplet, placed.c.medium);
-        *job = {placed.sim.get(), 0.5 * placed.c.medium.width, &placed.run, id};
-        return true;
-      } catch (...) {
-        jobs.erase(id);  // if it got that far
-        fail(std::current_exception());
-        return false;
-      }
-    };
-    auto done = [&](std::int64_t id, RunSummary&& summary) {
-      auto it = jobs.find(id);
-      Job& j = it->second;
-      j.c.eval = as_evaluation(std::move(summary), j.t0);
-      {
-        std::lock_guard lock(m_);
-        if (j.g < j.line->dead_from.load(std::memory_order_relaxed)) {
-          done_.emplace(std::pair{j.g, j.k}, std::move(j.c));
-          predict();
-        } else {
-          ++stats_.dropped;
-        }
-      }
-      cv_.notify_all();
-      jobs.erase(it);
-    };
-    auto cancelled = [&](std::int64_t id) {
-      if (!stopping_.load(std::memory_order_relaxed)) {
-        std::lock_guard lock(m_);
-        ++stats_.dropped;
-      }
-      jobs.erase(id);
-    };
-    try {
-      run_interleaved(lanes_, next, done, cancelled);
-    } catch (...) {
-      fail(std::current_exception());
-    }
-  }
-
-  Search& search_;
-  const std::int64_t upto_;
-  const int lanes_;
-  std::int64_t depth_ = 1;
-  std::mutex m_;
-  std::condition_variable cv_;
-  std::shared_ptr<Lineage> line_;              // the newest lineage: generations from its start on
-  std::vector<std::shared_ptr<Lineage>> lines_;  // the lineages with generations not yet ended
-  std::shared_ptr<const Configuration> base_;  // the best after completed_
-  std::int64_t completed_ = 0, next_gen_ = 0;
-  int next_k_ = 0;
-  std::map<std::int64_t, Prediction> predicted_;  // standing predictions, by generation
-  std::map<std::pair<std::int64_t, int>, Candidate> done_;
-  std::exception_ptr error_;
-  std::atomic<bool> stopping_{false};  // set under m_ (for the waits), read anywhere
-  SpeculationStats stats_;
-  std::vector<std::thread> threads_;
-};
-
-}  // namespace
-
-SearchSummary drive(Search& search, const DriveOptions& options, const GenerationCallback& callback) {
-  const auto t0 = std::chrono::steady_clock::now();
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  SearchSummary s;
-  if (options.lanes < 0 || options.lanes > 64)
-    throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [0, 64]");
-  const int workers = detail::worker_threads(options.threads);
-  const int lanes = options.lanes > 0 ? options.lanes : std::min(8, 4 * search.options().lambda);
-  std::unique_ptr<Pipeline> pipeline;
-  if (options.speculate && (workers > 1 || lanes > 1) && search.last_generation() < options.generations)
-    pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);
-  for (;;) {
-    if (search.last_generation() >= options.generations) {
-      s.termination = Termination::generations;
-      s.message = "reached generation " + std::to_string(options.generations);
-      break;
-    }
-    if (options.stop && options.stop->load()) {
-      s.termination = Termination::interrupted;
-      s.message = "interrupted after generation " + std::to_string(search.last_generation());
-      break;
-    }
-    if (options.time_limit > 0 && elapsed() >= options.time_limit) {
-      s.termination = Termination::time_limit;
-      s.message = "time limit of " + num(options.time_limit) + " s reached after generation " +
-                  std::to_string(search.last_generation());
-      break;
-    }
-    const Generation g = pipeline ? pipeline->next() : search.next(options.threads);
-    ++s.generations_run;
-    s.evaluations += static_cast<std::int64_t>(g.candidates.size());
-    if (g.accepted >= 0) ++s.accepted;
-    if (callback && !callback(g, search.best())) {
-      s.termination = Termination::callback;
-      s.message = "stopped by a callback after generation " + std::to_string(g.number);
-      break;
-    }
-  }
-  if (pipeline) s.speculation = pipeline->stats();
-  s.last_generation = search.last_generation();
-  s.best_t = search.best().eval.tortuosity;
-  s.seconds = elapsed();
-  return s;
 }
 
 }  // namespace softdrop

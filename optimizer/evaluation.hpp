@@ -1,0 +1,21 @@
+#pragma once
+// What evaluating a candidate means, shared by the search's one-generation-at-a-time path
+// (search.cpp) and its speculating drive (speculative_drive.cpp). Internal to softdrop_opt.
+#include <chrono>
+
+#include "softdrop/search.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop::detail {
+
+// Whether a candidate's evaluation makes it the best so far: a strict improvement of a passed
+// droplet (ties go to the earlier candidate, so the choice does not depend on threads).
+inline bool improves(const Evaluation& e, double best_t) { return e.outcome == Outcome::passed && e.tortuosity > best_t; }
+
+// The run options of an evaluation: no area trace, no snapshots.
+RunOptions evaluation_run(const RunOptions& run);
+
+// A run's summary reduced to what the search keeps; t0 is when the evaluation began.
+Evaluation as_evaluation(RunSummary&& s, std::chrono::steady_clock::time_point t0);
+
+}  // namespace softdrop::detail
