@@ -32,8 +32,9 @@ namespace {
 // Speculative evaluation: worker threads take candidates (g, k) in order, up to `depth`
 // generations ahead of the last completed one, each made from the parent the pipeline expects
 // generation g to have. A lineage is one such parent and the generations handed out from it, from
-// the one where it begins on. A newer lineage ends the older one there (`dead_from`): the older
-// one's candidates of those generations are dropped, or cancelled while they run. A lineage begins
+// the one where it begins on. A newer lineage ends the older ones where it begins (`dead_from`),
+// wholly those that begin at a later generation (a prediction for an earlier generation, below):
+// their candidates of those generations are dropped, or cancelled while they run. A lineage begins
 // - as a prediction: once a finished candidate of a generation beats that generation's parent, the
 //   generation will accept one (this one, or a better one still running), provided its parent is
 //   right, so that parent has no future after it. The pipeline goes on from the candidate that wins
