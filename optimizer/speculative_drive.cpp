@@ -298,6 +298,18 @@ class Pipeline {
   std::vector<std::thread> threads_;
 };
 
+// Lanes per thread when DriveOptions::lanes is 0. On 1 and 2 threads, 4 at lambda = 1 and 8 above
+// did best (the table at DriveOptions::lanes). With more threads the pipeline would run that many
+// lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in
+// 5 to 15 on the benchmark searches), and the lanes slow each candidate down (with 8 lanes each
+// steps about 2.5 times slower than alone), which delays the decisions the rest waits for. So more threads keep the candidates in
+// flight of 2 threads, spread over fewer lanes each. That is an extrapolation: this 2-core machine
+// cannot measure more threads.
+int default_lanes(int lambda, int workers) {
+  const int per_thread = std::min(8, 4 * lambda);
+  return std::max(1, std::min(per_thread, 2 * per_thread / workers));
+}
+
 }  // namespace
 
 SearchSummary drive(Search& search, const DriveOptions& options, const GenerationCallback& callback) {
@@ -307,7 +319,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   if (options.lanes < 0 || options.lanes > 64)
     throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [0, 64]");
   const int workers = detail::worker_threads(options.threads);
-  const int lanes = options.lanes > 0 ? options.lanes : std::min(8, 4 * search.options().lambda);
+  const int lanes = options.lanes > 0 ? options.lanes : default_lanes(search.options().lambda, workers);
   std::unique_ptr<Pipeline> pipeline;
   if (options.speculate && (workers > 1 || lanes > 1) && search.last_generation() < options.generations)
     pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);
@@ -338,7 +350,11 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
       break;
     }
   }
-  if (pipeline) s.speculation = pipeline->stats();
+  if (pipeline) {
+    s.speculation = pipeline->stats();
+    s.speculation.threads = workers;
+    s.speculation.lanes = lanes;
+  }
   s.last_generation = search.last_generation();
   s.best_t = search.best().eval.tortuosity;
   s.seconds = elapsed();

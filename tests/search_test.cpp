@@ -291,6 +291,35 @@ TEST(Search, PredictionsAheadOfUndecidedGenerationsKeepTheHistory) {
   }
 }
 
+TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
+  // 4 lanes at lambda = 1 and 8 above on 1 and 2 threads; more threads share 2 threads' candidates.
+  for (auto [lambda, threads, lanes] :
+       {std::tuple{1, 1, 4}, std::tuple{1, 2, 4}, std::tuple{1, 3, 2}, std::tuple{1, 4, 2}, std::tuple{1, 16, 1},
+        std::tuple{2, 1, 8}, std::tuple{2, 2, 8}, std::tuple{2, 3, 5}, std::tuple{2, 4, 4}, std::tuple{4, 16, 1}}) {
+    SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
+    const SearchOptions o = test::small_search_options(lambda);
+    Search s(o, start(o), 0);
+    DriveOptions d;
+    d.generations = 1;
+    d.threads = threads;
+    const SearchSummary sum = drive(s, d, nullptr);
+    EXPECT_EQ(sum.speculation.threads, threads);
+    EXPECT_EQ(sum.speculation.lanes, lanes);
+  }
+  const SearchOptions o = test::small_search_options(2);
+  DriveOptions d;
+  d.generations = 1;
+  d.threads = 2;
+  d.lanes = 3;  // as given
+  Search s(o, start(o), 0);
+  EXPECT_EQ(drive(s, d, nullptr).speculation.lanes, 3);
+  d.speculate = false;
+  Search plain(o, start(o), 0);
+  const SearchSummary none = drive(plain, d, nullptr);
+  EXPECT_EQ(none.speculation.threads, 0);
+  EXPECT_EQ(none.speculation.lanes, 0);
+}
+
 TEST(Search, DriveRefusesLanesOutOfRangeByName) {
   const SearchOptions o = test::small_search_options();
   Configuration best;

@@ -155,9 +155,11 @@ struct DriveOptions {
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
   /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 4 at
-  /// λ = 1, 8 at larger λ. More lanes evaluate faster but run further ahead, so more speculative
-  /// work is dropped when a generation accepts. Evaluations/s by lanes, bench_scenes (60 or 120
-  /// generations) and `optimize --lambda 4 --generations 40`:
+  /// λ = 1, 8 at larger λ, on 1 and 2 threads; more threads keep as many candidates in flight as 2
+  /// threads do, with fewer lanes each (at least 1). More lanes evaluate faster but run further
+  /// ahead, so more speculative work is dropped when a generation accepts, and each candidate
+  /// steps slower, which delays the decisions the others wait for. Evaluations/s by lanes,
+  /// bench_scenes (60 or 120 generations) and `optimize --lambda 4 --generations 40`:
   ///
   ///   | search           | 3     | 4     | 6     | 8     | 12   |
   ///   | λ = 1, 1 thread  | 58.0  | 64.1  | 66.0  | 63.6  | 57.8 |
@@ -171,6 +173,8 @@ struct DriveOptions {
 
 /// What the speculating evaluation did besides the history: work that did not count.
 struct SpeculationStats {
+  int threads = 0;  ///< worker threads of the pipeline (0: it did not speculate)
+  int lanes = 0;    ///< candidates each stepped together (DriveOptions::lanes, or its default)
   /// Evaluations begun and then dropped, finished or cancelled mid-run, because they were made
   /// from a parent their generation did not have (not counting those cut short by the end).
   std::int64_t dropped = 0;

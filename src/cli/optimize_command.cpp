@@ -259,7 +259,9 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   j["touched_grains"] = best.eval.touched.size();
   j["wall_seconds"] = summary.seconds;
   j["evaluations_per_second"] = summary.evaluations_per_second();
-  j["speculation"] = {{"dropped_evaluations", summary.speculation.dropped},
+  j["speculation"] = {{"threads", summary.speculation.threads},
+                      {"lanes", summary.speculation.lanes},
+                      {"dropped_evaluations", summary.speculation.dropped},
                       {"predictions", summary.speculation.predictions},
                       {"mispredictions", summary.speculation.mispredictions},
                       {"predictions_ahead", summary.speculation.predictions_ahead}};
@@ -274,7 +276,8 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
               << "this session " << summary.generations_run << " generations, " << summary.accepted
               << " accepted, " << summary.evaluations << " evaluations, "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n"
-              << "speculation  " << summary.speculation.dropped << " evaluations dropped, "
+              << "speculation  " << summary.speculation.threads << " threads x " << summary.speculation.lanes
+              << " lanes, " << summary.speculation.dropped << " evaluations dropped, "
               << summary.speculation.predictions << " acceptances predicted ("
               << summary.speculation.predictions_ahead << " ahead of an undecided generation, "
               << summary.speculation.mispredictions << " overturned)\n";
