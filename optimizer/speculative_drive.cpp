@@ -300,11 +300,11 @@ class Pipeline {
 
 // Lanes per thread when DriveOptions::lanes is 0. On 1 and 2 threads, 4 at lambda = 1 and 8 above
 // did best (the table at DriveOptions::lanes). With more threads the pipeline would run that many
-// lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in
-// 5 to 15 on the benchmark searches), and the lanes slow each candidate down (with 8 lanes each
-// steps about 2.5 times slower than alone), which delays the decisions the rest waits for. So more threads keep the candidates in
-// flight of 2 threads, spread over fewer lanes each. That is an extrapolation: this 2-core machine
-// cannot measure more threads.
+// lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in 5
+// to 15 on the benchmark searches), and the lanes slow each candidate down (with 8 lanes each steps
+// about 2.5 times slower than alone), which delays the decisions the rest waits for. So more
+// threads keep the candidates in flight of 2 threads, spread over fewer lanes each. That is an
+// extrapolation: this 2-core machine cannot measure more threads.
 int default_lanes(int lambda, int workers) {
   const int per_thread = std::min(8, 4 * lambda);
   return std::max(1, std::min(per_thread, 2 * per_thread / workers));
