@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates results/: the tortuosity-porosity sweep, the two fits, the two averagings, the sweep
-# with the other constraint order and the area trace (about a minute and a half on 2 cores). Each
+# with the other constraint order and the area trace (about a minute on 2 cores). Each
 # study's README.md repeats its commands.
 # An interrupted run continues where it stopped: the sweep store keeps every finished medium.
 set -euo pipefail
