@@ -65,6 +65,14 @@ TEST(Optimize, LambdaFourWritesTheSameHistoryOnOneAndTwoThreads) {
   const std::string a = dump(one, 1);
   EXPECT_EQ(a, dump(two, 1));
   EXPECT_NE(a.find("|8|33|"), std::string::npos) << "8 generations of 4 candidates plus the start";
+  // Lanes set by hand: the same history, and the summary says what ran.
+  const std::string three = fresh("lambda_l3.db");
+  const Result r = run("optimize --db " + three + kScene + " --generations 8 --lambda 4 --threads 2 --lanes 3 --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(dump(three, 1), a);
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j.at("speculation").at("threads"), 2);
+  EXPECT_EQ(j.at("speculation").at("lanes"), 3);
 }
 
 TEST(Optimize, ExportedGenerationsReproduceTheStoredTBitForBit) {
@@ -161,7 +169,7 @@ TEST(Optimize, CtrlCFinishesTheGenerationInFlightAndTimeLimitStops) {
 TEST(Optimize, BadOptionsAndFailedStartsLeaveNoDatabase) {
   const std::string db = fresh("never.db");
   for (const std::string args : {"--lambda 0", "--step -1", "--grains -5", "--constraint-order shuffled",
-                                  "--grains 100000 --width 100 --height 100", "--time-limit -3"}) {
+                                  "--grains 100000 --width 100 --height 100", "--time-limit -3", "--lanes 65"}) {
     const Result r = run("optimize --db " + db + " " + args);
     SCOPED_TRACE(args);
     EXPECT_NE(r.code, 0);

@@ -62,6 +62,10 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_flag("--no-speculation", a.no_speculation,
               "Evaluate one generation at a time (by default idle threads evaluate the next generations "
               "ahead, assuming no acceptance; the history is the same either way)");
+  g->add_option("--lanes", a.lanes,
+                "Candidates each thread steps together, in [0, 64] (0: 4 at lambda 1, 8 above, fewer per "
+                "thread beyond 2 threads); results do not depend on it")
+      ->capture_default_str();
   g->add_option("--start-attempts", a.start_attempts,
                 "Random starting media to try until the droplet passes (generated media only)")
       ->capture_default_str();
@@ -171,6 +175,8 @@ void check_optimize(OptimizeArgs& a) {
   if (!(a.time_limit >= 0) || !std::isfinite(a.time_limit))
     throw std::invalid_argument("time-limit = " + fmt(a.time_limit) + ": must be >= 0");
   check_threads(a.threads);
+  if (a.lanes < 0 || a.lanes > 64)
+    throw std::invalid_argument("lanes = " + std::to_string(a.lanes) + ": must be in [0, 64] (0: automatic)");
   if (a.start_attempts < 1)
     throw std::invalid_argument("start-attempts = " + std::to_string(a.start_attempts) + ": must be >= 1");
   if (a.resume < 0) throw std::invalid_argument("resume = " + std::to_string(a.resume) + ": not a run id");
@@ -235,6 +241,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   drive_options.stop = stop.flag();
   drive_options.threads = a.threads;
   drive_options.speculate = !a.no_speculation;
+  drive_options.lanes = a.lanes;
   const SearchSummary summary = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
     history->append(run, g, best);
     progress.update(g, best, g.number == a.generations);
