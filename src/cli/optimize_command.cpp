@@ -282,12 +282,14 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
               << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n"
               << "this session " << summary.generations_run << " generations, " << summary.accepted
               << " accepted, " << summary.evaluations << " evaluations, "
-              << fmt(summary.evaluations_per_second(), 3) << " eval/s\n"
-              << "speculation  " << summary.speculation.threads << " threads x " << summary.speculation.lanes
-              << " lanes, " << summary.speculation.dropped << " evaluations dropped, "
-              << summary.speculation.predictions << " acceptances predicted ("
-              << summary.speculation.predictions_ahead << " ahead of an undecided generation, "
-              << summary.speculation.mispredictions << " overturned)\n";
+              << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
+    const SpeculationStats& sp = summary.speculation;
+    if (sp.threads == 0)
+      std::cout << "speculation  off (one generation at a time)\n";
+    else
+      std::cout << "speculation  " << sp.threads << " threads x " << sp.lanes << " lanes, " << sp.dropped
+                << " evaluations dropped, " << sp.predictions << " acceptances predicted (" << sp.predictions_ahead
+                << " ahead of an undecided generation, " << sp.mispredictions << " overturned)\n";
   }
   return summary.termination == Termination::interrupted ? 130 : 0;
 }
