@@ -61,10 +61,7 @@ class Pipeline {
     depth_ = std::max<std::int64_t>(2, 4 * workers * lanes / lambda);
     completed_ = search.last_generation();
     base_ = std::make_shared<const Configuration>(search.best());
-    line_ = std::make_shared<Lineage>();
-    line_->parent = base_;
-    line_->start = completed_ + 1;
-    lines_.push_back(line_);
+    add_lineage(base_, completed_ + 1);
     next_gen_ = completed_ + 1;
     for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
   }
@@ -149,15 +146,20 @@ class Pipeline {
       const std::int64_t dead_from = l->dead_from.load(std::memory_order_relaxed);
       return dead_from <= l->start || dead_from <= completed_ + 1;
     });
-    line_ = std::make_shared<Lineage>();
-    line_->parent = std::move(parent);
-    line_->start = start;
-    lines_.push_back(line_);
+    add_lineage(std::move(parent), start);
     for (auto it = done_.lower_bound({start, 0}); it != done_.end(); it = done_.erase(it)) ++stats_.dropped;
     for (auto it = predicted_.lower_bound(start); it != predicted_.end(); it = predicted_.erase(it))
       ++stats_.mispredictions;
     next_gen_ = start;
     next_k_ = 0;
+  }
+
+  // Under m_. The newest lineage, from which work is handed out: lines_.back().
+  void add_lineage(std::shared_ptr<const Configuration> parent, std::int64_t start) {
+    auto line = std::make_shared<Lineage>();
+    line->parent = std::move(parent);
+    line->start = start;
+    lines_.push_back(std::move(line));
   }
 
   // Under m_. Goes through the generations handed out whole, from the next to complete on, each
@@ -228,7 +230,7 @@ class Pipeline {
       j.g = next_gen_;
       j.k = next_k_;
       if (++next_k_ == options.lambda) next_k_ = 0, ++next_gen_;
-      j.line = line_;
+      j.line = lines_.back();
       lock.unlock();
       const std::int64_t id = next_id++;
       try {
@@ -285,8 +287,9 @@ class Pipeline {
   std::int64_t depth_ = 1;
   std::mutex m_;
   std::condition_variable cv_;
-  std::shared_ptr<Lineage> line_;              // the newest lineage: generations from its start on
-  std::vector<std::shared_ptr<Lineage>> lines_;  // the lineages with generations not yet ended
+  // The lineages with generations not yet ended, oldest first; the last one is the newest, whose
+  // generations from its start on are handed out.
+  std::vector<std::shared_ptr<Lineage>> lines_;
   std::shared_ptr<const Configuration> base_;  // the best after completed_
   std::int64_t completed_ = 0, next_gen_ = 0;
   int next_k_ = 0;
