@@ -315,12 +315,17 @@ int default_lanes(int lambda, int workers) {
 
 }  // namespace
 
+bool DriveOptions::IsValid(std::string* why) const {
+  if (lanes < 0 || lanes > 64) return detail::fail(why, "lanes = " + std::to_string(lanes) + ": must be in [0, 64]");
+  return true;
+}
+
 SearchSummary drive(Search& search, const DriveOptions& options, const GenerationCallback& callback) {
   const auto t0 = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
   SearchSummary s;
-  if (options.lanes < 0 || options.lanes > 64)
-    throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [0, 64]");
+  std::string why;
+  if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const int workers = detail::worker_threads(options.threads);
   const int lanes = options.lanes > 0 ? options.lanes : default_lanes(search.options().lambda, workers);
   std::unique_ptr<Pipeline> pipeline;

@@ -169,6 +169,9 @@ struct DriveOptions {
   ///   | λ = 4, 1 thread  |       |       | 91.2  | 96.4  | 93.3 |
   ///   | λ = 4, 2 threads |       |       | 156   | 149   | 139  |
   int lanes = 0;
+
+  /// False, with the reason naming the option, for lanes outside [0, 64].
+  bool IsValid(std::string* why) const;
 };
 
 /// What the speculating evaluation did besides the history: work that did not count.

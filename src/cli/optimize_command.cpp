@@ -175,8 +175,9 @@ void check_optimize(OptimizeArgs& a) {
   if (!(a.time_limit >= 0) || !std::isfinite(a.time_limit))
     throw std::invalid_argument("time-limit = " + fmt(a.time_limit) + ": must be >= 0");
   check_threads(a.threads);
-  if (a.lanes < 0 || a.lanes > 64)
-    throw std::invalid_argument("lanes = " + std::to_string(a.lanes) + ": must be in [0, 64] (0: automatic)");
+  DriveOptions drive;
+  drive.lanes = a.lanes;
+  if (std::string why; !drive.IsValid(&why)) throw std::invalid_argument(why);
   if (a.start_attempts < 1)
     throw std::invalid_argument("start-attempts = " + std::to_string(a.start_attempts) + ": must be >= 1");
   if (a.resume < 0) throw std::invalid_argument("resume = " + std::to_string(a.resume) + ": not a run id");
