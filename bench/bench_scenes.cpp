@@ -1,7 +1,7 @@
 // Scene benchmarks: whole runs, timed over repeats (minimum and median), written as CSV with the
 // machine and compiler. Issue 6 measures its targets with these.
 //
-//   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--out FILE.csv]
+//   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--lanes N] [--out FILE.csv]
 //
 // Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
@@ -11,7 +11,9 @@
 // sweep and sweep-long (16 and 64 droplets through each of 4 media, on 1 thread and on all; the
 // paper's sweep has 200 per medium); search-l1 and search-l2 (the default search at lambda 1 and 2, on 1 thread and on all threads
 // with speculation, as `optimize` runs it: 120 and 60 generations); search-l2-long (the same at
-// lambda 2 over 400 generations, where the acceptances thin out and the end of the run weighs less).
+// lambda 2 over 400 generations, where the acceptances thin out and the end of the run weighs less);
+// search-*-red-black (the same searches with the red-black constraint order: other histories, so
+// compare their steps per second). --lanes sets the search scenes' lanes (0: the default).
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -121,9 +123,12 @@ Work sweep(int threads, int per_medium) {
 }
 
 // The default search: 120 evaluations (120 / lambda generations), or `generations` of them.
-Work search(int lambda, int threads, int generations = 0) {
+int search_lanes = 0;  // --lanes: DriveOptions::lanes of the search scenes (0: its default)
+
+Work search(int lambda, int threads, int generations = 0, ConstraintOrder order = ConstraintOrder::sequential) {
   SearchOptions o;
   o.lambda = lambda;
+  o.droplet.constraint_order = order;
   MediumOptions mo;
   mo.kind = MediumKind::non_overlapping;
   mo.grains = 60;
@@ -140,6 +145,7 @@ Work search(int lambda, int threads, int generations = 0) {
   Work w;
   DriveOptions d;
   d.generations = generations > 0 ? generations : 120 / lambda;
+  d.lanes = search_lanes;
   d.threads = threads;  // as optimize does: with 2 threads, idle ones speculate on later generations
   const auto t0 = Clock::now();
   drive(s, d, [&](const Generation& gen, const Configuration&) {
@@ -190,13 +196,14 @@ int main(int argc, char** argv) {
     else if (a == "--repeats") repeats = std::stoi(value());
     else if (a == "--threads") threads = std::stoi(value());
     else if (a == "--out") out = value();
+    else if (a == "--lanes") search_lanes = std::stoi(value());
     else {
       std::cerr << "bench_scenes: unknown option " << a << "\n";
       return 2;
     }
   }
-  if (repeats < 1 || threads < 1) {
-    std::cerr << "bench_scenes: --repeats and --threads must be >= 1\n";
+  if (repeats < 1 || threads < 1 || search_lanes < 0) {
+    std::cerr << "bench_scenes: --repeats and --threads must be >= 1, --lanes >= 0\n";
     return 2;
   }
   const Medium m200 = bench::medium_200(), m5000 = bench::medium_200(2500);
@@ -218,6 +225,12 @@ int main(int argc, char** argv) {
       {"search-l2", [&] { return search(2, threads); }},
       {"search-l2-long-1thread", [] { return search(2, 1, 400); }},
       {"search-l2-long", [&] { return search(2, threads, 400); }},
+      {"search-l1-red-black-1thread", [] { return search(1, 1, 0, ConstraintOrder::red_black); }},
+      {"search-l1-red-black", [&] { return search(1, threads, 0, ConstraintOrder::red_black); }},
+      {"search-l2-red-black-1thread", [] { return search(2, 1, 0, ConstraintOrder::red_black); }},
+      {"search-l2-red-black", [&] { return search(2, threads, 0, ConstraintOrder::red_black); }},
+      {"search-l2-long-red-black-1thread", [] { return search(2, 1, 400, ConstraintOrder::red_black); }},
+      {"search-l2-long-red-black", [&] { return search(2, threads, 400, ConstraintOrder::red_black); }},
   };
   std::ostringstream csv;
   csv << "# machine: " << machine() << "\n# compiler: GCC " << __VERSION__ << ", "

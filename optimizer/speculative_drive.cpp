@@ -301,14 +301,19 @@ class Pipeline {
   std::vector<std::thread> threads_;
 };
 
-// Lanes per thread when DriveOptions::lanes is 0. On 1 and 2 threads, 4 at lambda = 1 and 8 above
-// did best (the table at DriveOptions::lanes). With more threads the pipeline would run that many
-// lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in 5
-// to 15 on the benchmark searches), and the lanes slow each candidate down (with 8 lanes each steps
-// about 2.5 times slower than alone), which delays the decisions the rest waits for. So more
-// threads keep the candidates in flight of 2 threads, spread over fewer lanes each. That is an
-// extrapolation: this 2-core machine cannot measure more threads.
-int default_lanes(int lambda, int workers) {
+// Lanes per thread when DriveOptions::lanes is 0. The lanes hide the latency of the sequential
+// constraint's chain (run_interleaved steps the chains of several rings side by side); a red-black
+// constraint has no chain to hide, so one candidate per thread does best and throws the least
+// speculative work away (bench_scenes search-l2-long-red-black: 1.20 / 2.39 M steps/s on 1 / 2
+// threads with 1 lane, 1.18 / 2.29 with 2, 1.16 / 2.14 with 4). For the sequential order, on 1 and
+// 2 threads, 4 at lambda = 1 and 8 above did best (the table at DriveOptions::lanes). With more
+// threads the pipeline would run that many lanes each, ever further ahead: most of that work is
+// thrown away (a generation accepts once in 5 to 15 on the benchmark searches), and the lanes slow
+// each candidate down (with 8 lanes each steps about 2.5 times slower than alone), which delays the
+// decisions the rest waits for. So more threads keep the candidates in flight of 2 threads, spread
+// over fewer lanes each. That is an extrapolation: this 2-core machine cannot measure more threads.
+int default_lanes(int lambda, int workers, ConstraintOrder order) {
+  if (order == ConstraintOrder::red_black) return 1;
   const int per_thread = std::min(8, 4 * lambda);
   return std::max(1, std::min(per_thread, 2 * per_thread / workers));
 }
@@ -327,7 +332,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const int workers = detail::worker_threads(options.threads);
-  const int lanes = options.lanes > 0 ? options.lanes : default_lanes(search.options().lambda, workers);
+  const int lanes = options.lanes > 0 ? options.lanes : default_lanes(search.options().lambda, workers, search.options().droplet.constraint_order);
   std::unique_ptr<Pipeline> pipeline;
   if (options.speculate && (workers > 1 || lanes > 1) && search.last_generation() < options.generations)
     pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);

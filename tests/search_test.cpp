@@ -218,6 +218,16 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
     EXPECT_GT(accepted, 0) << "acceptances make the pipeline drop speculative work: that path must run";
     EXPECT_EQ(b.summary.evaluations, 16 * lambda);
   }
+  // The red-black order's default: one lane on each of 2 threads.
+  SearchOptions rb = test::small_search_options(2);
+  rb.droplet.constraint_order = ConstraintOrder::red_black;
+  const Configuration rb_best = start(rb);
+  DriveOptions d;
+  d.generations = 16;
+  d.threads = 2;
+  const Driven b = drive_recorded(rb, rb_best, d);
+  expect_same_history(one_at_a_time(rb, rb_best, 16), b);
+  EXPECT_EQ(b.summary.speculation.lanes, 1);
 }
 
 TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
@@ -318,6 +328,22 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
   const SearchSummary none = drive(plain, d, nullptr);
   EXPECT_EQ(none.speculation.threads, 0);
   EXPECT_EQ(none.speculation.lanes, 0);
+  // A red-black constraint has no chain for lanes to hide: one candidate per thread, so one thread
+  // evaluates one candidate at a time and does not speculate.
+  for (int lambda : {1, 2}) {
+    SearchOptions rb = test::small_search_options(lambda);
+    rb.droplet.constraint_order = ConstraintOrder::red_black;
+    for (int threads : {1, 2, 16}) {
+      SCOPED_TRACE("red-black, lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
+      DriveOptions r;
+      r.generations = 1;
+      r.threads = threads;
+      Search one(rb, start(rb), 0);
+      const SearchSummary sum = drive(one, r, nullptr);
+      EXPECT_EQ(sum.speculation.threads, threads > 1 ? threads : 0);
+      EXPECT_EQ(sum.speculation.lanes, threads > 1 ? 1 : 0);
+    }
+  }
 }
 
 TEST(Search, DriveRefusesLanesOutOfRangeByName) {
