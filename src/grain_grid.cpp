@@ -102,4 +102,14 @@ GrainGrid::GrainGrid(const Medium& medium, double cell_size) {
   }
 }
 
+double GrainGrid::edge_distance(double x, double y) const {
+  const double fx = (x - x0_) * inv_cell_, fy = (y - y0_) * inv_cell_;
+  if (fx >= 0 && fy >= 0 && fx < nx_ && fy < ny_) {
+    const double ix = std::floor(fx), iy = std::floor(fy);
+    return std::min(std::min(fx - ix, ix + 1 - fx), std::min(fy - iy, iy + 1 - fy)) / inv_cell_;
+  }
+  const double ex = std::max(std::max(-fx, fx - nx_), 0.0), ey = std::max(std::max(-fy, fy - ny_), 0.0);
+  return std::sqrt(ex * ex + ey * ey) / inv_cell_;
+}
+
 }  // namespace softdrop

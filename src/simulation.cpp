@@ -89,7 +89,8 @@ void Simulation::place(double cx, double cy) {
   clear_x_.assign(state_.x.size(), 0.0);
   clear_y_.assign(state_.x.size(), 0.0);
   clear_r2_.assign(state_.x.size(), -1.0);
-  clear_cell_.assign(state_.x.size(), -1);
+  clear_count_.assign(state_.x.size(), 0);
+  clear_discs_.assign(contacts_.size(), GrainGrid::Disc{});
   area_ = ring_area(state_);
   last_penetration_ = 0;
 }
@@ -283,12 +284,13 @@ void Simulation::accumulate_collisions() {
   double deepest = 0;
   for (int i = 0; i < n; ++i) {
     const double x = state_.x[i], y = state_.y[i];
+    const bool recorded = same_bits(x, contact_x_[i]) && same_bits(y, contact_y_[i]);
+    // Most masses touch nothing: recorded inside no disc, and within the walls.
+    if (recorded && contact_count_[i] == 0 && (periodic || !(x < 0 || x > W))) continue;
     const double vx = (x - state_.px[i]) * inv_dt, vy = (y - state_.py[i]) * inv_dt;
     const double xw = periodic ? wrap_periodic(x, W) : x;
     // The same discs in the same order as the grid's, less those the mass is not inside.
-    const auto range = same_bits(x, contact_x_[i]) && same_bits(y, contact_y_[i])
-                           ? cached_contacts(i)
-                           : grid_.discs_near(xw, y);
+    const auto range = recorded ? cached_contacts(i) : grid_.discs_near(xw, y);
     for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) {
       const double dx = xw - g->x, dy = y - g->y, r = g->r;
       const double d2 = dx * dx + dy * dy;
@@ -349,23 +351,42 @@ void Simulation::apply_contact_limit() {
   const int n = state_.size();
   const double W = medium_.width, limit = params_.max_depth;
   const bool periodic = medium_.periodic;
+  const std::size_t capacity = contact_capacity_;
   for (int i = 0; i < n; ++i) {
     const double x = state_.x[i], y = state_.y[i];
+    const std::size_t first = static_cast<std::size_t>(i) * capacity;
+    GrainGrid::Disc* inside = contacts_.data() + first;
+    // Within its ball only the anchor's discs can hold or push the mass, and each test of the
+    // others below would say so: test those discs alone, in the cell's order.
+    const double ex = x - clear_x_[i], ey = y - clear_y_[i];
+    if (ex * ex + ey * ey < clear_r2_[i]) {
+      const int anchored = clear_count_[i];
+      int count = 0;
+      bool push = false;
+      if (anchored > 0) {
+        const double xw = periodic ? wrap_periodic(x, W) : x;
+        for (const GrainGrid::Disc *g = clear_discs_.data() + first, *end = g + anchored; g != end; ++g) {
+          const double dx = xw - g->x, dy = y - g->y, inner = g->r - limit;
+          const double d2 = dx * dx + dy * dy;
+          if (!(d2 >= g->r * g->r)) inside[count++] = *g;
+          if (inner > 0 && !(d2 >= inner * inner)) {
+            push = true;  // the full test below pushes it, in the cell's order
+            break;
+          }
+        }
+      }
+      if (!push) {
+        contact_count_[i] = count;
+        contact_x_[i] = x;
+        contact_y_[i] = y;
+        continue;
+      }
+    }
     const double xw = periodic ? wrap_periodic(x, W) : x;
     const std::int64_t cell = grid_.cell_of(xw, y);
-    // The same cell, and not further from where the mass was last found clear than its clearance:
-    // no disc of the cell is within reach, and each test below would say so.
-    const double ex = xw - clear_x_[i], ey = y - clear_y_[i];
-    if (cell == clear_cell_[i] && ex * ex + ey * ey < clear_r2_[i]) {
-      contact_count_[i] = 0;
-      contact_x_[i] = x;
-      contact_y_[i] = y;
-      continue;
-    }
     const auto range = grid_.discs_in(cell);
     // The discs the mass is inside, tested as accumulate_collisions() will test them next step,
     // and how far it is from the surface of the nearest other one.
-    GrainGrid::Disc* inside = contacts_.data() + static_cast<std::size_t>(i) * contact_capacity_;
     int count = 0;
     double gap = std::numeric_limits<double>::infinity();
     bool pushed = false;
@@ -373,9 +394,9 @@ void Simulation::apply_contact_limit() {
       const double dx = xw - g->x, dy = state_.y[i] - g->y, inner = g->r - limit;
       const double d2 = dx * dx + dy * dy;
       if (!(d2 >= g->r * g->r)) {
-        if (static_cast<std::size_t>(count) < contact_capacity_) inside[count] = *g;
+        if (static_cast<std::size_t>(count) < capacity) inside[count] = *g;
         ++count;
-      } else if (count == 0) {  // a mass inside a grain has no clearance to know
+      } else {
         gap = std::min(gap, std::sqrt(d2) - g->r);
       }
       if (inner <= 0 || d2 >= inner * inner) continue;
@@ -391,17 +412,23 @@ void Simulation::apply_contact_limit() {
       pushed = true;
     }
     // A pushed mass has moved since the tests, and one inside too many discs has no full record:
-    // their collisions look them up again. (A NaN position that matches the marker finds no
-    // discs either way.)
-    const bool recorded = !pushed && static_cast<std::size_t>(count) <= contact_capacity_;
+    // their collisions look them up again, and they get no anchor. (A NaN position that matches
+    // the marker finds no discs either way.)
+    const bool recorded = !pushed && static_cast<std::size_t>(count) <= capacity;
     contact_count_[i] = recorded ? count : 0;
     contact_x_[i] = recorded ? x : std::numeric_limits<double>::quiet_NaN();
     contact_y_[i] = y;
-    const double reach = gap - clearance_margin_;
-    clear_r2_[i] = count == 0 && reach > 0 ? reach * reach : -1.0;
-    clear_x_[i] = xw;
+    // No disc outside the cell's list is nearer than the cell's edge; the ball must not cross the
+    // periodic seam either, where the wrapped position jumps.
+    double reach = std::min(gap, grid_.edge_distance(xw, y));
+    if (periodic) reach = std::min(reach, std::min(xw, W - xw));
+    reach -= clearance_margin_;
+    const bool anchored = recorded && reach > 0;
+    clear_r2_[i] = anchored ? reach * reach : -1.0;
+    clear_x_[i] = x;
     clear_y_[i] = y;
-    clear_cell_[i] = cell;
+    clear_count_[i] = anchored ? count : 0;
+    if (anchored) std::copy(inside, inside + count, clear_discs_.begin() + static_cast<std::ptrdiff_t>(first));
   }
 }
 

@@ -53,6 +53,11 @@ class GrainGrid {
     return {discs_.data() + start_[c], discs_.data() + start_[c + 1]};
   }
 
+  /// How far (x, y) may move before it could be in another cell: the distance to the nearest edge
+  /// of its cell, or, outside the grid, to the grid (length; 0 or NaN for NaN). A disc not listed in
+  /// the cell does not overlap it, so no disc outside the cell's list is nearer than this.
+  double edge_distance(double x, double y) const;
+
   /// Stored discs (grains and their periodic images), flat arrays.
   const std::vector<double>& gx() const { return gx_; }
   const std::vector<double>& gy() const { return gy_; }

@@ -159,12 +159,16 @@ class Simulation {
   std::vector<std::int32_t> contact_count_;
   std::vector<double> contact_x_, contact_y_;
   std::size_t contact_capacity_ = 0;
-  /// Where each mass is known to be clear of every grain: within sqrt(clear_r2_) of the wrapped
-  /// position (clear_x_, clear_y_), in cell clear_cell_, no disc of the cell is within reach, by
-  /// a margin that covers rounding (clearance_margin_). The contact limit skips the tests of a mass
-  /// still there; -1 (or NaN) in clear_r2_: not known.
+  /// Where each mass is known to reach no grain but its anchor's: within sqrt(clear_r2_) of the
+  /// (unwrapped) position (clear_x_, clear_y_) where the contact limit last tested it against its
+  /// cell, no disc of the medium can hold or push the mass, by a margin that covers rounding
+  /// (clearance_margin_), except the clear_count_ discs it was inside there (clear_discs_, up to
+  /// contact_capacity_ per mass, in the cell's order). The ball stays inside that cell and clear of
+  /// the periodic seam. The contact limit tests a mass still in its ball against those discs only;
+  /// -1 (or NaN) in clear_r2_: not known.
   std::vector<double> clear_x_, clear_y_, clear_r2_;
-  std::vector<std::int64_t> clear_cell_;
+  std::vector<std::int32_t> clear_count_;
+  std::vector<GrainGrid::Disc> clear_discs_;
   double clearance_margin_ = 0;
 };
 
