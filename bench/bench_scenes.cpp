@@ -240,7 +240,7 @@ int main(int argc, char** argv) {
       << "debug"
 #endif
       << " build\n# constraint vector width: " << static_cast<int>(constraint_vector_width())
-      << " doubles (4: AVX, 2: SSE2)\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
+      << " doubles (8: AVX-512, 4: AVX, 2: SSE2)\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
          "droplets_per_s,evaluations_per_s,peak_rss_mb\n";
   bool any = false;
   for (const auto& [name, run] : scenes) {

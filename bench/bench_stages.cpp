@@ -69,14 +69,14 @@ void BM_ConstraintSequential(benchmark::State& s) {
 void BM_ConstraintRedBlack(benchmark::State& s) {
   stage(s, [](Simulation& sim) { sim.integrate(); sim.apply_constraint(); }, softdrop::ConstraintOrder::red_black);
 }
-// The red-black constraint at a given vector width (1 scalar, 2 SSE2, 4 AVX; the same bits): what
+// The red-black constraint at a given vector width (1 scalar, 2 SSE2, 4 AVX, 8 AVX-512; the same bits): what
 // each width buys where the processor has it.
 void BM_ConstraintRedBlackAtWidth(benchmark::State& s) {
   const softdrop::VectorWidth used =
       softdrop::limit_constraint_vector_width(static_cast<softdrop::VectorWidth>(s.range(1)));
   s.SetLabel("width " + std::to_string(static_cast<int>(used)));
   stage(s, [](Simulation& sim) { sim.integrate(); sim.apply_constraint(); }, softdrop::ConstraintOrder::red_black);
-  softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx);
+  softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
 void BM_ContactLimit(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.apply_contact_limit(); }); }
 void BM_WholeStep(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.step(); }); }
@@ -105,11 +105,11 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
   });
   state.counters["mass-updates/s"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
-  softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx);
+  softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 2, 3, 4, 6, 8, 10, 12}, {4}});
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {6}, {2}});
-BENCHMARK(BM_ConstraintRedBlackAtWidth)->ArgsProduct({{40}, {1, 2, 4}});
+BENCHMARK(BM_ConstraintRedBlackAtWidth)->ArgsProduct({{40}, {1, 2, 4, 8}});
 
 #define SIZES ->Arg(16)->Arg(40)->Arg(128)
 BENCHMARK(BM_SpringsAndPressure) SIZES;

@@ -153,6 +153,7 @@ inline int constrain_two(const PairLimits& l, __m128d* xi, __m128d* yi, __m128d*
 int machine_width() {
 #if defined(SOFTDROP_AVX_DISPATCH)
   __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f")) return 8;
   if (__builtin_cpu_supports("avx")) return 4;
 #endif
 #if defined(__SSE2__)
@@ -161,7 +162,7 @@ int machine_width() {
   return 1;
 #endif
 }
-std::atomic<int> width_limit{4};
+std::atomic<int> width_limit{8};
 int vector_width() {
   static const int machine = machine_width();
   return std::min(machine, width_limit.load(std::memory_order_relaxed));
@@ -228,6 +229,66 @@ SOFTDROP_AVX int constrain_disjoint_quads(double* x, double* y, int count, doubl
 }
 #endif
 
+#if defined(SOFTDROP_AVX_DISPATCH)
+// Eight springs at once: constrain_four() with eight lanes and AVX-512 masks, the same operations
+// on each lane; a lane in limits is left as it is (constrain_four() adds -0 and subtracts +0,
+// which change no double).
+struct OctLimits {
+  __m512d dmax, dmin, dmax2, dmin2;
+};
+SOFTDROP_AVX512 inline void set_oct_limits(OctLimits* l, double lo, double hi) {
+  l->dmax = _mm512_set1_pd(hi);
+  l->dmin = _mm512_set1_pd(lo);
+  l->dmax2 = _mm512_set1_pd(hi * hi);
+  l->dmin2 = _mm512_set1_pd(lo * lo);
+}
+SOFTDROP_AVX512 inline unsigned constrain_eight(const OctLimits& l, __m512d* xi, __m512d* yi, __m512d* xj,
+                                                __m512d* yj) {
+  const __m512d dx = _mm512_sub_pd(*xj, *xi), dy = _mm512_sub_pd(*yj, *yi);
+  const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
+  const unsigned inside = _mm512_cmp_pd_mask(d2, l.dmax2, _CMP_LE_OS) & _mm512_cmp_pd_mask(d2, l.dmin2, _CMP_GE_OS);
+  const __mmask8 out = static_cast<__mmask8>(~inside & _mm512_cmp_pd_mask(d2, _mm512_setzero_pd(), _CMP_NEQ_UQ));
+  if (out == 0) return 0;
+  const __m512d d = _mm512_mask_sqrt_pd(d2, 0xFF, d2);  // all lanes (GCC 12's _mm512_sqrt_pd warns)
+  const __m512d target = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(d2, l.dmax2, _CMP_GT_OS), l.dmin, l.dmax);
+  const __m512d c = _mm512_div_pd(_mm512_sub_pd(d, target), _mm512_add_pd(d, d));
+  const __m512d cx = _mm512_mul_pd(c, dx), cy = _mm512_mul_pd(c, dy);
+  *xi = _mm512_mask_add_pd(*xi, out, *xi, cx);
+  *yi = _mm512_mask_add_pd(*yi, out, *yi, cy);
+  *xj = _mm512_mask_sub_pd(*xj, out, *xj, cx);
+  *yj = _mm512_mask_sub_pd(*yj, out, *yj, cy);
+  return out;
+}
+
+// constrain_disjoint_quads() eight springs at a time.
+SOFTDROP_AVX512 int constrain_disjoint_octs(double* x, double* y, int count, double dmin, double dmax, int* done) {
+  OctLimits l;
+  set_oct_limits(&l, dmin, dmax);
+  const __m512i even = _mm512_set_epi64(14, 12, 10, 8, 6, 4, 2, 0), odd = _mm512_set_epi64(15, 13, 11, 9, 7, 5, 3, 1);
+  const __m512i low = _mm512_set_epi64(11, 3, 10, 2, 9, 1, 8, 0), high = _mm512_set_epi64(15, 7, 14, 6, 13, 5, 12, 4);
+  int changed = 0, k = 0;
+  for (; k + 8 <= count; k += 8) {
+    double* px = x + 2 * k;
+    double* py = y + 2 * k;
+    // Lane s holds spring k + s: the first ends are the even elements, the second ends the odd
+    // ones. (Two-source permutes rather than unpacks, whose GCC 12 intrinsics warn.)
+    const __m512d xa = _mm512_loadu_pd(px), xb = _mm512_loadu_pd(px + 8);
+    const __m512d ya = _mm512_loadu_pd(py), yb = _mm512_loadu_pd(py + 8);
+    __m512d xi = _mm512_permutex2var_pd(xa, even, xb), xj = _mm512_permutex2var_pd(xa, odd, xb);
+    __m512d yi = _mm512_permutex2var_pd(ya, even, yb), yj = _mm512_permutex2var_pd(ya, odd, yb);
+    const unsigned moved = constrain_eight(l, &xi, &yi, &xj, &yj);
+    if (moved == 0) continue;
+    changed += __builtin_popcount(moved);
+    _mm512_storeu_pd(px, _mm512_permutex2var_pd(xi, low, xj));
+    _mm512_storeu_pd(px + 8, _mm512_permutex2var_pd(xi, high, xj));
+    _mm512_storeu_pd(py, _mm512_permutex2var_pd(yi, low, yj));
+    _mm512_storeu_pd(py + 8, _mm512_permutex2var_pd(yi, high, yj));
+  }
+  *done = k;
+  return changed;
+}
+#endif
+
 // Springs (x[2k], x[2k + 1]) for k < count: one half-pass of the red-black order. They share no
 // mass, so their order does not matter; two at a time (a de-interleaved, aligned layout that keeps
 // every load forwardable from the previous store was tried: no faster, the half-pass is bound by
@@ -236,7 +297,12 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
   int changed = 0, k = 0;
   const int width = vector_width();
 #if defined(SOFTDROP_AVX_DISPATCH)
-  if (width >= 4) changed = constrain_disjoint_quads(x, y, count, dmin, dmax, &k);
+  if (width >= 8) changed = constrain_disjoint_octs(x, y, count, dmin, dmax, &k);
+  if (width >= 4 && k + 4 <= count) {
+    int quads = 0;
+    changed += constrain_disjoint_quads(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &quads);
+    k += quads;
+  }
 #endif
 #if defined(__SSE2__)
   const PairLimits l(dmin, dmax);
@@ -506,8 +572,8 @@ VectorWidth constraint_vector_width() { return static_cast<VectorWidth>(vector_w
 
 VectorWidth limit_constraint_vector_width(VectorWidth width) {
   const int w = static_cast<int>(width);
-  if (w != 1 && w != 2 && w != 4)
-    throw std::invalid_argument("vector width " + std::to_string(w) + ": must be 1, 2 or 4");
+  if (w != 1 && w != 2 && w != 4 && w != 8)
+    throw std::invalid_argument("vector width " + std::to_string(w) + ": must be 1, 2, 4 or 8");
   width_limit.store(w, std::memory_order_relaxed);
   return constraint_vector_width();
 }

@@ -202,7 +202,7 @@ void Simulation::accumulate_springs() {
   const double *px = state_.px.data(), *py = state_.py.data();
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
-  if (constraint_vector_width() == VectorWidth::avx)
+  if (constraint_vector_width() >= VectorWidth::avx)
     i = spring_forces_avx(in, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
 #endif
 #if defined(__SSE2__)

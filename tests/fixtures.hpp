@@ -26,7 +26,7 @@ inline DropletState jiggled_ring(int masses, std::uint64_t seed, double amplitud
 class VectorWidthLimit {
  public:
   explicit VectorWidthLimit(VectorWidth width) : in_use_(limit_constraint_vector_width(width)) {}
-  ~VectorWidthLimit() { limit_constraint_vector_width(VectorWidth::avx); }
+  ~VectorWidthLimit() { limit_constraint_vector_width(VectorWidth::avx512); }
   VectorWidthLimit(const VectorWidthLimit&) = delete;
   VectorWidthLimit& operator=(const VectorWidthLimit&) = delete;
   VectorWidth in_use() const { return in_use_; }
@@ -36,7 +36,8 @@ class VectorWidthLimit {
 };
 
 /// Every vector width the constraint has.
-inline constexpr VectorWidth kVectorWidths[] = {VectorWidth::scalar, VectorWidth::sse2, VectorWidth::avx};
+inline constexpr VectorWidth kVectorWidths[] = {VectorWidth::scalar, VectorWidth::sse2, VectorWidth::avx,
+                                                VectorWidth::avx512};
 
 /// An empty periodic box.
 inline Medium empty_medium(double width = 500, double height = 500) {
