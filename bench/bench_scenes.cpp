@@ -7,7 +7,8 @@
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
 // 5000 grains); medium-200-red-black (medium-200 with the red-black constraint order); batch
 // (`simulate --droplets 24` on the medium-200 medium: one droplet at a time on 1 thread, the
-// default lanes stepped together (12 with AVX, 6 with SSE2) on 1 thread, and on all threads);
+// default lanes stepped together (24 with AVX-512, 12 with AVX, 6 with SSE2) on 1 thread, and on
+// all threads);
 // sweep and sweep-long (16 and 64 droplets through each of 4 media, on 1 thread and on all; the
 // paper's sweep has 200 per medium); search-l1 and search-l2 (the default search at lambda 1 and 2, on 1 thread and on all threads
 // with speculation, as `optimize` runs it: 120 and 60 generations); search-l2-long (the same at

@@ -108,6 +108,7 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
   softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 2, 3, 4, 6, 8, 10, 12}, {4}});
+BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 8, 12, 16, 20, 24}, {8}});
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {6}, {2}});
 BENCHMARK(BM_ConstraintRedBlackAtWidth)->ArgsProduct({{40}, {1, 2, 4, 8}});
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
+#include <vector>
 
 #include "simd_dispatch.hpp"
 #include "validation.hpp"
@@ -394,8 +395,9 @@ namespace {
 // lane repeats a ring, doing the same work on the same memory. Each lane does sequential_link()'s
 // operations on its own ring, K registers' chains side by side. Passes go on until no ring
 // changes; a pass that changes nothing changes nothing again, so the extra passes of a ring that
-// has stopped keep its bits. counts[ring] gets the ring's corrections. The SSE2 and AVX versions
-// below are the same loop on two vector types (an AVX body must be compiled apart, for AVX only).
+// has stopped keep its bits. counts[ring] gets the ring's corrections. The SSE2, AVX and AVX-512
+// versions below are the same loop on three vector types (an AVX or AVX-512 body must be compiled
+// apart, for that instruction set only); the AVX-512 one works on a copy laid out lane by lane.
 #if defined(__SSE2__)
 inline void load_lanes(double* const* x, int base, int i, __m128d* v) {
   *v = _mm_loadh_pd(_mm_load_sd(x[base] + i), x[base + 1] + i);
@@ -508,6 +510,105 @@ SOFTDROP_AVX void sequential_passes_quad(double* const* x, double* const* y, int
 }
 #endif
 
+#if defined(SOFTDROP_AVX_DISPATCH)
+// Transposes the 8 x 8 block of doubles m[0..7] (m[t][c] -> m[c][t]) with three rounds of
+// two-source permutes.
+SOFTDROP_AVX512 inline void transpose8(__m512d* m) {
+  const __m512i lo1 = _mm512_set_epi64(14, 6, 12, 4, 10, 2, 8, 0), hi1 = _mm512_set_epi64(15, 7, 13, 5, 11, 3, 9, 1);
+  const __m512i lo2 = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0), hi2 = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
+  const __m512i lo3 = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0), hi3 = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
+  __m512d a[8], b[8];
+  for (int k = 0; k < 4; ++k) {  // a[2k]: even columns of rows 2k, 2k+1 in pairs; a[2k+1]: odd ones
+    a[2 * k] = _mm512_permutex2var_pd(m[2 * k], lo1, m[2 * k + 1]);
+    a[2 * k + 1] = _mm512_permutex2var_pd(m[2 * k], hi1, m[2 * k + 1]);
+  }
+  for (int k : {0, 1, 4, 5}) {  // b[k]: columns (k%4, k%4+4) of rows 4(k/4)..+3; b[k+2]: (k%4+2, k%4+6)
+    b[k] = _mm512_permutex2var_pd(a[k], lo2, a[k + 2]);
+    b[k + 2] = _mm512_permutex2var_pd(a[k], hi2, a[k + 2]);
+  }
+  for (int k = 0; k < 4; ++k) {  // b[k], b[k+4]: columns k and k + 4 of rows 0-3 and 4-7
+    m[k] = _mm512_permutex2var_pd(b[k], lo3, b[k + 4]);
+    m[k + 4] = _mm512_permutex2var_pd(b[k], hi3, b[k + 4]);
+  }
+}
+
+// Copies masses [0, n) of rings x[0..L) into X[i L + t] (in) or back (out), eight by eight.
+template <int L, bool In>
+SOFTDROP_AVX512 void transpose_rings(double* const* x, double* X, int n) {
+  int i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (int g = 0; g < L; g += 8) {
+      __m512d m[8];
+      for (int t = 0; t < 8; ++t)
+        m[t] = In ? _mm512_loadu_pd(x[g + t] + i) : _mm512_loadu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g);
+      transpose8(m);
+      for (int t = 0; t < 8; ++t) {
+        if (In) _mm512_storeu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g, m[t]);
+        else _mm512_storeu_pd(x[g + t] + i, m[t]);
+      }
+    }
+  for (; i < n; ++i)
+    for (int t = 0; t < L; ++t) {
+      if (In) X[i * L + t] = x[t][i];
+      else x[t][i] = X[i * L + t];
+    }
+}
+
+// Eight rings per AVX-512 register, on a copy of the rings laid out lane by lane (X[i][lane]): a
+// link loads and stores whole registers instead of gathering and scattering eight lanes.
+template <int K>
+SOFTDROP_AVX512 void sequential_passes_oct(double* const* x, double* const* y, int n, int iterations, double dmin,
+                                           double dmax, int* counts) {
+  constexpr int L = 8 * K;
+  thread_local std::vector<double> scratch;
+  const std::size_t size = 2 * static_cast<std::size_t>(n) * L;
+  if (scratch.size() < size) scratch.resize(size);
+  double* const X = scratch.data();
+  double* const Y = X + static_cast<std::size_t>(n) * L;
+  transpose_rings<L, true>(x, X, n);
+  transpose_rings<L, true>(y, Y, n);
+  OctLimits l;
+  set_oct_limits(&l, dmin, dmax);
+  bool active[K];
+  for (int r = 0; r < K; ++r) active[r] = true;
+  for (int t = 0; t < L; ++t) counts[t] = 0;
+  for (int pass = 0; pass < iterations; ++pass) {
+    __m512d xi[K], yi[K];
+    int changed[L] = {};
+    for (int r = 0; r < K; ++r) {
+      xi[r] = _mm512_loadu_pd(X + 8 * r);
+      yi[r] = _mm512_loadu_pd(Y + 8 * r);
+    }
+    for (int i = 0; i < n; ++i) {
+      const int j = i + 1 == n ? 0 : i + 1;
+      for (int r = 0; r < K; ++r) {
+        if (!active[r]) continue;
+        __m512d xj = _mm512_loadu_pd(X + j * L + 8 * r), yj = _mm512_loadu_pd(Y + j * L + 8 * r);
+        const unsigned moved = constrain_eight(l, &xi[r], &yi[r], &xj, &yj);
+        for (int b = 0; b < 8; ++b) changed[8 * r + b] += (moved >> b) & 1;
+        _mm512_storeu_pd(X + i * L + 8 * r, xi[r]);
+        _mm512_storeu_pd(Y + i * L + 8 * r, yi[r]);
+        xi[r] = xj;
+        yi[r] = yj;
+      }
+    }
+    bool any = false;
+    for (int r = 0; r < K; ++r) {
+      if (!active[r]) continue;
+      _mm512_storeu_pd(X + 8 * r, xi[r]);  // the closing spring's correction of mass 0
+      _mm512_storeu_pd(Y + 8 * r, yi[r]);
+      int sum = 0;
+      for (int b = 0; b < 8; ++b) counts[8 * r + b] += changed[8 * r + b], sum += changed[8 * r + b];
+      active[r] = sum != 0;
+      any = any || active[r];
+    }
+    if (!any) break;
+  }
+  transpose_rings<L, false>(x, X, n);
+  transpose_rings<L, false>(y, Y, n);
+}
+#endif
+
 // Rings [0, same) of one size (same <= 3 kLanes) as lanes, kLanes per register, padded with the
 // last ring; passes(registers, x, y, counts) runs them, with registers a std::integral_constant.
 template <int kLanes, class Passes>
@@ -532,7 +633,7 @@ void sequential_rings(DropletState* const* rings, int same, int* corrections, co
 
 int interleaved_ring_capacity() {
   const int width = vector_width();
-  return width >= 4 ? 12 : width >= 2 ? 6 : 1;
+  return width >= 8 ? 24 : width >= 4 ? 12 : width >= 2 ? 6 : 1;
 }
 
 void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
@@ -551,6 +652,13 @@ void apply_length_constraint_interleaved(DropletState* const* rings, int count, 
       continue;
     }
 #if defined(SOFTDROP_AVX_DISPATCH)
+    if (width >= 8) {
+      sequential_rings<8>(rings + r, same, corrections + r, [&](auto k, double** x, double** y, int* counts) {
+        sequential_passes_oct<decltype(k)::value>(x, y, n, iterations, dmin, dmax, counts);
+      });
+      r += same;
+      continue;
+    }
     if (width >= 4) {
       sequential_rings<4>(rings + r, same, corrections + r, [&](auto k, double** x, double** y, int* counts) {
         sequential_passes_quad<decltype(k)::value>(x, y, n, iterations, dmin, dmax, counts);

@@ -52,9 +52,10 @@ Medium medium_of_porosity_08() {
 }
 
 TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
-  // Rings of mixed sizes (grouped by size, up to 12 at a time: 3 AVX registers of 4, or 3 SSE2
-  // registers of 2), stretched and squeezed at random, at every vector width.
-  std::vector<int> sizes(14, 40);
+  // Rings of mixed sizes (grouped by size, up to 24 at a time: 3 AVX-512 registers of 8, 3 AVX
+  // registers of 4 or 3 SSE2 registers of 2), stretched and squeezed at random, at every vector
+  // width.
+  std::vector<int> sizes(26, 40);
   for (int masses : {41, 41, 16, 40, 40, 40}) sizes.push_back(masses);
   const DropletParams p;
   for (VectorWidth width : test::kVectorWidths) {

@@ -18,8 +18,9 @@ struct BatchOptions {
   std::uint64_t seed = 1;    ///< droplet i starts at x drawn from stream derive_seed(seed, i)
   int threads = 0;           ///< worker threads, 0 = all cores
   /// Droplets each thread steps together (run_interleaved). The default is as many rings as the
-  /// sequential constraint takes at once (interleaved_ring_capacity(): 12 with AVX, whose chains of
-  /// 12 droplets take 1.6 times as long as one droplet's; 6 with SSE2). Results do not depend on it.
+  /// sequential constraint takes at once (interleaved_ring_capacity(): 24 with AVX-512, whose three
+  /// chains of 8 droplets take 1.7 times as long as one droplet's; 12 with AVX, 1.5 times; 6 with
+  /// SSE2). Results do not depend on it.
   int lanes = interleaved_ring_capacity();
   /// Start x of every droplet; NaN draws it uniformly in [0, W) (walls: [R, W - R]).
   double start_x = std::numeric_limits<double>::quiet_NaN();
