@@ -306,7 +306,8 @@ class Pipeline {
 // constraint has no chain to hide, so one candidate per thread does best and throws the least
 // speculative work away (bench_scenes search-l2-long-red-black: 1.20 / 2.39 M steps/s on 1 / 2
 // threads with 1 lane, 1.18 / 2.29 with 2, 1.16 / 2.14 with 4). For the sequential order, on 1 and
-// 2 threads, 4 at lambda = 1 and 8 above did best (the table at DriveOptions::lanes). With more
+// 2 threads, 8 did best, except 4 at lambda = 1 without AVX-512, where 8 rings take two AVX
+// registers' chains instead of one (the table at DriveOptions::lanes). With more
 // threads the pipeline would run that many lanes each, ever further ahead: most of that work is
 // thrown away (a generation accepts once in 5 to 15 on the benchmark searches), and the lanes slow
 // each candidate down (with 8 lanes each steps about 2.5 times slower than alone), which delays the
@@ -314,7 +315,7 @@ class Pipeline {
 // over fewer lanes each. That is an extrapolation: this 2-core machine cannot measure more threads.
 int default_lanes(int lambda, int workers, ConstraintOrder order) {
   if (order == ConstraintOrder::red_black) return 1;
-  const int per_thread = std::min(8, 4 * lambda);
+  const int per_thread = constraint_vector_width() >= VectorWidth::avx512 ? 8 : std::min(8, 4 * lambda);
   return std::max(1, std::min(per_thread, 2 * per_thread / workers));
 }
 

@@ -302,10 +302,13 @@ TEST(Search, PredictionsAheadOfUndecidedGenerationsKeepTheHistory) {
 }
 
 TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
-  // 4 lanes at lambda = 1 and 8 above on 1 and 2 threads; more threads share 2 threads' candidates.
+  // 8 lanes on 1 and 2 threads (4 at lambda = 1 without AVX-512); more threads share 2 threads'
+  // candidates.
+  const int l1 = constraint_vector_width() >= VectorWidth::avx512 ? 8 : 4;
   for (auto [lambda, threads, lanes] :
-       {std::tuple{1, 1, 4}, std::tuple{1, 2, 4}, std::tuple{1, 3, 2}, std::tuple{1, 4, 2}, std::tuple{1, 16, 1},
-        std::tuple{2, 1, 8}, std::tuple{2, 2, 8}, std::tuple{2, 3, 5}, std::tuple{2, 4, 4}, std::tuple{4, 16, 1}}) {
+       {std::tuple{1, 1, l1}, std::tuple{1, 2, l1}, std::tuple{1, 3, 2 * l1 / 3}, std::tuple{1, 4, l1 / 2},
+        std::tuple{1, 16, 1}, std::tuple{2, 1, 8}, std::tuple{2, 2, 8}, std::tuple{2, 3, 5}, std::tuple{2, 4, 4},
+        std::tuple{4, 16, 1}}) {
     SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
     const SearchOptions o = test::small_search_options(lambda);
     Search s(o, start(o), 0);

@@ -154,10 +154,10 @@ struct DriveOptions {
   /// generation accepts after all).
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
-  /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 4 at
-  /// λ = 1, 8 at larger λ, on 1 and 2 threads; more threads keep as many candidates in flight as 2
-  /// threads do, with fewer lanes each (at least 1). With the red-black constraint order, 0 means 1
-  /// (lanes hide the sequential constraint's chain, which red-black does not have). More lanes evaluate faster but run further
+  /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 8 on 1
+  /// and 2 threads (4 at λ = 1 without AVX-512); more threads keep as many candidates in flight as
+  /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order, 0 means
+  /// 1 (lanes hide the sequential constraint's chain, which red-black does not have). More lanes evaluate faster but run further
   /// ahead, so more speculative work is dropped when a generation accepts, and each candidate
   /// steps slower, which delays the decisions the others wait for. Evaluations/s by lanes,
   /// bench_scenes (60 or 120 generations) and `optimize --lambda 4 --generations 40`:
@@ -169,6 +169,14 @@ struct DriveOptions {
   ///   | λ = 2, 2 threads | 57.5  | 63.9  | 69.1  | 73.5  | 63.2 |
   ///   | λ = 4, 1 thread  |       |       | 91.2  | 96.4  | 93.3 |
   ///   | λ = 4, 2 threads |       |       | 156   | 149   | 139  |
+  ///
+  /// With AVX-512 (8 rings to a register; 3 repeats for λ = 1, 2 for λ = 2):
+  ///
+  ///   | search           | 4     | 6     | 8     | 12    | 16   |
+  ///   | λ = 1, 1 thread  | 61.7  | 65.9  | 72.8  | 66.4  | 64.9 |
+  ///   | λ = 1, 2 threads | 103.5 | 110.1 | 108.1 | 90.0  | 84.2 |
+  ///   | λ = 2, 1 thread  | 33.8  |       | 43.5  | 42.3  | 45.8 |
+  ///   | λ = 2, 2 threads | 64.7  |       | 75.0  | 70.6  | 61.8 |
   int lanes = 0;
 
   /// False, with the reason naming the option, for lanes outside [0, 64].
