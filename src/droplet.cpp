@@ -693,21 +693,29 @@ double ring_area(const DropletState& s) {
   return 0.5 * twice;
 }
 
+namespace {
+// Whether segment (a, b) properly crosses segment (c, d), as signs of cross products; (c, d) is
+// tested against the line of (a, b) first, which rules out most pairs.
+inline bool crosses(double ax, double ay, double bx, double by, double cx, double cy, double dx, double dy) {
+  const double d1 = cross(ax, ay, bx, by, cx, cy);
+  const double d2 = cross(ax, ay, bx, by, dx, dy);
+  if ((d1 > 0) == (d2 > 0) || d1 == 0 || d2 == 0) return false;
+  const double d3 = cross(cx, cy, dx, dy, ax, ay);
+  const double d4 = cross(cx, cy, dx, dy, bx, by);
+  return (d3 > 0) != (d4 > 0) && d3 != 0 && d4 != 0;
+}
+}  // namespace
+
 bool ring_self_intersects(const DropletState& s) {
+  // Every pair of edges that share no mass: edge i runs from mass i to i + 1 (the last to mass 0).
   const int n = s.size();
-  for (int i = 0; i < n; ++i) {
-    const int i1 = (i + 1) % n;
-    for (int j = i + 2; j < n; ++j) {
-      const int j1 = (j + 1) % n;
-      if (j1 == i) continue;  // adjacent through the wrap
-      const double d1 = cross(s.x[i], s.y[i], s.x[i1], s.y[i1], s.x[j], s.y[j]);
-      const double d2 = cross(s.x[i], s.y[i], s.x[i1], s.y[i1], s.x[j1], s.y[j1]);
-      const double d3 = cross(s.x[j], s.y[j], s.x[j1], s.y[j1], s.x[i], s.y[i]);
-      const double d4 = cross(s.x[j], s.y[j], s.x[j1], s.y[j1], s.x[i1], s.y[i1]);
-      if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 &&
-          d4 != 0)
-        return true;
-    }
+  const double *x = s.x.data(), *y = s.y.data();
+  for (int i = 0; i + 2 < n; ++i) {
+    const double ax = x[i], ay = y[i], bx = x[i + 1], by = y[i + 1];
+    for (int j = i + 2; j + 1 < n; ++j)
+      if (crosses(ax, ay, bx, by, x[j], y[j], x[j + 1], y[j + 1])) return true;
+    // The closing edge (n - 1, 0) shares mass 0 with edge 0.
+    if (i > 0 && crosses(ax, ay, bx, by, x[n - 1], y[n - 1], x[0], y[0])) return true;
   }
   return false;
 }

@@ -44,6 +44,54 @@ TEST(Droplet, ReversedRingHasNegativeAreaAndFigureEightIntersects) {
   EXPECT_TRUE(ring_self_intersects(s));
 }
 
+// The self-intersection test written out plainly, pair by pair with the modulo of the ring's
+// indices; counts the crossing pairs, and those with the closing edge (n - 1, 0) in *closing.
+int crossing_pairs(const DropletState& s, int* closing) {
+  auto cross = [](double ax, double ay, double bx, double by, double cx, double cy) {
+    return (bx - ax) * (cy - ay) - (by - ay) * (cx - ax);
+  };
+  const int n = s.size();
+  int count = 0;
+  *closing = 0;
+  for (int i = 0; i < n; ++i) {
+    const int i1 = (i + 1) % n;
+    for (int j = i + 2; j < n; ++j) {
+      const int j1 = (j + 1) % n;
+      if (j1 == i) continue;
+      const double d1 = cross(s.x[i], s.y[i], s.x[i1], s.y[i1], s.x[j], s.y[j]);
+      const double d2 = cross(s.x[i], s.y[i], s.x[i1], s.y[i1], s.x[j1], s.y[j1]);
+      const double d3 = cross(s.x[j], s.y[j], s.x[j1], s.y[j1], s.x[i], s.y[i]);
+      const double d4 = cross(s.x[j], s.y[j], s.x[j1], s.y[j1], s.x[i1], s.y[i1]);
+      if (((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0) {
+        ++count;
+        *closing += j == n - 1;
+      }
+    }
+  }
+  return count;
+}
+
+TEST(Droplet, SelfIntersectionMatchesThePlainPairByPairTest) {
+  // Rings from gently to wildly jiggled, of sizes with every remainder, crossing or not, and some
+  // whose only crossing is with the closing edge.
+  int crossing = 0, clear = 0, only_closing = 0;
+  for (int masses : {3, 4, 5, 6, 8, 13, 40}) {
+    for (double amplitude : {0.5, 3.0, 8.0}) {
+      for (std::uint64_t seed = 0; seed < 150; ++seed) {
+        const DropletState s = test::jiggled_ring(masses, 1000 * seed + static_cast<std::uint64_t>(masses), amplitude);
+        int closing = 0;
+        const int pairs = crossing_pairs(s, &closing);
+        ASSERT_EQ(ring_self_intersects(s), pairs > 0) << masses << " masses, amplitude " << amplitude << ", seed " << seed;
+        (pairs > 0 ? crossing : clear) += 1;
+        only_closing += pairs > 0 && pairs == closing;
+      }
+    }
+  }
+  EXPECT_GT(crossing, 100);
+  EXPECT_GT(clear, 100);
+  EXPECT_GT(only_closing, 5);
+}
+
 TEST(Droplet, InternalForcesSumToZero) {
   // Gravity off, no grains: springs, pressure and viscosity are internal and must cancel.
   DropletParams p;
