@@ -135,14 +135,18 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
   bool stopping = false;
   std::exception_ptr error;
   std::vector<std::size_t> ready;  // completed units waiting for on_done
-  const std::size_t window = static_cast<std::size_t>(workers) + 1;
+  // Each worker steps up to `lanes` droplets together (run_interleaved); a droplet's summary does
+  // not depend on which worker or lane ran it, nor on its lane mates.
+  const int lanes = BatchOptions{}.lanes;
+  // Units from the oldest not yet committed that may be open: one per worker and one more, plus
+  // enough that their droplets fill every lane twice over, so that a unit still waiting for its
+  // slowest (stuck) droplets does not leave lanes idle when media have few droplets each.
+  const std::size_t window = static_cast<std::size_t>(workers) + 1 +
+                             static_cast<std::size_t>((2 * workers * lanes + o.droplets - 1) / std::max(1, o.droplets));
   std::size_t oldest_open = 0;     // units before it are complete
   int active = 0;                  // droplets being simulated
   LaneExchange exchange;
 
-  // Each worker steps up to `lanes` droplets together (run_interleaved); a droplet's summary does
-  // not depend on which worker or lane ran it, nor on its lane mates.
-  const int lanes = BatchOptions{}.lanes;
   const std::int64_t per_unit = o.droplets;
   auto worker = [&] {
     auto next = [&](DropletJob* job, bool may_wait) {

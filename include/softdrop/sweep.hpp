@@ -74,7 +74,8 @@ SweepMedium run_sweep_unit(const SweepOptions& options, const SweepUnit& unit, i
                            const std::function<void(int, int)>& progress = {});
 
 /// Runs `units` keeping every thread busy across unit boundaries: droplets of the next units start
-/// while the last droplets of earlier ones finish (at most threads + 1 units are open at once).
+/// while the last droplets of earlier ones finish (at most threads + 1 units are open at once, plus
+/// as many as it takes for their droplets to fill every thread's lanes twice over).
 /// `on_done` is called on the calling thread with each unit as it completes, in completion order,
 /// so that a store can commit it; each record equals run_sweep_unit's for that unit. `stop` is
 /// polled before each new unit: once it returns true no unit starts, and the units already started
