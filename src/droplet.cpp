@@ -532,6 +532,14 @@ SOFTDROP_AVX512 inline void transpose8(__m512d* m) {
   }
 }
 
+// This thread's scratch for the lane-by-lane copies, at least `size` doubles: one for all register
+// counts, grown when needed (so a step allocates nothing once it has run).
+double* lane_scratch(std::size_t size) {
+  thread_local std::vector<double> scratch;
+  if (scratch.size() < size) scratch.resize(size);
+  return scratch.data();
+}
+
 // Copies masses [0, n) of rings x[0..L) into X[i L + t] (in) or back (out), eight by eight.
 template <int L, bool In>
 SOFTDROP_AVX512 void transpose_rings(double* const* x, double* X, int n) {
@@ -560,10 +568,7 @@ template <int K>
 SOFTDROP_AVX512 void sequential_passes_oct(double* const* x, double* const* y, int n, int iterations, double dmin,
                                            double dmax, int* counts) {
   constexpr int L = 8 * K;
-  thread_local std::vector<double> scratch;
-  const std::size_t size = 2 * static_cast<std::size_t>(n) * L;
-  if (scratch.size() < size) scratch.resize(size);
-  double* const X = scratch.data();
+  double* const X = lane_scratch(2 * static_cast<std::size_t>(n) * L);
   double* const Y = X + static_cast<std::size_t>(n) * L;
   transpose_rings<L, true>(x, X, n);
   transpose_rings<L, true>(y, Y, n);
