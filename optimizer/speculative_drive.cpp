@@ -333,7 +333,8 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const int workers = detail::worker_threads(options.threads);
-  const int lanes = options.lanes > 0 ? options.lanes : default_lanes(search.options().lambda, workers, search.options().droplet.constraint_order);
+  const SearchOptions& so = search.options();
+  const int lanes = options.lanes > 0 ? options.lanes : default_lanes(so.lambda, workers, so.droplet.constraint_order);
   std::unique_ptr<Pipeline> pipeline;
   if (options.speculate && (workers > 1 || lanes > 1) && search.last_generation() < options.generations)
     pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);

@@ -81,7 +81,8 @@ TEST(Droplet, SelfIntersectionMatchesThePlainPairByPairTest) {
         const DropletState s = test::jiggled_ring(masses, 1000 * seed + static_cast<std::uint64_t>(masses), amplitude);
         int closing = 0;
         const int pairs = crossing_pairs(s, &closing);
-        ASSERT_EQ(ring_self_intersects(s), pairs > 0) << masses << " masses, amplitude " << amplitude << ", seed " << seed;
+        ASSERT_EQ(ring_self_intersects(s), pairs > 0)
+            << masses << " masses, amplitude " << amplitude << ", seed " << seed;
         (pairs > 0 ? crossing : clear) += 1;
         only_closing += pairs > 0 && pairs == closing;
       }

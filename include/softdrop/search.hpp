@@ -157,10 +157,11 @@ struct DriveOptions {
   /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 8 on 1
   /// and 2 threads (4 at λ = 1 without AVX-512); more threads keep as many candidates in flight as
   /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order, 0 means
-  /// 1 (lanes hide the sequential constraint's chain, which red-black does not have). More lanes evaluate faster but run further
-  /// ahead, so more speculative work is dropped when a generation accepts, and each candidate
-  /// steps slower, which delays the decisions the others wait for. Evaluations/s by lanes,
-  /// bench_scenes (60 or 120 generations) and `optimize --lambda 4 --generations 40`:
+  /// 1 (lanes hide the sequential constraint's chain, which red-black does not have). More lanes
+  /// evaluate faster but run further ahead, so more speculative work is dropped when a generation
+  /// accepts, and each candidate steps slower, which delays the decisions the others wait for.
+  /// Evaluations/s by lanes, bench_scenes (60 or 120 generations) and `optimize --lambda 4
+  /// --generations 40`:
   ///
   ///   | search           | 3     | 4     | 6     | 8     | 12   |
   ///   | λ = 1, 1 thread  | 58.0  | 64.1  | 66.0  | 63.6  | 57.8 |
