@@ -4,9 +4,11 @@
 #include <atomic>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 #include <vector>
 
+#include "lane_layout.hpp"
 #include "simd_dispatch.hpp"
 #include "validation.hpp"
 
@@ -540,7 +542,8 @@ double* lane_scratch(std::size_t size) {
   return scratch.data();
 }
 
-// Copies masses [0, n) of rings x[0..L) into X[i L + t] (in) or back (out), eight by eight.
+// Copies masses [0, n) of rings x[0..L) into X[i L + t] (in) or back (out, skipping a null ring),
+// eight by eight.
 template <int L, bool In>
 SOFTDROP_AVX512 void transpose_rings(double* const* x, double* X, int n) {
   int i = 0;
@@ -552,37 +555,34 @@ SOFTDROP_AVX512 void transpose_rings(double* const* x, double* X, int n) {
       transpose8(m);
       for (int t = 0; t < 8; ++t) {
         if (In) _mm512_storeu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g, m[t]);
-        else _mm512_storeu_pd(x[g + t] + i, m[t]);
+        else if (x[g + t]) _mm512_storeu_pd(x[g + t] + i, m[t]);
       }
     }
   for (; i < n; ++i)
     for (int t = 0; t < L; ++t) {
       if (In) X[i * L + t] = x[t][i];
-      else x[t][i] = X[i * L + t];
+      else if (x[t]) x[t][i] = X[i * L + t];
     }
 }
 
-// Eight rings per AVX-512 register, on a copy of the rings laid out lane by lane (X[i][lane]): a
-// link loads and stores whole registers instead of gathering and scattering eight lanes.
+// Eight rings per AVX-512 register, on rings laid out lane by lane (X[i L + lane]): a link loads
+// and stores whole registers instead of gathering and scattering eight lanes.
 template <int K>
-SOFTDROP_AVX512 void sequential_passes_oct(double* const* x, double* const* y, int n, int iterations, double dmin,
-                                           double dmax, int* counts) {
+SOFTDROP_AVX512 void oct_passes(double* X, double* Y, int n, int iterations, double dmin, double dmax, int* counts) {
   constexpr int L = 8 * K;
-  double* const X = lane_scratch(2 * static_cast<std::size_t>(n) * L);
-  double* const Y = X + static_cast<std::size_t>(n) * L;
-  transpose_rings<L, true>(x, X, n);
-  transpose_rings<L, true>(y, Y, n);
   OctLimits l;
   set_oct_limits(&l, dmin, dmax);
   bool active[K];
   for (int r = 0; r < K; ++r) active[r] = true;
   for (int t = 0; t < L; ++t) counts[t] = 0;
+  const __m512i one = _mm512_set1_epi64(1);
   for (int pass = 0; pass < iterations; ++pass) {
     __m512d xi[K], yi[K];
-    int changed[L] = {};
+    __m512i changed[K];  // lane b of changed[r]: corrections of ring 8 r + b in this pass
     for (int r = 0; r < K; ++r) {
       xi[r] = _mm512_loadu_pd(X + 8 * r);
       yi[r] = _mm512_loadu_pd(Y + 8 * r);
+      changed[r] = _mm512_setzero_si512();
     }
     for (int i = 0; i < n; ++i) {
       const int j = i + 1 == n ? 0 : i + 1;
@@ -590,7 +590,7 @@ SOFTDROP_AVX512 void sequential_passes_oct(double* const* x, double* const* y, i
         if (!active[r]) continue;
         __m512d xj = _mm512_loadu_pd(X + j * L + 8 * r), yj = _mm512_loadu_pd(Y + j * L + 8 * r);
         const unsigned moved = constrain_eight(l, &xi[r], &yi[r], &xj, &yj);
-        for (int b = 0; b < 8; ++b) changed[8 * r + b] += (moved >> b) & 1;
+        changed[r] = _mm512_mask_add_epi64(changed[r], static_cast<__mmask8>(moved), changed[r], one);
         _mm512_storeu_pd(X + i * L + 8 * r, xi[r]);
         _mm512_storeu_pd(Y + i * L + 8 * r, yi[r]);
         xi[r] = xj;
@@ -602,13 +602,27 @@ SOFTDROP_AVX512 void sequential_passes_oct(double* const* x, double* const* y, i
       if (!active[r]) continue;
       _mm512_storeu_pd(X + 8 * r, xi[r]);  // the closing spring's correction of mass 0
       _mm512_storeu_pd(Y + 8 * r, yi[r]);
-      int sum = 0;
-      for (int b = 0; b < 8; ++b) counts[8 * r + b] += changed[8 * r + b], sum += changed[8 * r + b];
+      alignas(64) long long lane_changes[8];
+      _mm512_store_si512(lane_changes, changed[r]);
+      long long sum = 0;
+      for (int b = 0; b < 8; ++b) counts[8 * r + b] += static_cast<int>(lane_changes[b]), sum += lane_changes[b];
       active[r] = sum != 0;
       any = any || active[r];
     }
     if (!any) break;
   }
+}
+
+// oct_passes() on a lane-by-lane copy of the rings x[0..8K), y[...].
+template <int K>
+SOFTDROP_AVX512 void sequential_passes_oct(double* const* x, double* const* y, int n, int iterations, double dmin,
+                                           double dmax, int* counts) {
+  constexpr int L = 8 * K;
+  double* const X = lane_scratch(2 * static_cast<std::size_t>(n) * L);
+  double* const Y = X + static_cast<std::size_t>(n) * L;
+  transpose_rings<L, true>(x, X, n);
+  transpose_rings<L, true>(y, Y, n);
+  oct_passes<K>(X, Y, n, iterations, dmin, dmax, counts);
   transpose_rings<L, false>(x, X, n);
   transpose_rings<L, false>(y, Y, n);
 }
@@ -680,6 +694,23 @@ void apply_length_constraint_interleaved(DropletState* const* rings, int count, 
     r += same;
   }
 }
+
+#if defined(SOFTDROP_AVX_DISPATCH)
+namespace lanes {
+void copy_in(double* const* rings, double* X, int n, int registers) {
+  with_registers(registers, [&](auto k) { transpose_rings<8 * decltype(k)::value, true>(rings, X, n); });
+}
+void copy_out(double* const* rings, const double* X, int n, int registers) {
+  // transpose_rings only reads X when it copies out.
+  with_registers(registers,
+                 [&](auto k) { transpose_rings<8 * decltype(k)::value, false>(rings, const_cast<double*>(X), n); });
+}
+void constrain_sequential(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
+                          int* counts) {
+  with_registers(registers, [&](auto k) { oct_passes<decltype(k)::value>(X, Y, n, iterations, dmin, dmax, counts); });
+}
+}  // namespace lanes
+#endif
 
 VectorWidth constraint_vector_width() { return static_cast<VectorWidth>(vector_width()); }
 

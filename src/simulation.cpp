@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "lane_layout.hpp"
 #include "simd_dispatch.hpp"
 #include "validation.hpp"
 
@@ -276,7 +277,9 @@ GrainGrid::DiscRange Simulation::cached_contacts(int i) const {
   return {begin, begin + contact_count_[i]};
 }
 
-void Simulation::accumulate_collisions() {
+void Simulation::accumulate_collisions() { accumulate_collisions(state_.fx.data(), state_.fy.data(), 1); }
+
+void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride) {
   const int n = state_.size();
   const double kc = params_.kc, cc = params_.cc, inv_dt = 1.0 / params_.dt;
   const double W = medium_.width;
@@ -300,14 +303,14 @@ void Simulation::accumulate_collisions() {
       const double depth = r - d;
       // Penalty spring from the surface point plus damping of the normal velocity; never pulls.
       const double f = std::max(0.0, kc * depth - cc * (vx * nx + vy * ny));
-      state_.fx[i] += f * nx;
-      state_.fy[i] += f * ny;
+      fx[i * stride] += f * nx;
+      fy[i * stride] += f * ny;
       touched_[static_cast<std::size_t>(g->grain)] = 1;
       deepest = std::max(deepest, depth);
     }
     if (!periodic) {  // solid side walls
-      if (x < 0) state_.fx[i] += std::max(0.0, -kc * x - cc * vx);
-      if (x > W) state_.fx[i] -= std::max(0.0, kc * (x - W) + cc * vx);
+      if (x < 0) fx[i * stride] += std::max(0.0, -kc * x - cc * vx);
+      if (x > W) fx[i * stride] -= std::max(0.0, kc * (x - W) + cc * vx);
     }
   }
   last_penetration_ = deepest;
@@ -345,6 +348,34 @@ void Simulation::accumulate_viscosity() {
   }
 }
 
+namespace {
+#if defined(SOFTDROP_AVX_DISPATCH)
+// Bit b: v[b] == value.
+SOFTDROP_AVX512 inline unsigned equal8(const std::int32_t* v, int value) {
+  const __m256i e =
+      _mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(v)), _mm256_set1_epi32(value));
+  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(e)));
+}
+
+// Bit b: mass i + b is inside its ball ((x - ax)^2 + (y - ay)^2 < r2) and its anchor holds no disc,
+// so apply_contact_limit() records it as touching nothing; those records (count 0 at (x, y)) are
+// written for all eight masses, the others' to be overwritten.
+SOFTDROP_AVX512 unsigned record_free8(const double* x, const double* y, const double* ax, const double* ay,
+                                      const double* r2, const std::int32_t* anchored, double* cx, double* cy,
+                                      std::int32_t* count) {
+  const __m512d px = _mm512_loadu_pd(x), py = _mm512_loadu_pd(y);
+  const __m512d ex = _mm512_sub_pd(px, _mm512_loadu_pd(ax)), ey = _mm512_sub_pd(py, _mm512_loadu_pd(ay));
+  const __m512d e2 = _mm512_add_pd(_mm512_mul_pd(ex, ex), _mm512_mul_pd(ey, ey));
+  const unsigned m = _mm512_cmp_pd_mask(e2, _mm512_loadu_pd(r2), _CMP_LT_OQ) & equal8(anchored, 0);
+  _mm512_storeu_pd(cx, px);
+  _mm512_storeu_pd(cy, py);
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(count), _mm256_setzero_si256());
+  return m;
+}
+#endif
+
+}  // namespace
+
 void Simulation::apply_contact_limit() {
   // Inverse dynamics for contacts: no mass stays deeper than max_depth inside a grain, and one
   // that is pushed back loses the normal velocity that carried it in (an inelastic stop).
@@ -352,7 +383,7 @@ void Simulation::apply_contact_limit() {
   const double W = medium_.width, limit = params_.max_depth;
   const bool periodic = medium_.periodic;
   const std::size_t capacity = contact_capacity_;
-  for (int i = 0; i < n; ++i) {
+  const auto limit_mass = [&](int i) {
     const double x = state_.x[i], y = state_.y[i];
     const std::size_t first = static_cast<std::size_t>(i) * capacity;
     GrainGrid::Disc* inside = contacts_.data() + first;
@@ -379,7 +410,7 @@ void Simulation::apply_contact_limit() {
         contact_count_[i] = count;
         contact_x_[i] = x;
         contact_y_[i] = y;
-        continue;
+        return;
       }
     }
     const double xw = periodic ? wrap_periodic(x, W) : x;
@@ -429,7 +460,18 @@ void Simulation::apply_contact_limit() {
     clear_y_[i] = y;
     clear_count_[i] = anchored ? count : 0;
     if (anchored) std::copy(inside, inside + count, clear_discs_.begin() + static_cast<std::ptrdiff_t>(first));
-  }
+  };
+  int i = 0;
+#if defined(SOFTDROP_AVX_DISPATCH)
+  if (constraint_vector_width() == VectorWidth::avx512)  // eight masses at a time, most of them free
+    for (; i + 8 <= n; i += 8) {
+      const unsigned free = record_free8(state_.x.data() + i, state_.y.data() + i, clear_x_.data() + i,
+                                         clear_y_.data() + i, clear_r2_.data() + i, clear_count_.data() + i,
+                                         contact_x_.data() + i, contact_y_.data() + i, contact_count_.data() + i);
+      for (unsigned todo = ~free & 0xFFu; todo != 0; todo &= todo - 1) limit_mass(i + std::countr_zero(todo));
+    }
+#endif
+  for (; i < n; ++i) limit_mass(i);
 }
 
 namespace {
@@ -646,6 +688,80 @@ bool Simulation::after_constraint() {
   return std::isfinite(area_) && area_ > 0;
 }
 
+// Droplets with the sequential constraint and one set of parameters, stepped together on a copy of
+// their positions laid out lane by lane (lane_layout.hpp), eight to an AVX-512 register: forces,
+// integration and constraint as vector code across droplets, whose one-ring forms are chains of
+// dependent sums; the collisions (a grid look-up per mass) droplet by droplet on that copy. Each
+// lane does the one-ring stages' operations in their order, so every droplet gets the bits
+// step() gives it. Its forces stay in the copy: state().fx, fy are not updated.
+struct LaneBlockStep {
+  // Whether droplets of parameters a and b can share a block: the same constants for every stage
+  // that runs across lanes (the collisions and the contact limit run droplet by droplet).
+  static bool compatible(const DropletParams& a, const DropletParams& b) {
+    return a.masses == b.masses && a.constraint_iterations == b.constraint_iterations &&
+           a.constraint_order == b.constraint_order && same_bits(a.mass, b.mass) && same_bits(a.radius, b.radius) &&
+           same_bits(a.max_strain, b.max_strain) && same_bits(a.nrt, b.nrt) && same_bits(a.ks, b.ks) &&
+           same_bits(a.kd, b.kd) && same_bits(a.gravity, b.gravity) && same_bits(a.dt, b.dt) &&
+           same_bits(a.viscosity, b.viscosity);
+  }
+  // before_constraint(), the sequential constraint and nothing else of step() for sims[0..count),
+  // count <= lanes::kMaxLanes, all compatible with sims[0].
+  static void step(Simulation* const* sims, int count);
+};
+
+#if defined(SOFTDROP_AVX_DISPATCH)
+void LaneBlockStep::step(Simulation* const* sims, int count) {
+  const Simulation& first = *sims[0];
+  const DropletParams& p = first.params_;
+  const int n = first.state_.size();
+  const int registers = (count + 7) / 8, L = 8 * registers;
+  const std::size_t size = static_cast<std::size_t>(n) * static_cast<std::size_t>(L);
+  double* const X = lanes::step_scratch(6 * size);
+  double* const block[6] = {X, X + size, X + 2 * size, X + 3 * size, X + 4 * size, X + 5 * size};
+  double *FX = block[4], *FY = block[5];
+  // Padding lanes repeat the last droplet and are not copied back.
+  double* in[4][lanes::kMaxLanes];
+  double* out[2][lanes::kMaxLanes];
+  for (int t = 0; t < L; ++t) {
+    DropletState& s = sims[std::min(t, count - 1)]->state_;
+    double* const arrays[4] = {s.x.data(), s.y.data(), s.px.data(), s.py.data()};
+    for (int a = 0; a < 4; ++a) in[a][t] = arrays[a];
+    for (int a = 0; a < 2; ++a) out[a][t] = t < count ? arrays[a] : nullptr;
+  }
+  for (int a = 0; a < 4; ++a) lanes::copy_in(in[a], block[a], n, registers);
+  lanes::StepConstants k;  // as the one-ring stages compute them
+  k.weight = p.mass * p.gravity;
+  k.ks = p.ks;
+  k.kd = p.kd;
+  k.inv_dt = 1.0 / p.dt;
+  k.rest_length = first.rest_length_;
+  k.half_nrt = 0.5 * p.nrt;
+  k.viscous = p.mass * p.viscosity;
+  k.h2m = p.dt * p.dt / p.mass;
+  double area[lanes::kMaxLanes];
+  lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n, registers);
+  for (int t = 0; t < count; ++t) {
+    sims[t]->area_ = area[t];
+    sims[t]->accumulate_collisions(FX + t, FY + t, L);
+  }
+  if (p.viscosity > 0) lanes::viscosity(k, block[0], block[1], block[2], block[3], FX, FY, n, registers);
+  lanes::integrate(k.h2m, block[0], block[1], block[2], block[3], FX, FY, n, registers);
+  const double dmax = (1 + p.max_strain) * first.rest_length_, dmin = (1 - p.max_strain) * first.rest_length_;
+  int corrections[lanes::kMaxLanes];
+  lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax, corrections);
+  // Verlet left the positions the step began with as the previous ones, so px, py are x, y as they
+  // still are in each state: copied there rather than back from the block.
+  for (int t = 0; t < count; ++t) {
+    DropletState& s = sims[t]->state_;
+    std::copy(s.x.begin(), s.x.end(), s.px.begin());
+    std::copy(s.y.begin(), s.y.end(), s.py.begin());
+  }
+  for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers);
+}
+#else
+void LaneBlockStep::step(Simulation* const*, int) { throw std::logic_error("lane-by-lane step without AVX-512"); }
+#endif
+
 namespace {
 
 // A lane of run_interleaved: the droplet and its run's book-keeping. (RunStepper holds a reference,
@@ -805,6 +921,8 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   std::vector<Lane> slots(static_cast<std::size_t>(lanes));
   std::vector<DropletState*> rings;
   std::vector<int> corrections;
+  std::vector<Simulation*> block;
+  const bool lane_wise = constraint_vector_width() == VectorWidth::avx512;
   LaneExchangeSeat seat(exchange, lanes);
   int busy = 0;
   auto idle_lane = [&]() -> Lane& {
@@ -844,13 +962,21 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
           break;
         }
     }
-    // One step of every busy lane: forces and integration each, the sequential constraints of the
-    // rings that share the first one's constraint parameters together, then the contact limits.
+    // One step of every busy lane. With AVX-512, the droplets with the sequential constraint and
+    // the first one's parameters go lane by lane up to the contact limit (LaneBlockStep); the
+    // others, and all without AVX-512: forces and integration each, the sequential constraints of
+    // the rings that share the first one's constraint parameters together. Then the contact limits.
     rings.clear();
+    block.clear();
     const Simulation* first = nullptr;
     for (Lane& l : slots) {
       if (!l.run) continue;
       Simulation* sim = l.run->simulation();
+      if (lane_wise && sim->params().constraint_order == ConstraintOrder::sequential &&
+          (block.empty() || LaneBlockStep::compatible(block.front()->params(), sim->params()))) {
+        block.push_back(sim);
+        continue;
+      }
       if (sim->before_constraint()) {
         if (!first) first = sim;
         const DropletParams &a = first->params(), &b = sim->params();
@@ -868,6 +994,8 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
                                           first->params().max_strain, first->params().constraint_iterations,
                                           corrections.data());
     }
+    for (std::size_t b = 0; b < block.size(); b += lanes::kMaxLanes)
+      LaneBlockStep::step(block.data() + b, static_cast<int>(std::min<std::size_t>(lanes::kMaxLanes, block.size() - b)));
     for (Lane& l : slots) {
       if (!l.run) continue;
       const bool ok = l.run->simulation()->after_constraint();

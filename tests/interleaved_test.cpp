@@ -130,6 +130,73 @@ TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
   EXPECT_GT(outcomes[static_cast<int>(Outcome::stuck)], 0);
 }
 
+TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
+  // 30 lanes: with AVX-512 the droplets of the first one's parameters go lane by lane (blocks of up
+  // to 24: three registers, then one with padding lanes), the others (other stiffness, red-black,
+  // another ring size) droplet by droplet. Solid walls, droplets started against them; with and
+  // without viscosity. Each must end as it does alone, at every vector width.
+  MediumOptions mo;
+  mo.porosity = 0.8;
+  mo.width = mo.height = 200;
+  mo.seed = 11;
+  mo.periodic = false;
+  const Medium medium = generate_medium(mo);
+  RunOptions o;
+  o.stuck_window = 0.1;
+  o.max_steps = 15000;
+  o.path_interval = 40;
+  for (double viscosity : {1.0e4, 0.0}) {
+    SCOPED_TRACE("viscosity " + std::to_string(viscosity));
+    std::vector<DropletParams> params;
+    std::vector<double> x0;
+    for (int i = 0; i < 30; ++i) {
+      DropletParams p;
+      p.viscosity = viscosity;
+      if (i % 7 == 3) p.ks *= 1.1;
+      if (i % 11 == 5) p.constraint_order = ConstraintOrder::red_black;
+      if (i % 13 == 6) p.masses = 32;
+      params.push_back(p);
+      x0.push_back(i % 10 == 0 ? 4.0 : i % 10 == 9 ? 196.0 : 6.0 + 6.3 * i);
+    }
+    std::vector<RunSummary> solo;
+    std::vector<std::uint64_t> solo_end;  // the state each run ends in
+    for (std::size_t i = 0; i < params.size(); ++i) {
+      Simulation alone(params[i], medium);
+      solo.push_back(alone.run(x0[i], o));
+      solo_end.push_back(alone.state_hash());
+    }
+    for (VectorWidth width : test::kVectorWidths) {
+      const test::VectorWidthLimit limit(width);
+      SCOPED_TRACE("vector width " + std::to_string(static_cast<int>(limit.in_use())));
+      std::vector<std::unique_ptr<Simulation>> sims;
+      for (const DropletParams& p : params) sims.push_back(std::make_unique<Simulation>(p, medium));
+      std::size_t next = 0;
+      std::map<std::int64_t, RunSummary> got;
+      run_interleaved(
+          30,
+          [&](DropletJob* job, bool) {
+            if (next == params.size()) return false;
+            *job = {sims[next].get(), x0[next], &o, static_cast<std::int64_t>(next)};
+            ++next;
+            return true;
+          },
+          [&](std::int64_t id, RunSummary&& s) { got.emplace(id, std::move(s)); });
+      ASSERT_EQ(got.size(), params.size());
+      for (std::size_t i = 0; i < params.size(); ++i)
+        expect_same(got.at(static_cast<std::int64_t>(i)), solo[i], "droplet " + std::to_string(i));
+      for (std::size_t i = 0; i < params.size(); ++i) EXPECT_EQ(sims[i]->state_hash(), solo_end[i]) << "droplet " << i;
+    }
+    int walls = 0, outcomes[4] = {};
+    for (const RunSummary& s : solo) {
+      ++outcomes[static_cast<int>(s.outcome)];
+      walls += s.start_x < 10 || s.start_x > 190;
+    }
+    EXPECT_GT(outcomes[static_cast<int>(Outcome::passed)], 0);
+    EXPECT_GT(outcomes[static_cast<int>(Outcome::stuck)] + outcomes[static_cast<int>(Outcome::timeout)], 0);
+    EXPECT_EQ(walls, 6);
+  }
+}
+
 TEST(Interleaved, BatchResultsDoNotDependOnLanesOrThreads) {
   MediumOptions mo;
   mo.porosity = 0.75;

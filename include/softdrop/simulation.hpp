@@ -3,6 +3,7 @@
 /// One droplet pushed by gravity through a medium: the step as named stages, exit conditions,
 /// tortuosity of the centre-of-mass path and optional traces.
 
+#include <cstddef>
 #include <cstdint>
 #include <exception>
 #include <functional>
@@ -136,7 +137,10 @@ class Simulation {
 
  private:
   friend class RunStepper;
+  friend struct LaneBlockStep;
   bool any_grain_inside_ring() const;
+  /// accumulate_collisions() adding mass i's force to fx[i * stride], fy[i * stride].
+  void accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride);
 
   DropletParams params_;
   const Medium& medium_;

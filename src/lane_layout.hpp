@@ -1,0 +1,65 @@
+#pragma once
+// Rings laid out lane by lane (internal): up to kMaxLaneRegisters x 8 rings of n masses each,
+// mass i of ring t at X[i * L + t], L = 8 x registers, so one AVX-512 register holds mass i of
+// eight rings. Every function here runs AVX-512 code: call it only where
+// constraint_vector_width() is VectorWidth::avx512. Each lane gets the operations the one-ring
+// code does, in the same order, so each ring gets the same bits.
+
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+namespace softdrop::lanes {
+
+constexpr int kMaxLaneRegisters = 3;
+constexpr int kMaxLanes = 8 * kMaxLaneRegisters;
+
+/// f(std::integral_constant<int, registers>{}) for registers 1 to kMaxLaneRegisters.
+template <class F>
+void with_registers(int registers, const F& f) {
+  switch (registers) {
+    case 3: f(std::integral_constant<int, 3>{}); break;
+    case 2: f(std::integral_constant<int, 2>{}); break;
+    case 1: f(std::integral_constant<int, 1>{}); break;
+    default: throw std::invalid_argument("lane registers = " + std::to_string(registers) + ": must be 1, 2 or 3");
+  }
+}
+
+/// X[i L + t] = rings[t][i] for i < n, t < 8 registers.
+void copy_in(double* const* rings, double* X, int n, int registers);
+/// rings[t][i] = X[i L + t]; a null rings[t] (a padding lane) is skipped.
+void copy_out(double* const* rings, const double* X, int n, int registers);
+
+/// The sequential order of the Provot constraint (apply_length_constraint) on every lane of X, Y:
+/// passes until no ring changes or `iterations` passes; counts[t] gets ring t's corrections.
+void constrain_sequential(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
+                          int* counts);
+
+/// The constants of Simulation's force and integration stages, as those stages compute them.
+struct StepConstants {
+  double weight = 0;        ///< m g_y, each mass's y force before the others
+  double ks = 0, kd = 0;    ///< spring stiffness and damping
+  double inv_dt = 0;        ///< 1 / dt
+  double rest_length = 0;   ///< d0
+  double half_nrt = 0;      ///< 0.5 nRT (the pressure is 0.5 nRT / area on each edge end)
+  double viscous = 0;       ///< m nu; 0: no viscosity
+  double h2m = 0;           ///< dt^2 / m (position Verlet)
+};
+
+/// Simulation's accumulate_gravity, accumulate_springs and accumulate_pressure on every lane: sets
+/// FX, FY from X, Y, PX, PY and area[t] to ring t's area.
+void forces_before_contacts(const StepConstants& k, const double* X, const double* Y, const double* PX,
+                            const double* PY, double* FX, double* FY, double* area, int n, int registers);
+/// Simulation::accumulate_viscosity on every lane (adds to FX, FY).
+void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY,
+               double* FX, double* FY, int n, int registers);
+/// Simulation::integrate (position Verlet) on every lane.
+void integrate(double h2m, double* X, double* Y, double* PX, double* PY, const double* FX, const double* FY, int n,
+               int registers);
+
+/// This thread's scratch of at least `doubles` doubles for a lane-by-lane step, grown when needed
+/// (so a step allocates nothing once it has run). Apart from the constraint's own copy.
+double* step_scratch(std::size_t doubles);
+
+}  // namespace softdrop::lanes
