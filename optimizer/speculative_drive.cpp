@@ -301,21 +301,23 @@ class Pipeline {
   std::vector<std::thread> threads_;
 };
 
-// Lanes per thread when DriveOptions::lanes is 0. The lanes hide the latency of the sequential
-// constraint's chain (run_interleaved steps the chains of several rings side by side); a red-black
-// constraint has no chain to hide, so one candidate per thread does best and throws the least
-// speculative work away (bench_scenes search-l2-long-red-black: 1.20 / 2.39 M steps/s on 1 / 2
-// threads with 1 lane, 1.18 / 2.29 with 2, 1.16 / 2.14 with 4). For the sequential order, on 1 and
-// 2 threads, 8 did best, except 4 at lambda = 1 without AVX-512, where 8 rings take two AVX
-// registers' chains instead of one (the table at DriveOptions::lanes). With more
-// threads the pipeline would run that many lanes each, ever further ahead: most of that work is
-// thrown away (a generation accepts once in 5 to 15 on the benchmark searches), and the lanes slow
-// each candidate down (with 8 lanes each steps about 2.5 times slower than alone), which delays the
+// Lanes per thread when DriveOptions::lanes is 0. With AVX-512, run_interleaved steps the lanes as
+// one block laid out lane by lane (every stage but the contacts as vector code across candidates),
+// for either constraint order; 8 lanes did best on 1 and 2 threads (the table at
+// DriveOptions::lanes; red-black, bench_scenes search-l2-red-black-1thread / search-l2-red-black:
+// 1 lane 69 / 130 evaluations/s, 4 lanes 82 / 147, 8 lanes 103 / 164). Without AVX-512, lanes hide
+// the latency of the sequential constraint's chain (the chains of several rings side by side):
+// 8 lanes, 4 at lambda = 1, where 8 rings take two AVX registers' chains instead of one; a
+// red-black constraint has no chain to hide there, so one candidate per thread does best and
+// throws the least speculative work away. With more threads the pipeline would run that many
+// lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in 5
+// to 15 on the benchmark searches), and the lanes slow each candidate down, which delays the
 // decisions the rest waits for. So more threads keep the candidates in flight of 2 threads, spread
 // over fewer lanes each. That is an extrapolation: this 2-core machine cannot measure more threads.
 int default_lanes(int lambda, int workers, ConstraintOrder order) {
-  if (order == ConstraintOrder::red_black) return 1;
-  const int per_thread = constraint_vector_width() >= VectorWidth::avx512 ? 8 : std::min(8, 4 * lambda);
+  const bool blocks = constraint_vector_width() >= VectorWidth::avx512;
+  if (order == ConstraintOrder::red_black && !blocks) return 1;
+  const int per_thread = blocks ? 8 : std::min(8, 4 * lambda);
   return std::max(1, std::min(per_thread, 2 * per_thread / workers));
 }
 

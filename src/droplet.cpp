@@ -613,6 +613,50 @@ SOFTDROP_AVX512 void oct_passes(double* X, double* Y, int n, int iterations, dou
   }
 }
 
+// The red-black order (red_black_pass) on rings laid out lane by lane, eight to a register: each
+// spring of a half-pass for all lanes at once; passes go on while some ring of a register changes
+// (a pass that changes nothing would change nothing again).
+template <int K>
+SOFTDROP_AVX512 void red_black_lanes(double* X, double* Y, int n, int iterations, double dmin, double dmax,
+                                     int* counts) {
+  constexpr int L = 8 * K;
+  OctLimits l;
+  set_oct_limits(&l, dmin, dmax);
+  const __m512i one = _mm512_set1_epi64(1);
+  const int pairs = n / 2, odd_pairs = n % 2 == 0 ? pairs - 1 : pairs;
+  bool active[K];
+  for (int r = 0; r < K; ++r) active[r] = true;
+  for (int t = 0; t < L; ++t) counts[t] = 0;
+  for (int pass = 0; pass < iterations; ++pass) {
+    bool any = false;
+    for (int r = 0; r < K; ++r) {
+      if (!active[r]) continue;
+      __m512i changed = _mm512_setzero_si512();
+      const auto spring = [&](int i, int j) SOFTDROP_AVX512 {
+        double *xi = X + i * L + 8 * r, *yi = Y + i * L + 8 * r, *xj = X + j * L + 8 * r, *yj = Y + j * L + 8 * r;
+        __m512d ax = _mm512_loadu_pd(xi), ay = _mm512_loadu_pd(yi), bx = _mm512_loadu_pd(xj), by = _mm512_loadu_pd(yj);
+        const unsigned moved = constrain_eight(l, &ax, &ay, &bx, &by);
+        if (moved == 0) return;
+        changed = _mm512_mask_add_epi64(changed, static_cast<__mmask8>(moved), changed, one);
+        _mm512_storeu_pd(xi, ax);
+        _mm512_storeu_pd(yi, ay);
+        _mm512_storeu_pd(xj, bx);
+        _mm512_storeu_pd(yj, by);
+      };
+      for (int k = 0; k < pairs; ++k) spring(2 * k, 2 * k + 1);
+      for (int k = 0; k < odd_pairs; ++k) spring(2 * k + 1, 2 * k + 2);
+      spring(n - 1, 0);
+      alignas(64) long long lane_changes[8];
+      _mm512_store_si512(lane_changes, changed);
+      long long sum = 0;
+      for (int b = 0; b < 8; ++b) counts[8 * r + b] += static_cast<int>(lane_changes[b]), sum += lane_changes[b];
+      active[r] = sum != 0;
+      any = any || active[r];
+    }
+    if (!any) break;
+  }
+}
+
 // oct_passes() on a lane-by-lane copy of the rings x[0..8K), y[...].
 template <int K>
 SOFTDROP_AVX512 void sequential_passes_oct(double* const* x, double* const* y, int n, int iterations, double dmin,
@@ -708,6 +752,11 @@ void copy_out(double* const* rings, const double* X, int n, int registers) {
 void constrain_sequential(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                           int* counts) {
   with_registers(registers, [&](auto k) { oct_passes<decltype(k)::value>(X, Y, n, iterations, dmin, dmax, counts); });
+}
+void constrain_red_black(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
+                         int* counts) {
+  with_registers(registers,
+                 [&](auto k) { red_black_lanes<decltype(k)::value>(X, Y, n, iterations, dmin, dmax, counts); });
 }
 }  // namespace lanes
 #endif

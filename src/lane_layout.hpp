@@ -35,6 +35,9 @@ void copy_out(double* const* rings, const double* X, int n, int registers);
 /// passes until no ring changes or `iterations` passes; counts[t] gets ring t's corrections.
 void constrain_sequential(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                           int* counts);
+/// The red-black order of the constraint, as constrain_sequential.
+void constrain_red_black(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
+                         int* counts);
 
 /// The constants of Simulation's force and integration stages, as those stages compute them.
 struct StepConstants {

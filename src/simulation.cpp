@@ -688,10 +688,11 @@ bool Simulation::after_constraint() {
   return std::isfinite(area_) && area_ > 0;
 }
 
-// Droplets with the sequential constraint and one set of parameters, stepped together on a copy of
-// their positions laid out lane by lane (lane_layout.hpp), eight to an AVX-512 register: forces,
-// integration and constraint as vector code across droplets, whose one-ring forms are chains of
-// dependent sums; the collisions (a grid look-up per mass) droplet by droplet on that copy. Each
+// Droplets of one set of parameters, stepped together on a copy of their positions laid out lane
+// by lane (lane_layout.hpp), eight to an AVX-512 register: forces, integration and constraint
+// (either order) as vector code across droplets, where the one-ring forms are chains of dependent
+// sums and square roots; the collisions (a grid look-up per mass) droplet by droplet on that copy,
+// the contact limit and the run's book-keeping on each droplet's own state afterwards. Each
 // lane does the one-ring stages' operations in their order, so every droplet gets the bits
 // step() gives it. Its forces stay in the copy: state().fx, fy are not updated.
 struct LaneBlockStep {
@@ -704,7 +705,11 @@ struct LaneBlockStep {
            same_bits(a.kd, b.kd) && same_bits(a.gravity, b.gravity) && same_bits(a.dt, b.dt) &&
            same_bits(a.viscosity, b.viscosity);
   }
-  // before_constraint(), the sequential constraint and nothing else of step() for sims[0..count),
+  // Fewer droplets step faster one by one (bench_scenes batch-1lane-1thread: 0.35 M steps/s in a
+  // block, 0.38 M alone; search-l2-red-black-1thread with 2 lanes: 54 evaluations/s in blocks, 65
+  // alone; with 3: 67 and 63).
+  static constexpr std::size_t kFewest = 3;
+  // before_constraint() and apply_constraint() (all of step() but the contact limit) for sims[0..count),
   // count <= lanes::kMaxLanes, all compatible with sims[0].
   static void step(Simulation* const* sims, int count);
 };
@@ -748,7 +753,10 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   lanes::integrate(k.h2m, block[0], block[1], block[2], block[3], FX, FY, n, registers);
   const double dmax = (1 + p.max_strain) * first.rest_length_, dmin = (1 - p.max_strain) * first.rest_length_;
   int corrections[lanes::kMaxLanes];
-  lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax, corrections);
+  if (p.constraint_order == ConstraintOrder::sequential)
+    lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax, corrections);
+  else
+    lanes::constrain_red_black(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax, corrections);
   // Verlet left the positions the step began with as the previous ones, so px, py are x, y as they
   // still are in each state: copied there rather than back from the block.
   for (int t = 0; t < count; ++t) {
@@ -921,7 +929,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   std::vector<Lane> slots(static_cast<std::size_t>(lanes));
   std::vector<DropletState*> rings;
   std::vector<int> corrections;
-  std::vector<Simulation*> block;
+  std::vector<Simulation*> block, alone;
   const bool lane_wise = constraint_vector_width() == VectorWidth::avx512;
   LaneExchangeSeat seat(exchange, lanes);
   int busy = 0;
@@ -962,21 +970,28 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
           break;
         }
     }
-    // One step of every busy lane. With AVX-512, the droplets with the sequential constraint and
-    // the first one's parameters go lane by lane up to the contact limit (LaneBlockStep); the
-    // others, and all without AVX-512: forces and integration each, the sequential constraints of
-    // the rings that share the first one's constraint parameters together. Then the contact limits.
-    rings.clear();
+    // One step of every busy lane. With AVX-512, the droplets with the first one's parameters go
+    // lane by lane up to the contact limit (LaneBlockStep) if there are at least kFewest; the
+    // others, and all without AVX-512:
+    // forces and integration each, the sequential constraints of the rings that share the first
+    // one's constraint parameters together. Then the contact limits.
     block.clear();
-    const Simulation* first = nullptr;
+    alone.clear();
     for (Lane& l : slots) {
       if (!l.run) continue;
       Simulation* sim = l.run->simulation();
-      if (lane_wise && sim->params().constraint_order == ConstraintOrder::sequential &&
-          (block.empty() || LaneBlockStep::compatible(block.front()->params(), sim->params()))) {
+      if (lane_wise && (block.empty() || LaneBlockStep::compatible(block.front()->params(), sim->params())))
         block.push_back(sim);
-        continue;
-      }
+      else
+        alone.push_back(sim);
+    }
+    if (block.size() < LaneBlockStep::kFewest) {
+      alone.insert(alone.end(), block.begin(), block.end());
+      block.clear();
+    }
+    rings.clear();
+    const Simulation* first = nullptr;
+    for (Simulation* sim : alone) {
       if (sim->before_constraint()) {
         if (!first) first = sim;
         const DropletParams &a = first->params(), &b = sim->params();
@@ -994,8 +1009,13 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
                                           first->params().max_strain, first->params().constraint_iterations,
                                           corrections.data());
     }
-    for (std::size_t b = 0; b < block.size(); b += lanes::kMaxLanes)
-      LaneBlockStep::step(block.data() + b, static_cast<int>(std::min<std::size_t>(lanes::kMaxLanes, block.size() - b)));
+    // Blocks of nearly equal size: 25 droplets go as 13 and 12, not 24 and 1.
+    const std::size_t blocks = (block.size() + lanes::kMaxLanes - 1) / lanes::kMaxLanes;
+    for (std::size_t b = 0, begin = 0; b < blocks; ++b) {
+      const std::size_t end = block.size() * (b + 1) / blocks;
+      LaneBlockStep::step(block.data() + begin, static_cast<int>(end - begin));
+      begin = end;
+    }
     for (Lane& l : slots) {
       if (!l.run) continue;
       const bool ok = l.run->simulation()->after_constraint();

@@ -156,8 +156,9 @@ struct DriveOptions {
   bool speculate = true;
   /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 8 on 1
   /// and 2 threads (4 at λ = 1 without AVX-512); more threads keep as many candidates in flight as
-  /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order, 0 means
-  /// 1 (lanes hide the sequential constraint's chain, which red-black does not have). More lanes
+  /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order and
+  /// without AVX-512, 0 means 1 (there the lanes only hide the sequential constraint's chain, which
+  /// red-black does not have; with AVX-512 they are stepped as one block of vector code). More lanes
   /// evaluate faster but run further ahead, so more speculative work is dropped when a generation
   /// accepts, and each candidate steps slower, which delays the decisions the others wait for.
   /// Evaluations/s by lanes, bench_scenes (60 or 120 generations) and `optimize --lambda 4
@@ -178,6 +179,19 @@ struct DriveOptions {
   ///   | λ = 1, 2 threads | 103.5 | 110.1 | 108.1 | 90.0  | 84.2 |
   ///   | λ = 2, 1 thread  | 33.8  |       | 43.5  | 42.3  | 45.8 |
   ///   | λ = 2, 2 threads | 64.7  |       | 75.0  | 70.6  | 61.8 |
+  ///
+  /// With AVX-512 and the lanes stepped as one block (run_interleaved's lane-by-lane stages; 3
+  /// repeats; red-black: other histories, so compare within its rows):
+  ///
+  ///   | search                    | 1     | 4     | 6     | 8     | 12    | 16   |
+  ///   | λ = 1, 1 thread           |       | 70.7  | 85.1  | 91.6  | 82.3  | 83.3 |
+  ///   | λ = 1, 2 threads          |       | 120.0 | 125.9 | 132.3 | 110.4 | 106.1 |
+  ///   | λ = 2, 1 thread           |       | 38.5  | 47.7  | 56.8  | 55.4  | 61.2 |
+  ///   | λ = 2, 2 threads          |       | 70.5  | 83.8  | 97.6  | 88.9  | 82.4 |
+  ///   | λ = 1 red-black, 1 thread | 61.4  | 72.3  |       | 78.8  | 64.3  |      |
+  ///   | λ = 1 red-black, 2 threads| 114.9 | 116.4 |       | 118.1 | 83.2  |      |
+  ///   | λ = 2 red-black, 1 thread | 69.1  | 82.3  |       | 103.1 | 83.7  |      |
+  ///   | λ = 2 red-black, 2 threads| 129.5 | 146.6 |       | 163.8 | 130.2 |      |
   int lanes = 0;
 
   /// False, with the reason naming the option, for lanes outside [0, 64].
