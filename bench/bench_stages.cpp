@@ -3,12 +3,14 @@
 // Run: build/bench/bench_stages --benchmark_out=bench/results/stages.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "bench_media.hpp"
+#include "lane_layout.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -107,6 +109,73 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
       static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
   softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
+// The stages a batch steps lane by lane (run_interleaved with AVX-512, src/lane_layout.hpp) on K
+// rings in contact, 8 to a register: gravity, springs and pressure; viscosity; the copies in and
+// out of the lane-by-lane layout a step makes (x, y, px, py in; x, y out). Time per iteration
+// covers all K rings.
+template <class Body>
+void lane_stage(benchmark::State& state, const Body& body) {
+  if (softdrop::constraint_vector_width() != softdrop::VectorWidth::avx512) {
+    state.SkipWithError("needs AVX-512");
+    return;
+  }
+  const int rings = static_cast<int>(state.range(1)), registers = (rings + 7) / 8, lanes = 8 * registers;
+  const softdrop::Medium medium = softdrop::bench::medium_200();
+  softdrop::DropletParams p;
+  p.masses = static_cast<int>(state.range(0));
+  std::vector<std::unique_ptr<Simulation>> sims;
+  for (int r = 0; r < rings; ++r) sims.push_back(softdrop::bench::droplet_in_contact(p, medium));
+  const std::size_t size = static_cast<std::size_t>(p.masses) * static_cast<std::size_t>(lanes);
+  std::vector<double> block(6 * size);
+  double* const a[6] = {block.data(), block.data() + size, block.data() + 2 * size, block.data() + 3 * size,
+                        block.data() + 4 * size, block.data() + 5 * size};
+  std::vector<double*> in[4];
+  for (int t = 0; t < lanes; ++t) {
+    softdrop::DropletState& st = sims[static_cast<std::size_t>(std::min(t, rings - 1))]->mutable_state();
+    in[0].push_back(st.x.data());
+    in[1].push_back(st.y.data());
+    in[2].push_back(st.px.data());
+    in[3].push_back(st.py.data());
+  }
+  for (int k = 0; k < 4; ++k) softdrop::lanes::copy_in(in[k].data(), a[k], p.masses, registers);
+  softdrop::lanes::StepConstants c;
+  c.weight = p.mass * p.gravity;
+  c.ks = p.ks;
+  c.kd = p.kd;
+  c.inv_dt = 1.0 / p.dt;
+  c.rest_length = p.rest_length();
+  c.half_nrt = 0.5 * p.nrt;
+  c.viscous = p.mass * p.viscosity;
+  c.h2m = p.dt * p.dt / p.mass;
+  for (auto _ : state) body(c, a, in, p.masses, registers);
+  state.counters["mass-updates/s"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
+  state.counters["ns/ring"] = benchmark::Counter(static_cast<double>(state.iterations()) * rings,
+                                                 benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+void BM_LaneForces(benchmark::State& s) {
+  std::vector<double> area(softdrop::lanes::kMaxLanes);
+  lane_stage(s, [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+    softdrop::lanes::forces_before_contacts(c, a[0], a[1], a[2], a[3], a[4], a[5], area.data(), n, r);
+    benchmark::DoNotOptimize(a[4][0]);
+  });
+}
+void BM_LaneViscosity(benchmark::State& s) {
+  lane_stage(s, [](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+    softdrop::lanes::viscosity(c, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
+    benchmark::DoNotOptimize(a[4][0]);
+  });
+}
+void BM_LaneCopies(benchmark::State& s) {
+  lane_stage(s, [](const softdrop::lanes::StepConstants&, double* const* a, std::vector<double*>* in, int n, int r) {
+    for (int k = 0; k < 4; ++k) softdrop::lanes::copy_in(in[k].data(), a[k], n, r);
+    for (int k = 0; k < 2; ++k) softdrop::lanes::copy_out(in[k].data(), a[k], n, r);
+  });
+}
+BENCHMARK(BM_LaneForces)->ArgsProduct({{40}, {8, 24}});
+BENCHMARK(BM_LaneViscosity)->ArgsProduct({{40}, {8, 24}});
+BENCHMARK(BM_LaneCopies)->ArgsProduct({{40}, {8, 24}});
+
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 2, 3, 4, 6, 8, 10, 12}, {4}});
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 8, 12, 16, 20, 24}, {8}});
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {6}, {2}});
