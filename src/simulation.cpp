@@ -285,15 +285,25 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
   const double W = medium_.width;
   const bool periodic = medium_.periodic;
   double deepest = 0;
+  // The arrays as locals: the touched set's byte stores may alias anything, and would otherwise make
+  // the compiler reload every vector's data pointer after each of them.
+  const double *xs = state_.x.data(), *ys = state_.y.data(), *pxs = state_.px.data(), *pys = state_.py.data();
+  const double *cxs = contact_x_.data(), *cys = contact_y_.data();
+  const std::int32_t* counts = contact_count_.data();
+  const GrainGrid::Disc* const contacts = contacts_.data();
+  const std::size_t capacity = contact_capacity_;
+  std::uint8_t* const touched = touched_.data();
   for (int i = 0; i < n; ++i) {
-    const double x = state_.x[i], y = state_.y[i];
-    const bool recorded = same_bits(x, contact_x_[i]) && same_bits(y, contact_y_[i]);
+    const double x = xs[i], y = ys[i];
+    const bool recorded = same_bits(x, cxs[i]) && same_bits(y, cys[i]);
     // Most masses touch nothing: recorded inside no disc, and within the walls.
-    if (recorded && contact_count_[i] == 0 && (periodic || !(x < 0 || x > W))) continue;
-    const double vx = (x - state_.px[i]) * inv_dt, vy = (y - state_.py[i]) * inv_dt;
+    if (recorded && counts[i] == 0 && (periodic || !(x < 0 || x > W))) continue;
+    const double vx = (x - pxs[i]) * inv_dt, vy = (y - pys[i]) * inv_dt;
     const double xw = periodic ? wrap_periodic(x, W) : x;
-    // The same discs in the same order as the grid's, less those the mass is not inside.
-    const auto range = recorded ? cached_contacts(i) : grid_.discs_near(xw, y);
+    // The same discs in the same order as the grid's, less those the mass is not inside (the
+    // record: cached_contacts(i)).
+    const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
+    const auto range = recorded ? GrainGrid::DiscRange{record, record + counts[i]} : grid_.discs_near(xw, y);
     for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) {
       const double dx = xw - g->x, dy = y - g->y, r = g->r;
       const double d2 = dx * dx + dy * dy;
@@ -305,7 +315,7 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
       const double f = std::max(0.0, kc * depth - cc * (vx * nx + vy * ny));
       fx[i * stride] += f * nx;
       fy[i * stride] += f * ny;
-      touched_[static_cast<std::size_t>(g->grain)] = 1;
+      touched[static_cast<std::size_t>(g->grain)] = 1;
       deepest = std::max(deepest, depth);
     }
     if (!periodic) {  // solid side walls
