@@ -112,7 +112,7 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
 // The stages a batch steps lane by lane (run_interleaved with AVX-512, src/lane_layout.hpp) on K
 // rings in contact, 8 to a register: gravity, springs and pressure; viscosity; the copies in and
 // out of the lane-by-lane layout a step makes (x, y, px, py in; x, y out). Time per iteration
-// covers all K rings.
+// covers all K rings; seconds/ring is the time per ring.
 template <class Body>
 void lane_stage(benchmark::State& state, const Body& body) {
   if (softdrop::constraint_vector_width() != softdrop::VectorWidth::avx512) {
@@ -147,10 +147,20 @@ void lane_stage(benchmark::State& state, const Body& body) {
   c.half_nrt = 0.5 * p.nrt;
   c.viscous = p.mass * p.viscosity;
   c.h2m = p.dt * p.dt / p.mass;
-  for (auto _ : state) body(c, a, in, p.masses, registers);
+  std::vector<double> area(softdrop::lanes::kMaxLanes);
+  softdrop::lanes::forces_before_contacts(c, a[0], a[1], a[2], a[3], a[4], a[5], area.data(), p.masses, registers);
+  long k = 0;
+  for (auto _ : state) {
+    body(c, a, in, p.masses, registers);
+    if (++k % 256 == 0) {  // back to the droplets' states, so that they stay in contact
+      state.PauseTiming();
+      for (int b = 0; b < 4; ++b) softdrop::lanes::copy_in(in[b].data(), a[b], p.masses, registers);
+      state.ResumeTiming();
+    }
+  }
   state.counters["mass-updates/s"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
-  state.counters["ns/ring"] = benchmark::Counter(static_cast<double>(state.iterations()) * rings,
+  state.counters["seconds/ring"] = benchmark::Counter(static_cast<double>(state.iterations()) * rings,
                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 void BM_LaneForces(benchmark::State& s) {
@@ -172,6 +182,23 @@ void BM_LaneCopies(benchmark::State& s) {
     for (int k = 0; k < 2; ++k) softdrop::lanes::copy_out(in[k].data(), a[k], n, r);
   });
 }
+// Integration and each constraint order lane by lane, as BM_ConstraintSequentialInterleaved but
+// without its copies in and out.
+void BM_LaneConstraint(benchmark::State& s) {
+  const bool red_black = s.range(2) != 0;
+  s.SetLabel(red_black ? "red-black" : "sequential");
+  softdrop::DropletParams p;
+  const double dmax = (1 + p.max_strain) * p.rest_length(), dmin = (1 - p.max_strain) * p.rest_length();
+  std::vector<int> counts(softdrop::lanes::kMaxLanes);
+  lane_stage(s, [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+    softdrop::lanes::integrate(c.h2m, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
+    if (red_black)
+      softdrop::lanes::constrain_red_black(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
+    else
+      softdrop::lanes::constrain_sequential(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
+  });
+}
+BENCHMARK(BM_LaneConstraint)->ArgsProduct({{40}, {8, 24}, {0, 1}});
 BENCHMARK(BM_LaneForces)->ArgsProduct({{40}, {8, 24}});
 BENCHMARK(BM_LaneViscosity)->ArgsProduct({{40}, {8, 24}});
 BENCHMARK(BM_LaneCopies)->ArgsProduct({{40}, {8, 24}});

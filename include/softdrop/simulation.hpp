@@ -207,10 +207,14 @@ class LaneExchange {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Runs droplets on this thread `lanes` at a time, stepped together: their sequential Provot
-/// constraints, a chain of dependent square roots and divisions each, go link by link side by side
-/// (apply_length_constraint_interleaved), so the processor overlaps the chains. Every droplet gets
-/// exactly the operations of Simulation::run, so its summary has the same bits.
+/// Runs droplets on this thread `lanes` at a time, stepped together. With AVX-512, three or more
+/// droplets of one set of parameters go as one block laid out lane by lane, eight to a register:
+/// every stage but the contacts (forces, viscosity, integration, either constraint order) is
+/// vector code across droplets, so the chains of dependent sums, square roots and divisions that
+/// bound one ring serve eight. Without it, their sequential Provot constraints go link by link
+/// side by side (apply_length_constraint_interleaved), so the processor overlaps the chains. Every
+/// droplet gets exactly the operations of Simulation::run, so its summary has the same bits (its
+/// state().fx, fy, scratch of a step, are not kept in a block).
 /// `next(job, may_wait)` fills in the next droplet and returns true, or returns false: when
 /// may_wait is false, there is none at the moment (it is asked again after the next step); when
 /// may_wait is true (every lane is idle), there are none left and the driver returns (with an
