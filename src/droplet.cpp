@@ -565,6 +565,16 @@ SOFTDROP_AVX512 void transpose_rings(double* const* x, double* X, int n) {
     }
 }
 
+// Adds the eight lanes of `changed` (a pass's corrections of eight rings) to counts[0..8); whether
+// any ring changed.
+SOFTDROP_AVX512 inline bool add_lane_counts(__m512i changed, int* counts) {
+  alignas(64) long long lane_changes[8];
+  _mm512_store_si512(lane_changes, changed);
+  long long sum = 0;
+  for (int b = 0; b < 8; ++b) counts[b] += static_cast<int>(lane_changes[b]), sum += lane_changes[b];
+  return sum != 0;
+}
+
 // Eight rings per AVX-512 register, on rings laid out lane by lane (X[i L + lane]): a link loads
 // and stores whole registers instead of gathering and scattering eight lanes.
 template <int K>
@@ -602,11 +612,7 @@ SOFTDROP_AVX512 void oct_passes(double* X, double* Y, int n, int iterations, dou
       if (!active[r]) continue;
       _mm512_storeu_pd(X + 8 * r, xi[r]);  // the closing spring's correction of mass 0
       _mm512_storeu_pd(Y + 8 * r, yi[r]);
-      alignas(64) long long lane_changes[8];
-      _mm512_store_si512(lane_changes, changed[r]);
-      long long sum = 0;
-      for (int b = 0; b < 8; ++b) counts[8 * r + b] += static_cast<int>(lane_changes[b]), sum += lane_changes[b];
-      active[r] = sum != 0;
+      active[r] = add_lane_counts(changed[r], counts + 8 * r);
       any = any || active[r];
     }
     if (!any) break;
@@ -646,11 +652,7 @@ SOFTDROP_AVX512 void red_black_lanes(double* X, double* Y, int n, int iterations
       for (int k = 0; k < pairs; ++k) spring(2 * k, 2 * k + 1);
       for (int k = 0; k < odd_pairs; ++k) spring(2 * k + 1, 2 * k + 2);
       spring(n - 1, 0);
-      alignas(64) long long lane_changes[8];
-      _mm512_store_si512(lane_changes, changed);
-      long long sum = 0;
-      for (int b = 0; b < 8; ++b) counts[8 * r + b] += static_cast<int>(lane_changes[b]), sum += lane_changes[b];
-      active[r] = sum != 0;
+      active[r] = add_lane_counts(changed, counts + 8 * r);
       any = any || active[r];
     }
     if (!any) break;
