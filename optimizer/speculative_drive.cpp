@@ -80,41 +80,41 @@ class Pipeline {
     const auto t0 = std::chrono::steady_clock::now();
     const int lambda = search_.options().lambda;
     std::vector<Candidate> candidates;
-    {
-      std::unique_lock lock(m_);
-      const std::int64_t g = completed_ + 1;
-      cv_.wait(lock, [&] {
-        if (error_) return true;
-        for (int k = 0; k < lambda; ++k)
-          if (!done_.count({g, k})) return false;
-        return true;
-      });
-      if (error_) std::rethrow_exception(error_);
-      for (int k = 0; k < lambda; ++k) {
-        auto it = done_.find({g, k});
-        candidates.push_back(std::move(it->second));
-        done_.erase(it);
-      }
+    // All under the lock, from taking the candidates out of done_ to completed_: predict(), which
+    // workers call as their candidates finish, must never see this generation without them (it
+    // would take it to accept nothing and predict the next one from the wrong parent; a 20 ms
+    // pause here, outside the lock, made four search tests throw).
+    std::unique_lock lock(m_);
+    const std::int64_t g = completed_ + 1;
+    cv_.wait(lock, [&] {
+      if (error_) return true;
+      for (int k = 0; k < lambda; ++k)
+        if (!done_.count({g, k})) return false;
+      return true;
+    });
+    if (error_) std::rethrow_exception(error_);
+    for (int k = 0; k < lambda; ++k) {
+      auto it = done_.find({g, k});
+      candidates.push_back(std::move(it->second));
+      done_.erase(it);
     }
     const Generation gen =
         search_.complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-    {
-      std::lock_guard lock(m_);
-      completed_ = gen.number;
-      const auto p = predicted_.find(gen.number);
-      if (p != predicted_.end()) {
-        // predict() saw the last of these candidates arrive, so it chose as complete() did.
-        if (gen.accepted != p->second.k)
-          throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) + " accepted " +
-                                 std::to_string(gen.accepted) + ", predicted " + std::to_string(p->second.k));
-        base_ = p->second.parent;
-        predicted_.erase(p);
-      } else if (gen.accepted >= 0) {
-        base_ = std::make_shared<const Configuration>(search_.best());
-        begin_lineage(base_, gen.number + 1);
-      }
-      predict();  // the next generation's candidates may all have finished already
+    completed_ = gen.number;
+    const auto p = predicted_.find(gen.number);
+    if (p != predicted_.end()) {
+      // predict() saw the last of these candidates arrive, so it chose as complete() did.
+      if (gen.accepted != p->second.k)
+        throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) + " accepted " +
+                               std::to_string(gen.accepted) + ", predicted " + std::to_string(p->second.k));
+      base_ = p->second.parent;
+      predicted_.erase(p);
+    } else if (gen.accepted >= 0) {
+      base_ = std::make_shared<const Configuration>(search_.best());
+      begin_lineage(base_, gen.number + 1);
     }
+    predict();  // the next generation's candidates may all have finished already
+    lock.unlock();
     cv_.notify_all();
     return gen;
   }
