@@ -17,11 +17,15 @@
 #include <vector>
 
 #include "evaluation.hpp"
+#include "pipeline_pause.hpp"
 #include "softdrop/search.hpp"
 #include "validation.hpp"
 #include "worker_threads.hpp"
 
 namespace softdrop {
+namespace detail {
+std::atomic<int> pipeline_completion_pause_ms{0};
+}  // namespace detail
 using detail::as_evaluation;
 using detail::evaluation_run;
 using detail::improves;
@@ -82,8 +86,9 @@ class Pipeline {
     std::vector<Candidate> candidates;
     // All under the lock, from taking the candidates out of done_ to completed_: predict(), which
     // workers call as their candidates finish, must never see this generation without them (it
-    // would take it to accept nothing and predict the next one from the wrong parent; a 20 ms
-    // pause here, outside the lock, made four search tests throw).
+    // would take it to accept nothing and predict the next one from the wrong parent; with the
+    // completion outside the lock, a 20 ms pause here made four search tests throw, and
+    // Search.ASlowCompletionKeepsTheHistory pauses here).
     std::unique_lock lock(m_);
     const std::int64_t g = completed_ + 1;
     cv_.wait(lock, [&] {
@@ -98,6 +103,8 @@ class Pipeline {
       candidates.push_back(std::move(it->second));
       done_.erase(it);
     }
+    if (const int ms = detail::pipeline_completion_pause_ms.load(std::memory_order_relaxed); ms > 0)
+      std::this_thread::sleep_for(std::chrono::milliseconds(ms));
     const Generation gen =
         search_.complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     completed_ = gen.number;

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <tuple>
 
+#include "../optimizer/pipeline_pause.hpp"
 #include "search_fixtures.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/params_json.hpp"
@@ -280,6 +281,30 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
   const SearchSummary sum = drive(slow, none, nullptr);
   EXPECT_EQ(sum.speculation.predictions, 0);
   EXPECT_EQ(sum.speculation.dropped, 0);
+}
+
+TEST(Search, ASlowCompletionKeepsTheHistory) {
+  // Completing a generation pauses 20 ms after taking its candidates (the fault-injection point of
+  // pipeline_pause.hpp) while the workers go on finishing and predicting later generations: they
+  // must not see the generation half-completed. (With the completion outside the pipeline's lock
+  // this threw "generation 2 accepted -1, predicted 0".)
+  const SearchOptions o = test::small_search_options(4);
+  const Configuration best = start(o);
+  const Reference a = one_at_a_time(o, best, 16);
+  struct Pause {
+    Pause() { detail::pipeline_completion_pause_ms.store(20); }
+    ~Pause() { detail::pipeline_completion_pause_ms.store(0); }
+  } pause;
+  for (auto [threads, lanes] : {std::pair{1, 4}, std::pair{2, 3}, std::pair{2, 8}}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(lanes) + " lanes");
+    DriveOptions d;
+    d.generations = 16;
+    d.threads = threads;
+    d.lanes = lanes;
+    const Driven b = drive_recorded(o, best, d);
+    expect_same_history(a, b);
+    EXPECT_EQ(b.summary.speculation.predictions, b.summary.accepted + b.summary.speculation.mispredictions);
+  }
 }
 
 TEST(Search, PredictionsAheadOfUndecidedGenerationsKeepTheHistory) {
