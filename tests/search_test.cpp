@@ -232,6 +232,19 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
   EXPECT_EQ(b.summary.speculation.lanes, constraint_vector_width() >= VectorWidth::avx512 ? 8 : 1);
 }
 
+// Drives the generations of `a` from `best` on `threads` threads with `lanes` lanes each, expects
+// a's history, and returns the summary.
+SearchSummary drive_as(const Reference& a, const SearchOptions& o, const Configuration& best, int threads,
+                       int lanes) {
+  DriveOptions d;
+  d.generations = static_cast<std::int64_t>(a.history.size());
+  d.threads = threads;
+  d.lanes = lanes;
+  const Driven b = drive_recorded(o, best, d);
+  expect_same_history(a, b);
+  return b.summary;
+}
+
 TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
   // Once a finished candidate of the generation being decided beats the best, the pipeline goes on
   // from it; another candidate finishing later may still win. On one thread the lanes finish in a
@@ -255,13 +268,7 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
   ASSERT_GT(accepted, 0);
   for (auto [threads, lanes] : {std::pair{1, 4}, std::pair{2, 3}}) {
     SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(lanes) + " lanes");
-    DriveOptions d;
-    d.generations = 16;
-    d.threads = threads;
-    d.lanes = lanes;
-    const Driven b = drive_recorded(o, best, d);
-    expect_same_history(a, b);
-    const SearchSummary& sum = b.summary;
+    const SearchSummary sum = drive_as(a, o, best, threads, lanes);
     EXPECT_EQ(sum.accepted, accepted);
     // Every accepting generation was predicted before it completed, at least once.
     EXPECT_GE(sum.speculation.predictions, accepted);
@@ -297,13 +304,8 @@ TEST(Search, ASlowCompletionKeepsTheHistory) {
   } pause;
   for (auto [threads, lanes] : {std::pair{1, 4}, std::pair{2, 3}, std::pair{2, 8}}) {
     SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(lanes) + " lanes");
-    DriveOptions d;
-    d.generations = 16;
-    d.threads = threads;
-    d.lanes = lanes;
-    const Driven b = drive_recorded(o, best, d);
-    expect_same_history(a, b);
-    EXPECT_EQ(b.summary.speculation.predictions, b.summary.accepted + b.summary.speculation.mispredictions);
+    const SearchSummary sum = drive_as(a, o, best, threads, lanes);
+    EXPECT_EQ(sum.speculation.predictions, sum.accepted + sum.speculation.mispredictions);
   }
 }
 
