@@ -138,15 +138,7 @@ void lane_stage(benchmark::State& state, const Body& body) {
     in[3].push_back(st.py.data());
   }
   for (int k = 0; k < 4; ++k) softdrop::lanes::copy_in(in[k].data(), a[k], p.masses, registers);
-  softdrop::lanes::StepConstants c;
-  c.weight = p.mass * p.gravity;
-  c.ks = p.ks;
-  c.kd = p.kd;
-  c.inv_dt = 1.0 / p.dt;
-  c.rest_length = p.rest_length();
-  c.half_nrt = 0.5 * p.nrt;
-  c.viscous = p.mass * p.viscosity;
-  c.h2m = p.dt * p.dt / p.mass;
+  const softdrop::lanes::StepConstants c = softdrop::lanes::step_constants(p);
   std::vector<double> area(softdrop::lanes::kMaxLanes);
   softdrop::lanes::forces_before_contacts(c, a[0], a[1], a[2], a[3], a[4], a[5], area.data(), p.masses, registers);
   long k = 0;

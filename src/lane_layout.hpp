@@ -10,6 +10,8 @@
 #include <string>
 #include <type_traits>
 
+#include "softdrop/droplet.hpp"
+
 namespace softdrop::lanes {
 
 constexpr int kMaxLaneRegisters = 3;
@@ -49,6 +51,9 @@ struct StepConstants {
   double viscous = 0;       ///< m nu; 0: no viscosity
   double h2m = 0;           ///< dt^2 / m (position Verlet)
 };
+
+/// The constants of droplets of parameters p, computed as the one-ring stages compute them.
+StepConstants step_constants(const DropletParams& p);
 
 /// Simulation's accumulate_gravity, accumulate_springs and accumulate_pressure on every lane: sets
 /// FX, FY from X, Y, PX, PY and area[t] to ring t's area.

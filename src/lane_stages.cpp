@@ -169,6 +169,19 @@ SOFTDROP_AVX512 void verlet_lanes(double h2m, double* X, double* Y, double* PX, 
 
 }  // namespace
 
+StepConstants step_constants(const DropletParams& p) {
+  StepConstants k;
+  k.weight = p.mass * p.gravity;  // accumulate_gravity
+  k.ks = p.ks;
+  k.kd = p.kd;
+  k.inv_dt = 1.0 / p.dt;
+  k.rest_length = p.rest_length();  // Simulation's rest_length()
+  k.half_nrt = 0.5 * p.nrt;         // accumulate_pressure: 0.5 nRT / area
+  k.viscous = p.mass * p.viscosity;
+  k.h2m = p.dt * p.dt / p.mass;     // integrate
+  return k;
+}
+
 void forces_before_contacts(const StepConstants& k, const double* X, const double* Y, const double* PX,
                             const double* PY, double* FX, double* FY, double* area, int n, int registers) {
   with_registers(registers, [&](auto r) { forces_k<decltype(r)::value>(k, X, Y, PX, PY, FX, FY, area, n); });

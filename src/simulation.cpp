@@ -744,15 +744,7 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
     for (int a = 0; a < 2; ++a) out[a][t] = t < count ? arrays[a] : nullptr;
   }
   for (int a = 0; a < 4; ++a) lanes::copy_in(in[a], block[a], n, registers);
-  lanes::StepConstants k;  // as the one-ring stages compute them
-  k.weight = p.mass * p.gravity;
-  k.ks = p.ks;
-  k.kd = p.kd;
-  k.inv_dt = 1.0 / p.dt;
-  k.rest_length = first.rest_length_;
-  k.half_nrt = 0.5 * p.nrt;
-  k.viscous = p.mass * p.viscosity;
-  k.h2m = p.dt * p.dt / p.mass;
+  const lanes::StepConstants k = lanes::step_constants(p);
   double area[lanes::kMaxLanes];
   lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n, registers);
   for (int t = 0; t < count; ++t) {
