@@ -10,6 +10,7 @@
 #include <memory>
 #include <stdexcept>
 #include <thread>
+#include <tuple>
 
 #include "fixtures.hpp"
 #include "softdrop/batch.hpp"
@@ -134,8 +135,8 @@ TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
   // 30 lanes: with AVX-512 the droplets of the first one's parameters go lane by lane (blocks of up
   // to 24: three registers, then one with padding lanes), the others (other stiffness, the other
   // constraint order, another ring size) droplet by droplet. Solid walls, droplets started against
-  // them; with and without viscosity, either order first. Each must end as it does alone, at every
-  // vector width.
+  // them; with and without viscosity, either order first, an even and an odd ring. Each must end as
+  // it does alone, at every vector width.
   MediumOptions mo;
   mo.porosity = 0.8;
   mo.width = mo.height = 200;
@@ -147,14 +148,18 @@ TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
   o.max_steps = 15000;
   o.path_interval = 40;
   const ConstraintOrder seq = ConstraintOrder::sequential, rb = ConstraintOrder::red_black;
-  for (auto [viscosity, order] : {std::pair{1.0e4, seq}, std::pair{0.0, seq}, std::pair{1.0e4, rb}}) {
-    SCOPED_TRACE("viscosity " + std::to_string(viscosity) + ", " + to_string(order));
+  // An odd ring (41 masses) too: red-black's closing spring then touches the first spring's mass.
+  for (auto [viscosity, order, masses] : {std::tuple{1.0e4, seq, 40}, std::tuple{0.0, seq, 40},
+                                          std::tuple{1.0e4, rb, 40}, std::tuple{1.0e4, rb, 41}}) {
+    SCOPED_TRACE("viscosity " + std::to_string(viscosity) + ", " + to_string(order) + ", " +
+                 std::to_string(masses) + " masses");
     std::vector<DropletParams> params;
     std::vector<double> x0;
     for (int i = 0; i < 30; ++i) {
       DropletParams p;
       p.viscosity = viscosity;
       p.constraint_order = order;
+      p.masses = masses;
       if (i % 7 == 3) p.ks *= 1.1;
       if (i % 11 == 5) p.constraint_order = order == seq ? rb : seq;
       if (i % 13 == 6) p.masses = 32;
