@@ -1,20 +1,23 @@
 // Scene benchmarks: whole runs, timed over repeats (minimum and median), written as CSV with the
 // machine and compiler. Issue 6 measures its targets with these.
 //
-//   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--lanes N] [--out FILE.csv]
+//   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--lanes N] [--width W]
+//                            [--out FILE.csv]
 //
 // Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
 // 5000 grains); medium-200-red-black (medium-200 with the red-black constraint order); batch
 // (`simulate --droplets 24` on the medium-200 medium: one droplet at a time on 1 thread, the
-// default lanes stepped together (24 with AVX-512, 12 with AVX, 6 with SSE2) on 1 thread, and on
-// all threads);
+// default lanes stepped together (24 with AVX-512 or AVX, 6 with SSE2) on 1 thread, and on all
+// threads);
 // sweep and sweep-long (16 and 64 droplets through each of 4 media, on 1 thread and on all; the
 // paper's sweep has 200 per medium); search-l1 and search-l2 (the default search at lambda 1 and 2, on 1 thread and on all threads
 // with speculation, as `optimize` runs it: 120 and 60 generations); search-l2-long (the same at
 // lambda 2 over 400 generations, where the acceptances thin out and the end of the run weighs less);
 // search-*-red-black (the same searches with the red-black constraint order: other histories, so
-// compare their steps per second). --lanes sets the search scenes' lanes (0: the default).
+// compare their steps per second). --lanes sets the search scenes' lanes (0: the default). --width
+// uses at most that vector width (8: AVX-512, 4: AVX, 2: SSE2, 1: scalar), to time what a
+// processor without AVX-512 runs.
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -183,7 +186,7 @@ double peak_rss_mb() {
 
 int main(int argc, char** argv) {
   std::string scene = "all", out;
-  int repeats = 5, threads = static_cast<int>(std::thread::hardware_concurrency());
+  int repeats = 5, threads = static_cast<int>(std::thread::hardware_concurrency()), width = 8;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -198,6 +201,7 @@ int main(int argc, char** argv) {
     else if (a == "--threads") threads = std::stoi(value());
     else if (a == "--out") out = value();
     else if (a == "--lanes") search_lanes = std::stoi(value());
+    else if (a == "--width") width = std::stoi(value());
     else {
       std::cerr << "bench_scenes: unknown option " << a << "\n";
       return 2;
@@ -207,6 +211,11 @@ int main(int argc, char** argv) {
     std::cerr << "bench_scenes: --repeats and --threads must be >= 1, --lanes >= 0\n";
     return 2;
   }
+  if (width != 1 && width != 2 && width != 4 && width != 8) {
+    std::cerr << "bench_scenes: --width " << width << ": must be 1, 2, 4 or 8\n";
+    return 2;
+  }
+  limit_constraint_vector_width(static_cast<VectorWidth>(width));
   const Medium m200 = bench::medium_200(), m5000 = bench::medium_200(2500);
   const std::vector<std::pair<std::string, std::function<Work()>>> scenes{
       {"free-fall", free_fall},

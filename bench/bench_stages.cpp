@@ -109,16 +109,19 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
       static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
   softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
-// The stages a batch steps lane by lane (run_interleaved with AVX-512, src/lane_layout.hpp) on K
-// rings in contact, 8 to a register: gravity, springs and pressure; viscosity; the copies in and
-// out of the lane-by-lane layout a step makes (x, y, px, py in; x, y out). Time per iteration
-// covers all K rings; seconds/ring is the time per ring.
+// The stages a batch steps lane by lane (run_interleaved with AVX-512 or AVX, src/lane_layout.hpp)
+// on K rings in contact, 8 to a group, at vector width W (8: AVX-512, 4: AVX): gravity, springs
+// and pressure; viscosity; the copies in and out of the lane-by-lane layout a step makes (x, y,
+// px, py in; x, y out). Time per iteration covers all K rings; seconds/ring is the time per ring.
 template <class Body>
-void lane_stage(benchmark::State& state, const Body& body) {
-  if (softdrop::constraint_vector_width() != softdrop::VectorWidth::avx512) {
-    state.SkipWithError("needs AVX-512");
+void lane_stage(benchmark::State& state, std::int64_t width, const std::string& what, const Body& body) {
+  const softdrop::VectorWidth used = softdrop::limit_constraint_vector_width(static_cast<softdrop::VectorWidth>(width));
+  if (used < softdrop::VectorWidth::avx) {
+    state.SkipWithError("needs AVX");
+    softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
     return;
   }
+  state.SetLabel(what + "width " + std::to_string(static_cast<int>(used)));
   const int rings = static_cast<int>(state.range(1)), registers = (rings + 7) / 8, lanes = 8 * registers;
   const softdrop::Medium medium = softdrop::bench::medium_200();
   softdrop::DropletParams p;
@@ -154,22 +157,23 @@ void lane_stage(benchmark::State& state, const Body& body) {
       static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
   state.counters["seconds/ring"] = benchmark::Counter(static_cast<double>(state.iterations()) * rings,
                                                  benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
 void BM_LaneForces(benchmark::State& s) {
   std::vector<double> area(softdrop::lanes::kMaxLanes);
-  lane_stage(s, [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+  lane_stage(s, s.range(2), "", [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
     softdrop::lanes::forces_before_contacts(c, a[0], a[1], a[2], a[3], a[4], a[5], area.data(), n, r);
     benchmark::DoNotOptimize(a[4][0]);
   });
 }
 void BM_LaneViscosity(benchmark::State& s) {
-  lane_stage(s, [](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+  lane_stage(s, s.range(2), "", [](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
     softdrop::lanes::viscosity(c, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
     benchmark::DoNotOptimize(a[4][0]);
   });
 }
 void BM_LaneCopies(benchmark::State& s) {
-  lane_stage(s, [](const softdrop::lanes::StepConstants&, double* const* a, std::vector<double*>* in, int n, int r) {
+  lane_stage(s, s.range(2), "", [](const softdrop::lanes::StepConstants&, double* const* a, std::vector<double*>* in, int n, int r) {
     for (int k = 0; k < 4; ++k) softdrop::lanes::copy_in(in[k].data(), a[k], n, r);
     for (int k = 0; k < 2; ++k) softdrop::lanes::copy_out(in[k].data(), a[k], n, r);
   });
@@ -178,11 +182,10 @@ void BM_LaneCopies(benchmark::State& s) {
 // without its copies in and out.
 void BM_LaneConstraint(benchmark::State& s) {
   const bool red_black = s.range(2) != 0;
-  s.SetLabel(red_black ? "red-black" : "sequential");
   softdrop::DropletParams p;
   const double dmax = (1 + p.max_strain) * p.rest_length(), dmin = (1 - p.max_strain) * p.rest_length();
   std::vector<int> counts(softdrop::lanes::kMaxLanes);
-  lane_stage(s, [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+  lane_stage(s, s.range(3), red_black ? "red-black, " : "sequential, ", [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
     softdrop::lanes::integrate(c.h2m, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
     if (red_black)
       softdrop::lanes::constrain_red_black(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
@@ -190,10 +193,10 @@ void BM_LaneConstraint(benchmark::State& s) {
       softdrop::lanes::constrain_sequential(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
   });
 }
-BENCHMARK(BM_LaneConstraint)->ArgsProduct({{40}, {8, 24}, {0, 1}});
-BENCHMARK(BM_LaneForces)->ArgsProduct({{40}, {8, 24}});
-BENCHMARK(BM_LaneViscosity)->ArgsProduct({{40}, {8, 24}});
-BENCHMARK(BM_LaneCopies)->ArgsProduct({{40}, {8, 24}});
+BENCHMARK(BM_LaneConstraint)->ArgsProduct({{40}, {8, 24}, {0, 1}, {8, 4}});
+BENCHMARK(BM_LaneForces)->ArgsProduct({{40}, {8, 24}, {8, 4}});
+BENCHMARK(BM_LaneViscosity)->ArgsProduct({{40}, {8, 24}, {8, 4}});
+BENCHMARK(BM_LaneCopies)->ArgsProduct({{40}, {8, 24}, {8, 4}});
 
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 2, 3, 4, 6, 8, 10, 12}, {4}});
 BENCHMARK(BM_ConstraintSequentialInterleaved)->ArgsProduct({{40}, {1, 8, 12, 16, 20, 24}, {8}});

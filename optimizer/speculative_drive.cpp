@@ -308,23 +308,25 @@ class Pipeline {
   std::vector<std::thread> threads_;
 };
 
-// Lanes per thread when DriveOptions::lanes is 0. With AVX-512, run_interleaved steps the lanes as
-// one block laid out lane by lane (every stage but the contacts as vector code across candidates),
-// for either constraint order; 8 lanes did best on 1 and 2 threads (the table at
-// DriveOptions::lanes; red-black, bench_scenes search-l2-red-black-1thread / search-l2-red-black:
-// 1 lane 69 / 130 evaluations/s, 4 lanes 82 / 147, 8 lanes 103 / 164). Without AVX-512, lanes hide
-// the latency of the sequential constraint's chain (the chains of several rings side by side):
-// 8 lanes, 4 at lambda = 1, where 8 rings take two AVX registers' chains instead of one; a
-// red-black constraint has no chain to hide there, so one candidate per thread does best and
-// throws the least speculative work away. With more threads the pipeline would run that many
+// Lanes per thread when DriveOptions::lanes is 0. With AVX-512 or AVX, run_interleaved steps the
+// lanes as one block laid out lane by lane (every stage but the contacts as vector code across
+// candidates); 8 lanes did best on 1 and 2 threads (the tables at DriveOptions::lanes; with AVX,
+// bench_scenes --width 4, λ = 1 / 2 on 1 thread: 4 lanes 61.5 / 34.0, 8 lanes 77.1 / 48.6
+// evaluations/s). The red-black order gains from blocks with AVX-512 (search-l2-red-black-1thread
+// / search-l2-red-black: 1 lane 69 / 130 evaluations/s, 4 lanes 82 / 147, 8 lanes 103 / 164) but
+// not with AVX, whose groups of eight are two registers (λ = 1 / 2, 1 thread: 1 lane 55.3 / 59.9,
+// 8 lanes 43.1 / 71.6; 2 threads: 65.5 / 101.7 and 66.9 / 97.9): there, and with SSE2, one
+// candidate per thread, which throws the least speculative work away. With SSE2 alone lanes only
+// hide the latency of the sequential constraint's chain (the chains of several rings side by side):
+// 8 lanes, 4 at lambda = 1. With more threads the pipeline would run that many
 // lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in 5
 // to 15 on the benchmark searches), and the lanes slow each candidate down, which delays the
 // decisions the rest waits for. So more threads keep the candidates in flight of 2 threads, spread
 // over fewer lanes each. That is an extrapolation: this 2-core machine cannot measure more threads.
 int default_lanes(int lambda, int workers, ConstraintOrder order) {
-  const bool blocks = constraint_vector_width() >= VectorWidth::avx512;
-  if (order == ConstraintOrder::red_black && !blocks) return 1;
-  const int per_thread = blocks ? 8 : std::min(8, 4 * lambda);
+  const VectorWidth width = constraint_vector_width();
+  if (order == ConstraintOrder::red_black && width < VectorWidth::avx512) return 1;
+  const int per_thread = width >= VectorWidth::avx ? 8 : std::min(8, 4 * lambda);
   return std::max(1, std::min(per_thread, 2 * per_thread / workers));
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lane_layout.hpp"
+#include "lane_simd.hpp"
 #include "simd_dispatch.hpp"
 #include "validation.hpp"
 
@@ -172,37 +173,13 @@ int vector_width() {
 }
 
 #if defined(SOFTDROP_AVX_DISPATCH)
-// Four springs at once: constrain_two() with four lanes, the same operations on each.
-struct QuadLimits {
-  __m256d dmax, dmin, dmax2, dmin2;
-};
-SOFTDROP_AVX inline void set_quad_limits(QuadLimits* l, double lo, double hi) {
-  l->dmax = _mm256_set1_pd(hi);
-  l->dmin = _mm256_set1_pd(lo);
-  l->dmax2 = _mm256_set1_pd(hi * hi);
-  l->dmin2 = _mm256_set1_pd(lo * lo);
-}
-SOFTDROP_AVX inline int constrain_four(const QuadLimits& l, __m256d* xi, __m256d* yi, __m256d* xj, __m256d* yj) {
-  const __m256d dx = _mm256_sub_pd(*xj, *xi), dy = _mm256_sub_pd(*yj, *yi);
-  const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
-  // The SSE2 comparisons: cmple, cmpge, cmpgt are ordered; cmpneq is unordered (true for NaN).
-  const __m256d inside =
-      _mm256_and_pd(_mm256_cmp_pd(d2, l.dmax2, _CMP_LE_OS), _mm256_cmp_pd(d2, l.dmin2, _CMP_GE_OS));
-  const __m256d out = _mm256_andnot_pd(inside, _mm256_cmp_pd(d2, _mm256_setzero_pd(), _CMP_NEQ_UQ));
-  const int mask = _mm256_movemask_pd(out);
-  if (mask == 0) return 0;
-  const __m256d d = _mm256_sqrt_pd(d2);
-  const __m256d longer = _mm256_cmp_pd(d2, l.dmax2, _CMP_GT_OS);
-  const __m256d target = _mm256_or_pd(_mm256_and_pd(longer, l.dmax), _mm256_andnot_pd(longer, l.dmin));
-  const __m256d c = _mm256_div_pd(_mm256_sub_pd(d, target), _mm256_add_pd(d, d));
-  const __m256d cx = _mm256_and_pd(out, _mm256_mul_pd(c, dx)), cy = _mm256_and_pd(out, _mm256_mul_pd(c, dy));
-  const __m256d keep = _mm256_andnot_pd(out, _mm256_set1_pd(-0.0));
-  *xi = _mm256_add_pd(*xi, _mm256_or_pd(cx, keep));
-  *yi = _mm256_add_pd(*yi, _mm256_or_pd(cy, keep));
-  *xj = _mm256_sub_pd(*xj, cx);
-  *yj = _mm256_sub_pd(*yj, cy);
-  return mask;
-}
+// Four and eight springs at once (lane_simd.hpp), shared with the lane-by-lane step.
+using lanes::avx::constrain_four;
+using lanes::avx::QuadLimits;
+using lanes::avx::set_quad_limits;
+using lanes::avx512::constrain_eight;
+using lanes::avx512::OctLimits;
+using lanes::avx512::set_oct_limits;
 
 // The red-black half-pass four springs at a time, from spring 0 while four remain; returns the
 // corrections and sets *done to the springs it did.
@@ -233,35 +210,6 @@ SOFTDROP_AVX int constrain_disjoint_quads(double* x, double* y, int count, doubl
 #endif
 
 #if defined(SOFTDROP_AVX_DISPATCH)
-// Eight springs at once: constrain_four() with eight lanes and AVX-512 masks, the same operations
-// on each lane; a lane in limits is left as it is (constrain_four() adds -0 and subtracts +0,
-// which change no double).
-struct OctLimits {
-  __m512d dmax, dmin, dmax2, dmin2;
-};
-SOFTDROP_AVX512 inline void set_oct_limits(OctLimits* l, double lo, double hi) {
-  l->dmax = _mm512_set1_pd(hi);
-  l->dmin = _mm512_set1_pd(lo);
-  l->dmax2 = _mm512_set1_pd(hi * hi);
-  l->dmin2 = _mm512_set1_pd(lo * lo);
-}
-SOFTDROP_AVX512 inline unsigned constrain_eight(const OctLimits& l, __m512d* xi, __m512d* yi, __m512d* xj,
-                                                __m512d* yj) {
-  const __m512d dx = _mm512_sub_pd(*xj, *xi), dy = _mm512_sub_pd(*yj, *yi);
-  const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
-  const unsigned inside = _mm512_cmp_pd_mask(d2, l.dmax2, _CMP_LE_OS) & _mm512_cmp_pd_mask(d2, l.dmin2, _CMP_GE_OS);
-  const __mmask8 out = static_cast<__mmask8>(~inside & _mm512_cmp_pd_mask(d2, _mm512_setzero_pd(), _CMP_NEQ_UQ));
-  if (out == 0) return 0;
-  const __m512d d = _mm512_mask_sqrt_pd(d2, 0xFF, d2);  // all lanes (GCC 12's _mm512_sqrt_pd warns)
-  const __m512d target = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(d2, l.dmax2, _CMP_GT_OS), l.dmin, l.dmax);
-  const __m512d c = _mm512_div_pd(_mm512_sub_pd(d, target), _mm512_add_pd(d, d));
-  const __m512d cx = _mm512_mul_pd(c, dx), cy = _mm512_mul_pd(c, dy);
-  *xi = _mm512_mask_add_pd(*xi, out, *xi, cx);
-  *yi = _mm512_mask_add_pd(*yi, out, *yi, cy);
-  *xj = _mm512_mask_sub_pd(*xj, out, *xj, cx);
-  *yj = _mm512_mask_sub_pd(*yj, out, *yj, cy);
-  return out;
-}
 
 // constrain_disjoint_quads() eight springs at a time.
 SOFTDROP_AVX512 int constrain_disjoint_octs(double* x, double* y, int count, double dmin, double dmax, int* done) {
@@ -513,164 +461,19 @@ SOFTDROP_AVX void sequential_passes_quad(double* const* x, double* const* y, int
 #endif
 
 #if defined(SOFTDROP_AVX_DISPATCH)
-// Transposes the 8 x 8 block of doubles m[0..7] (m[t][c] -> m[c][t]) with three rounds of
-// two-source permutes.
-SOFTDROP_AVX512 inline void transpose8(__m512d* m) {
-  const __m512i lo1 = _mm512_set_epi64(14, 6, 12, 4, 10, 2, 8, 0), hi1 = _mm512_set_epi64(15, 7, 13, 5, 11, 3, 9, 1);
-  const __m512i lo2 = _mm512_set_epi64(13, 12, 5, 4, 9, 8, 1, 0), hi2 = _mm512_set_epi64(15, 14, 7, 6, 11, 10, 3, 2);
-  const __m512i lo3 = _mm512_set_epi64(11, 10, 9, 8, 3, 2, 1, 0), hi3 = _mm512_set_epi64(15, 14, 13, 12, 7, 6, 5, 4);
-  __m512d a[8], b[8];
-  for (int k = 0; k < 4; ++k) {  // a[2k]: even columns of rows 2k, 2k+1 in pairs; a[2k+1]: odd ones
-    a[2 * k] = _mm512_permutex2var_pd(m[2 * k], lo1, m[2 * k + 1]);
-    a[2 * k + 1] = _mm512_permutex2var_pd(m[2 * k], hi1, m[2 * k + 1]);
-  }
-  for (int k : {0, 1, 4, 5}) {  // b[k]: columns (k%4, k%4+4) of rows 4(k/4)..+3; b[k+2]: (k%4+2, k%4+6)
-    b[k] = _mm512_permutex2var_pd(a[k], lo2, a[k + 2]);
-    b[k + 2] = _mm512_permutex2var_pd(a[k], hi2, a[k + 2]);
-  }
-  for (int k = 0; k < 4; ++k) {  // b[k], b[k+4]: columns k and k + 4 of rows 0-3 and 4-7
-    m[k] = _mm512_permutex2var_pd(b[k], lo3, b[k + 4]);
-    m[k + 4] = _mm512_permutex2var_pd(b[k], hi3, b[k + 4]);
-  }
-}
-
-// This thread's scratch for the lane-by-lane copies, at least `size` doubles: one for all register
-// counts, grown when needed (so a step allocates nothing once it has run).
-double* lane_scratch(std::size_t size) {
-  thread_local std::vector<double> scratch;
-  if (scratch.size() < size) scratch.resize(size);
-  return scratch.data();
-}
-
-// Copies masses [0, n) of rings x[0..L) into X[i L + t] (in) or back (out, skipping a null ring),
-// eight by eight.
-template <int L, bool In>
-SOFTDROP_AVX512 void transpose_rings(double* const* x, double* X, int n) {
-  int i = 0;
-  for (; i + 8 <= n; i += 8)
-    for (int g = 0; g < L; g += 8) {
-      __m512d m[8];
-      for (int t = 0; t < 8; ++t)
-        m[t] = In ? _mm512_loadu_pd(x[g + t] + i) : _mm512_loadu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g);
-      transpose8(m);
-      for (int t = 0; t < 8; ++t) {
-        if (In) _mm512_storeu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g, m[t]);
-        else if (x[g + t]) _mm512_storeu_pd(x[g + t] + i, m[t]);
-      }
-    }
-  for (; i < n; ++i)
-    for (int t = 0; t < L; ++t) {
-      if (In) X[i * L + t] = x[t][i];
-      else if (x[t]) x[t][i] = X[i * L + t];
-    }
-}
-
-// Adds the eight lanes of `changed` (a pass's corrections of eight rings) to counts[0..8); whether
-// any ring changed.
-SOFTDROP_AVX512 inline bool add_lane_counts(__m512i changed, int* counts) {
-  alignas(64) long long lane_changes[8];
-  _mm512_store_si512(lane_changes, changed);
-  long long sum = 0;
-  for (int b = 0; b < 8; ++b) counts[b] += static_cast<int>(lane_changes[b]), sum += lane_changes[b];
-  return sum != 0;
-}
-
-// Eight rings per AVX-512 register, on rings laid out lane by lane (X[i L + lane]): a link loads
-// and stores whole registers instead of gathering and scattering eight lanes.
+// The lane-by-lane sequential constraint (lanes::constrain_sequential) on a copy of the rings
+// x[0..8K), y[...] laid out lane by lane.
 template <int K>
-SOFTDROP_AVX512 void oct_passes(double* X, double* Y, int n, int iterations, double dmin, double dmax, int* counts) {
-  constexpr int L = 8 * K;
-  OctLimits l;
-  set_oct_limits(&l, dmin, dmax);
-  bool active[K];
-  for (int r = 0; r < K; ++r) active[r] = true;
-  for (int t = 0; t < L; ++t) counts[t] = 0;
-  const __m512i one = _mm512_set1_epi64(1);
-  for (int pass = 0; pass < iterations; ++pass) {
-    __m512d xi[K], yi[K];
-    __m512i changed[K];  // lane b of changed[r]: corrections of ring 8 r + b in this pass
-    for (int r = 0; r < K; ++r) {
-      xi[r] = _mm512_loadu_pd(X + 8 * r);
-      yi[r] = _mm512_loadu_pd(Y + 8 * r);
-      changed[r] = _mm512_setzero_si512();
-    }
-    for (int i = 0; i < n; ++i) {
-      const int j = i + 1 == n ? 0 : i + 1;
-      for (int r = 0; r < K; ++r) {
-        if (!active[r]) continue;
-        __m512d xj = _mm512_loadu_pd(X + j * L + 8 * r), yj = _mm512_loadu_pd(Y + j * L + 8 * r);
-        const unsigned moved = constrain_eight(l, &xi[r], &yi[r], &xj, &yj);
-        changed[r] = _mm512_mask_add_epi64(changed[r], static_cast<__mmask8>(moved), changed[r], one);
-        _mm512_storeu_pd(X + i * L + 8 * r, xi[r]);
-        _mm512_storeu_pd(Y + i * L + 8 * r, yi[r]);
-        xi[r] = xj;
-        yi[r] = yj;
-      }
-    }
-    bool any = false;
-    for (int r = 0; r < K; ++r) {
-      if (!active[r]) continue;
-      _mm512_storeu_pd(X + 8 * r, xi[r]);  // the closing spring's correction of mass 0
-      _mm512_storeu_pd(Y + 8 * r, yi[r]);
-      active[r] = add_lane_counts(changed[r], counts + 8 * r);
-      any = any || active[r];
-    }
-    if (!any) break;
-  }
-}
-
-// The red-black order (red_black_pass) on rings laid out lane by lane, eight to a register: each
-// spring of a half-pass for all lanes at once; passes go on while some ring of a register changes
-// (a pass that changes nothing would change nothing again).
-template <int K>
-SOFTDROP_AVX512 void red_black_lanes(double* X, double* Y, int n, int iterations, double dmin, double dmax,
-                                     int* counts) {
-  constexpr int L = 8 * K;
-  OctLimits l;
-  set_oct_limits(&l, dmin, dmax);
-  const __m512i one = _mm512_set1_epi64(1);
-  const int pairs = n / 2, odd_pairs = n % 2 == 0 ? pairs - 1 : pairs;
-  bool active[K];
-  for (int r = 0; r < K; ++r) active[r] = true;
-  for (int t = 0; t < L; ++t) counts[t] = 0;
-  for (int pass = 0; pass < iterations; ++pass) {
-    bool any = false;
-    for (int r = 0; r < K; ++r) {
-      if (!active[r]) continue;
-      __m512i changed = _mm512_setzero_si512();
-      const auto spring = [&](int i, int j) SOFTDROP_AVX512 {
-        double *xi = X + i * L + 8 * r, *yi = Y + i * L + 8 * r, *xj = X + j * L + 8 * r, *yj = Y + j * L + 8 * r;
-        __m512d ax = _mm512_loadu_pd(xi), ay = _mm512_loadu_pd(yi), bx = _mm512_loadu_pd(xj), by = _mm512_loadu_pd(yj);
-        const unsigned moved = constrain_eight(l, &ax, &ay, &bx, &by);
-        if (moved == 0) return;
-        changed = _mm512_mask_add_epi64(changed, static_cast<__mmask8>(moved), changed, one);
-        _mm512_storeu_pd(xi, ax);
-        _mm512_storeu_pd(yi, ay);
-        _mm512_storeu_pd(xj, bx);
-        _mm512_storeu_pd(yj, by);
-      };
-      for (int k = 0; k < pairs; ++k) spring(2 * k, 2 * k + 1);
-      for (int k = 0; k < odd_pairs; ++k) spring(2 * k + 1, 2 * k + 2);
-      spring(n - 1, 0);
-      active[r] = add_lane_counts(changed, counts + 8 * r);
-      any = any || active[r];
-    }
-    if (!any) break;
-  }
-}
-
-// oct_passes() on a lane-by-lane copy of the rings x[0..8K), y[...].
-template <int K>
-SOFTDROP_AVX512 void sequential_passes_oct(double* const* x, double* const* y, int n, int iterations, double dmin,
-                                           double dmax, int* counts) {
-  constexpr int L = 8 * K;
-  double* const X = lane_scratch(2 * static_cast<std::size_t>(n) * L);
-  double* const Y = X + static_cast<std::size_t>(n) * L;
-  transpose_rings<L, true>(x, X, n);
-  transpose_rings<L, true>(y, Y, n);
-  oct_passes<K>(X, Y, n, iterations, dmin, dmax, counts);
-  transpose_rings<L, false>(x, X, n);
-  transpose_rings<L, false>(y, Y, n);
+void sequential_passes_oct(double* const* x, double* const* y, int n, int iterations, double dmin, double dmax,
+                           int* counts) {
+  const std::size_t size = static_cast<std::size_t>(n) * 8 * K;
+  double* const X = lanes::step_scratch(2 * size);
+  double* const Y = X + size;
+  lanes::copy_in(x, X, n, K);
+  lanes::copy_in(y, Y, n, K);
+  lanes::constrain_sequential(X, Y, n, K, iterations, dmin, dmax, counts);
+  lanes::copy_out(x, X, n, K);
+  lanes::copy_out(y, Y, n, K);
 }
 #endif
 
@@ -741,27 +544,6 @@ void apply_length_constraint_interleaved(DropletState* const* rings, int count, 
   }
 }
 
-#if defined(SOFTDROP_AVX_DISPATCH)
-namespace lanes {
-void copy_in(double* const* rings, double* X, int n, int registers) {
-  with_registers(registers, [&](auto k) { transpose_rings<8 * decltype(k)::value, true>(rings, X, n); });
-}
-void copy_out(double* const* rings, const double* X, int n, int registers) {
-  // transpose_rings only reads X when it copies out.
-  with_registers(registers,
-                 [&](auto k) { transpose_rings<8 * decltype(k)::value, false>(rings, const_cast<double*>(X), n); });
-}
-void constrain_sequential(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
-                          int* counts) {
-  with_registers(registers, [&](auto k) { oct_passes<decltype(k)::value>(X, Y, n, iterations, dmin, dmax, counts); });
-}
-void constrain_red_black(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
-                         int* counts) {
-  with_registers(registers,
-                 [&](auto k) { red_black_lanes<decltype(k)::value>(X, Y, n, iterations, dmin, dmax, counts); });
-}
-}  // namespace lanes
-#endif
 
 VectorWidth constraint_vector_width() { return static_cast<VectorWidth>(vector_width()); }
 

@@ -1,9 +1,10 @@
 #pragma once
 // Rings laid out lane by lane (internal): up to kMaxLaneRegisters x 8 rings of n masses each,
-// mass i of ring t at X[i * L + t], L = 8 x registers, so one AVX-512 register holds mass i of
-// eight rings. Every function here runs AVX-512 code: call it only where
-// constraint_vector_width() is VectorWidth::avx512. Each lane gets the operations the one-ring
-// code does, in the same order, so each ring gets the same bits.
+// mass i of ring t at X[i * L + t], L = 8 x registers, so one group of eight lanes (an AVX-512
+// register, or two AVX ones) holds mass i of eight rings. The functions here run AVX-512 or AVX
+// code (lane_stages.cpp, lane_kernels.inc), whichever constraint_vector_width() says: call them
+// only where it is at least VectorWidth::avx. Each lane gets the operations the one-ring code does,
+// in the same order, so each ring gets the same bits with either.
 
 #include <cstddef>
 #include <stdexcept>
@@ -17,7 +18,8 @@ namespace softdrop::lanes {
 constexpr int kMaxLaneRegisters = 3;
 constexpr int kMaxLanes = 8 * kMaxLaneRegisters;
 
-/// f(std::integral_constant<int, registers>{}) for registers 1 to kMaxLaneRegisters.
+/// f(std::integral_constant<int, registers>{}) for registers (groups of eight lanes) 1 to
+/// kMaxLaneRegisters.
 template <class F>
 void with_registers(int registers, const F& f) {
   switch (registers) {

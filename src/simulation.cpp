@@ -382,6 +382,26 @@ SOFTDROP_AVX512 unsigned record_free8(const double* x, const double* y, const do
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(count), _mm256_setzero_si256());
   return m;
 }
+
+// record_free8() with AVX, four masses at a time.
+SOFTDROP_AVX unsigned record_free8_avx(const double* x, const double* y, const double* ax, const double* ay,
+                                       const double* r2, const std::int32_t* anchored, double* cx, double* cy,
+                                       std::int32_t* count) {
+  unsigned m = 0;
+  for (int h = 0; h < 8; h += 4) {
+    const __m256d px = _mm256_loadu_pd(x + h), py = _mm256_loadu_pd(y + h);
+    const __m256d ex = _mm256_sub_pd(px, _mm256_loadu_pd(ax + h)), ey = _mm256_sub_pd(py, _mm256_loadu_pd(ay + h));
+    const __m256d e2 = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
+    const auto in = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(e2, _mm256_loadu_pd(r2 + h), _CMP_LT_OQ)));
+    const __m128i held = _mm_loadu_si128(reinterpret_cast<const __m128i*>(anchored + h));
+    const auto none = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(held, _mm_setzero_si128()))));
+    m |= (in & none) << h;
+    _mm256_storeu_pd(cx + h, px);
+    _mm256_storeu_pd(cy + h, py);
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(count + h), _mm_setzero_si128());
+  }
+  return m;
+}
 #endif
 
 }  // namespace
@@ -473,11 +493,13 @@ void Simulation::apply_contact_limit() {
   };
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
-  if (constraint_vector_width() == VectorWidth::avx512)  // eight masses at a time, most of them free
+  const VectorWidth width = constraint_vector_width();
+  if (width >= VectorWidth::avx)  // eight masses at a time, most of them free (AVX: four by four)
     for (; i + 8 <= n; i += 8) {
-      const unsigned free = record_free8(state_.x.data() + i, state_.y.data() + i, clear_x_.data() + i,
-                                         clear_y_.data() + i, clear_r2_.data() + i, clear_count_.data() + i,
-                                         contact_x_.data() + i, contact_y_.data() + i, contact_count_.data() + i);
+      const auto record = width == VectorWidth::avx512 ? record_free8 : record_free8_avx;
+      const unsigned free = record(state_.x.data() + i, state_.y.data() + i, clear_x_.data() + i,
+                                   clear_y_.data() + i, clear_r2_.data() + i, clear_count_.data() + i,
+                                   contact_x_.data() + i, contact_y_.data() + i, contact_count_.data() + i);
       for (unsigned todo = ~free & 0xFFu; todo != 0; todo &= todo - 1) limit_mass(i + std::countr_zero(todo));
     }
 #endif
@@ -699,12 +721,13 @@ bool Simulation::after_constraint() {
 }
 
 // Droplets of one set of parameters, stepped together on a copy of their positions laid out lane
-// by lane (lane_layout.hpp), eight to an AVX-512 register: forces, integration and constraint
-// (either order) as vector code across droplets, where the one-ring forms are chains of dependent
-// sums and square roots; the collisions (a grid look-up per mass) droplet by droplet on that copy,
-// the contact limit and the run's book-keeping on each droplet's own state afterwards. Each
-// lane does the one-ring stages' operations in their order, so every droplet gets the bits
-// step() gives it. Its forces stay in the copy: state().fx, fy are not updated.
+// by lane (lane_layout.hpp), eight to a group (an AVX-512 register or two AVX ones): forces,
+// integration and constraint (either order) as vector code across droplets, where the one-ring
+// forms are chains of dependent sums and square roots; the collisions (a grid look-up per mass)
+// droplet by droplet on that copy, the contact limit and the run's book-keeping on each droplet's
+// own state afterwards. Each lane does the one-ring stages' operations in their order, so every
+// droplet gets the bits step() gives it. Its forces stay in the copy: state().fx, fy are not
+// updated.
 struct LaneBlockStep {
   // Whether droplets of parameters a and b can share a block: the same constants for every stage
   // that runs across lanes (the collisions and the contact limit run droplet by droplet).
@@ -715,10 +738,13 @@ struct LaneBlockStep {
            same_bits(a.kd, b.kd) && same_bits(a.gravity, b.gravity) && same_bits(a.dt, b.dt) &&
            same_bits(a.viscosity, b.viscosity);
   }
-  // Fewer droplets step faster one by one (bench_scenes batch-1lane-1thread: 0.35 M steps/s in a
-  // block, 0.38 M alone; search-l2-red-black-1thread with 2 lanes: 54 evaluations/s in blocks, 65
-  // alone; with 3: 67 and 63).
-  static constexpr std::size_t kFewest = 3;
+  // The fewest droplets worth a block with `width`; fewer step faster one by one. AVX-512: 3
+  // (bench_scenes batch-1lane-1thread: 0.35 M steps/s in a block, 0.38 M alone;
+  // search-l2-red-black-1thread with 2 lanes: 54 evaluations/s in blocks, 65 alone; with 3: 67 and
+  // 63). AVX, whose groups of eight are two registers each: 6 (run_batch of n droplets on
+  // medium-200, microseconds per step of all n in a block / alone: n = 3: 4.63 / 4.36, 4: 5.23 /
+  // 4.76, 5: 5.28 / 5.13, 6: 5.54 / 5.71, 8: 5.86 / 6.69).
+  static std::size_t fewest(VectorWidth width) { return width == VectorWidth::avx512 ? 3 : 6; }
   // before_constraint() and apply_constraint() (all of step() but the contact limit) for sims[0..count),
   // count <= lanes::kMaxLanes, all compatible with sims[0].
   static void step(Simulation* const* sims, int count);
@@ -769,7 +795,7 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers);
 }
 #else
-void LaneBlockStep::step(Simulation* const*, int) { throw std::logic_error("lane-by-lane step without AVX-512"); }
+void LaneBlockStep::step(Simulation* const*, int) { throw std::logic_error("lane-by-lane step without AVX"); }
 #endif
 
 namespace {
@@ -924,6 +950,12 @@ class LaneExchangeSeat {
   int busy_ = 0;  // as last published
 };
 
+int interleaved_lanes() {
+  // Blocks of three groups: sweep-long-1thread with AVX, 1.47 M steps/s at 8 and 12 lanes, 1.72 M
+  // at 16, 1.69 M at 24.
+  return constraint_vector_width() >= VectorWidth::avx ? lanes::kMaxLanes : interleaved_ring_capacity();
+}
+
 void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
                      const std::function<void(std::int64_t id, RunSummary&&)>& done,
                      const std::function<void(std::int64_t id)>& cancelled, LaneExchange* exchange) {
@@ -932,7 +964,8 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   std::vector<DropletState*> rings;
   std::vector<int> corrections;
   std::vector<Simulation*> block, alone;
-  const bool lane_wise = constraint_vector_width() == VectorWidth::avx512;
+  const VectorWidth width = constraint_vector_width();
+  const bool lane_wise = width >= VectorWidth::avx;
   LaneExchangeSeat seat(exchange, lanes);
   int busy = 0;
   auto idle_lane = [&]() -> Lane& {
@@ -972,9 +1005,9 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
           break;
         }
     }
-    // One step of every busy lane. With AVX-512, the droplets with the first one's parameters go
-    // lane by lane up to the contact limit (LaneBlockStep) if there are at least kFewest; the
-    // others, and all without AVX-512:
+    // One step of every busy lane. With AVX-512 or AVX, the droplets with the first one's
+    // parameters go lane by lane up to the contact limit (LaneBlockStep) if there are at least
+    // fewest(); the others, and all with SSE2 alone:
     // forces and integration each, the sequential constraints of the rings that share the first
     // one's constraint parameters together. Then the contact limits.
     block.clear();
@@ -987,7 +1020,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       else
         alone.push_back(sim);
     }
-    if (block.size() < LaneBlockStep::kFewest) {
+    if (block.size() < LaneBlockStep::fewest(width)) {
       alone.insert(alone.end(), block.begin(), block.end());
       block.clear();
     }

@@ -12,6 +12,7 @@
 #include <thread>
 #include <tuple>
 
+#include "../src/lane_layout.hpp"
 #include "fixtures.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/simulation.hpp"
@@ -82,6 +83,63 @@ TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
   }
 }
 
+TEST(Interleaved, LaneKernelsConstrainEachRingAsAlone) {
+  // The lane-by-lane constraint (lanes::constrain_sequential, constrain_red_black) straight on the
+  // layout, with AVX-512 and AVX, in 1 to 3 groups of eight. In each group some rings are in limits
+  // from the start (one pass, no correction) while the others change in every pass, in the low
+  // half of one group, the high half of another, every other lane of the third: a group's passes
+  // must go on while any of its rings changes. Each ring and its corrections must be those of
+  // apply_length_constraint alone.
+  const DropletParams p;
+  const int n = 40, iterations = 4;
+  const double dmax = (1 + p.max_strain) * p.rest_length(), dmin = (1 - p.max_strain) * p.rest_length();
+  int widths = 0;
+  for (VectorWidth width : {VectorWidth::avx, VectorWidth::avx512}) {
+    const test::VectorWidthLimit limit(width);
+    if (limit.in_use() != width) continue;
+    ++widths;
+    for (ConstraintOrder order : {ConstraintOrder::sequential, ConstraintOrder::red_black}) {
+      for (int registers = 1; registers <= lanes::kMaxLaneRegisters; ++registers) {
+        SCOPED_TRACE("vector width " + std::to_string(static_cast<int>(width)) + ", " + to_string(order) + ", " +
+                     std::to_string(registers) + " groups");
+        const int L = 8 * registers;
+        std::vector<DropletState> rings, alone;
+        std::vector<double*> xs, ys;
+        std::vector<bool> calm;
+        for (int t = 0; t < L; ++t) {
+          const int g = t / 8, b = t % 8;
+          calm.push_back(g == 0 ? b < 4 : g == 1 ? b >= 4 : b % 2 == 0);
+          DropletState s = test::jiggled_ring(n, 100 + static_cast<std::uint64_t>(t), calm.back() ? 0.0 : 0.5);
+          if (calm.back())  // springs 0.97 of the inflated ring's: inside the limits
+            for (int i = 0; i < n; ++i) s.x[i] = 3 + 0.97 * (s.x[i] - 3), s.y[i] = 4 + 0.97 * (s.y[i] - 4);
+          rings.push_back(s);
+          alone.push_back(s);
+        }
+        for (DropletState& s : rings) xs.push_back(s.x.data()), ys.push_back(s.y.data());
+        std::vector<double> X(static_cast<std::size_t>(n * L)), Y(X.size());
+        lanes::copy_in(xs.data(), X.data(), n, registers);
+        lanes::copy_in(ys.data(), Y.data(), n, registers);
+        std::vector<int> counts(static_cast<std::size_t>(L), -1);
+        if (order == ConstraintOrder::sequential)
+          lanes::constrain_sequential(X.data(), Y.data(), n, registers, iterations, dmin, dmax, counts.data());
+        else
+          lanes::constrain_red_black(X.data(), Y.data(), n, registers, iterations, dmin, dmax, counts.data());
+        lanes::copy_out(xs.data(), X.data(), n, registers);
+        lanes::copy_out(ys.data(), Y.data(), n, registers);
+        for (int t = 0; t < L; ++t) {
+          const int c = apply_length_constraint(&alone[static_cast<std::size_t>(t)], p.rest_length(), p.max_strain,
+                                                iterations, order);
+          EXPECT_EQ(calm[static_cast<std::size_t>(t)], c == 0) << "ring " << t;
+          EXPECT_EQ(counts[static_cast<std::size_t>(t)], c) << "ring " << t;
+          EXPECT_EQ(rings[static_cast<std::size_t>(t)].x, alone[static_cast<std::size_t>(t)].x) << "ring " << t;
+          EXPECT_EQ(rings[static_cast<std::size_t>(t)].y, alone[static_cast<std::size_t>(t)].y) << "ring " << t;
+        }
+      }
+    }
+  }
+  if (widths == 0) GTEST_SKIP() << "the processor has neither AVX nor AVX-512";
+}
+
 TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
   // Mixed lanes: the reference order, a red-black droplet (constrained on its own), another ring
   // size; recordings on; droplets of very different lengths, so lanes are refilled mid-run.
@@ -132,8 +190,8 @@ TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
 }
 
 TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
-  // 30 lanes: with AVX-512 the droplets of the first one's parameters go lane by lane (blocks of up
-  // to 24: three registers, then one with padding lanes), the others (other stiffness, the other
+  // 30 lanes: with AVX-512 or AVX the droplets of the first one's parameters go lane by lane
+  // (blocks of up to 24: three groups of eight, then one with padding lanes), the others (other stiffness, the other
   // constraint order, another ring size) droplet by droplet. Solid walls, droplets started against
   // them; with and without viscosity, either order first, an even and an odd ring. Each must end as
   // it does alone, at every vector width.

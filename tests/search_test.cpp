@@ -6,6 +6,7 @@
 #include <tuple>
 
 #include "../optimizer/pipeline_pause.hpp"
+#include "fixtures.hpp"
 #include "search_fixtures.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/params_json.hpp"
@@ -330,22 +331,50 @@ TEST(Search, PredictionsAheadOfUndecidedGenerationsKeepTheHistory) {
 }
 
 TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
-  // 8 lanes on 1 and 2 threads (4 at lambda = 1 without AVX-512); more threads share 2 threads'
-  // candidates.
-  const int l1 = constraint_vector_width() >= VectorWidth::avx512 ? 8 : 4;
-  for (auto [lambda, threads, lanes] :
-       {std::tuple{1, 1, l1}, std::tuple{1, 2, l1}, std::tuple{1, 3, 2 * l1 / 3}, std::tuple{1, 4, l1 / 2},
-        std::tuple{1, 16, 1}, std::tuple{2, 1, 8}, std::tuple{2, 2, 8}, std::tuple{2, 3, 5}, std::tuple{2, 4, 4},
-        std::tuple{4, 16, 1}}) {
-    SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
-    const SearchOptions o = test::small_search_options(lambda);
-    Search s(o, start(o), 0);
-    DriveOptions d;
-    d.generations = 1;
-    d.threads = threads;
-    const SearchSummary sum = drive(s, d, nullptr);
-    EXPECT_EQ(sum.speculation.threads, threads);
-    EXPECT_EQ(sum.speculation.lanes, lanes);
+  // 8 lanes on 1 and 2 threads (4 at lambda = 1 with SSE2 alone); more threads share 2 threads'
+  // candidates. At the widths this processor has.
+  for (VectorWidth width : {VectorWidth::avx512, VectorWidth::avx, VectorWidth::sse2}) {
+    const test::VectorWidthLimit limit(width);
+    if (limit.in_use() != width) continue;
+    SCOPED_TRACE("vector width " + std::to_string(static_cast<int>(width)));
+    const int l1 = width >= VectorWidth::avx ? 8 : 4;
+    for (auto [lambda, threads, lanes] :
+         {std::tuple{1, 1, l1}, std::tuple{1, 2, l1}, std::tuple{1, 3, 2 * l1 / 3}, std::tuple{1, 4, l1 / 2},
+          std::tuple{1, 16, 1}, std::tuple{2, 1, 8}, std::tuple{2, 2, 8}, std::tuple{2, 3, 5}, std::tuple{2, 4, 4},
+          std::tuple{4, 16, 1}}) {
+      SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
+      const SearchOptions o = test::small_search_options(lambda);
+      Search s(o, start(o), 0);
+      DriveOptions d;
+      d.generations = 1;
+      d.threads = threads;
+      const SearchSummary sum = drive(s, d, nullptr);
+      EXPECT_EQ(sum.speculation.threads, threads);
+      EXPECT_EQ(sum.speculation.lanes, lanes);
+    }
+    // With AVX-512, red-black candidates are stepped in blocks too: the same lanes. Otherwise one
+    // candidate per thread (with AVX a block of red-black candidates is no faster, with SSE2 a
+    // red-black constraint has no chain for lanes to hide), so one thread evaluates one candidate
+    // at a time and does not speculate.
+    for (int lambda : {1, 2}) {
+      SearchOptions rb = test::small_search_options(lambda);
+      rb.droplet.constraint_order = ConstraintOrder::red_black;
+      for (int threads : {1, 2, 16}) {
+        SCOPED_TRACE("red-black, lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
+        DriveOptions r;
+        r.generations = 1;
+        r.threads = threads;
+        Search one(rb, start(rb), 0);
+        const SearchSummary sum = drive(one, r, nullptr);
+        if (width == VectorWidth::avx512) {
+          EXPECT_EQ(sum.speculation.threads, threads);
+          EXPECT_EQ(sum.speculation.lanes, threads == 16 ? 1 : 8);
+        } else {
+          EXPECT_EQ(sum.speculation.threads, threads > 1 ? threads : 0);
+          EXPECT_EQ(sum.speculation.lanes, threads > 1 ? 1 : 0);
+        }
+      }
+    }
   }
   const SearchOptions o = test::small_search_options(2);
   DriveOptions d;
@@ -359,29 +388,6 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
   const SearchSummary none = drive(plain, d, nullptr);
   EXPECT_EQ(none.speculation.threads, 0);
   EXPECT_EQ(none.speculation.lanes, 0);
-  // With AVX-512, red-black candidates are stepped in blocks too: the same lanes. Without it a
-  // red-black constraint has no chain for lanes to hide: one candidate per thread, so one thread
-  // evaluates one candidate at a time and does not speculate.
-  const bool blocks = constraint_vector_width() >= VectorWidth::avx512;
-  for (int lambda : {1, 2}) {
-    SearchOptions rb = test::small_search_options(lambda);
-    rb.droplet.constraint_order = ConstraintOrder::red_black;
-    for (int threads : {1, 2, 16}) {
-      SCOPED_TRACE("red-black, lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
-      DriveOptions r;
-      r.generations = 1;
-      r.threads = threads;
-      Search one(rb, start(rb), 0);
-      const SearchSummary sum = drive(one, r, nullptr);
-      if (blocks) {
-        EXPECT_EQ(sum.speculation.threads, threads);
-        EXPECT_EQ(sum.speculation.lanes, threads == 16 ? 1 : 8);
-      } else {
-        EXPECT_EQ(sum.speculation.threads, threads > 1 ? threads : 0);
-        EXPECT_EQ(sum.speculation.lanes, threads > 1 ? 1 : 0);
-      }
-    }
-  }
 }
 
 TEST(Search, DriveRefusesLanesOutOfRangeByName) {

@@ -17,11 +17,10 @@ struct BatchOptions {
   int droplets = 1;          ///< K droplets
   std::uint64_t seed = 1;    ///< droplet i starts at x drawn from stream derive_seed(seed, i)
   int threads = 0;           ///< worker threads, 0 = all cores
-  /// Droplets each thread steps together (run_interleaved). The default is as many rings as the
-  /// sequential constraint takes at once (interleaved_ring_capacity(): 24 with AVX-512, whose three
-  /// chains of 8 droplets take 1.7 times as long as one droplet's; 12 with AVX, 1.5 times; 6 with
-  /// SSE2). Results do not depend on it.
-  int lanes = interleaved_ring_capacity();
+  /// Droplets each thread steps together (run_interleaved). The default, interleaved_lanes(), is 24
+  /// with AVX-512 or AVX (lane-by-lane blocks of three groups of eight), 6 with SSE2. Results do not
+  /// depend on it.
+  int lanes = interleaved_lanes();
   /// Start x of every droplet; NaN draws it uniformly in [0, W) (walls: [R, W - R]).
   double start_x = std::numeric_limits<double>::quiet_NaN();
 };

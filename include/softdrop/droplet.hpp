@@ -90,7 +90,8 @@ int interleaved_ring_capacity();
 /// instruction. Every width gives the same bits, since each lane does the scalar operations in the
 /// same order; the widest the processor has (AVX-512 where it has AVX-512F, else AVX on most
 /// x86-64 since 2011, else SSE2, which every x86-64 has) is found at start-up. AVX-512 serves the
-/// red-black constraint (eight springs at once); the rest uses AVX at that width.
+/// red-black constraint (eight springs at once); the rest uses AVX at that width. With AVX-512 or
+/// AVX, run_interleaved steps droplets as lane-by-lane blocks (eight droplets to a group).
 enum class VectorWidth { scalar = 1, sse2 = 2, avx = 4, avx512 = 8 };
 VectorWidth constraint_vector_width();
 /// Uses at most `width` from now on (never more than the processor has), for all threads; returns

@@ -207,12 +207,18 @@ class LaneExchange {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Runs droplets on this thread `lanes` at a time, stepped together. With AVX-512, three or more
-/// droplets of one set of parameters go as one block laid out lane by lane, eight to a register:
-/// every stage but the contacts (forces, viscosity, integration, either constraint order) is
-/// vector code across droplets, so the chains of dependent sums, square roots and divisions that
-/// bound one ring serve eight. Without it, their sequential Provot constraints go link by link
-/// side by side (apply_length_constraint_interleaved), so the processor overlaps the chains. Every
+/// Droplets per thread that run_interleaved steps fastest together with the vector width in use:
+/// 24 with AVX-512 or AVX, which step them as lane-by-lane blocks of up to three groups of eight;
+/// otherwise interleaved_ring_capacity() (6 with SSE2). The default of BatchOptions::lanes.
+int interleaved_lanes();
+
+/// Runs droplets on this thread `lanes` at a time, stepped together. With AVX-512 or AVX, enough
+/// droplets of one set of parameters (3 with AVX-512, 6 with AVX) go as one block laid out lane by
+/// lane, eight to a group (one AVX-512 register, two AVX ones): every stage but the contacts
+/// (forces, viscosity, integration, either constraint order) is vector code across droplets, so
+/// the chains of dependent sums, square roots and divisions that bound one ring serve eight.
+/// Otherwise their sequential Provot constraints go link by link side by side
+/// (apply_length_constraint_interleaved), so the processor overlaps the chains. Every
 /// droplet gets exactly the operations of Simulation::run, so its summary has the same bits (its
 /// state().fx, fy, scratch of a step, are not kept in a block).
 /// `next(job, may_wait)` fills in the next droplet and returns true, or returns false: when
