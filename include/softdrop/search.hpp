@@ -155,10 +155,11 @@ struct DriveOptions {
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
   /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 8 on 1
-  /// and 2 threads (4 at λ = 1 without AVX-512); more threads keep as many candidates in flight as
+  /// and 2 threads (4 at λ = 1 with SSE2 alone); more threads keep as many candidates in flight as
   /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order and
-  /// without AVX-512, 0 means 1 (there the lanes only hide the sequential constraint's chain, which
-  /// red-black does not have; with AVX-512 they are stepped as one block of vector code). More lanes
+  /// without AVX-512, 0 means 1 (with SSE2 the lanes only hide the sequential constraint's chain,
+  /// which red-black does not have; with AVX a block of red-black candidates is no faster than one
+  /// at a time, with AVX-512 it is: the last two tables). More lanes
   /// evaluate faster but run further ahead, so more speculative work is dropped when a generation
   /// accepts, and each candidate steps slower, which delays the decisions the others wait for.
   /// Evaluations/s by lanes, bench_scenes (60 or 120 generations) and `optimize --lambda 4
@@ -192,6 +193,19 @@ struct DriveOptions {
   ///   | λ = 1 red-black, 2 threads| 114.9 | 116.4 |       | 118.1 | 83.2  |      |
   ///   | λ = 2 red-black, 1 thread | 69.1  | 82.3  |       | 103.1 | 83.7  |      |
   ///   | λ = 2 red-black, 2 threads| 129.5 | 146.6 |       | 163.8 | 130.2 |      |
+  ///
+  /// With AVX (bench_scenes --width 4, blocks of two registers to a group of eight; 2 repeats; one
+  /// lane on one thread does not speculate):
+  ///
+  ///   | search                    | 1     | 4     | 6     | 8     | 12    |
+  ///   | λ = 1, 1 thread           | 29.0  | 61.5  | 72.9  | 77.1  | 61.7  |
+  ///   | λ = 1, 2 threads          | 52.8  | 104.2 | 114.7 | 110.8 | 91.6  |
+  ///   | λ = 2, 1 thread           | 13.7  | 34.0  | 40.5  | 48.6  | 43.0  |
+  ///   | λ = 2, 2 threads          | 25.5  | 63.6  | 70.7  | 67.2  | 69.5  |
+  ///   | λ = 1 red-black, 1 thread | 55.3  | 51.0  | 53.6  | 43.1  | 43.1  |
+  ///   | λ = 1 red-black, 2 threads| 65.5  | 87.4  | 66.7  | 66.9  | 51.0  |
+  ///   | λ = 2 red-black, 1 thread | 59.9  | 57.0  | 59.5  | 71.6  | 55.7  |
+  ///   | λ = 2 red-black, 2 threads| 101.7 | 108.2 | 96.3  | 97.9  | 85.7  |
   int lanes = 0;
 
   /// False, with the reason naming the option, for lanes outside [0, 64].
