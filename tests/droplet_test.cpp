@@ -73,24 +73,28 @@ int crossing_pairs(const DropletState& s, int* closing) {
 
 TEST(Droplet, SelfIntersectionMatchesThePlainPairByPairTest) {
   // Rings from gently to wildly jiggled, of sizes with every remainder, crossing or not, and some
-  // whose only crossing is with the closing edge.
+  // whose only crossing is with the closing edge; at every vector width (AVX tests four edges at
+  // once).
   int crossing = 0, clear = 0, only_closing = 0;
-  for (int masses : {3, 4, 5, 6, 8, 13, 40}) {
-    for (double amplitude : {0.5, 3.0, 8.0}) {
-      for (std::uint64_t seed = 0; seed < 150; ++seed) {
-        const DropletState s = test::jiggled_ring(masses, 1000 * seed + static_cast<std::uint64_t>(masses), amplitude);
-        int closing = 0;
-        const int pairs = crossing_pairs(s, &closing);
-        ASSERT_EQ(ring_self_intersects(s), pairs > 0)
-            << masses << " masses, amplitude " << amplitude << ", seed " << seed;
-        (pairs > 0 ? crossing : clear) += 1;
-        only_closing += pairs > 0 && pairs == closing;
+  for (VectorWidth width : test::kVectorWidths) {
+    const test::VectorWidthLimit limit(width);
+    for (int masses : {3, 4, 5, 6, 8, 13, 40}) {
+      for (double amplitude : {0.5, 3.0, 8.0}) {
+        for (std::uint64_t seed = 0; seed < 150; ++seed) {
+          const DropletState s = test::jiggled_ring(masses, 1000 * seed + static_cast<std::uint64_t>(masses), amplitude);
+          int closing = 0;
+          const int pairs = crossing_pairs(s, &closing);
+          ASSERT_EQ(ring_self_intersects(s), pairs > 0) << masses << " masses, amplitude " << amplitude << ", seed "
+                                                        << seed << ", vector width " << static_cast<int>(width);
+          (pairs > 0 ? crossing : clear) += 1;
+          only_closing += pairs > 0 && pairs == closing;
+        }
       }
     }
   }
-  EXPECT_GT(crossing, 100);
-  EXPECT_GT(clear, 100);
-  EXPECT_GT(only_closing, 5);
+  EXPECT_GT(crossing, 400);
+  EXPECT_GT(clear, 400);
+  EXPECT_GT(only_closing, 20);
 }
 
 TEST(Droplet, InternalForcesSumToZero) {
