@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <vector>
 
 #include "fixtures.hpp"
 #include "softdrop/batch.hpp"
@@ -41,6 +42,39 @@ TEST(Determinism, SameSeedSameTortuosityAtOneAndTwoThreads) {
   }
   EXPECT_GT(passed, 0);
   EXPECT_EQ(bits(summarize(one).mean_tortuosity), bits(summarize(two).mean_tortuosity));
+}
+
+TEST(Determinism, BatchHasTheSameBitsAtEveryVectorWidth) {
+  // A batch on 2 threads with its default lanes (24 in lane-by-lane blocks with AVX-512 or AVX, 6
+  // with SSE2, 1 scalar) gives each droplet the bits it gets at every other width.
+  MediumOptions mo;
+  mo.seed = 8;
+  const Medium m = generate_medium(mo);
+  DropletParams p;
+  RunOptions o;
+  o.stuck_window = 0.2;
+  std::vector<std::vector<RunSummary>> runs;
+  for (VectorWidth width : test::kVectorWidths) {
+    const test::VectorWidthLimit limit(width);
+    BatchOptions b;  // its lanes follow the width in use
+    b.droplets = 24;
+    b.seed = 5;
+    b.threads = 2;
+    runs.push_back(run_batch(p, m, o, b));
+  }
+  int passed = 0;
+  for (std::size_t w = 1; w < runs.size(); ++w) {
+    ASSERT_EQ(runs[w].size(), runs[0].size());
+    for (std::size_t i = 0; i < runs[0].size(); ++i) {
+      EXPECT_EQ(runs[w][i].outcome, runs[0][i].outcome) << "width index " << w << ", droplet " << i;
+      EXPECT_EQ(runs[w][i].steps, runs[0][i].steps) << "width index " << w << ", droplet " << i;
+      EXPECT_EQ(bits(runs[w][i].tortuosity), bits(runs[0][i].tortuosity)) << "width index " << w << ", droplet " << i;
+      EXPECT_EQ(bits(runs[w][i].path_length), bits(runs[0][i].path_length)) << "width index " << w << ", droplet " << i;
+      EXPECT_EQ(runs[w][i].touched, runs[0][i].touched) << "width index " << w << ", droplet " << i;
+    }
+  }
+  for (const RunSummary& r : runs[0]) passed += r.outcome == Outcome::passed;
+  EXPECT_GT(passed, 0);
 }
 
 TEST(Determinism, GoldenStateHash) {
