@@ -494,9 +494,9 @@ void Simulation::apply_contact_limit() {
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
   const VectorWidth width = constraint_vector_width();
+  const auto record = width == VectorWidth::avx512 ? record_free8 : record_free8_avx;
   if (width >= VectorWidth::avx)  // eight masses at a time, most of them free (AVX: four by four)
     for (; i + 8 <= n; i += 8) {
-      const auto record = width == VectorWidth::avx512 ? record_free8 : record_free8_avx;
       const unsigned free = record(state_.x.data() + i, state_.y.data() + i, clear_x_.data() + i,
                                    clear_y_.data() + i, clear_r2_.data() + i, clear_count_.data() + i,
                                    contact_x_.data() + i, contact_y_.data() + i, contact_count_.data() + i);
