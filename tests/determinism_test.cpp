@@ -2,7 +2,9 @@
 // the state after a fixed number of steps that catches any change to the numerics.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "fixtures.hpp"
@@ -17,64 +19,54 @@ std::uint64_t bits(double v) {
   return b;
 }
 
-TEST(Determinism, SameSeedSameTortuosityAtOneAndTwoThreads) {
+// The batch both batch tests run: 24 droplets (seed 5) through the medium of seed 8, on `threads`
+// threads with the default lanes of the vector width in use.
+std::vector<RunSummary> batch_of_24(int threads) {
   MediumOptions mo;
   mo.seed = 8;
   const Medium m = generate_medium(mo);
-  DropletParams p;
   RunOptions o;
   o.stuck_window = 0.2;
-  BatchOptions b;
+  BatchOptions b;  // its lanes follow the width in use
   b.droplets = 24;
   b.seed = 5;
-  b.threads = 1;
-  const auto one = run_batch(p, m, o, b);
-  b.threads = 2;
-  const auto two = run_batch(p, m, o, b);
-  ASSERT_EQ(one.size(), two.size());
+  b.threads = threads;
+  return run_batch(DropletParams{}, m, o, b);
+}
+
+// Each droplet of `got` ends as in `want`, to the bit; returns how many passed.
+int expect_same_droplets(const std::vector<RunSummary>& got, const std::vector<RunSummary>& want,
+                         const std::string& what) {
+  EXPECT_EQ(got.size(), want.size()) << what;
   int passed = 0;
-  for (std::size_t i = 0; i < one.size(); ++i) {
-    EXPECT_EQ(one[i].outcome, two[i].outcome) << i;
-    EXPECT_EQ(one[i].steps, two[i].steps) << i;
-    EXPECT_EQ(bits(one[i].tortuosity), bits(two[i].tortuosity)) << i;
-    EXPECT_EQ(one[i].touched, two[i].touched) << i;
-    passed += one[i].outcome == Outcome::passed;
+  for (std::size_t i = 0; i < std::min(got.size(), want.size()); ++i) {
+    EXPECT_EQ(got[i].outcome, want[i].outcome) << what << ", droplet " << i;
+    EXPECT_EQ(got[i].steps, want[i].steps) << what << ", droplet " << i;
+    EXPECT_EQ(bits(got[i].tortuosity), bits(want[i].tortuosity)) << what << ", droplet " << i;
+    EXPECT_EQ(bits(got[i].path_length), bits(want[i].path_length)) << what << ", droplet " << i;
+    EXPECT_EQ(got[i].touched, want[i].touched) << what << ", droplet " << i;
+    passed += want[i].outcome == Outcome::passed;
   }
-  EXPECT_GT(passed, 0);
+  return passed;
+}
+
+TEST(Determinism, SameSeedSameTortuosityAtOneAndTwoThreads) {
+  const auto one = batch_of_24(1);
+  const auto two = batch_of_24(2);
+  EXPECT_GT(expect_same_droplets(two, one, "2 threads against 1"), 0);
   EXPECT_EQ(bits(summarize(one).mean_tortuosity), bits(summarize(two).mean_tortuosity));
 }
 
 TEST(Determinism, BatchHasTheSameBitsAtEveryVectorWidth) {
   // A batch on 2 threads with its default lanes (24 in lane-by-lane blocks with AVX-512 or AVX, 6
   // with SSE2, 1 scalar) gives each droplet the bits it gets at every other width.
-  MediumOptions mo;
-  mo.seed = 8;
-  const Medium m = generate_medium(mo);
-  DropletParams p;
-  RunOptions o;
-  o.stuck_window = 0.2;
   std::vector<std::vector<RunSummary>> runs;
   for (VectorWidth width : test::kVectorWidths) {
     const test::VectorWidthLimit limit(width);
-    BatchOptions b;  // its lanes follow the width in use
-    b.droplets = 24;
-    b.seed = 5;
-    b.threads = 2;
-    runs.push_back(run_batch(p, m, o, b));
+    runs.push_back(batch_of_24(2));
   }
-  int passed = 0;
-  for (std::size_t w = 1; w < runs.size(); ++w) {
-    ASSERT_EQ(runs[w].size(), runs[0].size());
-    for (std::size_t i = 0; i < runs[0].size(); ++i) {
-      EXPECT_EQ(runs[w][i].outcome, runs[0][i].outcome) << "width index " << w << ", droplet " << i;
-      EXPECT_EQ(runs[w][i].steps, runs[0][i].steps) << "width index " << w << ", droplet " << i;
-      EXPECT_EQ(bits(runs[w][i].tortuosity), bits(runs[0][i].tortuosity)) << "width index " << w << ", droplet " << i;
-      EXPECT_EQ(bits(runs[w][i].path_length), bits(runs[0][i].path_length)) << "width index " << w << ", droplet " << i;
-      EXPECT_EQ(runs[w][i].touched, runs[0][i].touched) << "width index " << w << ", droplet " << i;
-    }
-  }
-  for (const RunSummary& r : runs[0]) passed += r.outcome == Outcome::passed;
-  EXPECT_GT(passed, 0);
+  for (std::size_t w = 1; w < runs.size(); ++w)
+    EXPECT_GT(expect_same_droplets(runs[w], runs[0], "width index " + std::to_string(w)), 0);
 }
 
 TEST(Determinism, GoldenStateHash) {
