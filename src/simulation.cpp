@@ -12,6 +12,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "contact_lanes.hpp"
 #include "lane_layout.hpp"
 #include "simd_dispatch.hpp"
 #include "validation.hpp"
@@ -92,6 +93,8 @@ void Simulation::place(double cx, double cy) {
   clear_r2_.assign(state_.x.size(), -1.0);
   clear_count_.assign(state_.x.size(), 0);
   clear_discs_.assign(contacts_.size(), GrainGrid::Disc{});
+  for (std::vector<double>* v : {&contact_disc_x_, &contact_disc_y_, &contact_disc_r_}) v->assign(state_.x.size(), 0.0);
+  contact_disc_grain_.assign(state_.x.size(), 0);
   area_ = ring_area(state_);
   last_penetration_ = 0;
 }
@@ -272,11 +275,6 @@ void Simulation::accumulate_pressure() {
   fy[0] = (fy[0] + ey_first) + ey_last;
 }
 
-GrainGrid::DiscRange Simulation::cached_contacts(int i) const {
-  const GrainGrid::Disc* begin = contacts_.data() + static_cast<std::size_t>(i) * contact_capacity_;
-  return {begin, begin + contact_count_[i]};
-}
-
 void Simulation::accumulate_collisions() { accumulate_collisions(state_.fx.data(), state_.fy.data(), 1); }
 
 void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride) {
@@ -291,6 +289,9 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
   const double *cxs = contact_x_.data(), *cys = contact_y_.data();
   const std::int32_t* counts = contact_count_.data();
   const GrainGrid::Disc* const contacts = contacts_.data();
+  const double *first_x = contact_disc_x_.data(), *first_y = contact_disc_y_.data(),
+               *first_r = contact_disc_r_.data();
+  const std::int32_t* first_grain = contact_disc_grain_.data();
   const std::size_t capacity = contact_capacity_;
   std::uint8_t* const touched = touched_.data();
   for (int i = 0; i < n; ++i) {
@@ -301,9 +302,18 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
     const double vx = (x - pxs[i]) * inv_dt, vy = (y - pys[i]) * inv_dt;
     const double xw = periodic ? wrap_periodic(x, W) : x;
     // The same discs in the same order as the grid's, less those the mass is not inside (the
-    // record: cached_contacts(i)).
-    const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
-    const auto range = recorded ? GrainGrid::DiscRange{record, record + counts[i]} : grid_.discs_near(xw, y);
+    // record; one disc is kept apart).
+    GrainGrid::Disc first;
+    GrainGrid::DiscRange range;
+    if (!recorded) {
+      range = grid_.discs_near(xw, y);
+    } else if (counts[i] == 1) {
+      first = {first_x[i], first_y[i], first_r[i], first_grain[i]};
+      range = {&first, &first + 1};
+    } else {
+      const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
+      range = {record, record + counts[i]};
+    }
     for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) {
       const double dx = xw - g->x, dy = y - g->y, r = g->r;
       const double d2 = dx * dx + dy * dy;
@@ -358,54 +368,6 @@ void Simulation::accumulate_viscosity() {
   }
 }
 
-namespace {
-#if defined(SOFTDROP_AVX_DISPATCH)
-// Bit b: v[b] == value.
-SOFTDROP_AVX512 inline unsigned equal8(const std::int32_t* v, int value) {
-  const __m256i e =
-      _mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(v)), _mm256_set1_epi32(value));
-  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(e)));
-}
-
-// Bit b: mass i + b is inside its ball ((x - ax)^2 + (y - ay)^2 < r2) and its anchor holds no disc,
-// so apply_contact_limit() records it as touching nothing; those records (count 0 at (x, y)) are
-// written for all eight masses, the others' to be overwritten.
-SOFTDROP_AVX512 unsigned record_free8(const double* x, const double* y, const double* ax, const double* ay,
-                                      const double* r2, const std::int32_t* anchored, double* cx, double* cy,
-                                      std::int32_t* count) {
-  const __m512d px = _mm512_loadu_pd(x), py = _mm512_loadu_pd(y);
-  const __m512d ex = _mm512_sub_pd(px, _mm512_loadu_pd(ax)), ey = _mm512_sub_pd(py, _mm512_loadu_pd(ay));
-  const __m512d e2 = _mm512_add_pd(_mm512_mul_pd(ex, ex), _mm512_mul_pd(ey, ey));
-  const unsigned m = _mm512_cmp_pd_mask(e2, _mm512_loadu_pd(r2), _CMP_LT_OQ) & equal8(anchored, 0);
-  _mm512_storeu_pd(cx, px);
-  _mm512_storeu_pd(cy, py);
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(count), _mm256_setzero_si256());
-  return m;
-}
-
-// record_free8() with AVX, four masses at a time.
-SOFTDROP_AVX unsigned record_free8_avx(const double* x, const double* y, const double* ax, const double* ay,
-                                       const double* r2, const std::int32_t* anchored, double* cx, double* cy,
-                                       std::int32_t* count) {
-  unsigned m = 0;
-  for (int h = 0; h < 8; h += 4) {
-    const __m256d px = _mm256_loadu_pd(x + h), py = _mm256_loadu_pd(y + h);
-    const __m256d ex = _mm256_sub_pd(px, _mm256_loadu_pd(ax + h)), ey = _mm256_sub_pd(py, _mm256_loadu_pd(ay + h));
-    const __m256d e2 = _mm256_add_pd(_mm256_mul_pd(ex, ex), _mm256_mul_pd(ey, ey));
-    const auto in = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(e2, _mm256_loadu_pd(r2 + h), _CMP_LT_OQ)));
-    const __m128i held = _mm_loadu_si128(reinterpret_cast<const __m128i*>(anchored + h));
-    const auto none = static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(held, _mm_setzero_si128()))));
-    m |= (in & none) << h;
-    _mm256_storeu_pd(cx + h, px);
-    _mm256_storeu_pd(cy + h, py);
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(count + h), _mm_setzero_si128());
-  }
-  return m;
-}
-#endif
-
-}  // namespace
-
 void Simulation::apply_contact_limit() {
   // Inverse dynamics for contacts: no mass stays deeper than max_depth inside a grain, and one
   // that is pushed back loses the normal velocity that carried it in (an inelastic stop).
@@ -413,6 +375,12 @@ void Simulation::apply_contact_limit() {
   const double W = medium_.width, limit = params_.max_depth;
   const bool periodic = medium_.periodic;
   const std::size_t capacity = contact_capacity_;
+  const auto first_contact = [this](int i, const GrainGrid::Disc& g) {
+    contact_disc_x_[i] = g.x;
+    contact_disc_y_[i] = g.y;
+    contact_disc_r_[i] = g.r;
+    contact_disc_grain_[i] = g.grain;
+  };
   const auto limit_mass = [&](int i) {
     const double x = state_.x[i], y = state_.y[i];
     const std::size_t first = static_cast<std::size_t>(i) * capacity;
@@ -429,7 +397,10 @@ void Simulation::apply_contact_limit() {
         for (const GrainGrid::Disc *g = clear_discs_.data() + first, *end = g + anchored; g != end; ++g) {
           const double dx = xw - g->x, dy = y - g->y, inner = g->r - limit;
           const double d2 = dx * dx + dy * dy;
-          if (!(d2 >= g->r * g->r)) inside[count++] = *g;
+          if (!(d2 >= g->r * g->r)) {
+            if (count == 0) first_contact(i, *g);
+            inside[count++] = *g;
+          }
           if (inner > 0 && !(d2 >= inner * inner)) {
             push = true;  // the full test below pushes it, in the cell's order
             break;
@@ -455,6 +426,7 @@ void Simulation::apply_contact_limit() {
       const double dx = xw - g->x, dy = state_.y[i] - g->y, inner = g->r - limit;
       const double d2 = dx * dx + dy * dy;
       if (!(d2 >= g->r * g->r)) {
+        if (count == 0) first_contact(i, *g);
         if (static_cast<std::size_t>(count) < capacity) inside[count] = *g;
         ++count;
       } else {
@@ -493,15 +465,27 @@ void Simulation::apply_contact_limit() {
   };
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
-  const VectorWidth width = constraint_vector_width();
-  const auto record = width == VectorWidth::avx512 ? record_free8 : record_free8_avx;
-  if (width >= VectorWidth::avx)  // eight masses at a time, most of them free (AVX: four by four)
-    for (; i + 8 <= n; i += 8) {
-      const unsigned free = record(state_.x.data() + i, state_.y.data() + i, clear_x_.data() + i,
-                                   clear_y_.data() + i, clear_r2_.data() + i, clear_count_.data() + i,
-                                   contact_x_.data() + i, contact_y_.data() + i, contact_count_.data() + i);
-      for (unsigned todo = ~free & 0xFFu; todo != 0; todo &= todo - 1) limit_mass(i + std::countr_zero(todo));
-    }
+  if (constraint_vector_width() >= VectorWidth::avx) {
+    // Eight masses at a time: most are in their balls, free or inside their anchor's one disc.
+    lanes::ContactRecords r;
+    r.x = state_.x.data();
+    r.y = state_.y.data();
+    r.clear_x = clear_x_.data();
+    r.clear_y = clear_y_.data();
+    r.clear_r2 = clear_r2_.data();
+    r.clear_count = clear_count_.data();
+    r.disc_x = contact_disc_x_.data();
+    r.disc_y = contact_disc_y_.data();
+    r.disc_r = contact_disc_r_.data();
+    r.contact_x = contact_x_.data();
+    r.contact_y = contact_y_.data();
+    r.contact_count = contact_count_.data();
+    r.periodic = periodic;
+    r.wrap_below = 0.999999 * W;
+    for (; i + 8 <= n; i += 8)
+      for (unsigned todo = lanes::limit_eight(r, i, limit); todo != 0; todo &= todo - 1)
+        limit_mass(i + std::countr_zero(todo));
+  }
 #endif
   for (; i < n; ++i) limit_mass(i);
 }

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -210,6 +211,66 @@ TEST(Simulation, StepsThatReuseContactTestsEqualStepsThatLookEverythingUp) {
     }
     EXPECT_GT(in_contact, 200) << "the droplet must spend a while inside grains";
     EXPECT_GT(moved, 30);
+  }
+}
+
+TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
+  // With AVX or AVX-512 the contact limit tests the masses free in their anchor's ball, or inside
+  // its one disc, eight at a time (src/contact_kernels.inc); the scalar width tests them one by
+  // one. Every step must leave the same state and records: compared by the next step's forces
+  // (the collisions read the records) and the positions, step by step, over contact-heavy runs:
+  // the pore, a mass resting inside 12 discs at once, a droplet that lands on a grain across the
+  // periodic seam (masses at x < 0 and x > W, where the wrapped position is not x, and discs
+  // whose centres lie across the seam), and one that meets grains by the walls of a box.
+  Medium pile{200, 200, true, {}};
+  for (int k = 0; k < 12; ++k) pile.grains.push_back({100.0, 100.0 - (15.0 + k), 15.0 + k});
+  const Medium seam{200, 200, true, {{0.0, 120.0, 18.0}, {196.0, 60.0, 14.0}, {30.0, 40.0, 12.0}}};
+  const Medium walled{120, 200, false, {{8.0, 120.0, 14.0}, {112.0, 80.0, 14.0}}};
+  struct Scene {
+    const char* name;
+    const Medium* medium;
+    double x0;
+  };
+  const Medium pore = test::pore_of_three_grains();
+  const Scene scenes[] = {{"pore", &pore, 100}, {"pile", &pile, 100}, {"seam", &seam, 0.5}, {"walled", &walled, 14}};
+  auto bits = [](const std::vector<double>& v) {
+    std::vector<std::uint64_t> b;
+    for (double d : v) b.push_back(std::bit_cast<std::uint64_t>(d));
+    return b;
+  };
+  DropletParams p;
+  for (const Scene& scene : scenes) {
+    SCOPED_TRACE(scene.name);
+    std::vector<std::vector<std::uint64_t>> reference;  // per step: fx, fy, x, y, px, py
+    int touching = 0, across = 0;  // steps in a grain; of those, with a mass outside [0, W]
+    for (VectorWidth width : test::kVectorWidths) {
+      const test::VectorWidthLimit limit(width);
+      if (limit.in_use() != width) continue;  // the processor lacks it
+      SCOPED_TRACE(static_cast<int>(width));
+      Simulation sim(p, *scene.medium);
+      sim.place_above(scene.x0);
+      for (int k = 0; k < 4000; ++k) {
+        sim.step();
+        const DropletState& s = sim.state();
+        std::vector<std::uint64_t> now;
+        for (const std::vector<double>* v : {&s.fx, &s.fy, &s.x, &s.y, &s.px, &s.py}) {
+          const std::vector<std::uint64_t> b = bits(*v);
+          now.insert(now.end(), b.begin(), b.end());
+        }
+        if (width == VectorWidth::scalar) {
+          reference.push_back(std::move(now));
+          const bool in = sim.last_penetration() > 0;
+          touching += in;
+          across += in && std::any_of(s.x.begin(), s.x.end(), [&](double x) { return x < 0 || x > scene.medium->width; });
+        } else {
+          ASSERT_EQ(now, reference[static_cast<std::size_t>(k)]) << "step " << k;
+        }
+      }
+    }
+    EXPECT_GT(touching, 250) << "the droplet must spend a while inside grains";
+    if (scene.medium == &seam) {
+      EXPECT_GT(across, 500) << "and, at the seam, across it";
+    }
   }
 }
 

@@ -157,8 +157,8 @@ class Simulation {
   /// contact_capacity_ discs per mass, contact_count_ how many, and contact_x_, contact_y_ the
   /// position they were found at (NaN: no record). The collisions use them only for a mass still at
   /// that position to the bit, so a state changed in between, a pushed mass, one inside more discs
-  /// than the capacity or a new placement is looked up again.
-  GrainGrid::DiscRange cached_contacts(int i) const;
+  /// than the capacity or a new placement is looked up again. A record of one disc is kept apart
+  /// (contact_disc_*_ below).
   std::vector<GrainGrid::Disc> contacts_;
   std::vector<std::int32_t> contact_count_;
   std::vector<double> contact_x_, contact_y_;
@@ -173,6 +173,13 @@ class Simulation {
   std::vector<double> clear_x_, clear_y_, clear_r2_;
   std::vector<std::int32_t> clear_count_;
   std::vector<GrainGrid::Disc> clear_discs_;
+  /// The first disc each mass was last found inside, by mass (x, y, r, grain), written with
+  /// contacts_: a record of one disc (contact_count_ 1) is this alone, and for a mass whose anchor
+  /// holds one disc it is that disc (the test that set the anchor found it, and the tests in the
+  /// ball find no other), so that the contact limit loads eight masses' at once
+  /// (src/contact_lanes.hpp). Otherwise it holds anything.
+  std::vector<double> contact_disc_x_, contact_disc_y_, contact_disc_r_;
+  std::vector<std::int32_t> contact_disc_grain_;
   double clearance_margin_ = 0;
 };
 

@@ -1,0 +1,39 @@
+#pragma once
+// The contact limit's common cases eight masses at a time (internal), with AVX-512 or AVX,
+// whichever constraint_vector_width() says: call it only where that is at least VectorWidth::avx.
+// In bench_scenes sweep-long, of the masses' steps, 71 % end free in their anchor's ball and 27 %
+// in the ball of an anchor that holds one disc (touching it or not); 2 % need the full test of
+// their cell (out of their balls, or pushed) and 0.04 % have anchors of several discs. The first
+// two go eight at a time here, each lane doing the operations of Simulation's scalar code, in its
+// order, so every mass gets the same bits; the rest stay with the scalar code.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace softdrop::lanes {
+
+/// One ring's contact records (Simulation's arrays, by mass).
+struct ContactRecords {
+  const double *x = nullptr, *y = nullptr;
+  /// The anchors: a mass within r2 of (x, y) can only touch or be pushed by the `count` discs.
+  const double *clear_x = nullptr, *clear_y = nullptr, *clear_r2 = nullptr;
+  const std::int32_t* clear_count = nullptr;
+  /// The disc of an anchor that holds one (Simulation::contact_disc_x_ and so on).
+  const double *disc_x = nullptr, *disc_y = nullptr, *disc_r = nullptr;
+  /// The records for the next collisions: how many discs each mass is inside, at which position;
+  /// a record of one disc is the disc above.
+  double *contact_x = nullptr, *contact_y = nullptr;
+  std::int32_t* contact_count = nullptr;
+  bool periodic = false;
+  /// 0.999999 W: with a periodic medium, 0 < x < wrap_below is where the wrapped x is x.
+  double wrap_below = 0;
+};
+
+/// The contact limit's test for masses i to i + 7 inside their anchor's ball: those that the
+/// anchor says touch nothing or only its one disc, which does not push them, get their records
+/// (count 0 or 1, the position, the disc) as apply_contact_limit's scalar code makes them. Returns
+/// the others (bit b: mass i + b), whose records it leaves to be overwritten: the caller tests
+/// them one by one. max_depth: DropletParams::max_depth.
+unsigned limit_eight(const ContactRecords& r, int i, double max_depth);
+
+}  // namespace softdrop::lanes

@@ -1,0 +1,42 @@
+// The contact limit's common cases eight masses at a time (contact_lanes.hpp): contact_kernels.inc
+// compiled for AVX-512 and for AVX.
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+
+#include "contact_lanes.hpp"
+#include "lane_simd.hpp"
+#include "softdrop/droplet.hpp"
+
+namespace softdrop::lanes {
+
+#if defined(SOFTDROP_AVX_DISPATCH)
+namespace avx {
+namespace {
+#define SOFTDROP_LANE_TARGET SOFTDROP_AVX
+#include "contact_kernels.inc"
+#undef SOFTDROP_LANE_TARGET
+}  // namespace
+}  // namespace avx
+
+namespace avx512 {
+namespace {
+#define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
+#include "contact_kernels.inc"
+#undef SOFTDROP_LANE_TARGET
+}  // namespace
+}  // namespace avx512
+
+namespace {
+bool avx512_in_use() { return constraint_vector_width() == VectorWidth::avx512; }
+}  // namespace
+
+unsigned limit_eight(const ContactRecords& r, int i, double max_depth) {
+  return avx512_in_use() ? avx512::limit_eight_k(r, i, max_depth)
+                         : avx::limit_eight_k(r, i, max_depth);
+}
+
+#endif
+
+}  // namespace softdrop::lanes
