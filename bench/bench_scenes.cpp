@@ -17,7 +17,9 @@
 // search-*-red-black (the same searches with the red-black constraint order: other histories, so
 // compare their steps per second). --lanes sets the search scenes' lanes (0: the default). --width
 // uses at most that vector width (8: AVX-512, 4: AVX, 2: SSE2, 1: scalar), to time what a
-// processor without AVX-512 runs.
+// processor without AVX-512 runs. The last column, dropped_steps_per_kept, is a speculating
+// search's cost: the steps its dropped evaluations had taken, over the steps counted (the kept
+// evaluations').
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -47,6 +49,7 @@ using Clock = std::chrono::steady_clock;
 struct Work {
   double seconds = 0, steps = 0, mass_updates = 0, droplets = 0, evaluations = 0;
   long grains = 0;
+  double dropped_steps = 0;  // a speculating search's, thrown away (not in steps)
 };
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
@@ -152,11 +155,12 @@ Work search(int lambda, int threads, int generations = 0, ConstraintOrder order 
   d.lanes = search_lanes;
   d.threads = threads;  // as optimize does: with 2 threads, idle ones speculate on later generations
   const auto t0 = Clock::now();
-  drive(s, d, [&](const Generation& gen, const Configuration&) {
+  const SearchSummary sum = drive(s, d, [&](const Generation& gen, const Configuration&) {
     for (const Candidate& c : gen.candidates) w.steps += static_cast<double>(c.eval.steps), ++w.evaluations;
     return true;
   });
   w.seconds = since(t0);
+  w.dropped_steps = static_cast<double>(sum.speculation.dropped_steps);
   w.mass_updates = w.steps * o.droplet.masses;
   return w;
 }
@@ -251,7 +255,7 @@ int main(int argc, char** argv) {
 #endif
       << " build\n# constraint vector width: " << static_cast<int>(constraint_vector_width())
       << " doubles (8: AVX-512, 4: AVX, 2: SSE2)\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
-         "droplets_per_s,evaluations_per_s,peak_rss_mb\n";
+         "droplets_per_s,evaluations_per_s,peak_rss_mb,dropped_steps_per_kept\n";
   bool any = false;
   for (const auto& [name, run] : scenes) {
     if (scene != "all" && scene != name) continue;
@@ -266,7 +270,8 @@ int main(int argc, char** argv) {
                          : threads;
     csv << name << ',' << used << ',' << repeats << ',' << best.grains << ',' << best.seconds << ',' << median << ','
         << best.steps / best.seconds << ',' << best.mass_updates / best.seconds << ','
-        << best.droplets / best.seconds << ',' << best.evaluations / best.seconds << ',' << peak_rss_mb() << '\n';
+        << best.droplets / best.seconds << ',' << best.evaluations / best.seconds << ',' << peak_rss_mb() << ','
+        << (best.steps > 0 ? best.dropped_steps / best.steps : 0.0) << '\n';
     std::cerr << name << ": " << best.steps / best.seconds << " steps/s, " << best.mass_updates / best.seconds
               << " mass updates/s (min " << best.seconds << " s, median " << median << " s)\n";
   }

@@ -100,6 +100,7 @@ class Pipeline {
     if (error_) std::rethrow_exception(error_);
     for (int k = 0; k < lambda; ++k) {
       auto it = done_.find({g, k});
+      stats_.kept_steps += it->second.eval.steps;
       candidates.push_back(std::move(it->second));
       done_.erase(it);
     }
@@ -154,7 +155,10 @@ class Pipeline {
       return dead_from <= l->start || dead_from <= completed_ + 1;
     });
     add_lineage(std::move(parent), start);
-    for (auto it = done_.lower_bound({start, 0}); it != done_.end(); it = done_.erase(it)) ++stats_.dropped;
+    for (auto it = done_.lower_bound({start, 0}); it != done_.end(); it = done_.erase(it)) {
+      ++stats_.dropped;
+      stats_.dropped_steps += it->second.eval.steps;
+    }
     for (auto it = predicted_.lower_bound(start); it != predicted_.end(); it = predicted_.erase(it))
       ++stats_.mispredictions;
     next_gen_ = start;
@@ -217,6 +221,7 @@ class Pipeline {
       Candidate c;
       std::unique_ptr<Simulation> sim;
       RunOptions run;
+      std::int64_t polls = 0;  // of run.cancelled, one every run.check_interval steps
       std::chrono::steady_clock::time_point t0;
     };
     std::map<std::int64_t, Job> jobs;  // by id; nodes stay put, so sims may point into them
@@ -244,11 +249,13 @@ class Pipeline {
         j.c = make_candidate(*j.line->parent, j.g, j.k, options);
         j.t0 = std::chrono::steady_clock::now();
         j.run = evaluation_run(options.run);
-        // Work made useless by a new lineage stops early instead of running on.
-        j.run.cancelled = [this, line = j.line.get(), g = j.g] {
-          return stopping_.load(std::memory_order_relaxed) || g >= line->dead_from.load(std::memory_order_relaxed);
-        };
         Job& placed = jobs.emplace(id, std::move(j)).first->second;
+        // Work made useless by a new lineage stops early instead of running on.
+        placed.run.cancelled = [this, &placed] {
+          ++placed.polls;
+          return stopping_.load(std::memory_order_relaxed) ||
+                 placed.g >= placed.line->dead_from.load(std::memory_order_relaxed);
+        };
         placed.sim = std::make_unique<Simulation>(options.droplet, placed.c.medium);
         *job = {placed.sim.get(), 0.5 * placed.c.medium.width, &placed.run, id};
         return true;
@@ -269,17 +276,20 @@ class Pipeline {
           predict();
         } else {
           ++stats_.dropped;
+          stats_.dropped_steps += j.c.eval.steps;
         }
       }
       cv_.notify_all();
       jobs.erase(it);
     };
     auto cancelled = [&](std::int64_t id) {
+      const auto it = jobs.find(id);
       if (!stopping_.load(std::memory_order_relaxed)) {
         std::lock_guard lock(m_);
         ++stats_.dropped;
+        stats_.dropped_steps += it->second.polls * it->second.run.check_interval;  // it stopped at a poll
       }
-      jobs.erase(id);
+      jobs.erase(it);
     };
     try {
       run_interleaved(lanes_, next, done, cancelled);

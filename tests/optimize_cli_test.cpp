@@ -73,6 +73,12 @@ TEST(Optimize, LambdaFourWritesTheSameHistoryOnOneAndTwoThreads) {
   const nlohmann::json j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j.at("speculation").at("threads"), 2);
   EXPECT_EQ(j.at("speculation").at("lanes"), 3);
+  // The steps kept are those of the stored candidates of generations 1 to 8.
+  SQLite::Database db(three, SQLite::OPEN_READONLY);
+  EXPECT_EQ(j.at("speculation").at("kept_steps").get<std::int64_t>(),
+            db.execAndGet("SELECT sum(steps) FROM candidates WHERE run_id = 1 AND generation > 0").getInt64());
+  EXPECT_GE(j.at("speculation").at("dropped_steps").get<std::int64_t>(),
+            j.at("speculation").at("dropped_evaluations").get<std::int64_t>());
 }
 
 TEST(Optimize, ExportedGenerationsReproduceTheStoredTBitForBit) {

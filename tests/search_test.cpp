@@ -276,6 +276,12 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
     // Each prediction came true or was overturned: none stands after the last generation.
     EXPECT_EQ(sum.speculation.predictions, sum.accepted + sum.speculation.mispredictions);
     EXPECT_GT(sum.speculation.dropped, 0) << "acceptances drop work made from the old best";
+    // A dropped evaluation had stepped at least once; the kept ones are the history's.
+    EXPECT_GE(sum.speculation.dropped_steps, sum.speculation.dropped);
+    std::int64_t history_steps = 0;
+    for (const Generation& g : a.history)
+      for (const Candidate& c : g.candidates) history_steps += c.eval.steps;
+    EXPECT_EQ(sum.speculation.kept_steps, history_steps);
     if (threads == 1) {
       EXPECT_GT(won_by_a_later_finisher, 0) << "the scene must overturn a prediction";
       EXPECT_GE(sum.speculation.mispredictions, 1);
@@ -289,6 +295,7 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
   const SearchSummary sum = drive(slow, none, nullptr);
   EXPECT_EQ(sum.speculation.predictions, 0);
   EXPECT_EQ(sum.speculation.dropped, 0);
+  EXPECT_EQ(sum.speculation.dropped_steps, 0);
 }
 
 TEST(Search, ASlowCompletionKeepsTheHistory) {

@@ -219,6 +219,11 @@ struct SpeculationStats {
   /// Evaluations begun and then dropped, finished or cancelled mid-run, because they were made
   /// from a parent their generation did not have (not counting those cut short by the end).
   std::int64_t dropped = 0;
+  /// Steps the dropped evaluations had taken when they were dropped (a cancelled run stops at its
+  /// next check, every RunOptions::check_interval steps): the speculation's cost.
+  std::int64_t dropped_steps = 0;
+  /// Steps of the evaluations that reached their generations (those of the history).
+  std::int64_t kept_steps = 0;
   /// Times the pipeline went on from a finished candidate that beat its generation's parent before
   /// that generation was complete. The parent is the best, or for a generation after an undecided
   /// one, what the predictions before it make the best.

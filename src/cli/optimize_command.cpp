@@ -271,6 +271,8 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   j["speculation"] = {{"threads", summary.speculation.threads},
                       {"lanes", summary.speculation.lanes},
                       {"dropped_evaluations", summary.speculation.dropped},
+                      {"dropped_steps", summary.speculation.dropped_steps},
+                      {"kept_steps", summary.speculation.kept_steps},
                       {"predictions", summary.speculation.predictions},
                       {"mispredictions", summary.speculation.mispredictions},
                       {"predictions_ahead", summary.speculation.predictions_ahead}};
@@ -286,11 +288,14 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
               << " accepted, " << summary.evaluations << " evaluations, "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
     const SpeculationStats& sp = summary.speculation;
+    const double dropped_share =
+        sp.kept_steps > 0 ? 100.0 * static_cast<double>(sp.dropped_steps) / static_cast<double>(sp.kept_steps) : 0.0;
     if (sp.threads == 0)
       std::cout << "speculation  off (one generation at a time)\n";
     else
       std::cout << "speculation  " << sp.threads << " threads x " << sp.lanes << " lanes, " << sp.dropped
-                << " evaluations dropped, " << sp.predictions << " acceptances predicted (" << sp.predictions_ahead
+                << " evaluations dropped (" << sp.dropped_steps << " steps, "
+                << fmt(dropped_share, 3) << " % of the kept evaluations' " << sp.kept_steps << "), " << sp.predictions << " acceptances predicted (" << sp.predictions_ahead
                 << " ahead of an undecided generation, " << sp.mispredictions << " overturned)\n";
   }
   return summary.termination == Termination::interrupted ? 130 : 0;
