@@ -301,32 +301,28 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
     if (recorded && counts[i] == 0 && (periodic || !(x < 0 || x > W))) continue;
     const double vx = (x - pxs[i]) * inv_dt, vy = (y - pys[i]) * inv_dt;
     const double xw = periodic ? wrap_periodic(x, W) : x;
-    // The same discs in the same order as the grid's, less those the mass is not inside (the
-    // record; one disc is kept apart).
-    GrainGrid::Disc first;
-    GrainGrid::DiscRange range;
-    if (!recorded) {
-      range = grid_.discs_near(xw, y);
-    } else if (counts[i] == 1) {
-      first = {first_x[i], first_y[i], first_r[i], first_grain[i]};
-      range = {&first, &first + 1};
-    } else {
-      const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
-      range = {record, record + counts[i]};
-    }
-    for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) {
-      const double dx = xw - g->x, dy = y - g->y, r = g->r;
+    // Penalty spring from the surface point plus damping of the normal velocity; never pulls.
+    const auto collide = [&](double gx, double gy, double r, std::int32_t grain) {
+      const double dx = xw - gx, dy = y - gy;
       const double d2 = dx * dx + dy * dy;
-      if (d2 >= r * r) continue;
+      if (d2 >= r * r) return;
       const double d = std::sqrt(d2);
       const double nx = d > 0 ? dx / d : 0.0, ny = d > 0 ? dy / d : 1.0;
       const double depth = r - d;
-      // Penalty spring from the surface point plus damping of the normal velocity; never pulls.
       const double f = std::max(0.0, kc * depth - cc * (vx * nx + vy * ny));
       fx[i * stride] += f * nx;
       fy[i * stride] += f * ny;
-      touched[static_cast<std::size_t>(g->grain)] = 1;
+      touched[static_cast<std::size_t>(grain)] = 1;
       deepest = std::max(deepest, depth);
+    };
+    // The same discs in the same order as the grid's, less those the mass is not inside (the
+    // record; one disc is kept apart).
+    if (recorded && counts[i] == 1) {
+      collide(first_x[i], first_y[i], first_r[i], first_grain[i]);
+    } else {
+      const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
+      const auto range = recorded ? GrainGrid::DiscRange{record, record + counts[i]} : grid_.discs_near(xw, y);
+      for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) collide(g->x, g->y, g->r, g->grain);
     }
     if (!periodic) {  // solid side walls
       if (x < 0) fx[i * stride] += std::max(0.0, -kc * x - cc * vx);
