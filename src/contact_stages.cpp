@@ -28,10 +28,6 @@ namespace {
 }  // namespace
 }  // namespace avx512
 
-namespace {
-bool avx512_in_use() { return constraint_vector_width() == VectorWidth::avx512; }
-}  // namespace
-
 unsigned limit_eight(const ContactRecords& r, int i, double max_depth) {
   return avx512_in_use() ? avx512::limit_eight_k(r, i, max_depth)
                          : avx::limit_eight_k(r, i, max_depth);

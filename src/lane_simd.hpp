@@ -8,9 +8,13 @@
 // constraint_vector_width() has the instruction set.
 
 #include "simd_dispatch.hpp"
+#include "softdrop/droplet.hpp"
 
 #if defined(SOFTDROP_AVX_DISPATCH)
 namespace softdrop::lanes {
+
+/// Which of the two the dispatchers call: avx512 if the width in use has it, else avx.
+inline bool avx512_in_use() { return constraint_vector_width() == VectorWidth::avx512; }
 
 namespace avx {
 

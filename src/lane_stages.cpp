@@ -69,10 +69,6 @@ using avx::transpose_rings;
 }  // namespace
 }  // namespace avx512
 
-namespace {
-bool avx512_in_use() { return constraint_vector_width() == VectorWidth::avx512; }
-}  // namespace
-
 void copy_in(double* const* rings, double* X, int n, int registers) {
   if (avx512_in_use()) avx512::copy_in(rings, X, n, registers);
   else avx::copy_in(rings, X, n, registers);
