@@ -294,9 +294,10 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
       std::cout << "speculation  off (one generation at a time)\n";
     else
       std::cout << "speculation  " << sp.threads << " threads x " << sp.lanes << " lanes, " << sp.dropped
-                << " evaluations dropped (" << sp.dropped_steps << " steps, "
-                << fmt(dropped_share, 3) << " % of the kept evaluations' " << sp.kept_steps << "), " << sp.predictions << " acceptances predicted (" << sp.predictions_ahead
-                << " ahead of an undecided generation, " << sp.mispredictions << " overturned)\n";
+                << " evaluations dropped (" << sp.dropped_steps << " steps, " << fmt(dropped_share, 3)
+                << " % of the kept evaluations' " << sp.kept_steps << "), " << sp.predictions
+                << " acceptances predicted (" << sp.predictions_ahead << " ahead of an undecided generation, "
+                << sp.mispredictions << " overturned)\n";
   }
   return summary.termination == Termination::interrupted ? 130 : 0;
 }
