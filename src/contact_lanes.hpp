@@ -7,7 +7,6 @@
 // two go eight at a time here, each lane doing the operations of Simulation's scalar code, in its
 // order, so every mass gets the same bits; the rest stay with the scalar code.
 
-#include <cstddef>
 #include <cstdint>
 
 namespace softdrop::lanes {

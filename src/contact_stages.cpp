@@ -1,8 +1,6 @@
 // The contact limit's common cases eight masses at a time (contact_lanes.hpp): contact_kernels.inc
 // compiled for AVX-512 and for AVX.
 
-#include <bit>
-#include <cstddef>
 #include <cstdint>
 
 #include "contact_lanes.hpp"
