@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 namespace softdrop {
 
-GrainGrid::GrainGrid(const Medium& medium, double cell_size) {
+GrainGrid::GrainGrid(const Medium& medium, double cell_size, double halo_cells) {
+  if (!(halo_cells >= 0 && halo_cells <= 16))
+    throw std::invalid_argument("grain grid halo " + std::to_string(halo_cells) + " cells is not in [0, 16]");
   const int n = static_cast<int>(medium.grains.size());
   for (int i = 0; i < n; ++i) {
     const Grain& g = medium.grains[static_cast<std::size_t>(i)];
@@ -46,11 +50,13 @@ GrainGrid::GrainGrid(const Medium& medium, double cell_size) {
     if (!(c > 0)) return 0;  // also NaN, from an infinite extent
     return c >= cells_along - 1 ? cells_along - 1 : static_cast<int>(c);
   };
+  // The cells a disc's bounding box, grown by the halo, overlaps.
   auto cell_span = [&](std::size_t k, int* ix0, int* ix1, int* iy0, int* iy1) {
-    *ix0 = cell_of(gx_[k] - gr_[k] - x0_, nx_);
-    *ix1 = cell_of(gx_[k] + gr_[k] - x0_, nx_);
-    *iy0 = cell_of(gy_[k] - gr_[k] - y0_, ny_);
-    *iy1 = cell_of(gy_[k] + gr_[k] - y0_, ny_);
+    const double r = gr_[k] + halo_;
+    *ix0 = cell_of(gx_[k] - r - x0_, nx_);
+    *ix1 = cell_of(gx_[k] + r - x0_, nx_);
+    *iy0 = cell_of(gy_[k] - r - y0_, ny_);
+    *iy1 = cell_of(gy_[k] + r - y0_, ny_);
   };
   // A few large grains among many small ones would cover many cells each; grow the cells until
   // the grid holds at most a bounded number of entries per grain, so memory stays linear. The
@@ -60,6 +66,7 @@ GrainGrid::GrainGrid(const Medium& medium, double cell_size) {
   std::int64_t cells = 0;
   for (;;) {
     inv_cell_ = 1.0 / cell_size;
+    halo_ = halo_cells * cell_size;
     nx_ = static_cast<int>(std::clamp(std::ceil((xmax - xmin) * inv_cell_), 1.0, max_cells));
     ny_ = static_cast<int>(std::clamp(std::ceil((ymax - ymin) * inv_cell_), 1.0, max_cells));
     cells = static_cast<std::int64_t>(nx_) * ny_;
@@ -106,7 +113,7 @@ double GrainGrid::edge_distance(double x, double y) const {
   const double fx = (x - x0_) * inv_cell_, fy = (y - y0_) * inv_cell_;
   if (fx >= 0 && fy >= 0 && fx < nx_ && fy < ny_) {
     const double ix = std::floor(fx), iy = std::floor(fy);
-    return std::min(std::min(fx - ix, ix + 1 - fx), std::min(fy - iy, iy + 1 - fy)) / inv_cell_;
+    return std::min(std::min(fx - ix, ix + 1 - fx), std::min(fy - iy, iy + 1 - fy)) / inv_cell_ + halo_;
   }
   const double ex = std::max(std::max(-fx, fx - nx_), 0.0), ey = std::max(std::max(-fy, fy - ny_), 0.0);
   return std::sqrt(ex * ex + ey * ey) / inv_cell_;

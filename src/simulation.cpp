@@ -49,8 +49,16 @@ bool RunOptions::IsValid(std::string* why) const {
   return true;
 }
 
+namespace {
+// The contact grid's halo, in cells: a mass's anchor ball (apply_contact_limit) may reach past its
+// cell's edge by this much, so a mass moving through open pore space leaves its ball, and is
+// tested against its whole cell, less often (sweep-long: 2.4 M of 127 M mass tests went to the
+// cell with no halo, 0.53 M with half a cell; a cell then lists 2.2 times as many discs).
+constexpr double kContactGridHalo = 0.5;
+}  // namespace
+
 Simulation::Simulation(const DropletParams& params, const Medium& medium)
-    : params_(params), medium_(medium), grid_(medium) {
+    : params_(params), medium_(medium), grid_(medium, 0, kContactGridHalo) {
   std::string why;
   if (!params.IsValid(&why)) throw std::invalid_argument(why);
   if (!medium.IsValid(&why)) throw std::invalid_argument(why);
@@ -447,8 +455,8 @@ void Simulation::apply_contact_limit() {
     contact_count_[i] = recorded ? count : 0;
     contact_x_[i] = recorded ? x : std::numeric_limits<double>::quiet_NaN();
     contact_y_[i] = y;
-    // No disc outside the cell's list is nearer than the cell's edge; the ball must not cross the
-    // periodic seam either, where the wrapped position jumps.
+    // No disc outside the cell's list is nearer than the cell's edge plus the grid's halo; the ball
+    // must not cross the periodic seam either, where the wrapped position jumps.
     double reach = std::min(gap, grid_.edge_distance(xw, y));
     if (periodic) reach = std::min(reach, std::min(xw, W - xw));
     reach -= clearance_margin_;

@@ -9,13 +9,11 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 
 #include "search_cli.hpp"
 #include "softdrop/fit.hpp"
 #include "softdrop/grain_file.hpp"
-#include "softdrop/grain_grid.hpp"
 
 namespace {
 using namespace softdrop::test;
@@ -155,28 +153,6 @@ TEST(FitFailures, PowerLawRunningToTheLogLawIsFittedAndFlagged) {
   EXPECT_TRUE(std::isfinite(power.values[0] - power.values[2]));
   EXPECT_GT(power.values[2] * power.values[1], 0.5);  // the slope of T against -ln(phi)
   EXPECT_LT(power.values[2] * power.values[1], 1.0);
-}
-
-TEST(GrainGridLimits, FewLargeGrainsAmongManySmallKeepTheGridLinearAndExact) {
-  // 20 000 small grains set the cell size; 150 grains 800 times wider would each cover
-  // ~10^5 cells of that size (1.5e7 entries). The grid coarsens instead, and stays exact.
-  softdrop::Medium m{2000, 2000, false, {}};
-  std::mt19937_64 rng(5);
-  std::uniform_real_distribution<double> u(0, 2000);
-  for (int i = 0; i < 20000; ++i) m.grains.push_back({u(rng), u(rng), 0.5});
-  for (int i = 0; i < 150; ++i) m.grains.push_back({u(rng), u(rng), 400});
-  const softdrop::GrainGrid grid(m);
-  EXPECT_LE(grid.entries(), 64 * m.grains.size() + 4096);
-  for (int k = 0; k < 2000; ++k) {  // every disc holding a point is listed in the point's cell
-    const double x = u(rng), y = u(rng);
-    const auto range = grid.query(x, y);
-    for (std::size_t i = 0; i < m.grains.size(); ++i) {
-      const auto& g = m.grains[i];
-      if ((x - g.x) * (x - g.x) + (y - g.y) * (y - g.y) < g.r * g.r) {
-        ASSERT_NE(std::find(range.begin, range.end, static_cast<std::int32_t>(i)), range.end) << i;
-      }
-    }
-  }
 }
 
 TEST(DamagedHistory, EditedValuesAreRefusedNamingTheFileAndNothingIsExported) {

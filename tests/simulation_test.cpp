@@ -175,17 +175,24 @@ TEST(Simulation, StepsThatReuseContactTestsEqualStepsThatLookEverythingUp) {
   // while the mass stays that close to where it was. A simulation made afresh from the same state
   // has neither record: its step must give the same state and forces to the bit, including after
   // masses are moved from outside. In the second scene 12 grains of growing radii touch the same
-  // top point, so that a mass resting there is inside more grains than the record holds (8).
+  // top point, so that a mass resting there is inside more grains than the record holds (8). In
+  // the third, an open random medium, masses cross wide pores, where their anchor balls reach
+  // past their cells' edges into the grid's halo.
   Medium pile{200, 200, true, {}};
   for (int k = 0; k < 12; ++k) pile.grains.push_back({100.0, 100.0 - (15.0 + k), 15.0 + k});
+  MediumOptions open_options;
+  open_options.porosity = 0.8;
+  open_options.width = open_options.height = 300;
+  open_options.seed = 2;
+  const Medium open = generate_medium(open_options);
   auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
     for (std::size_t i = 0; i < a.size(); ++i)
       if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
     return a.size() == b.size();
   };
   DropletParams p;
-  for (const Medium& medium : {test::pore_of_three_grains(), pile}) {
-    SCOPED_TRACE(medium.grains.size() == 3 ? "pore" : "pile");
+  for (const Medium& medium : {test::pore_of_three_grains(), pile, open}) {
+    SCOPED_TRACE(medium.grains.size() == 3 ? "pore" : medium.grains.size() == 12 ? "pile" : "open");
     Simulation sim(p, medium);
     sim.place_above(100);
     int in_contact = 0, moved = 0;

@@ -1,7 +1,8 @@
 #pragma once
 /// \file grain_grid.hpp
-/// A uniform grid over a medium that lists, for each cell, every grain overlapping the cell, so a
-/// point's contacts are found by looking in one cell: O(1) per mass, whatever the grain count.
+/// A uniform grid over a medium that lists, for each cell, every grain overlapping the cell (or
+/// coming within a chosen halo of it), so a point's contacts are found by looking in one cell: O(1)
+/// per mass, whatever the grain count.
 
 #include <cstdint>
 #include <vector>
@@ -13,11 +14,15 @@ namespace softdrop {
 class GrainGrid {
  public:
   /// Builds the grid; periodic media get the images of grains that cross x = 0 or x = W.
-  /// `cell_size` <= 0 picks the mean grain diameter.
-  explicit GrainGrid(const Medium& medium, double cell_size = 0);
+  /// `cell_size` <= 0 picks the mean grain diameter. `halo_cells` >= 0, a fraction of the cell
+  /// side: a cell also lists the grains that come within that distance of it, which lets a point
+  /// move further before a grain outside its cell's list could reach it (edge_distance()).
+  explicit GrainGrid(const Medium& medium, double cell_size = 0, double halo_cells = 0);
 
-  /// Grains (as indices into the stored arrays) whose disc may contain points of the cell holding
-  /// (x, y); x must already be wrapped into [0, W) for periodic media. Empty outside the grid.
+  /// Grains (as indices into the stored arrays, in increasing order) whose disc may contain points
+  /// of the cell holding (x, y) or come within the halo of it; x must already be wrapped into
+  /// [0, W) for periodic media. Empty outside the grid. The discs that contain a point are listed
+  /// in the same order whatever the cell size and halo.
   struct Range {
     const std::int32_t* begin;
     const std::int32_t* end;
@@ -53,9 +58,9 @@ class GrainGrid {
     return {discs_.data() + start_[c], discs_.data() + start_[c + 1]};
   }
 
-  /// How far (x, y) may move before it could be in another cell: the distance to the nearest edge
-  /// of its cell, or, outside the grid, to the grid (length; 0 or NaN for NaN). A disc not listed in
-  /// the cell does not overlap it, so no disc outside the cell's list is nearer than this.
+  /// How far from (x, y) a disc not listed in its cell must be: the distance to the nearest edge of
+  /// its cell plus the halo (a disc not listed comes no nearer to the cell than the halo), or,
+  /// outside the grid, the distance to the grid, which holds every disc (length; NaN for NaN).
   double edge_distance(double x, double y) const;
 
   /// Stored discs (grains and their periodic images), flat arrays.
@@ -65,6 +70,8 @@ class GrainGrid {
   /// Index of the medium grain a stored disc is (an image maps to its original).
   const std::vector<std::int32_t>& grain_id() const { return id_; }
   double cell_size() const { return 1.0 / inv_cell_; }
+  /// The halo as a length (halo_cells times the cell side).
+  double halo() const { return halo_; }
   /// Grain entries over all cells (a disc overlapping k cells counts k times): the grid's size,
   /// kept at most 64 per stored disc (plus 4096) by coarsening the cells when needed.
   std::size_t entries() const { return items_.size(); }
@@ -72,7 +79,7 @@ class GrainGrid {
   std::size_t max_cell_entries() const { return max_cell_; }
 
  private:
-  double x0_ = 0, y0_ = 0, inv_cell_ = 1;
+  double x0_ = 0, y0_ = 0, inv_cell_ = 1, halo_ = 0;
   int nx_ = 0, ny_ = 0;
   std::size_t max_cell_ = 0;
   std::vector<std::int64_t> start_;
