@@ -24,8 +24,9 @@ struct ContactRecords {
   double *contact_x = nullptr, *contact_y = nullptr;
   std::int32_t* contact_count = nullptr;
   bool periodic = false;
-  /// 0.999999 W: with a periodic medium, 0 < x < wrap_below is where the wrapped x is x.
-  double wrap_below = 0;
+  /// With a periodic medium: its width W, and 0.999999 W, below which (and above 0) the wrapped
+  /// x is x itself.
+  double width = 0, wrap_below = 0;
 };
 
 /// The contact limit's test for masses i to i + 7 inside their anchor's ball: those that the

@@ -77,6 +77,8 @@ SOFTDROP_AVX inline V sub(V a, V b) { return {_mm256_sub_pd(a.lo, b.lo), _mm256_
 SOFTDROP_AVX inline V mul(V a, V b) { return {_mm256_mul_pd(a.lo, b.lo), _mm256_mul_pd(a.hi, b.hi)}; }
 SOFTDROP_AVX inline V div(V a, V b) { return {_mm256_div_pd(a.lo, b.lo), _mm256_div_pd(a.hi, b.hi)}; }
 SOFTDROP_AVX inline V sqrt(V a) { return {_mm256_sqrt_pd(a.lo), _mm256_sqrt_pd(a.hi)}; }
+/// std::floor lane by lane (exact, as it is).
+SOFTDROP_AVX inline V floor(V a) { return {_mm256_floor_pd(a.lo), _mm256_floor_pd(a.hi)}; }
 /// -a to the bit (the sign flipped, as C++'s unary minus does).
 SOFTDROP_AVX inline V negate(V a) {
   const __m256d sign = _mm256_set1_pd(-0.0);
@@ -163,6 +165,10 @@ SOFTDROP_AVX512 inline V mul(V a, V b) { return _mm512_mul_pd(a, b); }
 SOFTDROP_AVX512 inline V div(V a, V b) { return _mm512_div_pd(a, b); }
 // All lanes (GCC 12's _mm512_sqrt_pd warns).
 SOFTDROP_AVX512 inline V sqrt(V a) { return _mm512_mask_sqrt_pd(a, 0xFF, a); }
+/// std::floor lane by lane (exact, as it is; all lanes, as sqrt).
+SOFTDROP_AVX512 inline V floor(V a) {
+  return _mm512_mask_roundscale_pd(a, 0xFF, a, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC);
+}
 /// -a to the bit (the sign flipped, as C++'s unary minus does), with AVX-512F alone.
 SOFTDROP_AVX512 inline V negate(V a) {
   return _mm512_castsi512_pd(

@@ -485,6 +485,7 @@ void Simulation::apply_contact_limit() {
     r.contact_y = contact_y_.data();
     r.contact_count = contact_count_.data();
     r.periodic = periodic;
+    r.width = W;
     r.wrap_below = 0.999999 * W;
     for (; i + 8 <= n; i += 8)
       for (unsigned todo = lanes::limit_eight(r, i, limit); todo != 0; todo &= todo - 1)

@@ -228,7 +228,8 @@ TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
   // (the collisions read the records) and the positions, step by step, over contact-heavy runs:
   // the pore, a mass resting inside 12 discs at once, a droplet that lands on a grain across the
   // periodic seam (masses at x < 0 and x > W, where the wrapped position is not x, and discs
-  // whose centres lie across the seam), and one that meets grains by the walls of a box.
+  // whose centres lie across the seam), one that meets grains by the walls of a box, and the pore
+  // reached a period away.
   Medium pile{200, 200, true, {}};
   for (int k = 0; k < 12; ++k) pile.grains.push_back({100.0, 100.0 - (15.0 + k), 15.0 + k});
   const Medium seam{200, 200, true, {{0.0, 120.0, 18.0}, {196.0, 60.0, 14.0}, {30.0, 40.0, 12.0}}};
@@ -239,7 +240,11 @@ TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
     double x0;
   };
   const Medium pore = test::pore_of_three_grains();
-  const Scene scenes[] = {{"pore", &pore, 100}, {"pile", &pile, 100}, {"seam", &seam, 0.5}, {"walled", &walled, 14}};
+  // The pore a period over and a period back: a droplet that has crossed the seam keeps its
+  // unwrapped positions, so all its masses are tested at wrapped positions, x - W floor(x / W).
+  const Scene scenes[] = {{"pore", &pore, 100},      {"pile", &pile, 100},
+                          {"seam", &seam, 0.5},      {"walled", &walled, 14},
+                          {"pore over", &pore, 300}, {"pore back", &pore, -100}};
   auto bits = [](const std::vector<double>& v) {
     std::vector<std::uint64_t> b;
     for (double d : v) b.push_back(std::bit_cast<std::uint64_t>(d));
@@ -277,6 +282,9 @@ TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
     EXPECT_GT(touching, 250) << "the droplet must spend a while inside grains";
     if (scene.medium == &seam) {
       EXPECT_GT(across, 500) << "and, at the seam, across it";
+    }
+    if (scene.x0 < 0 || scene.x0 > scene.medium->width) {
+      EXPECT_EQ(across, touching) << "a period away, every mass is outside [0, W]";
     }
   }
 }
