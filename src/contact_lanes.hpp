@@ -11,6 +11,10 @@
 
 namespace softdrop::lanes {
 
+/// A record's count for a mass inside one disc, the disc above, whose collision normal and depth
+/// (as accumulate_collisions() would compute them at that position) are recorded as well.
+constexpr std::int32_t kOneDiscWithNormal = -1;
+
 /// One ring's contact records (Simulation's arrays, by mass).
 struct ContactRecords {
   const double *x = nullptr, *y = nullptr;
@@ -20,9 +24,11 @@ struct ContactRecords {
   /// The disc of an anchor that holds one (Simulation::contact_disc_x_ and so on).
   const double *disc_x = nullptr, *disc_y = nullptr, *disc_r = nullptr;
   /// The records for the next collisions: how many discs each mass is inside, at which position;
-  /// a record of one disc is the disc above.
+  /// a record of one disc is the disc above. For kOneDiscWithNormal, the collision's normal and
+  /// depth too.
   double *contact_x = nullptr, *contact_y = nullptr;
   std::int32_t* contact_count = nullptr;
+  double *normal_x = nullptr, *normal_y = nullptr, *depth = nullptr;
   bool periodic = false;
   /// With a periodic medium: its width W, and 0.999999 W, below which (and above 0) the wrapped
   /// x is x itself.
@@ -31,8 +37,8 @@ struct ContactRecords {
 
 /// The contact limit's test for masses i to i + 7 inside their anchor's ball: those that the
 /// anchor says touch nothing or only its one disc, which does not push them, get their records
-/// (count 0 or 1, the position, the disc) as apply_contact_limit's scalar code makes them. Returns
-/// the others (bit b: mass i + b), whose records it leaves to be overwritten: the caller tests
+/// (count 0 or kOneDiscWithNormal, with the normal and depth, where the scalar code records 1
+/// and leaves them to the collisions; the position; the disc). Returns the others (bit b: mass i + b), whose records it leaves to be overwritten: the caller tests
 /// them one by one. max_depth: DropletParams::max_depth.
 unsigned limit_eight(const ContactRecords& r, int i, double max_depth);
 

@@ -101,7 +101,9 @@ void Simulation::place(double cx, double cy) {
   clear_r2_.assign(state_.x.size(), -1.0);
   clear_count_.assign(state_.x.size(), 0);
   clear_discs_.assign(contacts_.size(), GrainGrid::Disc{});
-  for (std::vector<double>* v : {&contact_disc_x_, &contact_disc_y_, &contact_disc_r_}) v->assign(state_.x.size(), 0.0);
+  for (std::vector<double>* v : {&contact_disc_x_, &contact_disc_y_, &contact_disc_r_, &contact_nx_, &contact_ny_,
+                                 &contact_depth_})
+    v->assign(state_.x.size(), 0.0);
   contact_disc_grain_.assign(state_.x.size(), 0);
   area_ = ring_area(state_);
   last_penetration_ = 0;
@@ -300,6 +302,7 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
   const double *first_x = contact_disc_x_.data(), *first_y = contact_disc_y_.data(),
                *first_r = contact_disc_r_.data();
   const std::int32_t* first_grain = contact_disc_grain_.data();
+  const double *normal_x = contact_nx_.data(), *normal_y = contact_ny_.data(), *depths = contact_depth_.data();
   const std::size_t capacity = contact_capacity_;
   std::uint8_t* const touched = touched_.data();
   for (int i = 0; i < n; ++i) {
@@ -308,24 +311,27 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
     // Most masses touch nothing: recorded inside no disc, and within the walls.
     if (recorded && counts[i] == 0 && (periodic || !(x < 0 || x > W))) continue;
     const double vx = (x - pxs[i]) * inv_dt, vy = (y - pys[i]) * inv_dt;
-    const double xw = periodic ? wrap_periodic(x, W) : x;
     // Penalty spring from the surface point plus damping of the normal velocity; never pulls.
-    const auto collide = [&](double gx, double gy, double r, std::int32_t grain) {
-      const double dx = xw - gx, dy = y - gy;
-      const double d2 = dx * dx + dy * dy;
-      if (d2 >= r * r) return;
-      const double d = std::sqrt(d2);
-      const double nx = d > 0 ? dx / d : 0.0, ny = d > 0 ? dy / d : 1.0;
-      const double depth = r - d;
+    const auto push_out = [&](double nx, double ny, double depth, std::int32_t grain) {
       const double f = std::max(0.0, kc * depth - cc * (vx * nx + vy * ny));
       fx[i * stride] += f * nx;
       fy[i * stride] += f * ny;
       touched[static_cast<std::size_t>(grain)] = 1;
       deepest = std::max(deepest, depth);
     };
+    const double xw = periodic ? wrap_periodic(x, W) : x;
+    const auto collide = [&](double gx, double gy, double r, std::int32_t grain) {
+      const double dx = xw - gx, dy = y - gy;
+      const double d2 = dx * dx + dy * dy;
+      if (d2 >= r * r) return;
+      const double d = std::sqrt(d2);
+      push_out(d > 0 ? dx / d : 0.0, d > 0 ? dy / d : 1.0, r - d, grain);
+    };
     // The same discs in the same order as the grid's, less those the mass is not inside (the
-    // record; one disc is kept apart).
-    if (recorded && counts[i] == 1) {
+    // record; one disc is kept apart, with its normal and depth when the lanes found it).
+    if (recorded && counts[i] == lanes::kOneDiscWithNormal) {
+      push_out(normal_x[i], normal_y[i], depths[i], first_grain[i]);
+    } else if (recorded && counts[i] == 1) {
       collide(first_x[i], first_y[i], first_r[i], first_grain[i]);
     } else {
       const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
@@ -484,6 +490,9 @@ void Simulation::apply_contact_limit() {
     r.contact_x = contact_x_.data();
     r.contact_y = contact_y_.data();
     r.contact_count = contact_count_.data();
+    r.normal_x = contact_nx_.data();
+    r.normal_y = contact_ny_.data();
+    r.depth = contact_depth_.data();
     r.periodic = periodic;
     r.width = W;
     r.wrap_below = 0.999999 * W;

@@ -180,6 +180,10 @@ class Simulation {
   /// (src/contact_lanes.hpp). Otherwise it holds anything.
   std::vector<double> contact_disc_x_, contact_disc_y_, contact_disc_r_;
   std::vector<std::int32_t> contact_disc_grain_;
+  /// For a record of count lanes::kOneDiscWithNormal (written eight masses at a time, which has
+  /// the square root and divisions to spare): the collision's normal and depth against that disc,
+  /// by mass, as accumulate_collisions() computes them. Otherwise they hold anything.
+  std::vector<double> contact_nx_, contact_ny_, contact_depth_;
   double clearance_margin_ = 0;
 };
 
