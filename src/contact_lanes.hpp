@@ -38,8 +38,9 @@ struct ContactRecords {
 /// The contact limit's test for masses i to i + 7 inside their anchor's ball: those that the
 /// anchor says touch nothing or only its one disc, which does not push them, get their records
 /// (count 0 or kOneDiscWithNormal, with the normal and depth, where the scalar code records 1
-/// and leaves them to the collisions; the position; the disc). Returns the others (bit b: mass i + b), whose records it leaves to be overwritten: the caller tests
-/// them one by one. max_depth: DropletParams::max_depth.
+/// and leaves them to the collisions; the position; the disc). Returns the others (bit b: mass
+/// i + b), whose records it leaves to be overwritten: the caller tests them one by one.
+/// max_depth: DropletParams::max_depth.
 unsigned limit_eight(const ContactRecords& r, int i, double max_depth);
 
 }  // namespace softdrop::lanes
