@@ -32,8 +32,9 @@ void with_registers(int registers, const F& f) {
 
 /// X[i L + t] = rings[t][i] for i < n, t < 8 registers.
 void copy_in(double* const* rings, double* X, int n, int registers);
-/// rings[t][i] = X[i L + t]; a null rings[t] (a padding lane) is skipped.
-void copy_out(double* const* rings, const double* X, int n, int registers);
+/// rings[t][i] = X[i L + t]; a null rings[t] (a padding lane) is skipped. With `previous`, what
+/// rings[t][i] held is moved to previous[t][i] first (non-null where rings[t] is).
+void copy_out(double* const* rings, const double* X, int n, int registers, double* const* previous = nullptr);
 
 /// The sequential order of the Provot constraint (apply_length_constraint) on every lane of X, Y:
 /// passes until no ring changes or `iterations` passes; counts[t] gets ring t's corrections.

@@ -25,10 +25,10 @@ SOFTDROP_AVX inline void transpose4(__m256d* m) {
   m[3] = _mm256_permute2f128_pd(a1, a3, 0x31);
 }
 
-// Copies masses [0, n) of rings x[0..L) into X[i L + t] (in) or back (out, skipping a null ring),
-// four by four.
+// Copies masses [0, n) of rings x[0..L) into X[i L + t] (in) or back (out, skipping a null ring,
+// and first moving what the ring held to previous[t] when that is given), four by four.
 template <int L, bool In>
-SOFTDROP_AVX void transpose_rings(double* const* x, double* X, int n) {
+SOFTDROP_AVX void transpose_rings(double* const* x, double* X, int n, double* const* previous = nullptr) {
   int i = 0;
   for (; i + 4 <= n; i += 4)
     for (int g = 0; g < L; g += 4) {
@@ -37,14 +37,22 @@ SOFTDROP_AVX void transpose_rings(double* const* x, double* X, int n) {
         m[t] = In ? _mm256_loadu_pd(x[g + t] + i) : _mm256_loadu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g);
       transpose4(m);
       for (int t = 0; t < 4; ++t) {
-        if (In) _mm256_storeu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g, m[t]);
-        else if (x[g + t]) _mm256_storeu_pd(x[g + t] + i, m[t]);
+        if (In) {
+          _mm256_storeu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g, m[t]);
+        } else if (x[g + t]) {
+          if (previous) _mm256_storeu_pd(previous[g + t] + i, _mm256_loadu_pd(x[g + t] + i));
+          _mm256_storeu_pd(x[g + t] + i, m[t]);
+        }
       }
     }
   for (; i < n; ++i)
     for (int t = 0; t < L; ++t) {
-      if (In) X[i * L + t] = x[t][i];
-      else if (x[t]) x[t][i] = X[i * L + t];
+      if (In) {
+        X[i * L + t] = x[t][i];
+      } else if (x[t]) {
+        if (previous) previous[t][i] = x[t][i];
+        x[t][i] = X[i * L + t];
+      }
     }
 }
 
@@ -73,9 +81,9 @@ void copy_in(double* const* rings, double* X, int n, int registers) {
   if (avx512_in_use()) avx512::copy_in(rings, X, n, registers);
   else avx::copy_in(rings, X, n, registers);
 }
-void copy_out(double* const* rings, const double* X, int n, int registers) {
-  if (avx512_in_use()) avx512::copy_out(rings, X, n, registers);
-  else avx::copy_out(rings, X, n, registers);
+void copy_out(double* const* rings, const double* X, int n, int registers, double* const* previous) {
+  if (avx512_in_use()) avx512::copy_out(rings, X, n, registers, previous);
+  else avx::copy_out(rings, X, n, registers, previous);
 }
 void constrain_sequential(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                           int* counts) {

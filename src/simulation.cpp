@@ -768,11 +768,13 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   // Padding lanes repeat the last droplet and are not copied back.
   double* in[4][lanes::kMaxLanes];
   double* out[2][lanes::kMaxLanes];
+  double* previous[2][lanes::kMaxLanes];
   for (int t = 0; t < L; ++t) {
     DropletState& s = sims[std::min(t, count - 1)]->state_;
     double* const arrays[4] = {s.x.data(), s.y.data(), s.px.data(), s.py.data()};
     for (int a = 0; a < 4; ++a) in[a][t] = arrays[a];
     for (int a = 0; a < 2; ++a) out[a][t] = t < count ? arrays[a] : nullptr;
+    for (int a = 0; a < 2; ++a) previous[a][t] = t < count ? arrays[a + 2] : nullptr;
   }
   for (int a = 0; a < 4; ++a) lanes::copy_in(in[a], block[a], n, registers);
   const lanes::StepConstants k = lanes::step_constants(p);
@@ -791,13 +793,9 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   else
     lanes::constrain_red_black(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax, corrections);
   // Verlet left the positions the step began with as the previous ones, so px, py are x, y as they
-  // still are in each state: copied there rather than back from the block.
-  for (int t = 0; t < count; ++t) {
-    DropletState& s = sims[t]->state_;
-    std::copy(s.x.begin(), s.x.end(), s.px.begin());
-    std::copy(s.y.begin(), s.y.end(), s.py.begin());
-  }
-  for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers);
+  // still are in each state: moved there as the copy out overwrites them, rather than copied back
+  // from the block.
+  for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers, previous[a]);
 }
 #else
 void LaneBlockStep::step(Simulation* const*, int) { throw std::logic_error("lane-by-lane step without AVX"); }
