@@ -84,6 +84,7 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
 }
 
 void Simulation::place(double cx, double cy) {
+  block_id_ = 0;
   place_droplet(params_, cx, cy, &state_);
   // Start at rest at t = 0: x(-dt) = x(0) + g dt^2 / 2 makes Verlet exact for free fall.
   for (int i = 0; i < state_.size(); ++i) state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
@@ -453,6 +454,7 @@ void Simulation::apply_contact_limit() {
       state_.px[i] = state_.x[i] - (vx - vn * nx);
       state_.py[i] = state_.y[i] - (vy - vn * ny);
       pushed = true;
+      block_id_ = 0;
     }
     // A pushed mass has moved since the tests, and one inside too many discs has no full record:
     // their collisions look them up again, and they get no anchor. (A NaN position that matches
@@ -521,6 +523,7 @@ void verlet(double* __restrict x, double* __restrict y, double* __restrict px, d
 }  // namespace
 
 void Simulation::integrate() {
+  block_id_ = 0;
   const double h2m = params_.dt * params_.dt / params_.mass;
   verlet(state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(), state_.fx.data(), state_.fy.data(),
          state_.size(), h2m);
@@ -535,6 +538,7 @@ void Simulation::compute_forces() {
 }
 
 void Simulation::apply_constraint() {
+  block_id_ = 0;
   softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain,
                                     params_.constraint_iterations, params_.constraint_order);
 }
@@ -756,13 +760,32 @@ struct LaneBlockStep {
 };
 
 #if defined(SOFTDROP_AVX_DISPATCH)
+namespace {
+// A thread's block: the lanes' x, y, px, py, fx, fy, and what the last step left in it. After a
+// step the first four are each droplet's state (the copy out wrote x, y, and px, py are the
+// positions the step began with in both), so a droplet still in the same lane whose state nothing
+// has changed since (Simulation::block_id_) need not be copied in again.
+struct LaneBlock {
+  std::vector<double> data;
+  std::uint64_t last_id = 0;  // 0: the data is not a finished step's
+  int lanes = 0, count = 0, masses = 0;
+};
+std::atomic<std::uint64_t> next_block_id{1};  // ids unique over threads: a droplet can change thread
+}  // namespace
+
 void LaneBlockStep::step(Simulation* const* sims, int count) {
   const Simulation& first = *sims[0];
   const DropletParams& p = first.params_;
   const int n = first.state_.size();
   const int registers = (count + 7) / 8, L = 8 * registers;
   const std::size_t size = static_cast<std::size_t>(n) * static_cast<std::size_t>(L);
-  double* const X = lanes::step_scratch(6 * size);
+  thread_local LaneBlock memory;
+  const bool same_layout = memory.last_id != 0 && memory.lanes == L && memory.masses == n;
+  const std::uint64_t previous_id = same_layout ? memory.last_id : 0;
+  const bool same_padding = same_layout && memory.count == count;
+  memory.last_id = 0;  // until this step has finished
+  if (memory.data.size() < 6 * size) memory.data.resize(6 * size);
+  double* const X = memory.data.data();
   double* const block[6] = {X, X + size, X + 2 * size, X + 3 * size, X + 4 * size, X + 5 * size};
   double *FX = block[4], *FY = block[5];
   // Padding lanes repeat the last droplet and are not copied back.
@@ -776,7 +799,25 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
     for (int a = 0; a < 2; ++a) out[a][t] = t < count ? arrays[a] : nullptr;
     for (int a = 0; a < 2; ++a) previous[a][t] = t < count ? arrays[a + 2] : nullptr;
   }
-  for (int a = 0; a < 4; ++a) lanes::copy_in(in[a], block[a], n, registers);
+  // The lanes whose droplet is not in the block as the last step left it (padding lanes repeat
+  // the last droplet's, and are there if the last step had as many droplets).
+  bool stale[lanes::kMaxLanes];
+  int stale_lanes = 0;
+  for (int t = 0; t < L; ++t) {
+    const int d = std::min(t, count - 1);
+    const Simulation& sim = *sims[d];
+    stale[t] = previous_id == 0 || sim.block_id_ != previous_id || sim.block_lane_ != d ||
+               (t >= count && !same_padding);
+    stale_lanes += stale[t];
+  }
+  if (stale_lanes > L / 4) {
+    for (int a = 0; a < 4; ++a) lanes::copy_in(in[a], block[a], n, registers);
+  } else if (stale_lanes > 0) {
+    for (int t = 0; t < L; ++t)
+      if (stale[t])
+        for (int a = 0; a < 4; ++a)
+          for (int i = 0; i < n; ++i) block[a][static_cast<std::size_t>(i) * L + t] = in[a][t][i];
+  }
   const lanes::StepConstants k = lanes::step_constants(p);
   double area[lanes::kMaxLanes];
   lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n, registers);
@@ -796,6 +837,15 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   // still are in each state: moved there as the copy out overwrites them, rather than copied back
   // from the block.
   for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers, previous[a]);
+  const std::uint64_t id = next_block_id.fetch_add(1, std::memory_order_relaxed);
+  for (int t = 0; t < count; ++t) {
+    sims[t]->block_id_ = id;
+    sims[t]->block_lane_ = t;
+  }
+  memory.last_id = id;
+  memory.lanes = L;
+  memory.count = count;
+  memory.masses = n;
 }
 #else
 void LaneBlockStep::step(Simulation* const*, int) { throw std::logic_error("lane-by-lane step without AVX"); }

@@ -100,7 +100,11 @@ class Simulation {
   RunSummary run_from_current(const RunOptions& options);
 
   const DropletState& state() const { return state_; }
-  DropletState& mutable_state() { return state_; }
+  /// The state to change between steps (a change made after the next step has begun is not seen).
+  DropletState& mutable_state() {
+    block_id_ = 0;
+    return state_;
+  }
   const DropletParams& params() const { return params_; }
   const Medium& medium() const { return medium_; }
   double area() const { return area_; }
@@ -185,6 +189,11 @@ class Simulation {
   /// by mass, as accumulate_collisions() computes them. Otherwise they hold anything.
   std::vector<double> contact_nx_, contact_ny_, contact_depth_;
   double clearance_margin_ = 0;
+  /// The lane-by-lane step that last left this state in its thread's block (its id, and the lane),
+  /// so that the next one need not copy it in again; 0: none, or the state has changed since (every
+  /// other writer of state_ clears it).
+  std::uint64_t block_id_ = 0;
+  int block_lane_ = 0;
 };
 
 /// A droplet for run_interleaved: the simulation to run it in (placed above the medium at x0 by the
