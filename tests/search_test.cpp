@@ -338,17 +338,17 @@ TEST(Search, PredictionsAheadOfUndecidedGenerationsKeepTheHistory) {
 }
 
 TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
-  // 8 lanes on 1 and 2 threads (4 at lambda = 1 with SSE2 alone); more threads share 2 threads'
-  // candidates. At the widths this processor has.
+  // 8 lanes on 1 and 2 threads (16 on 1 thread at lambda >= 2 with AVX-512, 4 at lambda = 1 with
+  // SSE2 alone); more threads share 2 threads' candidates. At the widths this processor has.
   for (VectorWidth width : {VectorWidth::avx512, VectorWidth::avx, VectorWidth::sse2}) {
     const test::VectorWidthLimit limit(width);
     if (limit.in_use() != width) continue;
     SCOPED_TRACE("vector width " + std::to_string(static_cast<int>(width)));
-    const int l1 = width >= VectorWidth::avx ? 8 : 4;
+    const int l1 = width >= VectorWidth::avx ? 8 : 4, one_thread = width == VectorWidth::avx512 ? 16 : 8;
     for (auto [lambda, threads, lanes] :
          {std::tuple{1, 1, l1}, std::tuple{1, 2, l1}, std::tuple{1, 3, 2 * l1 / 3}, std::tuple{1, 4, l1 / 2},
-          std::tuple{1, 16, 1}, std::tuple{2, 1, 8}, std::tuple{2, 2, 8}, std::tuple{2, 3, 5}, std::tuple{2, 4, 4},
-          std::tuple{4, 16, 1}}) {
+          std::tuple{1, 16, 1}, std::tuple{2, 1, one_thread}, std::tuple{2, 2, 8}, std::tuple{2, 3, 5},
+          std::tuple{2, 4, 4}, std::tuple{4, 1, one_thread}, std::tuple{4, 16, 1}}) {
       SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
       const SearchOptions o = test::small_search_options(lambda);
       Search s(o, start(o), 0);

@@ -155,7 +155,9 @@ struct DriveOptions {
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
   /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 8 on 1
-  /// and 2 threads (4 at λ = 1 with SSE2 alone); more threads keep as many candidates in flight as
+  /// and 2 threads (16 on 1 thread at λ >= 2 with AVX-512 and the sequential order, 4 at λ = 1
+  /// with SSE2 alone: default_lanes() in speculative_drive.cpp has the measurements); more
+  /// threads keep as many candidates in flight as
   /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order and
   /// without AVX-512, 0 means 1 (with SSE2 the lanes only hide the sequential constraint's chain,
   /// which red-black does not have; with AVX a block of red-black candidates is no faster than one

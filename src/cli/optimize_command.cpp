@@ -63,9 +63,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
               "Evaluate one generation at a time (by default idle threads evaluate the next generations "
               "ahead, assuming no acceptance; the history is the same either way)");
   g->add_option("--lanes", a.lanes,
-                "Candidates each thread steps together, in [0, 64] (0: 8, or 4 at lambda 1 without AVX-512, "
-                "fewer per thread beyond 2 threads; 1 with --constraint-order red-black without AVX-512); "
-                "results do not depend on it")
+                "Candidates each thread steps together, in [0, 64] (0: 8; 16 on one thread at lambda >= 2 with "
+                "AVX-512; 4 at lambda 1 with SSE2 alone; fewer per thread beyond 2 threads; 1 with "
+                "--constraint-order red-black without AVX-512); results do not depend on it")
       ->capture_default_str();
   g->add_option("--start-attempts", a.start_attempts,
                 "Random starting media to try until the droplet passes (generated media only)")
