@@ -69,8 +69,9 @@ void viscosity(const StepConstants& k, const double* X, const double* Y, const d
 void integrate(double h2m, double* X, double* Y, double* PX, double* PY, const double* FX, const double* FY, int n,
                int registers);
 
-/// This thread's scratch of at least `doubles` doubles for a lane-by-lane step, grown when needed
-/// (so a step allocates nothing once it has run). Apart from the constraint's own copy.
+/// This thread's scratch of at least `doubles` doubles for lane-by-lane work that keeps nothing
+/// between calls (the interleaved constraint's copy of its rings), grown when needed, so that it
+/// allocates nothing once it has run. The lane-by-lane step keeps its block in memory of its own.
 double* step_scratch(std::size_t doubles);
 
 }  // namespace softdrop::lanes
