@@ -336,14 +336,15 @@ class Pipeline {
 //
 // One thread with AVX-512, the sequential order and λ >= 2 takes 16 lanes (two registers' chains
 // side by side; bench_scenes, evaluations/s with 8 / 16 lanes: search-l2-1thread 62.1 / 70.4,
-// search-l2-long-1thread 75.4 / 87.7, though 2.8 times the work is dropped; λ = 1 98.9 / 88.4;
+// search-l2-long-1thread 75.4 / 87.7, though 2.8 times the work is dropped; λ = 1 99.9 / 88.4;
 // `optimize --lambda 4 --generations 40` 134-138 / 133; with AVX 65.1 / 68.6 over 400 generations
 // but 51.6 / 51.1 over 60, and red-black 90.1 / 83.2: 8 kept there). On 2 threads 8 stays best
 // (λ = 2: 104.6 / 91.4; over 400 generations 148.0 / 149.3).
 int default_lanes(int lambda, int workers, ConstraintOrder order) {
   const VectorWidth width = constraint_vector_width();
   if (order == ConstraintOrder::red_black && width < VectorWidth::avx512) return 1;
-  if (workers == 1 && lambda >= 2 && width == VectorWidth::avx512 && order == ConstraintOrder::sequential) return 16;
+  if (workers == 1 && lambda >= 2 && width == VectorWidth::avx512 && order == ConstraintOrder::sequential)
+    return 16;
   const int per_thread = width >= VectorWidth::avx ? 8 : std::min(8, 4 * lambda);
   return std::max(1, std::min(per_thread, 2 * per_thread / workers));
 }
