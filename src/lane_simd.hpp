@@ -7,6 +7,8 @@
 // so both instruction sets, and the one-ring code, agree to the bit. Call these only where
 // constraint_vector_width() has the instruction set.
 
+#include <cstdint>
+
 #include "simd_dispatch.hpp"
 #include "softdrop/droplet.hpp"
 
@@ -93,10 +95,31 @@ SOFTDROP_AVX inline M compare(V a, V b) {
 SOFTDROP_AVX inline unsigned bits(M m) {
   return static_cast<unsigned>(_mm256_movemask_pd(m.lo) | (_mm256_movemask_pd(m.hi) << 4));
 }
-/// m ? b : a, lane by lane.
-SOFTDROP_AVX inline V blend(M m, V a, V b) { return {_mm256_blendv_pd(a.lo, b.lo, m.lo), _mm256_blendv_pd(a.hi, b.hi, m.hi)}; }
+/// m ? b : a, lane by lane, as bits: (m & b) | (~m & a), which is vblendvpd's choice for the
+/// masks of compare() (each lane all ones or all zeros). Not _mm256_blendv_pd: GCC 12 turns it
+/// into a select on the lanes' sign, which AVX without AVX2 has no 256-bit integer test for, and
+/// does it one lane at a time through general registers and branches (in the contact kernel and
+/// the forces' spring loop, about 40 instructions a blend).
+SOFTDROP_AVX inline __m256d select_bits(__m256d m, __m256d a, __m256d b) {
+  return _mm256_or_pd(_mm256_and_pd(m, b), _mm256_andnot_pd(m, a));
+}
+SOFTDROP_AVX inline V blend(M m, V a, V b) { return {select_bits(m.lo, a.lo, b.lo), select_bits(m.hi, a.hi, b.hi)}; }
 /// m ? a : +0.
 SOFTDROP_AVX inline V keep_or_zero(M m, V a) { return {_mm256_and_pd(m.lo, a.lo), _mm256_and_pd(m.hi, a.hi)}; }
+/// Lanes b < 8 where p[b] == v, as bits (SSE2's integer compares: AVX has no 256-bit ones).
+SOFTDROP_AVX inline unsigned equal_lanes(const std::int32_t* p, std::int32_t v) {
+  const __m128i want = _mm_set1_epi32(v);
+  const __m128i lo = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p)), want);
+  const __m128i hi = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 4)), want);
+  return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(lo)) | (_mm_movemask_ps(_mm_castsi128_ps(hi)) << 4));
+}
+/// p[b] = (bit b of `lanes`) ? -1 : 0 for b < 8.
+SOFTDROP_AVX inline void store_minus_ones(std::int32_t* p, unsigned lanes) {
+  const __m128i all = _mm_set1_epi32(static_cast<int>(lanes));
+  const __m128i lo = _mm_setr_epi32(1, 2, 4, 8), hi = _mm_setr_epi32(16, 32, 64, 128);
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm_cmpeq_epi32(_mm_and_si128(all, lo), lo));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 4), _mm_cmpeq_epi32(_mm_and_si128(all, hi), hi));
+}
 SOFTDROP_AVX inline C no_counts() { return zero(); }
 /// c + 1 in the lanes of m.
 SOFTDROP_AVX inline C count(C c, M m) { return add(c, keep_or_zero(m, set1(1.0))); }
@@ -181,6 +204,17 @@ SOFTDROP_AVX512 inline M compare(V a, V b) {
 SOFTDROP_AVX512 inline unsigned bits(M m) { return m; }
 SOFTDROP_AVX512 inline V blend(M m, V a, V b) { return _mm512_mask_blend_pd(m, a, b); }
 SOFTDROP_AVX512 inline V keep_or_zero(M m, V a) { return _mm512_maskz_mov_pd(m, a); }
+/// Lanes b < 8 where p[b] == v, as bits (AVX2's compare, which AVX-512F processors have).
+SOFTDROP_AVX512 inline unsigned equal_lanes(const std::int32_t* p, std::int32_t v) {
+  const __m256i eq = _mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)), _mm256_set1_epi32(v));
+  return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(eq)));
+}
+/// p[b] = (bit b of `lanes`) ? -1 : 0 for b < 8.
+SOFTDROP_AVX512 inline void store_minus_ones(std::int32_t* p, unsigned lanes) {
+  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  const __m256i all = _mm256_set1_epi32(static_cast<int>(lanes));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_cmpeq_epi32(_mm256_and_si256(all, bit), bit));
+}
 SOFTDROP_AVX512 inline C no_counts() { return _mm512_setzero_si512(); }
 SOFTDROP_AVX512 inline C count(C c, M m) { return _mm512_mask_add_epi64(c, m, c, _mm512_set1_epi64(1)); }
 SOFTDROP_AVX512 inline bool add_counts(C c, int* counts) {
