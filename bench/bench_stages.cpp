@@ -193,7 +193,7 @@ void BM_LaneConstraint(benchmark::State& s) {
       softdrop::lanes::constrain_sequential(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
   });
 }
-BENCHMARK(BM_LaneConstraint)->ArgsProduct({{40}, {8, 24}, {0, 1}, {8, 4}});
+BENCHMARK(BM_LaneConstraint)->ArgsProduct({{40}, {8, 16, 24}, {0, 1}, {8, 4}});
 BENCHMARK(BM_LaneForces)->ArgsProduct({{40}, {8, 24}, {8, 4}});
 BENCHMARK(BM_LaneViscosity)->ArgsProduct({{40}, {8, 24}, {8, 4}});
 BENCHMARK(BM_LaneCopies)->ArgsProduct({{40}, {8, 24}, {8, 4}});
