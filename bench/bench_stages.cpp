@@ -62,7 +62,17 @@ void BM_SpringsAndPressure(benchmark::State& s) {
 // of the grains each mass is inside, and the contact limit skips masses within their clearance, as
 // for masses that did not move far in a run (67 % of the contact limit's masses in the batch scene
 // are skipped); bench_scenes shows what whole runs gain.
+// The collisions as a step after any change of the state runs them: every mass tested against its
+// record (after the first iteration the contact limit's recorded forces are spent).
 void BM_Collisions(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.accumulate_collisions(); }); }
+// The contact limit and the next collisions, as a step runs them: the forces the contact limit
+// records for the masses inside one disc are added with no test.
+void BM_ContactLimitThenCollisions(benchmark::State& s) {
+  stage(s, [](Simulation& sim) {
+    sim.apply_contact_limit();
+    sim.accumulate_collisions();
+  });
+}
 void BM_Viscosity(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.accumulate_viscosity(); }); }
 void BM_Integrate(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.integrate(); }); }
 void BM_ConstraintSequential(benchmark::State& s) {
@@ -211,6 +221,7 @@ BENCHMARK(BM_Integrate) SIZES;
 BENCHMARK(BM_ConstraintSequential) SIZES;
 BENCHMARK(BM_ConstraintRedBlack) SIZES;
 BENCHMARK(BM_ContactLimit) SIZES;
+BENCHMARK(BM_ContactLimitThenCollisions) SIZES;
 BENCHMARK(BM_WholeStep) SIZES;
 
 }  // namespace

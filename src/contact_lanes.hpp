@@ -6,15 +6,18 @@
 // their cell (out of their balls, or pushed) before the contact grid had a halo, 0.4 % with it,
 // and 0.04 % have anchors of several discs. The first two go eight at a time here, at wrapped
 // positions too, each lane doing the operations of Simulation's scalar code, in its order, so
-// every mass gets the same bits; the rest stay with the scalar code.
+// every mass gets the same bits; the rest stay with the scalar code. For the masses inside their
+// anchor's one disc the kernel also computes the next collisions' force (the positions and
+// velocities do not change in between), while the masses' arrays are in cache: the collisions
+// then only add it (Simulation::accumulate_collisions).
 
 #include <cstdint>
 
 namespace softdrop::lanes {
 
-/// A record's count for a mass inside one disc, the disc above, whose collision normal and depth
-/// (as accumulate_collisions() would compute them at that position) are recorded as well.
-constexpr std::int32_t kOneDiscWithNormal = -1;
+/// A record's count for a mass inside one disc, the disc above, whose collision force (as
+/// accumulate_collisions() would compute it at that position and velocity) is recorded as well.
+constexpr std::int32_t kOneDiscWithForce = -1;
 
 /// One ring's contact records (Simulation's arrays, by mass).
 struct ContactRecords {
@@ -24,12 +27,19 @@ struct ContactRecords {
   const std::int32_t* clear_count = nullptr;
   /// The disc of an anchor that holds one (Simulation::contact_disc_x_ and so on).
   const double *disc_x = nullptr, *disc_y = nullptr, *disc_r = nullptr;
+  /// The disc's grain, and the entry of the touched set that stands for none (the medium's count).
+  const std::int32_t* disc_grain = nullptr;
+  std::int32_t no_grain = 0;
+  /// For the forces: the previous positions, and DropletParams' kc, cc and 1 / dt.
+  const double *px = nullptr, *py = nullptr;
+  double kc = 0, cc = 0, inv_dt = 0;
   /// The records for the next collisions: how many discs each mass is inside, at which position;
-  /// a record of one disc is the disc above. For kOneDiscWithNormal, the collision's normal and
-  /// depth too.
+  /// a record of one disc is the disc above. The collisions' force on each mass recorded
+  /// kOneDiscWithForce, and the grain it touches (-0, -0 and no_grain for the others).
   double *contact_x = nullptr, *contact_y = nullptr;
   std::int32_t* contact_count = nullptr;
-  double *normal_x = nullptr, *normal_y = nullptr, *depth = nullptr;
+  double *force_x = nullptr, *force_y = nullptr;
+  std::int32_t* touch = nullptr;
   bool periodic = false;
   /// With a periodic medium: its width W, and 0.999999 W, below which (and above 0) the wrapped
   /// x is x itself.
@@ -38,10 +48,11 @@ struct ContactRecords {
 
 /// The contact limit's test for masses i to i + 7 inside their anchor's ball: those that the
 /// anchor says touch nothing or only its one disc, which does not push them, get their records
-/// (count 0 or kOneDiscWithNormal, with the normal and depth, where the scalar code records 1
-/// and leaves them to the collisions; the position; the disc). Returns the others (bit b: mass
-/// i + b), whose records it leaves to be overwritten: the caller tests them one by one.
-/// max_depth: DropletParams::max_depth.
-unsigned limit_eight(const ContactRecords& r, int i, double max_depth);
+/// (count 0, or kOneDiscWithForce with the force and the grain where the scalar code records 1
+/// and leaves them to the collisions; the position; the disc); deepest[b] (eight lanes) becomes
+/// std::max(deepest[b], depth) for mass i + b inside its disc. Returns the others (bit b: mass
+/// i + b), and those beyond a wall, whose records it leaves to be overwritten: the caller tests
+/// them one by one. max_depth: DropletParams::max_depth.
+unsigned limit_eight(const ContactRecords& r, int i, double max_depth, double* deepest);
 
 }  // namespace softdrop::lanes

@@ -26,9 +26,9 @@ namespace {
 }  // namespace
 }  // namespace avx512
 
-unsigned limit_eight(const ContactRecords& r, int i, double max_depth) {
-  return avx512_in_use() ? avx512::limit_eight_k(r, i, max_depth)
-                         : avx::limit_eight_k(r, i, max_depth);
+unsigned limit_eight(const ContactRecords& r, int i, double max_depth, double* deepest) {
+  return avx512_in_use() ? avx512::limit_eight_k(r, i, max_depth, deepest)
+                         : avx::limit_eight_k(r, i, max_depth, deepest);
 }
 
 #endif

@@ -32,6 +32,8 @@ void with_registers(int registers, const F& f) {
 
 /// X[i L + t] = rings[t][i] for i < n, t < 8 registers.
 void copy_in(double* const* rings, double* X, int n, int registers);
+/// X[i L + t] += rings[t][i] for i < n, t < 8 registers (the same addition, lane by lane).
+void add_in(const double* const* rings, double* X, int n, int registers);
 /// rings[t][i] = X[i L + t]; a null rings[t] (a padding lane) is skipped. With `previous`, what
 /// rings[t][i] held is moved to previous[t][i] first (non-null where rings[t] is).
 void copy_out(double* const* rings, const double* X, int n, int registers, double* const* previous = nullptr);

@@ -120,6 +120,31 @@ SOFTDROP_AVX inline void store_minus_ones(std::int32_t* p, unsigned lanes) {
   _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm_cmpeq_epi32(_mm_and_si128(all, lo), lo));
   _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 4), _mm_cmpeq_epi32(_mm_and_si128(all, hi), hi));
 }
+/// out[b] = (bit b of `lanes`) ? a[b] : other for b < 8 (SSE4.1's blends, two halves).
+SOFTDROP_AVX inline void select_lanes(unsigned lanes, const std::int32_t* a, std::int32_t other, std::int32_t* out) {
+  const __m128i all = _mm_set1_epi32(static_cast<int>(lanes)), no = _mm_set1_epi32(other);
+  const __m128i lo = _mm_setr_epi32(1, 2, 4, 8), hi = _mm_setr_epi32(16, 32, 64, 128);
+  const __m128i a_lo = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a));
+  const __m128i a_hi = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + 4));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
+                   _mm_blendv_epi8(no, a_lo, _mm_cmpeq_epi32(_mm_and_si128(all, lo), lo)));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4),
+                   _mm_blendv_epi8(no, a_hi, _mm_cmpeq_epi32(_mm_and_si128(all, hi), hi)));
+}
+/// Lanes of `all` (a set1 of a lane set) whose bit is b0 or b1, as 64-bit lanes of all ones.
+SOFTDROP_AVX inline __m128i two_lanes_of(__m128i all, long long b0, long long b1) {
+  const __m128i bit = _mm_set_epi64x(b1, b0);
+  return _mm_cmpeq_epi64(_mm_and_si128(all, bit), bit);
+}
+/// The lanes of `lanes` (bit b: lane b) as a mask.
+SOFTDROP_AVX inline M mask_of(unsigned lanes) {
+  const __m128i all = _mm_set1_epi64x(static_cast<long long>(lanes));
+  return {_mm256_castsi256_pd(_mm256_setr_m128i(two_lanes_of(all, 1, 2), two_lanes_of(all, 4, 8))),
+          _mm256_castsi256_pd(_mm256_setr_m128i(two_lanes_of(all, 16, 32), two_lanes_of(all, 64, 128)))};
+}
+/// a > b ? a : b lane by lane (maxpd), which is std::max(b, a) to the bit, NaN and signed zeros
+/// included.
+SOFTDROP_AVX inline V max(V a, V b) { return {_mm256_max_pd(a.lo, b.lo), _mm256_max_pd(a.hi, b.hi)}; }
 SOFTDROP_AVX inline C no_counts() { return zero(); }
 /// c + 1 in the lanes of m.
 SOFTDROP_AVX inline C count(C c, M m) { return add(c, keep_or_zero(m, set1(1.0))); }
@@ -215,6 +240,18 @@ SOFTDROP_AVX512 inline void store_minus_ones(std::int32_t* p, unsigned lanes) {
   const __m256i all = _mm256_set1_epi32(static_cast<int>(lanes));
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_cmpeq_epi32(_mm256_and_si256(all, bit), bit));
 }
+/// out[b] = (bit b of `lanes`) ? a[b] : other for b < 8.
+SOFTDROP_AVX512 inline void select_lanes(unsigned lanes, const std::int32_t* a, std::int32_t other,
+                                         std::int32_t* out) {
+  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  const __m256i in = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(lanes)), bit), bit);
+  const __m256i values = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_blendv_epi8(_mm256_set1_epi32(other), values, in));
+}
+SOFTDROP_AVX512 inline M mask_of(unsigned lanes) { return static_cast<M>(lanes); }
+/// a > b ? a : b lane by lane (maxpd), which is std::max(b, a) to the bit, NaN and signed zeros
+/// included. All lanes (GCC 12's _mm512_max_pd warns, as sqrt).
+SOFTDROP_AVX512 inline V max(V a, V b) { return _mm512_mask_max_pd(a, 0xFF, a, b); }
 SOFTDROP_AVX512 inline C no_counts() { return _mm512_setzero_si512(); }
 SOFTDROP_AVX512 inline C count(C c, M m) { return _mm512_mask_add_epi64(c, m, c, _mm512_set1_epi64(1)); }
 SOFTDROP_AVX512 inline bool add_counts(C c, int* counts) {

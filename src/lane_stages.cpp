@@ -25,10 +25,12 @@ SOFTDROP_AVX inline void transpose4(__m256d* m) {
   m[3] = _mm256_permute2f128_pd(a1, a3, 0x31);
 }
 
-// Copies masses [0, n) of rings x[0..L) into X[i L + t] (in) or back (out, skipping a null ring,
-// and first moving what the ring held to previous[t] when that is given), four by four.
-template <int L, bool In>
+// Copies masses [0, n) of rings x[0..L) into X[i L + t] (in; with Add, adds them: X[i L + t] +
+// x[t][i]) or back (out, skipping a null ring, and first moving what the ring held to previous[t]
+// when that is given), four by four.
+template <int L, bool In, bool Add = false>
 SOFTDROP_AVX void transpose_rings(double* const* x, double* X, int n, double* const* previous = nullptr) {
+  static_assert(In || !Add);
   int i = 0;
   for (; i + 4 <= n; i += 4)
     for (int g = 0; g < L; g += 4) {
@@ -37,8 +39,11 @@ SOFTDROP_AVX void transpose_rings(double* const* x, double* X, int n, double* co
         m[t] = In ? _mm256_loadu_pd(x[g + t] + i) : _mm256_loadu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g);
       transpose4(m);
       for (int t = 0; t < 4; ++t) {
-        if (In) {
-          _mm256_storeu_pd(X + static_cast<std::ptrdiff_t>(i + t) * L + g, m[t]);
+        double* const to = X + static_cast<std::ptrdiff_t>(i + t) * L + g;
+        if (Add) {
+          _mm256_storeu_pd(to, _mm256_add_pd(_mm256_loadu_pd(to), m[t]));
+        } else if (In) {
+          _mm256_storeu_pd(to, m[t]);
         } else if (x[g + t]) {
           if (previous) _mm256_storeu_pd(previous[g + t] + i, _mm256_loadu_pd(x[g + t] + i));
           _mm256_storeu_pd(x[g + t] + i, m[t]);
@@ -47,7 +52,9 @@ SOFTDROP_AVX void transpose_rings(double* const* x, double* X, int n, double* co
     }
   for (; i < n; ++i)
     for (int t = 0; t < L; ++t) {
-      if (In) {
+      if (Add) {
+        X[i * L + t] += x[t][i];
+      } else if (In) {
         X[i * L + t] = x[t][i];
       } else if (x[t]) {
         if (previous) previous[t][i] = x[t][i];
@@ -80,6 +87,10 @@ using avx::transpose_rings;
 void copy_in(double* const* rings, double* X, int n, int registers) {
   if (avx512_in_use()) avx512::copy_in(rings, X, n, registers);
   else avx::copy_in(rings, X, n, registers);
+}
+void add_in(const double* const* rings, double* X, int n, int registers) {
+  if (avx512_in_use()) avx512::add_in(rings, X, n, registers);
+  else avx::add_in(rings, X, n, registers);
 }
 void copy_out(double* const* rings, const double* X, int n, int registers, double* const* previous) {
   if (avx512_in_use()) avx512::copy_out(rings, X, n, registers, previous);

@@ -73,7 +73,7 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
                                   " is smaller than the droplet's longest edge " +
                                   detail::num(longest_edge) +
                                   ": use more masses, a smaller radius or larger grains");
-  touched_.assign(medium.grains.size(), 0);
+  touched_.assign(medium.grains.size() + 1, 0);  // the last entry: no grain (contact_touch_'s)
   double top = medium.height;
   for (const Grain& g : medium.grains) top = std::max(top, g.y + g.r);
   start_y_ = top + params.radius + 0.05 * params.radius;
@@ -85,6 +85,7 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
 
 void Simulation::place(double cx, double cy) {
   block_id_ = 0;
+  records_current_ = false;
   place_droplet(params_, cx, cy, &state_);
   // Start at rest at t = 0: x(-dt) = x(0) + g dt^2 / 2 makes Verlet exact for free fall.
   for (int i = 0; i < state_.size(); ++i) state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
@@ -102,10 +103,15 @@ void Simulation::place(double cx, double cy) {
   clear_r2_.assign(state_.x.size(), -1.0);
   clear_count_.assign(state_.x.size(), 0);
   clear_discs_.assign(contacts_.size(), GrainGrid::Disc{});
-  for (std::vector<double>* v : {&contact_disc_x_, &contact_disc_y_, &contact_disc_r_, &contact_nx_, &contact_ny_,
-                                 &contact_depth_})
+  for (std::vector<double>* v : {&contact_disc_x_, &contact_disc_y_, &contact_disc_r_})
     v->assign(state_.x.size(), 0.0);
   contact_disc_grain_.assign(state_.x.size(), 0);
+  contact_fx_.assign(state_.x.size(), -0.0);
+  contact_fy_.assign(state_.x.size(), -0.0);
+  contact_touch_.assign(state_.x.size(), static_cast<std::int32_t>(medium_.grains.size()));
+  contact_todo_.clear();
+  contact_todo_.reserve(state_.x.size());
+  contact_deepest_ = 0;
   area_ = ring_area(state_);
   last_penetration_ = 0;
 }
@@ -288,7 +294,7 @@ void Simulation::accumulate_pressure() {
 
 void Simulation::accumulate_collisions() { accumulate_collisions(state_.fx.data(), state_.fy.data(), 1); }
 
-void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride) {
+void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride, bool recorded_added) {
   const int n = state_.size();
   const double kc = params_.kc, cc = params_.cc, inv_dt = 1.0 / params_.dt;
   const double W = medium_.width;
@@ -303,36 +309,30 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
   const double *first_x = contact_disc_x_.data(), *first_y = contact_disc_y_.data(),
                *first_r = contact_disc_r_.data();
   const std::int32_t* first_grain = contact_disc_grain_.data();
-  const double *normal_x = contact_nx_.data(), *normal_y = contact_ny_.data(), *depths = contact_depth_.data();
   const std::size_t capacity = contact_capacity_;
   std::uint8_t* const touched = touched_.data();
-  for (int i = 0; i < n; ++i) {
+  // Mass i's contacts, for any mass but one recorded free within the walls.
+  const auto collide_mass = [&](int i) {
     const double x = xs[i], y = ys[i];
     const bool recorded = same_bits(x, cxs[i]) && same_bits(y, cys[i]);
-    // Most masses touch nothing: recorded inside no disc, and within the walls.
-    if (recorded && counts[i] == 0 && (periodic || !(x < 0 || x > W))) continue;
     const double vx = (x - pxs[i]) * inv_dt, vy = (y - pys[i]) * inv_dt;
+    const double xw = periodic ? wrap_periodic(x, W) : x;
     // Penalty spring from the surface point plus damping of the normal velocity; never pulls.
-    const auto push_out = [&](double nx, double ny, double depth, std::int32_t grain) {
+    const auto collide = [&](double gx, double gy, double r, std::int32_t grain) {
+      const double dx = xw - gx, dy = y - gy;
+      const double d2 = dx * dx + dy * dy;
+      if (d2 >= r * r) return;
+      const double d = std::sqrt(d2);
+      const double nx = d > 0 ? dx / d : 0.0, ny = d > 0 ? dy / d : 1.0, depth = r - d;
       const double f = std::max(0.0, kc * depth - cc * (vx * nx + vy * ny));
       fx[i * stride] += f * nx;
       fy[i * stride] += f * ny;
       touched[static_cast<std::size_t>(grain)] = 1;
       deepest = std::max(deepest, depth);
     };
-    const double xw = periodic ? wrap_periodic(x, W) : x;
-    const auto collide = [&](double gx, double gy, double r, std::int32_t grain) {
-      const double dx = xw - gx, dy = y - gy;
-      const double d2 = dx * dx + dy * dy;
-      if (d2 >= r * r) return;
-      const double d = std::sqrt(d2);
-      push_out(d > 0 ? dx / d : 0.0, d > 0 ? dy / d : 1.0, r - d, grain);
-    };
     // The same discs in the same order as the grid's, less those the mass is not inside (the
-    // record; one disc is kept apart, with its normal and depth when the lanes found it).
-    if (recorded && counts[i] == lanes::kOneDiscWithNormal) {
-      push_out(normal_x[i], normal_y[i], depths[i], first_grain[i]);
-    } else if (recorded && counts[i] == 1) {
+    // record; one disc is kept apart, the lanes' records of one included).
+    if (recorded && (counts[i] == 1 || counts[i] == lanes::kOneDiscWithForce)) {
       collide(first_x[i], first_y[i], first_r[i], first_grain[i]);
     } else {
       const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
@@ -342,6 +342,31 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
     if (!periodic) {  // solid side walls
       if (x < 0) fx[i * stride] += std::max(0.0, -kc * x - cc * vx);
       if (x > W) fx[i * stride] -= std::max(0.0, kc * (x - W) + cc * vx);
+    }
+  };
+  if (records_current_) {
+    // The contact limit left the forces of the masses inside one disc (-0 for the others, which
+    // changes no double), their grains and their largest depth, at these very positions and
+    // velocities: every mass gets its force with no test, and those it did not cover are listed.
+    records_current_ = false;
+    const double *force_x = contact_fx_.data(), *force_y = contact_fy_.data();
+    if (!recorded_added) {
+      for (int i = 0; i < n; ++i) {
+        fx[i * stride] += force_x[i];
+        fy[i * stride] += force_y[i];
+      }
+    }
+    const std::int32_t* touch = contact_touch_.data();
+    for (int i = 0; i < n; ++i) touched[static_cast<std::size_t>(touch[i])] = 1;
+    deepest = contact_deepest_;  // the maximum does not depend on the order of the masses
+    for (const std::int32_t i : contact_todo_) collide_mass(i);
+  } else {
+    for (int i = 0; i < n; ++i) {
+      // Most masses touch nothing: recorded inside no disc, and within the walls.
+      const double x = xs[i], y = ys[i];
+      if (same_bits(x, cxs[i]) && same_bits(y, cys[i]) && counts[i] == 0 && (periodic || !(x < 0 || x > W)))
+        continue;
+      collide_mass(i);
     }
   }
   last_penetration_ = deepest;
@@ -392,6 +417,18 @@ void Simulation::apply_contact_limit() {
     contact_disc_r_[i] = g.r;
     contact_disc_grain_[i] = g.grain;
   };
+  const std::int32_t no_grain = static_cast<std::int32_t>(medium_.grains.size());
+  records_current_ = false;
+  contact_todo_.clear();
+  alignas(64) double deepest[8] = {};  // of the forces recorded, lane by lane
+  // The next collisions of a mass tested here, not eight at a time: no recorded force, and a
+  // full look at its record unless it is recorded free within the walls.
+  const auto leave_to_collisions = [&](int i, double x, bool free) {
+    contact_fx_[i] = -0.0;
+    contact_fy_[i] = -0.0;
+    contact_touch_[i] = no_grain;
+    if (!(free && (periodic || !(x < 0 || x > W)))) contact_todo_.push_back(i);
+  };
   const auto limit_mass = [&](int i) {
     const double x = state_.x[i], y = state_.y[i];
     const std::size_t first = static_cast<std::size_t>(i) * capacity;
@@ -422,6 +459,7 @@ void Simulation::apply_contact_limit() {
         contact_count_[i] = count;
         contact_x_[i] = x;
         contact_y_[i] = y;
+        leave_to_collisions(i, x, count == 0);
         return;
       }
     }
@@ -463,6 +501,7 @@ void Simulation::apply_contact_limit() {
     contact_count_[i] = recorded ? count : 0;
     contact_x_[i] = recorded ? x : std::numeric_limits<double>::quiet_NaN();
     contact_y_[i] = y;
+    leave_to_collisions(i, x, recorded && count == 0);
     // No disc outside the cell's list is nearer than the cell's edge plus the grid's halo; the ball
     // must not cross the periodic seam either, where the wrapped position jumps.
     double reach = std::min(gap, grid_.edge_distance(xw, y));
@@ -492,18 +531,28 @@ void Simulation::apply_contact_limit() {
     r.contact_x = contact_x_.data();
     r.contact_y = contact_y_.data();
     r.contact_count = contact_count_.data();
-    r.normal_x = contact_nx_.data();
-    r.normal_y = contact_ny_.data();
-    r.depth = contact_depth_.data();
+    r.disc_grain = contact_disc_grain_.data();
+    r.no_grain = no_grain;
+    r.px = state_.px.data();
+    r.py = state_.py.data();
+    r.kc = params_.kc;
+    r.cc = params_.cc;
+    r.inv_dt = 1.0 / params_.dt;
+    r.force_x = contact_fx_.data();
+    r.force_y = contact_fy_.data();
+    r.touch = contact_touch_.data();
     r.periodic = periodic;
     r.width = W;
     r.wrap_below = 0.999999 * W;
     for (; i + 8 <= n; i += 8)
-      for (unsigned todo = lanes::limit_eight(r, i, limit); todo != 0; todo &= todo - 1)
+      for (unsigned todo = lanes::limit_eight(r, i, limit, deepest); todo != 0; todo &= todo - 1)
         limit_mass(i + std::countr_zero(todo));
   }
 #endif
   for (; i < n; ++i) limit_mass(i);
+  // The maximum does not depend on the order.
+  contact_deepest_ = *std::max_element(deepest, deepest + 8);
+  records_current_ = true;
 }
 
 namespace {
@@ -524,6 +573,7 @@ void verlet(double* __restrict x, double* __restrict y, double* __restrict px, d
 
 void Simulation::integrate() {
   block_id_ = 0;
+  records_current_ = false;
   const double h2m = params_.dt * params_.dt / params_.mass;
   verlet(state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(), state_.fx.data(), state_.fy.data(),
          state_.size(), h2m);
@@ -539,6 +589,7 @@ void Simulation::compute_forces() {
 
 void Simulation::apply_constraint() {
   block_id_ = 0;
+  records_current_ = false;
   softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain,
                                     params_.constraint_iterations, params_.constraint_order);
 }
@@ -693,7 +744,7 @@ class RunStepper {
     s_.outcome = o;
     s_.reason = std::move(reason);
     s_.steps = k;
-    for (std::size_t g = 0; g < sim_->touched_.size(); ++g)
+    for (std::size_t g = 0; g + 1 < sim_->touched_.size(); ++g)
       if (sim_->touched_[g]) s_.touched.push_back(static_cast<std::int32_t>(g));
     if (o_.path_interval > 0 && (s_.path_t.empty() || s_.path_t.back() != static_cast<double>(k) * dt_)) {
       s_.path_t.push_back(static_cast<double>(k) * dt_);
@@ -821,9 +872,21 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   const lanes::StepConstants k = lanes::step_constants(p);
   double area[lanes::kMaxLanes];
   lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n, registers);
+  // The collisions: first the forces the contact limit recorded, for every lane whose droplet's
+  // records are current (-0, which changes no double, for the others), then each droplet's own.
+  thread_local std::vector<double> no_force;
+  if (no_force.size() < static_cast<std::size_t>(n)) no_force.assign(static_cast<std::size_t>(n), -0.0);
+  const double* recorded[2][lanes::kMaxLanes];
+  for (int t = 0; t < L; ++t) {
+    const Simulation& sim = *sims[std::min(t, count - 1)];
+    recorded[0][t] = sim.records_current_ ? sim.contact_fx_.data() : no_force.data();
+    recorded[1][t] = sim.records_current_ ? sim.contact_fy_.data() : no_force.data();
+  }
+  lanes::add_in(recorded[0], FX, n, registers);
+  lanes::add_in(recorded[1], FY, n, registers);
   for (int t = 0; t < count; ++t) {
     sims[t]->area_ = area[t];
-    sims[t]->accumulate_collisions(FX + t, FY + t, L);
+    sims[t]->accumulate_collisions(FX + t, FY + t, L, /*recorded_added=*/true);
   }
   if (p.viscosity > 0) lanes::viscosity(k, block[0], block[1], block[2], block[3], FX, FY, n, registers);
   lanes::integrate(k.h2m, block[0], block[1], block[2], block[3], FX, FY, n, registers);
@@ -841,6 +904,7 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   for (int t = 0; t < count; ++t) {
     sims[t]->block_id_ = id;
     sims[t]->block_lane_ = t;
+    sims[t]->records_current_ = false;  // the step moved every mass
   }
   memory.last_id = id;
   memory.lanes = L;

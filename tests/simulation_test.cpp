@@ -221,6 +221,59 @@ TEST(Simulation, StepsThatReuseContactTestsEqualStepsThatLookEverythingUp) {
   }
 }
 
+TEST(Simulation, RecordedContactForcesEqualForcesComputedFromTheRecords) {
+  // The contact limit leaves the next collisions the force on each mass it found inside one disc
+  // (computed eight at a time, at the positions and velocities it tested), the grain touched and
+  // the deepest depth, with a list of the masses it did not cover; any change of the state in
+  // between (here mutable_state(), before every step of the second droplet) makes the collisions
+  // compute every contact from the records instead. Both must give the same forces, positions,
+  // depth and touched set, step by step, in a pore, across the periodic seam, by the walls of a
+  // box and in an open random medium.
+  const Medium seam{200, 200, true, {{0.0, 120.0, 18.0}, {196.0, 60.0, 14.0}, {30.0, 40.0, 12.0}}};
+  const Medium walled{120, 200, false, {{8.0, 120.0, 14.0}, {112.0, 80.0, 14.0}}};
+  MediumOptions open_options;
+  open_options.porosity = 0.8;
+  open_options.width = open_options.height = 300;
+  open_options.seed = 2;
+  const Medium open = generate_medium(open_options);
+  const Medium pore = test::pore_of_three_grains();
+  struct Scene {
+    const char* name;
+    const Medium* medium;
+    double x0;
+  };
+  const Scene scenes[] = {{"pore", &pore, 100}, {"seam", &seam, 0.5}, {"walled", &walled, 14}, {"open", &open, 150}};
+  auto bits = [](const DropletState& s) {
+    std::vector<std::uint64_t> b;
+    for (const std::vector<double>* v : {&s.fx, &s.fy, &s.x, &s.y, &s.px, &s.py})
+      for (double d : *v) b.push_back(std::bit_cast<std::uint64_t>(d));
+    return b;
+  };
+  DropletParams p;
+  for (const Scene& scene : scenes) {
+    SCOPED_TRACE(scene.name);
+    Simulation recorded(p, *scene.medium), recomputed(p, *scene.medium);
+    recorded.place_above(scene.x0);
+    recomputed.place_above(scene.x0);
+    int touching = 0;
+    for (int k = 0; k < 3000; ++k) {
+      (void)recomputed.mutable_state();
+      ASSERT_EQ(recorded.step(), recomputed.step()) << "step " << k;
+      ASSERT_EQ(bits(recorded.state()), bits(recomputed.state())) << "step " << k;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(recorded.last_penetration()),
+                std::bit_cast<std::uint64_t>(recomputed.last_penetration()))
+          << "step " << k;
+      touching += recorded.last_penetration() > 0;
+    }
+    RunOptions one;
+    one.max_steps = 1;
+    const RunSummary a = recorded.run_from_current(one), b = recomputed.run_from_current(one);
+    EXPECT_EQ(a.touched, b.touched);
+    EXPECT_FALSE(a.touched.empty());
+    EXPECT_GT(touching, 250) << "the droplet must spend a while inside grains";
+  }
+}
+
 TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
   // With AVX or AVX-512 the contact limit tests the masses free in their anchor's ball, or inside
   // its one disc, eight at a time (src/contact_kernels.inc); the scalar width tests them one by

@@ -103,6 +103,7 @@ class Simulation {
   /// The state to change between steps (a change made after the next step has begun is not seen).
   DropletState& mutable_state() {
     block_id_ = 0;
+    records_current_ = false;
     return state_;
   }
   const DropletParams& params() const { return params_; }
@@ -123,11 +124,16 @@ class Simulation {
   void accumulate_gravity();     ///< clears the forces to the weight m g
   void accumulate_springs();     ///< damped springs along the ring
   void accumulate_pressure();    ///< P l_e on each edge's outward normal (updates area())
-  void accumulate_collisions();  ///< grain and wall contacts (penalty and damping); touched set
+  /// Grain and wall contacts (penalty and damping); the touched set. Right after
+  /// apply_contact_limit() it adds the forces that stage recorded and looks at the masses it
+  /// listed; otherwise (or called again) it tests every mass against its record.
+  void accumulate_collisions();
   void accumulate_viscosity();   ///< internal viscosity relative to the rigid motion
   void integrate();              ///< position Verlet
   void apply_constraint();       ///< the Provot length constraint (params().constraint_order)
-  void apply_contact_limit();    ///< inverse dynamics: masses no deeper than max_depth
+  /// Inverse dynamics: masses no deeper than max_depth; records the contacts (and the forces of
+  /// most) for the next collisions.
+  void apply_contact_limit();
 
   /// step() in two halves around the constraint, for drivers that constrain several rings
   /// together (run_interleaved): before_constraint() computes the forces and integrates, and says
@@ -143,8 +149,9 @@ class Simulation {
   friend class RunStepper;
   friend struct LaneBlockStep;
   bool any_grain_inside_ring() const;
-  /// accumulate_collisions() adding mass i's force to fx[i * stride], fy[i * stride].
-  void accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride);
+  /// accumulate_collisions() adding mass i's force to fx[i * stride], fy[i * stride];
+  /// recorded_added: the caller has added the recorded forces (contact_fx_, contact_fy_) itself.
+  void accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride, bool recorded_added = false);
 
   DropletParams params_;
   const Medium& medium_;
@@ -184,10 +191,20 @@ class Simulation {
   /// (src/contact_lanes.hpp). Otherwise it holds anything.
   std::vector<double> contact_disc_x_, contact_disc_y_, contact_disc_r_;
   std::vector<std::int32_t> contact_disc_grain_;
-  /// For a record of count lanes::kOneDiscWithNormal (written eight masses at a time, which has
-  /// the square root and divisions to spare): the collision's normal and depth against that disc,
-  /// by mass, as accumulate_collisions() computes them. Otherwise they hold anything.
-  std::vector<double> contact_nx_, contact_ny_, contact_depth_;
+  /// What the contact limit leaves the next collisions, by mass: for a record of count
+  /// lanes::kOneDiscWithForce (written eight masses at a time, while the masses' arrays are in
+  /// cache) the collision's force against that disc, as accumulate_collisions() computes it, and
+  /// its grain; -0, -0 and the touched set's last entry (no grain) for the others.
+  std::vector<double> contact_fx_, contact_fy_;
+  std::vector<std::int32_t> contact_touch_;
+  /// The masses whose collisions the recorded forces do not cover (inside other records, pushed,
+  /// beyond a wall), in order, and the largest depth of those they do cover.
+  std::vector<std::int32_t> contact_todo_;
+  double contact_deepest_ = 0;
+  /// The contact limit's records describe state_ as it is: set by the contact limit, cleared by
+  /// the collisions that use them and by every other writer of state_ (as block_id_). Without it
+  /// the collisions test every mass's record against its position.
+  bool records_current_ = false;
   double clearance_margin_ = 0;
   /// The lane-by-lane step that last left this state in its thread's block (its id, and the lane),
   /// so that the next one need not copy it in again; 0: none, or the state has changed since (every
