@@ -26,9 +26,10 @@ namespace {
 }  // namespace
 }  // namespace avx512
 
-unsigned limit_eight(const ContactRecords& r, int i, double max_depth, double* deepest) {
-  return avx512_in_use() ? avx512::limit_eight_k(r, i, max_depth, deepest)
-                         : avx::limit_eight_k(r, i, max_depth, deepest);
+void limit_groups(const ContactRecords& r, int first, int groups, double max_depth, double* deepest,
+                  unsigned* todo) {
+  if (avx512_in_use()) avx512::limit_groups_k(r, first, groups, max_depth, deepest, todo);
+  else avx::limit_groups_k(r, first, groups, max_depth, deepest, todo);
 }
 
 #endif

@@ -544,9 +544,14 @@ void Simulation::apply_contact_limit() {
     r.periodic = periodic;
     r.width = W;
     r.wrap_below = 0.999999 * W;
-    for (; i + 8 <= n; i += 8)
-      for (unsigned todo = lanes::limit_eight(r, i, limit, deepest); todo != 0; todo &= todo - 1)
-        limit_mass(i + std::countr_zero(todo));
+    constexpr int kChunk = 16;  // groups of eight per call
+    unsigned todo[kChunk];
+    while (i + 8 <= n) {
+      const int groups = std::min(kChunk, (n - i) / 8);
+      lanes::limit_groups(r, i / 8, groups, limit, deepest, todo);
+      for (int g = 0; g < groups; ++g, i += 8)
+        for (unsigned left = todo[g]; left != 0; left &= left - 1) limit_mass(i + std::countr_zero(left));
+    }
   }
 #endif
   for (; i < n; ++i) limit_mass(i);
