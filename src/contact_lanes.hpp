@@ -46,14 +46,14 @@ struct ContactRecords {
   double width = 0, wrap_below = 0;
 };
 
-/// The contact limit's test for each group of eight masses 8 g to 8 g + 7, g from first to
-/// first + groups - 1, inside their anchor's ball: those that the
-/// anchor says touch nothing or only its one disc, which does not push them, get their records
-/// (count 0, or kOneDiscWithForce with the force and the grain where the scalar code records 1
-/// and leaves them to the collisions; the position; the disc); deepest[b] (eight lanes) becomes
-/// std::max(deepest[b], depth) for mass 8 g + b inside its disc. todo[g - first] gets the others
-/// (bit b: mass 8 g + b), and those beyond a wall, whose records it leaves to be overwritten: the
-/// caller tests them one by one. max_depth: DropletParams::max_depth.
+/// The contact limit's test for the groups of eight masses 8 g to 8 g + 7, g from first to
+/// first + groups - 1, inside their anchor's ball: those that the anchor says touch nothing or
+/// only its one disc, which does not push them, get their records (count 0, or kOneDiscWithForce
+/// with the force and the grain where the scalar code records 1 and leaves them to the
+/// collisions; the position; the disc); deepest[b] (eight lanes) becomes std::max(deepest[b],
+/// depth) for each mass 8 g + b inside its disc. todo[g - first] gets the others (bit b: mass
+/// 8 g + b), and those beyond a wall, whose records it leaves to be overwritten: the caller tests
+/// them one by one. max_depth: DropletParams::max_depth.
 void limit_groups(const ContactRecords& r, int first, int groups, double max_depth, double* deepest,
                   unsigned* todo);
 
