@@ -84,8 +84,7 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
 }
 
 void Simulation::place(double cx, double cy) {
-  block_id_ = 0;
-  records_current_ = false;
+  state_changed();
   place_droplet(params_, cx, cy, &state_);
   // Start at rest at t = 0: x(-dt) = x(0) + g dt^2 / 2 makes Verlet exact for free fall.
   for (int i = 0; i < state_.size(); ++i) state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
@@ -577,8 +576,7 @@ void verlet(double* __restrict x, double* __restrict y, double* __restrict px, d
 }  // namespace
 
 void Simulation::integrate() {
-  block_id_ = 0;
-  records_current_ = false;
+  state_changed();
   const double h2m = params_.dt * params_.dt / params_.mass;
   verlet(state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(), state_.fx.data(), state_.fy.data(),
          state_.size(), h2m);
@@ -593,8 +591,7 @@ void Simulation::compute_forces() {
 }
 
 void Simulation::apply_constraint() {
-  block_id_ = 0;
-  records_current_ = false;
+  state_changed();
   softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain,
                                     params_.constraint_iterations, params_.constraint_order);
 }

@@ -102,8 +102,7 @@ class Simulation {
   const DropletState& state() const { return state_; }
   /// The state to change between steps (a change made after the next step has begun is not seen).
   DropletState& mutable_state() {
-    block_id_ = 0;
-    records_current_ = false;
+    state_changed();
     return state_;
   }
   const DropletParams& params() const { return params_; }
@@ -211,6 +210,12 @@ class Simulation {
   /// other writer of state_ clears it).
   std::uint64_t block_id_ = 0;
   int block_lane_ = 0;
+  /// What a writer of state_ other than the lane-by-lane step and the contact limit does: the
+  /// block and the contact records no longer describe it.
+  void state_changed() {
+    block_id_ = 0;
+    records_current_ = false;
+  }
 };
 
 /// A droplet for run_interleaved: the simulation to run it in (placed above the medium at x0 by the
