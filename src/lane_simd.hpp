@@ -114,23 +114,22 @@ SOFTDROP_AVX inline unsigned equal_lanes(const std::int32_t* p, std::int32_t v) 
   const __m128i hi = _mm_cmpeq_epi32(_mm_loadu_si128(reinterpret_cast<const __m128i*>(p + 4)), want);
   return static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(lo)) | (_mm_movemask_ps(_mm_castsi128_ps(hi)) << 4));
 }
+/// Lanes 4 h to 4 h + 3 of `lanes` (bit b: lane b) as four int32 lanes, -1 where in, 0 elsewhere.
+SOFTDROP_AVX inline __m128i int32_mask(unsigned lanes, int h) {
+  const __m128i bit = h == 0 ? _mm_setr_epi32(1, 2, 4, 8) : _mm_setr_epi32(16, 32, 64, 128);
+  return _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(static_cast<int>(lanes)), bit), bit);
+}
 /// p[b] = (bit b of `lanes`) ? -1 : 0 for b < 8.
 SOFTDROP_AVX inline void store_minus_ones(std::int32_t* p, unsigned lanes) {
-  const __m128i all = _mm_set1_epi32(static_cast<int>(lanes));
-  const __m128i lo = _mm_setr_epi32(1, 2, 4, 8), hi = _mm_setr_epi32(16, 32, 64, 128);
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(p), _mm_cmpeq_epi32(_mm_and_si128(all, lo), lo));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 4), _mm_cmpeq_epi32(_mm_and_si128(all, hi), hi));
+  for (int h = 0; h < 2; ++h) _mm_storeu_si128(reinterpret_cast<__m128i*>(p + 4 * h), int32_mask(lanes, h));
 }
 /// out[b] = (bit b of `lanes`) ? a[b] : other for b < 8 (SSE4.1's blends, two halves).
 SOFTDROP_AVX inline void select_lanes(unsigned lanes, const std::int32_t* a, std::int32_t other, std::int32_t* out) {
-  const __m128i all = _mm_set1_epi32(static_cast<int>(lanes)), no = _mm_set1_epi32(other);
-  const __m128i lo = _mm_setr_epi32(1, 2, 4, 8), hi = _mm_setr_epi32(16, 32, 64, 128);
-  const __m128i a_lo = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a));
-  const __m128i a_hi = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + 4));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(out),
-                   _mm_blendv_epi8(no, a_lo, _mm_cmpeq_epi32(_mm_and_si128(all, lo), lo)));
-  _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4),
-                   _mm_blendv_epi8(no, a_hi, _mm_cmpeq_epi32(_mm_and_si128(all, hi), hi)));
+  for (int h = 0; h < 2; ++h) {
+    const __m128i in = _mm_loadu_si128(reinterpret_cast<const __m128i*>(a + 4 * h));
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(out + 4 * h),
+                     _mm_blendv_epi8(_mm_set1_epi32(other), in, int32_mask(lanes, h)));
+  }
 }
 /// Lanes of `all` (a set1 of a lane set) whose bit is b0 or b1, as 64-bit lanes of all ones.
 SOFTDROP_AVX inline __m128i two_lanes_of(__m128i all, long long b0, long long b1) {
@@ -235,19 +234,20 @@ SOFTDROP_AVX512 inline unsigned equal_lanes(const std::int32_t* p, std::int32_t 
   const __m256i eq = _mm256_cmpeq_epi32(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(p)), _mm256_set1_epi32(v));
   return static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(eq)));
 }
+/// `lanes` (bit b: lane b) as eight int32 lanes, -1 where in, 0 elsewhere.
+SOFTDROP_AVX512 inline __m256i int32_mask(unsigned lanes) {
+  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  return _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(lanes)), bit), bit);
+}
 /// p[b] = (bit b of `lanes`) ? -1 : 0 for b < 8.
 SOFTDROP_AVX512 inline void store_minus_ones(std::int32_t* p, unsigned lanes) {
-  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  const __m256i all = _mm256_set1_epi32(static_cast<int>(lanes));
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), _mm256_cmpeq_epi32(_mm256_and_si256(all, bit), bit));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), int32_mask(lanes));
 }
 /// out[b] = (bit b of `lanes`) ? a[b] : other for b < 8.
 SOFTDROP_AVX512 inline void select_lanes(unsigned lanes, const std::int32_t* a, std::int32_t other,
                                          std::int32_t* out) {
-  const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
-  const __m256i in = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(static_cast<int>(lanes)), bit), bit);
-  const __m256i values = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a));
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_blendv_epi8(_mm256_set1_epi32(other), values, in));
+  const __m256i in = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_blendv_epi8(_mm256_set1_epi32(other), in, int32_mask(lanes)));
 }
 SOFTDROP_AVX512 inline M mask_of(unsigned lanes) { return static_cast<M>(lanes); }
 /// a > b ? a : b lane by lane (maxpd), which is std::max(b, a) to the bit, NaN and signed zeros
