@@ -140,6 +140,10 @@ inline bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(
 inline double wrap_periodic(double x, double W) {
   return x > 0 && x < 0.999999 * W ? x : x - W * std::floor(x / W);
 }
+
+// A mass at x needs no wall force: the medium is periodic, or x is within [0, W] (NaN included, as
+// the walls' tests `x < 0` and `x > W` are false for it).
+inline bool within_walls(double x, bool periodic, double W) { return periodic || !(x < 0 || x > W); }
 }  // namespace
 
 void Simulation::accumulate_gravity() {
@@ -363,7 +367,7 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
     for (int i = 0; i < n; ++i) {
       // Most masses touch nothing: recorded inside no disc, and within the walls.
       const double x = xs[i], y = ys[i];
-      if (same_bits(x, cxs[i]) && same_bits(y, cys[i]) && counts[i] == 0 && (periodic || !(x < 0 || x > W)))
+      if (same_bits(x, cxs[i]) && same_bits(y, cys[i]) && counts[i] == 0 && within_walls(x, periodic, W))
         continue;
       collide_mass(i);
     }
@@ -426,7 +430,7 @@ void Simulation::apply_contact_limit() {
     contact_fx_[i] = -0.0;
     contact_fy_[i] = -0.0;
     contact_touch_[i] = no_grain;
-    if (!(free && (periodic || !(x < 0 || x > W)))) contact_todo_.push_back(i);
+    if (!(free && within_walls(x, periodic, W))) contact_todo_.push_back(i);
   };
   const auto limit_mass = [&](int i) {
     const double x = state_.x[i], y = state_.y[i];
