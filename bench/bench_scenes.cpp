@@ -165,18 +165,30 @@ Work search(int lambda, int threads, int generations = 0, ConstraintOrder order 
   return w;
 }
 
+// The CPU as /proc/cpuinfo names it, with its family and model (a virtual machine may name
+// different processors alike: "AMD EPYC" has been a Zen 3 and a Zen 5 here), its vector
+// extensions that the step can use, and the kernel.
 std::string machine() {
   std::ifstream cpu("/proc/cpuinfo");
-  std::string line, model = "unknown CPU";
-  while (std::getline(cpu, line))
-    if (line.rfind("model name", 0) == 0) {
-      model = line.substr(line.find(':') + 2);
-      break;
-    }
+  std::string line, model = "unknown CPU", family, number, flags;
+  auto value = [&] { return line.substr(line.find(':') + 2); };
+  while (std::getline(cpu, line) && !line.empty()) {  // the first processor's entries
+    if (line.rfind("model name", 0) == 0) model = value();
+    else if (line.rfind("cpu family", 0) == 0) family = value();
+    else if (line.rfind("model", 0) == 0 && line.find(':') != std::string::npos) number = value();
+    else if (line.rfind("flags", 0) == 0) flags = value();
+  }
+  std::ostringstream s;
+  s << model;
+  if (!family.empty()) s << " (family " << family << ", model " << number << ")";
+  std::string vector;
+  std::istringstream words(flags);
+  for (std::string w; words >> w;)
+    if (w == "avx512f" || (w == "avx2" && vector != "avx512f") || (w == "avx" && vector.empty())) vector = w;
   utsname u{};
   uname(&u);
-  std::ostringstream s;
-  s << model << ", " << std::thread::hardware_concurrency() << " hardware threads, " << u.sysname << " " << u.release;
+  s << ", " << std::thread::hardware_concurrency() << " hardware threads, widest vector extension "
+    << (vector.empty() ? "SSE2" : vector) << ", " << u.sysname << " " << u.release;
   return s.str();
 }
 

@@ -323,10 +323,14 @@ class Pipeline {
 // candidates); 8 lanes did best on 1 and 2 threads (the tables at DriveOptions::lanes; with AVX,
 // bench_scenes --width 4, λ = 1 / 2 on 1 thread: 4 lanes 61.5 / 34.0, 8 lanes 77.1 / 48.6
 // evaluations/s). The red-black order gains from blocks with AVX-512 (search-l2-red-black-1thread
-// / search-l2-red-black: 1 lane 69 / 130 evaluations/s, 4 lanes 82 / 147, 8 lanes 103 / 164) but
-// not with AVX, whose groups of eight are two registers (λ = 1 / 2, 1 thread: 1 lane 55.3 / 59.9,
-// 8 lanes 43.1 / 71.6; 2 threads: 65.5 / 101.7 and 66.9 / 97.9): there, and with SSE2, one
-// candidate per thread, which throws the least speculative work away. With SSE2 alone lanes only
+// / search-l2-red-black: 1 lane 69 / 130 evaluations/s, 4 lanes 82 / 147, 8 lanes 103 / 164) and
+// with AVX, except at λ = 1 on several threads, where one candidate per thread throws the least
+// speculative work away. Measured on a Zen 3 with AVX2 (bench_scenes search-*-red-black --lanes,
+// evaluations/s, 1 lane against 8, 4 to 6 runs each; the last table at DriveOptions::lanes):
+// λ = 1, 1 thread 21-25 against 27-34; λ = 2, 1 thread 24-27 against 34-35; λ = 2, 2 threads
+// 47-52 against 53-64; λ = 1, 2 threads 40-53 against 37-46 (1 lane faster in 7 of 8). Emulated
+// on a Zen 5 with --width 4 it had looked the other way at λ = 1 on 1 thread (55.3 with 1 lane,
+// 43.1 with 8). With SSE2, one candidate per thread. With SSE2 alone lanes only
 // hide the latency of the sequential constraint's chain (the chains of several rings side by side):
 // 8 lanes, 4 at lambda = 1. With more threads the pipeline would run that many
 // lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in 5
@@ -342,7 +346,8 @@ class Pipeline {
 // (λ = 2: 104.6 / 91.4; over 400 generations 148.0 / 149.3).
 int default_lanes(int lambda, int workers, ConstraintOrder order) {
   const VectorWidth width = constraint_vector_width();
-  if (order == ConstraintOrder::red_black && width < VectorWidth::avx512) return 1;
+  if (order == ConstraintOrder::red_black && (width < VectorWidth::avx || (width == VectorWidth::avx && lambda == 1 && workers > 1)))
+    return 1;
   if (workers == 1 && lambda >= 2 && width == VectorWidth::avx512 && order == ConstraintOrder::sequential)
     return 16;
   const int per_thread = width >= VectorWidth::avx ? 8 : std::min(8, 4 * lambda);

@@ -220,8 +220,9 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
     EXPECT_GT(accepted, 0) << "acceptances make the pipeline drop speculative work: that path must run";
     EXPECT_EQ(b.summary.evaluations, 16 * lambda);
   }
-  // The red-black order's default on 2 threads: 8 lanes each, stepped in blocks, with AVX-512; one
-  // lane each without it. Either way, the history of one generation at a time.
+  // The red-black order's default on 2 threads at lambda 2: 8 lanes each, stepped in blocks, with
+  // AVX-512 or AVX; one lane each with SSE2 alone. Either way, the history of one generation at a
+  // time.
   SearchOptions rb = test::small_search_options(2);
   rb.droplet.constraint_order = ConstraintOrder::red_black;
   const Configuration rb_best = start(rb);
@@ -230,7 +231,7 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
   d.threads = 2;
   const Driven b = drive_recorded(rb, rb_best, d);
   expect_same_history(one_at_a_time(rb, rb_best, 16), b);
-  EXPECT_EQ(b.summary.speculation.lanes, constraint_vector_width() >= VectorWidth::avx512 ? 8 : 1);
+  EXPECT_EQ(b.summary.speculation.lanes, constraint_vector_width() >= VectorWidth::avx ? 8 : 1);
 }
 
 // Drives the generations of `a` from `best` on `threads` threads with `lanes` lanes each, expects
@@ -359,10 +360,10 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
       EXPECT_EQ(sum.speculation.threads, threads);
       EXPECT_EQ(sum.speculation.lanes, lanes);
     }
-    // With AVX-512, red-black candidates are stepped in blocks too: the same lanes. Otherwise one
-    // candidate per thread (with AVX a block of red-black candidates is no faster, with SSE2 a
-    // red-black constraint has no chain for lanes to hide), so one thread evaluates one candidate
-    // at a time and does not speculate.
+    // With AVX-512 or AVX, red-black candidates are stepped in blocks too: the same lanes, except
+    // with AVX at lambda 1 on several threads (one candidate per thread drops the least work
+    // there). With SSE2 a red-black constraint has no chain for lanes to hide: one candidate per
+    // thread, so one thread evaluates one candidate at a time and does not speculate.
     for (int lambda : {1, 2}) {
       SearchOptions rb = test::small_search_options(lambda);
       rb.droplet.constraint_order = ConstraintOrder::red_black;
@@ -373,7 +374,7 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
         r.threads = threads;
         Search one(rb, start(rb), 0);
         const SearchSummary sum = drive(one, r, nullptr);
-        if (width == VectorWidth::avx512) {
+        if (width == VectorWidth::avx512 || (width == VectorWidth::avx && (lambda >= 2 || threads == 1))) {
           EXPECT_EQ(sum.speculation.threads, threads);
           EXPECT_EQ(sum.speculation.lanes, threads == 16 ? 1 : 8);
         } else {

@@ -158,10 +158,9 @@ struct DriveOptions {
   /// and 2 threads (16 on 1 thread at λ >= 2 with AVX-512 and the sequential order, 4 at λ = 1
   /// with SSE2 alone: default_lanes() in speculative_drive.cpp has the measurements); more
   /// threads keep as many candidates in flight as
-  /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order and
-  /// without AVX-512, 0 means 1 (with SSE2 the lanes only hide the sequential constraint's chain,
-  /// which red-black does not have; with AVX a block of red-black candidates is no faster than one
-  /// at a time, with AVX-512 it is: the last two tables). More lanes
+  /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order, 0
+  /// means 1 with SSE2 alone (there the lanes only hide the sequential constraint's chain, which
+  /// red-black does not have) and with AVX at λ = 1 on several threads (the last table). More lanes
   /// evaluate faster but run further ahead, so more speculative work is dropped when a generation
   /// accepts, and each candidate steps slower, which delays the decisions the others wait for.
   /// Evaluations/s by lanes, bench_scenes (60 or 120 generations) and `optimize --lambda 4
@@ -208,6 +207,20 @@ struct DriveOptions {
   ///   | λ = 1 red-black, 2 threads| 65.5  | 87.4  | 66.7  | 66.9  | 51.0  |
   ///   | λ = 2 red-black, 1 thread | 59.9  | 57.0  | 59.5  | 71.6  | 55.7  |
   ///   | λ = 2 red-black, 2 threads| 101.7 | 108.2 | 96.3  | 97.9  | 85.7  |
+  ///
+  /// On a processor with AVX2 and no AVX-512 (a Zen 3, "AMD EPYC (family 25, model 1)"), where the
+  /// step takes that AVX code; mean of 2 runs each, the scenes in turn. The emulation above had
+  /// red-black best with one lane; on the real processor 8 lanes are, except at λ = 1 on 2 threads:
+  ///
+  ///   | search                    | 1     | 4     | 6     | 8     | 12    |
+  ///   | λ = 1, 1 thread           | 17.1  | 31.0  | 38.7  | 44.3  | 33.1  |
+  ///   | λ = 1, 2 threads          | 30.6  | 53.4  | 58.3  | 58.0  | 45.3  |
+  ///   | λ = 2, 1 thread           | 8.4   | 17.4  | 22.7  | 25.8  | 20.7  |
+  ///   | λ = 2, 2 threads          | 15.4  | 31.5  | 38.8  | 41.2  | 33.3  |
+  ///   | λ = 1 red-black, 1 thread | 22.2  | 20.3  | 24.6  | 28.8  | 19.5  |
+  ///   | λ = 1 red-black, 2 threads| 44.6  | 36.2  | 38.9  | 38.3  | 27.6  |
+  ///   | λ = 2 red-black, 1 thread | 24.5  | 23.4  | 32.0  | 34.1  | 27.7  |
+  ///   | λ = 2 red-black, 2 threads| 49.4  | 44.1  | 49.5  | 53.3  | 41.8  |
   int lanes = 0;
 
   /// False, with the reason naming the option, for lanes outside [0, 64].
