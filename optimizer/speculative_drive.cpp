@@ -330,7 +330,7 @@ class Pipeline {
 // λ = 1, 1 thread 21-25 against 27-34; λ = 2, 1 thread 24-27 against 34-35; λ = 2, 2 threads
 // 47-52 against 53-64; λ = 1, 2 threads 40-53 against 37-46 (1 lane faster in 7 of 8). Emulated
 // on a Zen 5 with --width 4 it had looked the other way at λ = 1 on 1 thread (55.3 with 1 lane,
-// 43.1 with 8). With SSE2, one candidate per thread. With SSE2 alone lanes only
+// 43.1 with 8). With SSE2, one red-black candidate per thread. With SSE2 alone lanes only
 // hide the latency of the sequential constraint's chain (the chains of several rings side by side):
 // 8 lanes, 4 at lambda = 1. With more threads the pipeline would run that many
 // lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in 5
@@ -346,7 +346,8 @@ class Pipeline {
 // (λ = 2: 104.6 / 91.4; over 400 generations 148.0 / 149.3).
 int default_lanes(int lambda, int workers, ConstraintOrder order) {
   const VectorWidth width = constraint_vector_width();
-  if (order == ConstraintOrder::red_black && (width < VectorWidth::avx || (width == VectorWidth::avx && lambda == 1 && workers > 1)))
+  if (order == ConstraintOrder::red_black &&
+      (width < VectorWidth::avx || (width == VectorWidth::avx && lambda == 1 && workers > 1)))
     return 1;
   if (workers == 1 && lambda >= 2 && width == VectorWidth::avx512 && order == ConstraintOrder::sequential)
     return 16;

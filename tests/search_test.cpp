@@ -374,7 +374,9 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
         r.threads = threads;
         Search one(rb, start(rb), 0);
         const SearchSummary sum = drive(one, r, nullptr);
-        if (width == VectorWidth::avx512 || (width == VectorWidth::avx && (lambda >= 2 || threads == 1))) {
+        const bool blocks =
+            width == VectorWidth::avx512 || (width == VectorWidth::avx && (lambda >= 2 || threads == 1));
+        if (blocks) {
           EXPECT_EQ(sum.speculation.threads, threads);
           EXPECT_EQ(sum.speculation.lanes, threads == 16 ? 1 : 8);
         } else {
