@@ -29,6 +29,7 @@
 #include <fstream>
 #include <functional>
 #include <iostream>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -181,14 +182,19 @@ std::string machine() {
   std::ostringstream s;
   s << model;
   if (!family.empty()) s << " (family " << family << ", model " << number << ")";
-  std::string vector;
+  std::set<std::string> has;
   std::istringstream words(flags);
-  for (std::string w; words >> w;)
-    if (w == "avx512f" || (w == "avx2" && vector != "avx512f") || (w == "avx" && vector.empty())) vector = w;
+  for (std::string w; words >> w;) has.insert(w);
+  std::string vector = "SSE2";
+  for (const char* f : {"avx512f", "avx2", "avx"})  // widest first
+    if (has.count(f)) {
+      vector = f;
+      break;
+    }
   utsname u{};
   uname(&u);
   s << ", " << std::thread::hardware_concurrency() << " hardware threads, widest vector extension "
-    << (vector.empty() ? "SSE2" : vector) << ", " << u.sysname << " " << u.release;
+    << vector << ", " << u.sysname << " " << u.release;
   return s.str();
 }
 
