@@ -4,6 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
@@ -92,6 +93,42 @@ void BM_ConstraintRedBlackAtWidth(benchmark::State& s) {
 }
 void BM_ContactLimit(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.apply_contact_limit(); }); }
 void BM_WholeStep(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.step(); }); }
+
+// The floor under one droplet's sequential constraint: only the operations its chain of links
+// depends on (the spring's difference from the mass the previous link moved, squared length,
+// square root, (d - target) / (d + d), the far end moved), for every spring of every pass, as in
+// the balloon state where every spring is corrected (README, Defaults). No test, store or count,
+// and the far ends are read from memory that nothing writes, so the time is the chain's latency.
+// Compare BM_ConstraintSequential (integration + the real constraint): a lone droplet's sequential
+// step cannot take less than this, however the rest of the step is written. links/s is per link.
+void BM_ConstraintChainFloor(benchmark::State& s) {
+  const softdrop::Medium medium = softdrop::bench::medium_200();
+  softdrop::DropletParams p;
+  p.masses = static_cast<int>(s.range(0));
+  const auto sim = softdrop::bench::droplet_in_contact(p, medium);
+  sim->integrate();  // the positions the constraint sees
+  const std::vector<double> x = sim->state().x, y = sim->state().y;
+  const double dmax = (1 + p.max_strain) * p.rest_length();
+  const int n = p.masses, passes = p.constraint_iterations;
+  for (auto _ : s) {
+    double xi = x[0], yi = y[0];
+    for (int pass = 0; pass < passes; ++pass)
+      for (int i = 0; i < n; ++i) {
+        const std::size_t j = i + 1 == n ? 0 : static_cast<std::size_t>(i) + 1;
+        const double dx = x[j] - xi, dy = y[j] - yi;
+        const double d = std::sqrt(dx * dx + dy * dy);
+        const double c = (d - dmax) / (d + d);
+        xi = x[j] - c * dx;
+        yi = y[j] - c * dy;
+      }
+    benchmark::DoNotOptimize(xi);
+    benchmark::DoNotOptimize(yi);
+  }
+  s.counters["links/s"] =
+      benchmark::Counter(static_cast<double>(s.iterations()) * n * passes, benchmark::Counter::kIsRate);
+  s.counters["mass-updates/s"] =
+      benchmark::Counter(static_cast<double>(s.iterations()) * n, benchmark::Counter::kIsRate);
+}
 
 // The sequential constraint on K rings at once (apply_length_constraint_interleaved), as a batch of
 // droplets steps them: K copies of the stage's state, each integrated, then constrained together,
@@ -223,6 +260,7 @@ BENCHMARK(BM_ConstraintRedBlack) SIZES;
 BENCHMARK(BM_ContactLimit) SIZES;
 BENCHMARK(BM_ContactLimitThenCollisions) SIZES;
 BENCHMARK(BM_WholeStep) SIZES;
+BENCHMARK(BM_ConstraintChainFloor) SIZES;
 
 }  // namespace
 
