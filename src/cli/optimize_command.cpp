@@ -64,8 +64,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
               "ahead, assuming no acceptance; the history is the same either way)");
   g->add_option("--lanes", a.lanes,
                 "Candidates each thread steps together, in [0, 64] (0: 8; 16 on one thread at lambda >= 2 with "
-                "AVX-512; 4 at lambda 1 with SSE2 alone; fewer per thread beyond 2 threads; 1 with "
-                "--constraint-order red-black without AVX-512); results do not depend on it")
+                "AVX-512 and the sequential order; 4 at lambda 1 with SSE2 alone; fewer per thread beyond 2 "
+                "threads; 1 with --constraint-order red-black and SSE2 alone, or AVX without AVX-512 at lambda 1 "
+                "on several threads); results do not depend on it")
       ->capture_default_str();
   g->add_option("--start-attempts", a.start_attempts,
                 "Random starting media to try until the droplet passes (generated media only)")
