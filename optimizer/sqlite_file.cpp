@@ -127,6 +127,9 @@ CREATE TABLE IF NOT EXISTS sweep_droplets (
 )sql";
 
 
+// A WAL file's header; frames follow it.
+constexpr off_t kWalHeaderBytes = 32;
+
 // Reads what the file is before SQLite touches it: missing, empty, or an SQLite file whose header
 // is consistent with its size. Returns false for "no usable content yet" (missing or empty).
 bool check_file(const std::string& path, OpenMode mode) {
@@ -147,8 +150,15 @@ bool check_file(const std::string& path, OpenMode mode) {
     throw file_error(path, "not an SQLite database (no SQLite header)");
   }
   const unsigned long page = h.pageSizeBytes == 1 ? 65536UL : h.pageSizeBytes;
+  // A checkpoint copies pages from the WAL into the file, page 1 (with the new size) first, so a
+  // kill, a full disk or a power cut inside it leaves a file shorter than its header says. That
+  // file is valid: its missing pages are still in the WAL, and SQLite reads them from there. So
+  // with WAL frames present the size is SQLite's to judge (quick_check, below, reads every page in
+  // use); without them a short file really is truncated.
+  struct stat wal {};
+  const bool wal_frames = ::stat((path + "-wal").c_str(), &wal) == 0 && wal.st_size > kWalHeaderBytes;
   // The in-header size is valid when the change counter matches version-valid-for.
-  if (h.fileChangeCounter == h.versionValidFor && h.databaseSizePages > 0 &&
+  if (!wal_frames && h.fileChangeCounter == h.versionValidFor && h.databaseSizePages > 0 &&
       static_cast<unsigned long long>(st.st_size) <
           static_cast<unsigned long long>(page) * h.databaseSizePages)
     throw file_error(path, "truncated or corrupted (the header promises " +

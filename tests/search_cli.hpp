@@ -55,6 +55,24 @@ inline std::string dump(const std::string& db_path, int run, std::int64_t upto =
   return out.str();
 }
 
+/// Everything deterministic a sweep store holds: sweeps, media and droplets without times.
+inline std::string sweep_dump(const std::string& db_path) {
+  SQLite::Database d(db_path, SQLite::OPEN_READONLY);
+  std::ostringstream out;
+  for (const char* sql : {"SELECT params, units FROM sweeps ORDER BY id",
+                          "SELECT sweep_id, porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
+                          "droplets, passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction "
+                          "FROM sweep_media ORDER BY 1, 2, 3",
+                          "SELECT * FROM sweep_droplets ORDER BY 1, 2, 3, 4"}) {
+    SQLite::Statement q(d, sql);
+    while (q.executeStep()) {
+      for (int c = 0; c < q.getColumnCount(); ++c) out << q.getColumn(c).getText() << '|';
+      out << '\n';
+    }
+  }
+  return out.str();
+}
+
 /// Starts `softdrop ARGS` (words split at spaces) with stdout to /dev/null and stderr to
 /// `err_path` (default /dev/null).
 inline pid_t spawn(const std::string& args, const std::string& err_path = "/dev/null") {

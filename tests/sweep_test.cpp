@@ -14,7 +14,7 @@
 #include <random>
 #include <thread>
 
-#include "cli_run.hpp"
+#include "search_cli.hpp"
 #include "softdrop/averaging.hpp"
 #include "softdrop/fit.hpp"
 #include "softdrop/history.hpp"
@@ -206,22 +206,7 @@ TEST(Averaging, GroupsSortedByTOrByPhi) {
 
 // ---- the command line ----
 
-std::string dump(const std::string& db) {
-  SQLite::Database d(db, SQLite::OPEN_READONLY);
-  std::ostringstream out;
-  for (const char* sql : {"SELECT params, units FROM sweeps ORDER BY id",
-                          "SELECT sweep_id, porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
-                          "droplets, passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction "
-                          "FROM sweep_media ORDER BY 1, 2, 3",
-                          "SELECT * FROM sweep_droplets ORDER BY 1, 2, 3, 4"}) {
-    SQLite::Statement q(d, sql);
-    while (q.executeStep()) {
-      for (int c = 0; c < q.getColumnCount(); ++c) out << q.getColumn(c).getText() << '|';
-      out << '\n';
-    }
-  }
-  return out.str();
-}
+using test::sweep_dump;
 
 const std::string kQuick = " --preset quick --quiet --format json ";
 
@@ -267,7 +252,7 @@ TEST(SweepCli, KilledAndRunAgainGivesTheSameRecords) {
     waitpid(pid, nullptr, 0);
   }
   ASSERT_EQ(test::run("sweep --db " + killed + args).code, 0);
-  EXPECT_EQ(dump(killed), dump(ref));
+  EXPECT_EQ(sweep_dump(killed), sweep_dump(ref));
 }
 
 TEST(SweepCli, ShardsMergedEqualOneSweep) {
@@ -275,13 +260,13 @@ TEST(SweepCli, ShardsMergedEqualOneSweep) {
   ASSERT_EQ(test::run("sweep --db " + whole + " --preset quick --quiet").code, 0);
   ASSERT_EQ(test::run("sweep --db " + s0 + " --preset quick --quiet --shard 0/2").code, 0);
   ASSERT_EQ(test::run("sweep --db " + s1 + " --preset quick --quiet --shard 1/2").code, 0);
-  EXPECT_NE(dump(s0), dump(whole));
+  EXPECT_NE(sweep_dump(s0), sweep_dump(whole));
   const test::Result m = test::run("sweep-merge --into " + merged + " " + s0 + " " + s1);
   ASSERT_EQ(m.code, 0) << m.err;
-  EXPECT_EQ(dump(merged), dump(whole));
+  EXPECT_EQ(sweep_dump(merged), sweep_dump(whole));
   // Merging again adds nothing; a copy that disagrees is refused and named.
   ASSERT_EQ(test::run("sweep-merge --into " + merged + " " + s0).code, 0);
-  EXPECT_EQ(dump(merged), dump(whole));
+  EXPECT_EQ(sweep_dump(merged), sweep_dump(whole));
   { SQLite::Database d(s1, SQLite::OPEN_READWRITE); d.exec("UPDATE sweep_droplets SET steps = steps + 1 WHERE droplet = 0"); }
   const test::Result bad = test::run("sweep-merge --into " + merged + " " + s1);
   EXPECT_EQ(bad.code, 1);

@@ -1,5 +1,7 @@
 #include "cli/cli.hpp"
 
+#include <exception>
+#include <iostream>
 #include <memory>
 #include <vector>
 
@@ -29,6 +31,13 @@ class SubcommandConfig : public CLI::ConfigTOML {
  private:
   const CLI::App& app_;
 };
+
+// Errors are one line, whatever the library that raised them put in its message.
+std::string one_line(std::string message) {
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  return message;
+}
 
 }  // namespace
 
@@ -74,6 +83,23 @@ int Cli::run() {
   if (app.got_subcommand("averagings")) return run_averagings(averagings_);
   if (render_cmd_->parsed()) return run_render(render_, *render_cmd_);
   return 0;
+}
+
+int main(int argc, char** argv) {
+  Cli cli;
+  try {
+    cli.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == 0) return cli.app.exit(e);  // --help, --version
+    std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
+    return 2;
+  }
+  try {
+    return cli.run();
+  } catch (const std::exception& e) {
+    std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
+    return 1;
+  }
 }
 
 }  // namespace softdrop::cli

@@ -49,4 +49,9 @@ class Cli {
   CLI::App* render_cmd_ = nullptr;
 };
 
+/// The whole program: parses, runs, and turns every error into one line on stderr. Returns the
+/// exit code: 0, 1 (bad input found while running), 2 (the command line is wrong), or what the
+/// command returns (130 or 143 after a signal).
+int main(int argc, char** argv);
+
 }  // namespace softdrop::cli
