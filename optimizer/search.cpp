@@ -107,7 +107,8 @@ void check_medium(const Medium& medium, const SearchOptions& options) {
   if (auto bad = find_spacing_violation(medium, options.gap))
     throw std::invalid_argument(
         bad->first == bad->second
-            ? "medium: grain " + std::to_string(bad->first) + " is not inside the box"
+            ? "medium: grain " + std::to_string(bad->first) +
+                  " is not wholly inside the box in y (the search keeps r <= y <= height - r)"
             : "medium: grains " + std::to_string(bad->first) + " and " + std::to_string(bad->second) +
                   " are closer than the spacing rule allows (gap " + num(options.gap) + ")");
 }

@@ -4,7 +4,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -127,6 +129,10 @@ CREATE TABLE IF NOT EXISTS sweep_droplets (
 )sql";
 
 
+// The tables of the current schema; those starting "sweep" came with version 2.
+constexpr const char* kTables[] = {"runs",   "generations", "candidates",    "grains",
+                                   "paths",  "sweeps",      "sweep_media",   "sweep_droplets"};
+
 // A WAL file's header; frames follow it.
 constexpr off_t kWalHeaderBytes = 32;
 
@@ -186,6 +192,17 @@ bool check_schema(SQLite::Database& db, const std::string& path) {
       throw file_error(path, "written by a newer softdrop (schema version " + std::to_string(version) +
                                  "; this build reads up to " + std::to_string(kHistorySchemaVersion) + ")");
     if (version < 1) throw file_error(path, "softdrop database without a schema version");
+    // Every table of its version, before anything writes to it (a file with our id and version
+    // but not our tables would otherwise be switched to WAL and then fail on the first query).
+    for (const char* table : kTables) {
+      if (version < 2 && std::string(table).rfind("sweep", 0) == 0) continue;  // version 2's tables
+      SQLite::Statement t(db, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?");
+      t.bind(1, table);
+      t.executeStep();
+      if (t.getColumn(0).getInt() == 0)
+        throw file_error(path, "softdrop database (schema version " + std::to_string(version) + ") without its table " +
+                                   table + " (damaged or edited file?)");
+    }
     const std::string check = db.execAndGet("PRAGMA quick_check").getString();
     if (check != "ok") {
       std::string line = check;
@@ -215,38 +232,89 @@ void set_row_status(SQLite::Database& db, const char* table, std::int64_t id, co
 }
 
 namespace {
+bool exists(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0;
+}
+
+// `path` as an SQLite URI for an immutable file: read without locks or a -shm file.
+std::string immutable_uri(const std::string& path) {
+  std::string uri = "file:";
+  for (const char c : path) {
+    if (c == '%' || c == '?' || c == '#') {
+      static const char* hex = "0123456789ABCDEF";
+      uri += '%';
+      uri += hex[static_cast<unsigned char>(c) >> 4];
+      uri += hex[static_cast<unsigned char>(c) & 15];
+    } else {
+      uri += c;
+    }
+  }
+  return uri + "?immutable=1";
+}
+
+// Opens a connection. On read-only media (the folder and the file not writable) a WAL-mode file
+// cannot be opened as usual, since SQLite must create its -shm file beside it. With no -shm, no
+// WAL frames and no hot journal there is nothing to recover, and nobody can change the file, so it
+// is read as immutable.
+std::unique_ptr<SQLite::Database> connect(const std::string& path, int flags) {
+  if ((flags & SQLite::OPEN_CREATE) == 0 && exists(path)) {
+    const std::string::size_type slash = path.rfind('/');
+    const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    struct stat wal {};
+    const bool wal_frames = ::stat((path + "-wal").c_str(), &wal) == 0 && wal.st_size > 0;
+    if (::access(folder.c_str(), W_OK) != 0 && ::access(path.c_str(), W_OK) != 0 && !exists(path + "-shm") &&
+        !wal_frames && !exists(path + "-journal"))
+      return std::make_unique<SQLite::Database>(immutable_uri(path), SQLite::OPEN_READONLY | SQLite::OPEN_URI, 60'000);
+  }
+  return std::make_unique<SQLite::Database>(path, flags, 60'000);
+}
+
 // The read-only checks of open_database, run before anything may write to the file.
 void validate(const std::string& path, OpenMode mode) {
+  // Opening a WAL-mode file, even read-only, creates its -wal and -shm files; a refused file must
+  // be left as it was found, so those made here are removed again.
+  const bool had_wal = exists(path + "-wal"), had_shm = exists(path + "-shm");
+  auto tidy = [&] {
+    struct stat wal {};
+    if (!had_wal && ::stat((path + "-wal").c_str(), &wal) == 0 && wal.st_size == 0) ::unlink((path + "-wal").c_str());
+    if (!had_shm && !exists(path + "-wal")) ::unlink((path + "-shm").c_str());
+  };
   const bool has_content = check_file(path, mode);
-  if (has_content) {
-    // Inspect read-only first: nothing is written to a file that turns out not to be ours.
-    bool ours = false;
-    auto probe = [&](int flags) {
-      SQLite::Database db(path, flags, 60'000);
-      ours = check_schema(db, path);
-    };
+  if (!has_content) return;
+  // Inspect read-only first: nothing is written to a file that turns out not to be ours.
+  bool ours = false;
+  auto probe = [&](int flags) {
+    auto db = connect(path, flags);
+    ours = check_schema(*db, path);
+  };
+  try {
     try {
-      try {
-        probe(SQLite::OPEN_READONLY);
-      } catch (const SQLite::Exception& e) {
-        // A process killed inside a transaction of a rollback-journal file (a new file before it
-        // switches to WAL, or one edited with sqlite3) leaves a hot journal, which a read-only
-        // connection cannot roll back (SQLITE_READONLY_ROLLBACK; likewise _RECOVERY for a WAL
-        // index). Rolling back restores the file's last committed state, which every SQLite
-        // opener would do; the header check above already showed the file is SQLite.
-        if ((e.getErrorCode() & 0xff) != SQLITE_READONLY || ::access(path.c_str(), W_OK) != 0) throw;
-        probe(SQLite::OPEN_READWRITE);
-      }
+      probe(SQLite::OPEN_READONLY);
     } catch (const SQLite::Exception& e) {
-      throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
+      // A process killed inside a transaction of a rollback-journal file (a new file before it
+      // switches to WAL, or one edited with sqlite3) leaves a hot journal, which a read-only
+      // connection cannot roll back (SQLITE_READONLY_ROLLBACK; likewise _RECOVERY for a WAL
+      // index). Rolling back restores the file's last committed state, which every SQLite
+      // opener would do; the header check above already showed the file is SQLite.
+      if ((e.getErrorCode() & 0xff) != SQLITE_READONLY || ::access(path.c_str(), W_OK) != 0) throw;
+      probe(SQLite::OPEN_READWRITE);
     }
     if (!ours && mode == OpenMode::read_only) throw file_error(path, "empty SQLite database, no softdrop data");
+  } catch (const SQLite::Exception& e) {
+    tidy();
+    throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
+  } catch (...) {
+    tidy();
+    throw;
   }
 }
 }  // namespace
 
 std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMode mode) {
   validate(path, mode);
+  if (mode == OpenMode::create && exists(path) && ::access(path.c_str(), W_OK) != 0)
+    throw file_error(path, std::string("cannot write to it (") + std::strerror(errno) + ")");
   return guarded(path, [&] {
     // A reader of a checked, writable file still opens it read-write (and never writes): SQLite can
     // then checkpoint and remove the -wal and -shm files when the last connection closes, which a
@@ -254,7 +322,7 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     const int flags = mode == OpenMode::create       ? SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE
                       : ::access(path.c_str(), W_OK) == 0 ? SQLite::OPEN_READWRITE
                                                           : SQLite::OPEN_READONLY;
-    auto db = std::make_unique<SQLite::Database>(path, flags, 60'000);
+    auto db = connect(path, flags);
     db->exec("PRAGMA foreign_keys = ON");
     if (mode == OpenMode::read_only) return db;
     // Switching to WAL needs the file to itself and does not wait through the busy handler, so a

@@ -1,6 +1,8 @@
 // The search history (History) on a softdrop SQLite database (see sqlite_file.hpp).
 #include <SQLiteCpp/SQLiteCpp.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -117,6 +119,9 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
         g.touched = detail::as_int(q.getColumn(4));
         g.seconds = detail::as_real(q.getColumn(5));
         g.finished = detail::as_text(q.getColumn(6));
+        if (g.generation != static_cast<std::int64_t>(out.size()))
+          throw std::runtime_error("run " + std::to_string(run_id) + ": generation " + std::to_string(out.size()) +
+                                   " is missing (damaged or edited file?)");
         out.push_back(std::move(g));
       }
       SQLite::Statement c(db_, "SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, "
@@ -141,8 +146,43 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
         r.seconds = detail::as_real(c.getColumn(9));
         out[k].candidates.push_back(std::move(r));
       }
+      for (const GenerationRecord& g : out)
+        if (g.candidates.empty())
+          throw std::runtime_error("run " + std::to_string(run_id) + ": generation " + std::to_string(g.generation) +
+                                   " has no candidates (damaged or edited file?)");
       t.commit();
       return out;
+    });
+  }
+
+  void check_run(std::int64_t run_id) override {
+    guarded([&] {
+      const RunRecord r = run(run_id);
+      const std::string where = "run " + std::to_string(run_id) + ": ";
+      if (const auto params = nlohmann::json::parse(r.params, nullptr, false); !params.is_object())
+        throw std::runtime_error(where + "its params are not a JSON object (damaged or edited file?)");
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);
+      SQLite::Statement q(db_, "SELECT count(*), coalesce(min(generation), -1), coalesce(max(generation), -1), "
+                               "(SELECT count(*) FROM generations g WHERE g.run_id = ?1 AND NOT EXISTS "
+                               "  (SELECT 1 FROM candidates c WHERE c.run_id = ?1 AND c.generation = g.generation)), "
+                               "(SELECT count(*) FROM candidates c WHERE c.run_id = ?1 AND NOT EXISTS "
+                               "  (SELECT 1 FROM generations g WHERE g.run_id = ?1 AND g.generation = c.generation)) "
+                               "FROM generations WHERE run_id = ?1");
+      q.bind(1, run_id);
+      q.executeStep();
+      const std::int64_t count = detail::as_int64(q.getColumn(0)), first = detail::as_int64(q.getColumn(1)),
+                         last = detail::as_int64(q.getColumn(2));
+      if (first != 0 || last != r.generations || count != r.generations + 1)
+        throw std::runtime_error(where + "stores " + std::to_string(count) + " generations numbered " +
+                                 std::to_string(first) + " to " + std::to_string(last) + ", the run has 0 to " +
+                                 std::to_string(r.generations) + " (damaged or edited file?)");
+      if (detail::as_int64(q.getColumn(3)) != 0)
+        throw std::runtime_error(where + "a generation without candidates (damaged or edited file?)");
+      if (detail::as_int64(q.getColumn(4)) != 0)
+        throw std::runtime_error(where + "candidates of a missing generation (damaged or edited file?)");
+      q.reset();
+      t.commit();
+      return 0;
     });
   }
 

@@ -58,9 +58,14 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
     });
   }
 
-  void add(std::int64_t sweep, const SweepMedium& m) override {
-    guarded([&] {
+  bool has_unit(std::int64_t sweep, const SweepUnit& unit) override {
+    return guarded([&] { return stored(sweep, unit); });
+  }
+
+  bool add(std::int64_t sweep, const SweepMedium& m) override {
+    return guarded([&] {
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
+      if (stored(sweep, m.unit)) return false;  // read inside the write lock: no other writer now
       SQLite::Statement q(db_, "INSERT INTO sweep_media (sweep_id, porosity_index, medium_index, target_porosity, "
                                "porosity, grains, medium_seed, droplets, passed, stuck, timeout, diverged, mean_t, "
                                "standard_error, stuck_fraction, seconds) "
@@ -101,7 +106,7 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       u.bind(1, sweep);
       u.exec();
       t.commit();
-      return 0;
+      return true;
     });
   }
 
@@ -177,6 +182,14 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
   static constexpr const char* kColumns =
       "SELECT s.id, s.created, s.updated, s.version, s.status, s.params, s.units, count(m.sweep_id) "
       "FROM sweeps s LEFT JOIN sweep_media m ON m.sweep_id = s.id";
+
+  bool stored(std::int64_t sweep, const SweepUnit& unit) {
+    SQLite::Statement q(db_, "SELECT 1 FROM sweep_media WHERE sweep_id = ? AND porosity_index = ? AND medium_index = ?");
+    q.bind(1, sweep);
+    q.bind(2, unit.porosity);
+    q.bind(3, unit.medium);
+    return q.executeStep();
+  }
 
   static SweepRecord read(SQLite::Statement& q) {
     SweepRecord r;

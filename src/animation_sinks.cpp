@@ -1,4 +1,5 @@
 #include "animation_sinks.hpp"
+#include "temp_files.hpp"
 
 #include <fcntl.h>
 #include <gif_lib.h>
@@ -32,7 +33,7 @@ void rename_over(const std::string& tmp, const std::string& path) {
 class GifSink final : public FrameSink {
  public:
   GifSink(const std::string& path, int width, int height, double fps)
-      : path_(path), tmp_(path + ".tmp." + std::to_string(::getpid())), width_(width), height_(height),
+      : path_(path), tmp_name_(path), tmp_(tmp_name_.str()), width_(width), height_(height),
         delay_(std::max(2, static_cast<int>(std::lround(100.0 / fps)))), row_(static_cast<std::size_t>(width)) {
     if (width > 65535 || height > 65535) throw std::invalid_argument("size: too large for a GIF");
     // Opened here rather than by giflib, which would create the file readable by its owner only.
@@ -113,7 +114,9 @@ class GifSink final : public FrameSink {
  private:
   std::runtime_error failed(const std::string& what) { return output_error(path_, what); }
 
-  std::string path_, tmp_;
+  std::string path_;
+  detail::TempName tmp_name_;
+  std::string tmp_;
   int width_, height_, delay_;
   std::vector<GifByteType> row_;
   GifFileType* gif_ = nullptr;
@@ -129,7 +132,7 @@ std::string shell_quoted(const std::string& s) {
 class VideoSink final : public FrameSink {
  public:
   VideoSink(const std::string& path, int width, int height, double fps)
-      : path_(path), tmp_(path + ".tmp." + std::to_string(::getpid())), width_(width), height_(height) {
+      : path_(path), tmp_name_(path), tmp_(tmp_name_.str()), width_(width), height_(height) {
     if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0)
       throw output_error(path_, "writing .mp4 needs the ffmpeg program (apt-get install ffmpeg), or use .gif");
     // H.264 wants even sizes: pad by one pixel where needed.
@@ -165,7 +168,9 @@ class VideoSink final : public FrameSink {
   }
 
  private:
-  std::string path_, tmp_;
+  std::string path_;
+  detail::TempName tmp_name_;
+  std::string tmp_;
   int width_, height_;
   FILE* pipe_ = nullptr;
 };

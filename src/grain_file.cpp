@@ -1,4 +1,5 @@
 #include "softdrop/grain_file.hpp"
+#include "temp_files.hpp"
 
 #include <unistd.h>
 
@@ -23,6 +24,24 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   throw std::runtime_error("grain file '" + path + "': " + what);
 }
 
+// Text from the file as it may be quoted in a message: bytes that are not printable ASCII as
+// \xNN, and at most 40 characters.
+std::string printable(const std::string& text) {
+  std::string out;
+  for (const char c : text.substr(0, 40)) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u < 0x7f) {
+      out += c;
+    } else {
+      static const char* hex = "0123456789abcdef";
+      out += "\\x";
+      out += hex[u >> 4];
+      out += hex[u & 15];
+    }
+  }
+  return "'" + out + (text.size() > 40 ? "...'" : "'");
+}
+
 double parse_number(const std::string& path, int line, const std::string& text) {
   std::size_t used = 0;
   double v = 0;
@@ -34,14 +53,14 @@ double parse_number(const std::string& path, int line, const std::string& text) 
   std::size_t end = used;
   while (end < text.size() && std::isspace(static_cast<unsigned char>(text[end]))) ++end;
   if (used == 0 || end != text.size())
-    bad(path, "line " + std::to_string(line) + ": '" + text + "' is not a number");
+    bad(path, "line " + std::to_string(line) + ": " + printable(text) + " is not a number");
   return v;
 }
 
 bool parse_bool(const std::string& path, int line, std::string v) {
   if (v == "true" || v == "1") return true;
   if (v == "false" || v == "0") return false;
-  bad(path, "line " + std::to_string(line) + ": periodic must be true or false, got '" + v + "'");
+  bad(path, "line " + std::to_string(line) + ": periodic must be true or false, got " + printable(v));
 }
 
 std::string trim(std::string s) {
@@ -86,6 +105,7 @@ Medium load_csv(const std::string& path, std::istream& in) {
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
+    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 byte order mark
     line = trim(line);
     if (line.empty()) continue;
     if (line[0] == '#') {
@@ -98,7 +118,7 @@ Medium load_csv(const std::string& path, std::istream& in) {
       continue;
     }
     if (!have_header) {
-      if (line != "x,y,r") bad(path, "line " + std::to_string(number) + ": expected header x,y,r");
+      if (line != "x,y,r") bad(path, "line " + std::to_string(number) + ": expected header x,y,r, got " + printable(line));
       have_header = true;
       continue;
     }
@@ -148,7 +168,8 @@ Medium load_medium(const std::string& path) {
 }
 
 void write_file_atomically(const std::string& path, const std::string& content) {
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const detail::TempName tmp_name(path);
+  const std::string& tmp = tmp_name.str();
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw std::runtime_error("cannot write '" + path + "': " + std::strerror(errno));

@@ -25,6 +25,11 @@ bool Medium::IsValid(std::string* why) const {
     // Periodic images are made across one seam only, so a centre must lie in the box's x range.
     if (periodic && !(g.x >= 0 && g.x <= width))
       return fail(why, at + "centre x = " + num(g.x) + " must be in [0, width] in a periodic medium");
+    // A grain must reach into the box: one wholly above it would sit on the droplet's start, one
+    // wholly below it would count for nothing.
+    if (!(g.y > -g.r && g.y < height + g.r))
+      return fail(why, at + "centre y = " + num(g.y) + " with radius " + num(g.r) +
+                           " lies wholly outside the box in y (y must be in (-r, height + r))");
   }
   return true;
 }

@@ -15,6 +15,7 @@
 #include <stdexcept>
 
 #include "animation_sinks.hpp"
+#include "temp_files.hpp"
 #include "validation.hpp"
 
 namespace softdrop {
@@ -194,7 +195,8 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
 // `path` on success.
 void write_picture(const std::string& path, int width, int height, const std::function<void(cairo_t*)>& paint) {
   const ImageFormat format = image_format_for(path);
-  const std::string tmp = path + ".tmp." + std::to_string(::getpid());
+  const detail::TempName tmp_name(path);
+  const std::string& tmp = tmp_name.str();
   cairo_surface_t* raw = nullptr;
   switch (format) {
     case ImageFormat::png: raw = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height); break;

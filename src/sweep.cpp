@@ -114,7 +114,8 @@ SweepMedium run_sweep_unit(const SweepOptions& o, const SweepUnit& u, int thread
 }
 
 void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units, int threads,
-                     const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop) {
+                     const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop,
+                     const std::function<bool(const SweepUnit&)>& skip) {
   const int workers = detail::worker_threads(threads);
   struct Open {
     std::once_flag made;
@@ -163,6 +164,15 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
         cv.notify_all();
         return false;
       }
+      // Units stored by another process are passed over as if committed here.
+      while (next_droplet == 0 && next_unit < units.size() && skip && skip(units[next_unit])) {
+        open[next_unit].remaining = -1;
+        ++completed_units;
+        ++next_unit;
+        while (oldest_open < units.size() && open[oldest_open].remaining == -1) ++oldest_open;
+        cv.notify_all();
+      }
+      if (next_unit == units.size()) return false;
       const std::size_t u = next_unit;
       const int d = next_droplet;
       if (d == 0) {

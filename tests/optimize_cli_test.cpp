@@ -117,7 +117,7 @@ TEST(Optimize, ResumeRefusesContradictingOptionsAndNamesThem) {
   EXPECT_EQ(r.err.find("--seed"), std::string::npos) << "the same value is no contradiction: " << r.err;
   const Result missing = run("optimize --db " + db + " --resume 9 --generations 5");
   EXPECT_NE(missing.code, 0);
-  EXPECT_NE(missing.err.find("--run 9: no such run"), std::string::npos) << missing.err;
+  EXPECT_NE(missing.err.find("resume = 9: '" + db + "' has no run 9"), std::string::npos) << missing.err;
   // Resuming with the stored options (none given) continues; asking for fewer does nothing.
   EXPECT_EQ(run("optimize --db " + db + " --resume 1 --generations 5 --quiet").code, 0);
   EXPECT_EQ(run("optimize --db " + db + " --resume 1 --generations 4 --quiet").code, 0);

@@ -79,7 +79,12 @@ class History {
   virtual std::vector<RunRecord> runs() = 0;
   /// Throws std::runtime_error naming the id if there is no such run.
   virtual RunRecord run(std::int64_t id) = 0;
+  /// Throws if the generations are not numbered 0, 1, 2, ... (a damaged or edited file).
   virtual std::vector<GenerationRecord> generations(std::int64_t run) = 0;
+  /// Throws std::runtime_error naming the file unless the run can be continued: its parameters
+  /// are a JSON object, and its generations are exactly 0 to its last one, each with candidates
+  /// and none without its generation. Cheaper than generations() on a long run.
+  virtual void check_run(std::int64_t run) = 0;
   /// The best configuration as of `generation` (the last accepted one at or before it), with its
   /// tortuosity, touched grains and path; generation < 0 means the latest.
   virtual Configuration configuration(std::int64_t run, std::int64_t generation) = 0;

@@ -79,9 +79,12 @@ SweepMedium run_sweep_unit(const SweepOptions& options, const SweepUnit& unit, i
 /// `on_done` is called on the calling thread with each unit as it completes, in completion order,
 /// so that a store can commit it; each record equals run_sweep_unit's for that unit. `stop` is
 /// polled before each new unit: once it returns true no unit starts, and the units already started
-/// are finished and handed to on_done. `threads` 0 means all cores.
+/// are finished and handed to on_done. `skip(unit)` is asked, on a worker thread under the
+/// scheduler's lock, before each unit starts: true passes the unit over (another process has stored
+/// it meanwhile). `threads` 0 means all cores.
 void run_sweep_units(const SweepOptions& options, const std::vector<SweepUnit>& units, int threads,
-                     const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop = {});
+                     const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop = {},
+                     const std::function<bool(const SweepUnit&)>& skip = {});
 
 /// Per-porosity aggregate of medium records: droplets pooled over the porosity's media.
 struct SweepPoint {

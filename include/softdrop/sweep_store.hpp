@@ -31,8 +31,12 @@ class SweepStore {
   virtual std::int64_t find_or_create(const std::string& params_json, const SweepOptions& options) = 0;
   /// Units already stored for a sweep.
   virtual std::vector<SweepUnit> done_units(std::int64_t sweep) = 0;
-  /// Stores one medium with its droplets in one transaction; throws if it is already stored.
-  virtual void add(std::int64_t sweep, const SweepMedium& medium) = 0;
+  /// Stores one medium with its droplets in one transaction. Returns false, storing nothing, if
+  /// the unit is already stored: another process running the same sweep computed it (records are
+  /// deterministic, so they are the same).
+  virtual bool add(std::int64_t sweep, const SweepMedium& medium) = 0;
+  /// Whether the unit is stored (by this process or another one).
+  virtual bool has_unit(std::int64_t sweep, const SweepUnit& unit) = 0;
   /// running, complete or interrupted.
   virtual void set_status(std::int64_t sweep, const std::string& status) = 0;
   virtual std::vector<SweepRecord> sweeps() = 0;

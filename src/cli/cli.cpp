@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "cli/output.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
@@ -86,6 +87,7 @@ int Cli::run() {
 }
 
 int main(int argc, char** argv) {
+  remove_temp_files_on_signals();
   Cli cli;
   try {
     cli.parse(argc, argv);

@@ -2,6 +2,9 @@
 
 #include "cli/output.hpp"
 
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <stdexcept>
 
 namespace softdrop::cli {
@@ -34,7 +37,7 @@ CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_cou
                             : "Non-overlapping: min surface gap as a fraction of the larger radius")
       ->capture_default_str();
   g->add_flag("--walls", a.walls, "Solid side walls instead of periodic x");
-  g->add_option("--medium-seed", a.options.seed, "Seed of the medium generator")->capture_default_str();
+  g->add_option("--medium-seed", a.options.seed, "Seed of the medium generator")->capture_default_str()->check(seed_check());
   if (fixed_count) a.kind = "non-overlapping";
   return g;
 }
@@ -72,6 +75,48 @@ void add_exit_options(CLI::Option_group* g, RunOptions& r) {
   g->add_option("--stuck-window", r.stuck_window, "Stuck test window (time units)")->capture_default_str();
   g->add_option("--stuck-distance", r.stuck_distance, "Downward progress required per window (length units)")
       ->capture_default_str();
+}
+
+CLI::Validator seed_check() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
+          return "'" + v + "' is not a whole number in [0, 2^64 - 1]";
+        errno = 0;
+        std::strtoull(v.c_str(), nullptr, 10);
+        if (errno == ERANGE) return "'" + v + "' is more than 2^64 - 1";
+        return "";
+      },
+      "SEED");
+}
+
+CLI::Validator index_check() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
+          return "'" + v + "' is not a whole number >= 0";
+        return "";
+      },
+      "N");
+}
+
+CLI::Validator finite_check() {
+  return CLI::Validator(
+      [](std::string& v) -> std::string {
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !std::isfinite(x)) return "'" + v + "' is not a finite number";
+        return "";
+      },
+      "NUMBER");
+}
+
+void check_start_x(double x0, const Medium& medium, const DropletParams& droplet) {
+  if (std::isnan(x0)) return;  // not given: the command picks the start
+  const double lo = medium.periodic ? 0.0 : droplet.radius, hi = medium.width - lo;
+  if (!(x0 >= lo && x0 <= hi))
+    throw std::invalid_argument("x0 = " + fmt(x0) + ": the droplet must start inside the box, x0 in [" + fmt(lo) +
+                                ", " + fmt(hi) + "]" + (medium.periodic ? "" : " (the whole ring between the walls)"));
 }
 
 void check_threads(int threads) {

@@ -29,6 +29,17 @@ CLI::Option_group* add_droplet_options(CLI::App* app, DropletParams& d);
 /// Registers --max-steps, --stuck-window, --stuck-distance in `group`.
 void add_exit_options(CLI::Option_group* group, RunOptions& r);
 
+/// The check of a seed option: a whole decimal number in [0, 2^64 - 1] (a minus sign would wrap
+/// around, and a larger number would saturate, silently).
+CLI::Validator seed_check();
+/// The check of an index option such as --generation: a whole decimal number >= 0.
+CLI::Validator index_check();
+/// The check of --x0: a finite number (NaN would read as "not given").
+CLI::Validator finite_check();
+/// Throws std::invalid_argument naming --x0 unless the droplet starts inside the box: x0 in
+/// [0, width] when periodic, and the whole ring, [R, width - R], between solid walls.
+void check_start_x(double x0, const Medium& medium, const DropletParams& droplet);
+
 /// Most worker threads a command accepts (--threads; 0 means all cores).
 constexpr int kMaxThreads = 4096;
 /// Throws std::invalid_argument unless 0 <= threads <= kMaxThreads.

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/common_options.hpp"
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/history.hpp"
@@ -31,7 +32,8 @@ CLI::App* add_export_command(CLI::App& app, ExportArgs& a) {
   s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
   s->add_option("--run", a.run, "Run id")->required();
   s->add_option("--generation", a.generation,
-                "The best configuration as of this generation (default: the run's best)");
+                "The best configuration as of this generation (default: the run's best)")
+      ->check(index_check());
   s->add_option("--output,-o", a.output, "Grain file to write (.json, otherwise CSV)")->required();
   s->add_option("--simulate-config", a.simulate_config,
                 "Also write a TOML config: `softdrop simulate --config FILE` reproduces the stored T");
@@ -43,6 +45,12 @@ namespace {
 nlohmann::json or_null(bool present, double v) { return present ? nlohmann::json(v) : nlohmann::json(); }
 
 }  // namespace
+
+void check_stored_generation(std::int64_t generation, const RunRecord& run) {
+  if (generation > run.generations)
+    throw std::invalid_argument("generation = " + std::to_string(generation) + ": run " + std::to_string(run.id) +
+                                " has stored generations 0 to " + std::to_string(run.generations));
+}
 
 int run_history(const HistoryArgs& a) {
   if (a.best && a.run == 0) throw std::invalid_argument("best: --best needs --run");
@@ -78,14 +86,11 @@ int run_history(const HistoryArgs& a) {
 }
 
 int run_export(const ExportArgs& a) {
-  if (a.generation < -1) throw std::invalid_argument("generation = " + std::to_string(a.generation) + ": must be >= 0");
   check_output_path("--output", a.output);
   if (!a.simulate_config.empty()) check_output_path("--simulate-config", a.simulate_config);
   auto history = open_history(a.db, OpenMode::read_only);
   const RunRecord run = history->run(a.run);
-  if (a.generation > run.generations)
-    throw std::invalid_argument("generation = " + std::to_string(a.generation) + ": run " + std::to_string(a.run) +
-                                " has stored generations 0 to " + std::to_string(run.generations));
+  check_stored_generation(a.generation, run);
   const Configuration c = history->configuration(a.run, a.generation);
   save_medium(a.output, c.medium);
   if (!a.simulate_config.empty()) {

@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <string>
 
+#include "softdrop/history.hpp"
+
 namespace softdrop::cli {
 
 struct HistoryArgs {
@@ -26,6 +28,8 @@ struct ExportArgs {
 CLI::App* add_history_command(CLI::App& app, HistoryArgs& args);
 CLI::App* add_export_command(CLI::App& app, ExportArgs& args);
 int run_history(const HistoryArgs& args);
+/// Throws std::invalid_argument naming --generation if it is past the run's last stored one.
+void check_stored_generation(std::int64_t generation, const RunRecord& run);
 int run_export(const ExportArgs& args);
 
 }  // namespace softdrop::cli

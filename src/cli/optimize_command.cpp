@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstring>
@@ -44,7 +45,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->capture_default_str();
   g->add_option("--lambda", a.search.lambda, "Candidates per generation, evaluated in parallel (1: the paper)")
       ->capture_default_str();
-  g->add_option("--seed", a.search.seed, "Seed of the moves")->capture_default_str();
+  g->add_option("--seed", a.search.seed, "Seed of the moves")->capture_default_str()->check(seed_check());
   g->add_option("--single-every", a.search.single_every,
                 "Every this-th generation moves one grain the droplet touched (0: never)")
       ->capture_default_str();
@@ -185,6 +186,9 @@ void check_optimize(OptimizeArgs& a) {
   if (a.resume < 0) throw std::invalid_argument("resume = " + std::to_string(a.resume) + ": not a run id");
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   if (a.resume == 0) {  // a resumed run takes its options from the history
+    // (0 grains would mean "fill to a porosity" to the medium generator, which optimize does not offer)
+    if (a.medium.file.empty() && a.medium.options.grains < 1)
+      throw std::invalid_argument("grains = " + std::to_string(a.medium.options.grains) + ": must be >= 1");
     resolve_medium(a.medium);
     std::string why;
     if (!a.search.IsValid(&why)) throw std::invalid_argument(why);
@@ -202,11 +206,20 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
     history = open_history(a.db, OpenMode::read_only);  // checks the file before any write
     history.reset();
     history = open_history(a.db, OpenMode::create);
+    const std::vector<RunRecord> runs = history->runs();
+    if (std::none_of(runs.begin(), runs.end(), [&](const RunRecord& r) { return r.id == run; }))
+      throw std::invalid_argument("resume = " + std::to_string(run) + ": '" + a.db + "' has no run " +
+                                  std::to_string(run) + (runs.empty() ? " (it has no runs)" : " (its last run is " + std::to_string(runs.back().id) + ")"));
+    history->check_run(run);
     const RunRecord rec = history->run(run);
     const nlohmann::json stored = nlohmann::json::parse(rec.params);
     if (const std::string bad = contradictions(given, stored, cmd); !bad.empty())
       throw std::invalid_argument("resume " + std::to_string(run) + ": the command line contradicts the stored run: " + bad);
-    a.search = search_params_from_json(rec.params);
+    try {
+      a.search = search_params_from_json(rec.params);
+    } catch (const std::exception& e) {
+      throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(run) + ": " + e.what());
+    }
     Configuration best = history->configuration(run, -1);
     // The stored best must come out the same with this build, or the history would fork.
     const Evaluation check = evaluate(best.medium, a.search);
@@ -300,7 +313,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
                 << " acceptances predicted (" << sp.predictions_ahead << " ahead of an undecided generation, "
                 << sp.mispredictions << " overturned)\n";
   }
-  return summary.termination == Termination::interrupted ? 130 : 0;
+  return summary.termination == Termination::interrupted ? stop.exit_code() : 0;
 }
 
 }  // namespace softdrop::cli

@@ -1,4 +1,5 @@
 #include "cli/output.hpp"
+#include "temp_files.hpp"
 
 #include "softdrop/render.hpp"
 
@@ -45,16 +46,32 @@ void Progress::update(long done, long total) {
 
 namespace {
 std::atomic<bool> g_stop{false};
+std::atomic<int> g_signal{0};
 const char* g_stop_message = "";
 
-extern "C" void softdrop_on_stop_signal(int) {
-  if (g_stop.exchange(true)) _exit(130);  // second signal: leave now; stores stay consistent
+extern "C" void softdrop_on_stop_signal(int sig) {
+  if (g_stop.exchange(true)) {  // second signal: leave now; stores stay consistent
+    detail::remove_temp_files();
+    _exit(128 + sig);
+  }
+  g_signal = sig;
   [[maybe_unused]] auto n = ::write(2, g_stop_message, std::strlen(g_stop_message));
+}
+
+extern "C" void softdrop_on_ending_signal(int sig) {
+  detail::remove_temp_files();
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);  // ends the program as the signal would have (shells report 128 + sig)
 }
 }  // namespace
 
+void remove_temp_files_on_signals() {
+  for (const int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, softdrop_on_ending_signal);
+}
+
 StopOnSignal::StopOnSignal(const char* message) {
   g_stop = false;
+  g_signal = 0;
   g_stop_message = message;
   previous_int_ = std::signal(SIGINT, softdrop_on_stop_signal);
   previous_term_ = std::signal(SIGTERM, softdrop_on_stop_signal);
@@ -64,6 +81,7 @@ StopOnSignal::~StopOnSignal() {
   std::signal(SIGTERM, previous_term_);
 }
 bool StopOnSignal::requested() const { return g_stop.load(); }
+int StopOnSignal::exit_code() const { return g_signal.load() ? 128 + g_signal.load() : 0; }
 const std::atomic<bool>* StopOnSignal::flag() const { return &g_stop; }
 
 namespace {

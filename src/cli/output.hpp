@@ -30,9 +30,13 @@ class Progress {
   bool tty_;
 };
 
+/// Makes SIGINT, SIGTERM and SIGHUP remove the temporary files of unfinished outputs before they
+/// end the program (see temp_files.hpp). Called once at start.
+void remove_temp_files_on_signals();
+
 /// While alive, SIGINT and SIGTERM raise a stop flag (the command finishes the unit in flight and
-/// stops cleanly) and print `message`; a second signal exits at once with code 130. The previous
-/// handlers are restored on destruction. One at a time.
+/// stops cleanly) and print `message`; a second signal exits at once with code 128 + the signal.
+/// The previous handlers are restored on destruction. One at a time.
 class StopOnSignal {
  public:
   explicit StopOnSignal(const char* message);
@@ -40,6 +44,8 @@ class StopOnSignal {
   StopOnSignal(const StopOnSignal&) = delete;
   StopOnSignal& operator=(const StopOnSignal&) = delete;
   bool requested() const;
+  /// The exit code of a stopped command: 130 after SIGINT, 143 after SIGTERM; 0 without a signal.
+  int exit_code() const;
   const std::atomic<bool>* flag() const;
 
  private:

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/history_command.hpp"
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/history.hpp"
@@ -43,14 +44,14 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   CLI::App* s = r->add_subcommand("snapshots", "The droplet's boundary at chosen times over the medium (paper Fig. 2)");
   style(s, ".png, .svg or .pdf");
   scene_options(s);
-  s->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)");
+  s->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
   s->add_option("--times", a.times, "Times of the snapshots (time units), comma-separated")->delimiter(',')->required();
 
   CLI::App* p = r->add_subcommand("paths", "Centre-of-mass paths of many droplets, alpha-blended");
   style(p, ".png, .svg or .pdf");
   scene_options(p);
   p->add_option("--droplets", a.batch.droplets, "Droplets from random starts")->capture_default_str();
-  p->add_option("--seed", a.batch.seed, "Seed of the start positions")->capture_default_str();
+  p->add_option("--seed", a.batch.seed, "Seed of the start positions")->capture_default_str()->check(seed_check());
   p->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
   p->add_option("--alpha", a.alpha, "Opacity of one path (0: automatic, 10 / droplets, at least 0.03)")->capture_default_str();
 
@@ -58,20 +59,21 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   style(q, ".png, .svg or .pdf");
   q->add_option("--db", a.db, "SQLite history file")->required();
   q->add_option("--run", a.run_id, "Run id")->required();
-  q->add_option("--generation", a.generation, "The best as of this generation (default: the run's best)");
+  q->add_option("--generation", a.generation, "The best as of this generation (default: the run's best)")
+      ->check(index_check());
   q->add_option("--curve", a.curve, "Also draw the best-T-versus-generation chart to this file");
 
   CLI::App* v = r->add_subcommand("animation", "A droplet pushed through the medium, as an animated GIF");
   style(v, ".gif");
   scene_options(v);
-  v->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)");
+  v->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
   v->add_option("--fps", a.fps, "Frames per second")->capture_default_str();
   v->add_option("--speed", a.speed, "Simulated time units per second of animation (1 = real time)")->capture_default_str();
   v->add_option("--max-frames", a.max_frames, "Refuse animations longer than this")->capture_default_str();
   CLI::App* t = r->add_subcommand("trace", "The area trace S(t)/S0 of one droplet, entry and exit marked (paper's area figure)");
   style(t, ".png, .svg or .pdf");
   scene_options(t);
-  t->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)");
+  t->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
   t->add_option("--csv", a.csv, "Also write the samples (t, area, ratio) to this CSV");
   return r;
 }
@@ -127,6 +129,12 @@ int render_medium(RenderArgs& a) {
   return 0;
 }
 
+// The droplet's start: --x0, checked against the box, or the middle.
+double start_of(const RenderArgs& a, const Medium& medium) {
+  check_start_x(a.x0, medium, a.droplet);
+  return std::isnan(a.x0) ? 0.5 * medium.width : a.x0;
+}
+
 int render_snapshots(RenderArgs& a) {
   if (a.times.empty()) throw std::invalid_argument("times: at least one snapshot time is needed");
   const RenderStyle style = style_of(a);
@@ -137,7 +145,7 @@ int render_snapshots(RenderArgs& a) {
   run.snapshot_times = a.times;
   run.path_interval = 20;
   check_recording(run, 1, a.droplet.masses);
-  const double x0 = std::isnan(a.x0) ? 0.5 * scene.medium.width : a.x0;
+  const double x0 = start_of(a, scene.medium);
   const RunSummary r = sim.run(x0, run);
   const Rgba droplet = parse_colour(a.droplet_colour);
   scene.lines.push_back(path_line(r.path_x, r.path_y, parse_colour(a.path_colour), 1.2));
@@ -193,6 +201,7 @@ int render_search(RenderArgs& a) {
   if (!a.curve.empty()) check_picture_path("--curve", a.curve);
   auto history = open_history(a.db, OpenMode::read_only);
   const RunRecord run = history->run(a.run_id);
+  check_stored_generation(a.generation, run);
   const Configuration best = history->configuration(a.run_id, a.generation);
   Scene scene;
   scene.medium = best.medium;
@@ -238,7 +247,7 @@ int render_animation_command(RenderArgs& a) {
   if (!std::isfinite(a.fps) || a.fps <= 0 || a.fps > 100) throw std::invalid_argument("fps = " + fmt(a.fps) + ": must be in (0, 100]");
   const RenderStyle style = style_of(a);
   const Medium medium = medium_of(a);
-  const double x0 = std::isnan(a.x0) ? 0.5 * medium.width : a.x0;
+  const double x0 = start_of(a, medium);
   // First the whole run (deterministic), to know its length; then a replay that draws frames.
   Simulation sim(a.droplet, medium);
   const RunSummary whole = sim.run(x0, a.run);
@@ -296,7 +305,7 @@ int render_trace(RenderArgs& a) {
   const RenderStyle style = style_of(a);
   if (!a.csv.empty()) check_output_path("--csv", a.csv);
   const Medium medium = medium_of(a);
-  const double x0 = std::isnan(a.x0) ? 0.5 * medium.width : a.x0;
+  const double x0 = start_of(a, medium);
   Simulation sim(a.droplet, medium);
   const RunSummary whole = sim.run(x0, a.run);  // deterministic: the replay below is the same run
   sim.place_above(x0);

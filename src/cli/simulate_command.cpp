@@ -28,8 +28,8 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
   add_exit_options(r, a.run);
   r->add_option("--droplets", a.batch.droplets, "K droplets from random starts, run in parallel")
       ->capture_default_str();
-  r->add_option("--x0", a.x0, "Start x of the droplet centre (default: random from --seed)");
-  r->add_option("--seed", a.batch.seed, "Seed of the random start positions")->capture_default_str();
+  r->add_option("--x0", a.x0, "Start x of the droplet centre (default: random from --seed)")->check(finite_check());
+  r->add_option("--seed", a.batch.seed, "Seed of the random start positions")->capture_default_str()->check(seed_check());
   r->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
 
   auto* o = s->add_option_group("Output");
@@ -88,6 +88,7 @@ nlohmann::json run_json(const RunSummary& r, int i) {
 int run_simulate(SimulateArgs& a) {
   check_simulate(a);
   const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
+  check_start_x(a.x0, medium, a.droplet);
   if (!a.save_medium_file.empty()) save_medium(a.save_medium_file, medium);
   const double porosity = exact_porosity(medium);
   a.batch.start_x = a.x0;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
@@ -36,7 +37,7 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   g->add_option("--porosities", a.sweep.porosities, "Target porosities, comma-separated")->delimiter(',')->capture_default_str();
   g->add_option("--media", a.sweep.media, "M media per porosity")->capture_default_str();
   g->add_option("--droplets", a.sweep.droplets, "K droplets per medium, from random starts")->capture_default_str();
-  g->add_option("--seed", a.sweep.seed, "Seed of media and start positions")->capture_default_str();
+  g->add_option("--seed", a.sweep.seed, "Seed of media and start positions")->capture_default_str()->check(seed_check());
   g->add_option("--shard", a.shard, "Run only shard i of n (i/n, 0-based); merge the stores with sweep-merge")
       ->capture_default_str();
   g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
@@ -169,11 +170,13 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd) {
   const bool tty = ::isatty(2) != 0;
   auto last = t0;
   long droplets_done = 0;
-  std::size_t units_done = 0;
+  std::size_t units_done = 0, units_elsewhere = 0;
+  std::mutex store_lock;  // on_done runs on this thread, skip on the workers
   run_sweep_units(
       a.sweep, todo, a.threads,
       [&](SweepMedium&& m) {
-        store->add(id, m);
+        std::lock_guard lock(store_lock);
+        if (!store->add(id, m)) ++units_elsewhere;  // stored meanwhile by another process
         ++units_done;
         droplets_done += static_cast<long>(m.droplets.size());
         const auto now = std::chrono::steady_clock::now();
@@ -187,16 +190,24 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd) {
                     << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
         }
       },
-      [&] { return stop.requested(); });
+      [&] { return stop.requested(); },
+      [&](const SweepUnit& u) {
+        std::lock_guard lock(store_lock);
+        if (!store->has_unit(id, u)) return false;
+        ++units_done, ++units_elsewhere;
+        return true;
+      });
   const SweepRecord rec = store->sweep(id);
   store->set_status(id, rec.done == rec.units ? "complete" : stop.requested() ? "interrupted" : "running");
   points_table(sweep_points(store->media(id))).print(std::cout, a.format);
   if (!a.quiet) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::cerr << "sweep " << id << ": " << rec.done << " of " << rec.units << " media stored; this session "
-              << units_done << " media, " << droplets_done << " droplets in " << fmt(s, 4) << " s\n";
+              << units_done - units_elsewhere << " media, " << droplets_done << " droplets in " << fmt(s, 4) << " s"
+              << (units_elsewhere ? ", " + std::to_string(units_elsewhere) + " media stored by another process" : "")
+              << "\n";
   }
-  return stop.requested() ? 130 : 0;
+  return stop.exit_code();
 }
 
 int run_sweep_merge(const SweepMergeArgs& a) {

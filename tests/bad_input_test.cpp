@@ -1,0 +1,125 @@
+// Bad values get one line naming the option; signals leave no temporary file behind and end with
+// the conventional status; grain files with a byte order mark, binary junk or grains outside the
+// box are read or refused the same way by every command.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "search_cli.hpp"
+#include "softdrop/grain_file.hpp"
+
+namespace {
+using namespace softdrop::test;
+
+TEST(BadValues, GetOneLineNamingTheOption) {
+  const std::string db = fresh("bad_values.db");
+  ASSERT_EQ(run("optimize --db " + db + kScene + " --generations 3").code, 0);
+  struct Case {
+    std::string args, names;
+    int code;
+  };
+  for (const Case& c : {
+           Case{"simulate --x0 nan", "--x0: 'nan' is not a finite number", 2},
+           Case{"simulate --x0 inf", "--x0: 'inf' is not a finite number", 2},
+           Case{"simulate --x0 -1e300", "x0 = -1.0000000000000001e+300: the droplet must start inside the box", 1},
+           Case{"simulate --walls --x0 600 --width 500", "x0 = 600: the droplet must start inside the box, x0 in [10, 490]", 1},
+           Case{"render snapshots --times 0.01 -o " + temp_path("s.png") + " --x0 -3", "x0 = -3", 1},
+           Case{"optimize --db " + db + " --seed -1", "--seed: '-1' is not a whole number in [0, 2^64 - 1]", 2},
+           Case{"optimize --db " + db + " --seed 18446744073709551616", "is more than 2^64 - 1", 2},
+           Case{"sweep --db " + db + " --seed 1e3", "--seed: '1e3' is not a whole number", 2},
+           Case{"simulate --medium-seed -5", "--medium-seed: '-5'", 2},
+           Case{"optimize --db " + db + " --grains 0", "grains = 0: must be >= 1", 1},
+           Case{"export --db " + db + " --run 1 --generation -1 -o " + temp_path("e.json"),
+                "--generation: '-1' is not a whole number >= 0", 2},
+           Case{"render search --db " + db + " --run 1 --generation 999 -o " + temp_path("s.png"),
+                "generation = 999: run 1 has stored generations 0 to 3", 1},
+           Case{"optimize --db " + db + " --resume 7", "resume = 7: '" + db + "' has no run 7", 1},
+       }) {
+    SCOPED_TRACE(c.args);
+    const Result r = run(c.args);
+    EXPECT_EQ(r.code, c.code) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(temp_path("s.png")));
+  EXPECT_FALSE(std::filesystem::exists(temp_path("e.json")));
+  // The largest seed is a seed.
+  EXPECT_EQ(run("--check optimize --db " + db + " --seed 18446744073709551615").code, 0);
+}
+
+// Starts a command, waits until its temporary output file appears, then sends `sig`.
+int signal_while_writing(const std::string& args, const std::string& output, int sig) {
+  const pid_t pid = spawn(args);
+  const std::string tmp = output + ".tmp." + std::to_string(pid);
+  for (int i = 0; i < 3000 && !std::filesystem::exists(tmp); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  EXPECT_TRUE(std::filesystem::exists(tmp)) << "the output was never being written";
+  kill(pid, sig);
+  const int code = wait_for(pid);
+  EXPECT_FALSE(std::filesystem::exists(tmp));
+  EXPECT_FALSE(std::filesystem::exists(output));
+  return code;
+}
+
+TEST(Signals, LeaveNoTemporaryFileAndEndWithTheConventionalStatus) {
+  const std::string gif = fresh("signal.gif");
+  // An animation writes its frames into the temporary file for about a second.
+  const std::string args = "render animation --size 600 -o " + gif;
+  EXPECT_EQ(signal_while_writing(args, gif, SIGINT), -SIGINT);
+  EXPECT_EQ(signal_while_writing(args, gif, SIGTERM), -SIGTERM);
+  EXPECT_EQ(signal_while_writing(args, gif, SIGHUP), -SIGHUP);
+  // A search stops after the generation in flight, status 128 + the signal.
+  const std::string db = fresh("signal.db");
+  const pid_t pid = spawn("optimize --db " + db + kScene + " --generations 100000");
+  for (int i = 0; i < 2000 && committed_generations(db) < 1; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  kill(pid, SIGTERM);
+  EXPECT_EQ(wait_for(pid), 143);
+}
+
+softdrop::Medium read_csv(const std::string& text) {
+  std::istringstream in(text);
+  return softdrop::read_medium(in, softdrop::GrainFileFormat::csv, "m.csv");
+}
+
+std::string refusal(const std::string& text) {
+  try {
+    read_csv(text);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "accepted";
+}
+
+TEST(GrainFiles, ByteOrderMarkJunkAndGrainsOutsideTheBox) {
+  const std::string body = "# width=100\n# height=50\nx,y,r\n40,25,3\n";
+  EXPECT_EQ(read_csv("\xEF\xBB\xBF" + body).grains.size(), 1u);
+  EXPECT_EQ(refusal("# width=100\n# height=50\nx,y,r\n4\x01\xff,25,3\n"),
+            "grain file 'm.csv': line 4: '4\\x01\\xff' is not a number");
+  EXPECT_EQ(refusal("\x80\x81z\n"), "grain file 'm.csv': line 1: expected header x,y,r, got '\\x80\\x81z'");
+  // A grain reaching into the box is a grain of the medium; one wholly above or below is refused.
+  EXPECT_EQ(read_csv("# width=100\n# height=50\nx,y,r\n40,52,3\n40,-2,3\n").grains.size(), 2u);
+  for (const std::string y : {"53.5", "-3", "1e300"}) {
+    SCOPED_TRACE(y);
+    EXPECT_NE(refusal("# width=100\n# height=50\nx,y,r\n40," + y + ",3\n").find("lies wholly outside the box in y"),
+              std::string::npos);
+  }
+  // simulate and optimize agree on a grain above the box.
+  const std::string file = fresh("above.csv");
+  std::ofstream(file) << "# width=100\n# height=50\nx,y,r\n40,25,3\n60,80,3\n";
+  const Result sim = run("simulate --medium " + file);
+  const Result opt = run("optimize --db " + fresh("above.db") + " --medium " + file + " --quiet");
+  for (const Result& r : {sim, opt}) {
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("grain 1: centre y = 80 with radius 3 lies wholly outside the box"), std::string::npos)
+        << r.err;
+  }
+}
+
+}  // namespace
