@@ -11,8 +11,16 @@ NLOHMANN_JSON_SERIALIZE_ENUM(ConstraintOrder, {{ConstraintOrder::sequential, "se
 
 namespace {
 
-// Keys added after files already existed: a missing one keeps its default (what older builds did).
-bool optional_key(const std::string& key) { return key == "constraint-order"; }
+// Keys added after files already existed. A missing one reads as what older builds did: the
+// default for the constraint order, no rest test (0) for the rest test's keys.
+bool optional_key(const std::string& key) {
+  return key == "constraint-order" || key == "rest-window" || key == "rest-distance";
+}
+template <class T>
+void set_legacy(const std::string& key, T& value) {
+  if constexpr (std::is_arithmetic_v<T>)
+    if (key == "rest-window" || key == "rest-distance") value = 0;
+}
 
 // The lists of stored options: key (= CLI long option name) and field.
 template <class Droplet, class F>
@@ -39,6 +47,8 @@ void visit_exit(Run& r, F&& f) {
   f("max-steps", r.max_steps);
   f("stuck-window", r.stuck_window);
   f("stuck-distance", r.stuck_distance);
+  f("rest-window", r.rest_window);
+  f("rest-distance", r.rest_distance);
   f("check-interval", r.check_interval);
 }
 
@@ -101,7 +111,7 @@ struct Reader {
   template <class T>
   void operator()(const char* key, T& value) const {
     if (!j.contains(key)) {
-      if (optional_key(key)) return;
+      if (optional_key(key)) return set_legacy(key, value);
       throw std::runtime_error(std::string("stored parameters: '") + key + "' missing");
     }
     const auto& v = j.at(key);

@@ -37,6 +37,10 @@ bool RunOptions::IsValid(std::string* why) const {
     return fail(why, "stuck-window = " + num(stuck_window) + ": must be > 0");
   if (!std::isfinite(stuck_distance) || stuck_distance < 0)
     return fail(why, "stuck-distance = " + num(stuck_distance) + ": must be >= 0");
+  if (!std::isfinite(rest_window) || rest_window < 0)
+    return fail(why, "rest-window = " + num(rest_window) + ": must be >= 0 (0: no rest test)");
+  if (!std::isfinite(rest_distance) || rest_distance < 0)
+    return fail(why, "rest-distance = " + num(rest_distance) + ": must be >= 0");
   if (check_interval <= 0)
     return fail(why, "check-interval = " + std::to_string(check_interval) + ": must be > 0");
   if (path_interval < 0)
@@ -657,11 +661,13 @@ class RunStepper {
     s_.start_y = cy_;
     sim->area_ = ring_area(sim->state_);
     window_ = std::max<std::int64_t>(1, std::llround(options.stuck_window / dt_));
+    rest_window_ = options.rest_window > 0 ? std::max<std::int64_t>(1, std::llround(options.rest_window / dt_)) : 0;
     for (double t : options.snapshot_times) snapshot_steps_.push_back(std::llround(t / dt_));
     std::sort(snapshot_steps_.begin(), snapshot_steps_.end());
     record(0);
     entered_ = cy_ < H_;
     checkpoint_y_ = cy_;
+    rest_y_ = cy_;
   }
 
   bool finished() const { return finished_; }
@@ -722,6 +728,15 @@ class RunStepper {
       }
       checkpoint_y_ = cy_;
     }
+    if (rest_window_ > 0 && k % rest_window_ == 0) {
+      if (rest_y_ - cy_ < o_.rest_distance) {
+        std::ostringstream r;
+        r << "at rest: centre of mass moved down " << rest_y_ - cy_ << " < " << o_.rest_distance << " in the last "
+          << o_.rest_window << " time units, at y = " << cy_;
+        return finish(Outcome::stuck, r.str(), k);
+      }
+      rest_y_ = cy_;
+    }
     if (k == o_.max_steps)
       finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent", k);
   }
@@ -762,8 +777,8 @@ class RunStepper {
   Simulation* sim_;
   const RunOptions& o_;
   RunSummary s_;
-  double dt_ = 0, H_ = 0, cx_ = 0, cy_ = 0, checkpoint_y_ = 0;
-  std::int64_t window_ = 1, k_ = 0;
+  double dt_ = 0, H_ = 0, cx_ = 0, cy_ = 0, checkpoint_y_ = 0, rest_y_ = 0;
+  std::int64_t window_ = 1, rest_window_ = 0, k_ = 0;
   std::vector<std::int64_t> snapshot_steps_;
   std::size_t next_snapshot_ = 0;
   bool entered_ = false, finished_ = false;

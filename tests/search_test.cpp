@@ -532,5 +532,22 @@ TEST(SearchParams, RoundTripBitForBitAndNameMissingKeys) {
   EXPECT_THROW(search_params_from_json(k), std::runtime_error);
 }
 
+TEST(SearchParams, RunsStoredBeforeTheRestTestReadAsRunsWithoutIt) {
+  SearchOptions o;
+  o.run.rest_window = 0.05;
+  o.run.rest_distance = 0.25;
+  const std::string j = search_params_to_json(o);
+  EXPECT_EQ(search_params_from_json(j).run.rest_window, 0.05);
+  EXPECT_EQ(search_params_from_json(j).run.rest_distance, 0.25);
+  auto without = [](std::string text, const std::string& key) {
+    const auto at = text.find("\"" + key + "\":");
+    const auto end = text.find(',', at);
+    return text.erase(at, end - at + 1);
+  };
+  const SearchOptions old = search_params_from_json(without(without(j, "rest-window"), "rest-distance"));
+  EXPECT_EQ(old.run.rest_window, 0.0);  // whatever today's default, a stored run keeps its own test
+  EXPECT_EQ(old.run.rest_distance, 0.0);
+}
+
 }  // namespace
 }  // namespace softdrop

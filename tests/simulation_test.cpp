@@ -96,6 +96,34 @@ TEST(Simulation, RowOfGrainsStopsTheDroplet) {
   EXPECT_FALSE(r.touched.empty());
 }
 
+TEST(Simulation, TheRestTestEndsAStuckDropletEarlyAndChangesNothingElse) {
+  DropletParams p;
+  Medium floor{200, 200, true, {}};
+  for (int i = 0; i < 10; ++i) floor.grains.push_back({10.0 + 20.0 * i, 100, 12});
+  RunOptions stuck_test;  // the stuck test alone
+  RunOptions rest_test = stuck_test;
+  rest_test.rest_window = 0.05;
+  rest_test.rest_distance = 0.1;
+  const RunSummary slow = Simulation(p, floor).run(37.0, stuck_test);
+  const RunSummary fast = Simulation(p, floor).run(37.0, rest_test);
+  ASSERT_EQ(slow.outcome, Outcome::stuck) << slow.reason;
+  ASSERT_EQ(fast.outcome, Outcome::stuck) << fast.reason;
+  EXPECT_NE(fast.reason.find("at rest"), std::string::npos) << fast.reason;
+  EXPECT_LT(fast.steps, slow.steps / 2);
+  // A droplet that passes is untouched by it: the same steps, path and tortuosity to the bit.
+  const Medium pore = test::pore_of_three_grains();
+  const RunSummary a = Simulation(p, pore).run(100.0, stuck_test);
+  const RunSummary b = Simulation(p, pore).run(100.0, rest_test);
+  ASSERT_EQ(a.outcome, Outcome::passed) << a.reason;
+  EXPECT_EQ(b.outcome, Outcome::passed) << b.reason;
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.tortuosity, b.tortuosity);
+  rest_test.rest_window = -1;
+  std::string why;
+  EXPECT_FALSE(rest_test.IsValid(&why));
+  EXPECT_NE(why.find("rest-window = -1"), std::string::npos) << why;
+}
+
 TEST(Simulation, StepBudgetEndsInTimeout) {
   DropletParams p;
   const Medium empty = test::empty_medium();

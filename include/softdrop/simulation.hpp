@@ -20,7 +20,7 @@ namespace softdrop {
 /// Why a run ended.
 enum class Outcome {
   passed,    ///< centre of mass went below y = 0
-  stuck,     ///< no net downward progress of stuck_distance within stuck_window
+  stuck,     ///< no net downward progress of stuck_distance within stuck_window (or at rest)
   timeout,   ///< max_steps spent
   diverged   ///< NaN, inverted (area <= 0) or self-intersecting ring
 };
@@ -31,6 +31,11 @@ struct RunOptions {
   std::int64_t max_steps = 2'000'000;  ///< step budget (timeout)
   double stuck_window = 0.5;           ///< time window of the stuck test (time units)
   double stuck_distance = 5.0;         ///< downward progress required per window (length)
+  /// The rest test, which ends a stuck droplet early: a centre of mass that moved down less than
+  /// rest_distance within rest_window (time units; 0: no rest test) is at rest, and the run ends
+  /// stuck. A droplet squeezing slowly through a throat still moves, so it is left to the stuck test.
+  double rest_window = 0;
+  double rest_distance = 0;            ///< (length units)
   int check_interval = 64;             ///< steps between self-intersection / grain-inside checks
   /// Record the centre-of-mass path every this many steps (0: no path). The tortuosity always uses
   /// every step, whatever this is.

@@ -75,6 +75,11 @@ void add_exit_options(CLI::Option_group* g, RunOptions& r) {
   g->add_option("--stuck-window", r.stuck_window, "Stuck test window (time units)")->capture_default_str();
   g->add_option("--stuck-distance", r.stuck_distance, "Downward progress required per window (length units)")
       ->capture_default_str();
+  g->add_option("--rest-window", r.rest_window,
+                "Rest test window (time units; 0: none): a droplet at rest is stuck without waiting for the stuck test")
+      ->capture_default_str();
+  g->add_option("--rest-distance", r.rest_distance, "Downward progress below which a droplet is at rest (length units)")
+      ->capture_default_str();
 }
 
 CLI::Validator seed_check() {
