@@ -2,6 +2,7 @@
 // What evaluating a candidate means, shared by the search's one-generation-at-a-time path
 // (search.cpp) and its speculating drive (speculative_drive.cpp). Internal to softdrop_opt.
 #include <chrono>
+#include <vector>
 
 #include "softdrop/search.hpp"
 #include "softdrop/simulation.hpp"
@@ -17,5 +18,10 @@ RunOptions evaluation_run(const RunOptions& run);
 
 // A run's summary reduced to what the search keeps; t0 is when the evaluation began.
 Evaluation as_evaluation(RunSummary&& s, std::chrono::steady_clock::time_point t0);
+
+// Evaluates every candidate (as evaluate() does, to the bit) on up to `threads` threads (0: all
+// cores), stepping up to `lanes` together on each (0: enough to share the candidates out, at most
+// interleaved_lanes()).
+void evaluate_candidates(std::vector<Candidate>& candidates, const SearchOptions& options, int threads, int lanes);
 
 }  // namespace softdrop::detail

@@ -40,13 +40,21 @@ MoveKind move_kind(std::int64_t generation, const SearchOptions& options) {
 
 Candidate make_candidate(const Configuration& parent, std::int64_t generation, int index,
                          const SearchOptions& options) {
+  const MoveKind kind = move_kind(generation, options);
+  return make_move(parent, kind, kind == MoveKind::single ? options.single_step : options.step,
+                   derive_seed(derive_seed(options.seed, static_cast<std::uint64_t>(generation)),
+                               static_cast<std::uint64_t>(index)),
+                   index, options);
+}
+
+Candidate make_move(const Configuration& parent, MoveKind kind, double radius, std::uint64_t stream, int index,
+                    const SearchOptions& options) {
   const Medium& m = parent.medium;
   Candidate c;
   c.index = index;
-  c.kind = move_kind(generation, options);
+  c.kind = kind;
   c.medium = m;
-  Rng rng(derive_seed(derive_seed(options.seed, static_cast<std::uint64_t>(generation)),
-                      static_cast<std::uint64_t>(index)));
+  Rng rng(stream);
   if (m.grains.empty()) return c;
 
   double r_max = 0;
@@ -56,7 +64,7 @@ Candidate make_candidate(const Configuration& parent, std::int64_t generation, i
 
   // Grains move one after another, each checked against the others' current places, so the
   // arrangement satisfies the rule after every single jump (and a refused grain keeps its place).
-  auto try_jump = [&](int i, double radius) {
+  auto try_jump = [&](int i) {
     const Grain old = index_of.grain(i);
     for (int attempt = 0; attempt <= options.max_redraws; ++attempt) {
       double dx = 0, dy = 0;
@@ -77,9 +85,9 @@ Candidate make_candidate(const Configuration& parent, std::int64_t generation, i
     c.moved_grain = touched.empty()
                         ? static_cast<int>(rng.below(static_cast<std::uint64_t>(n)))
                         : touched[rng.below(touched.size())];
-    c.moved = try_jump(c.moved_grain, options.single_step);
+    c.moved = try_jump(c.moved_grain);
   } else {
-    for (int i = 0; i < n; ++i) c.moved += try_jump(i, options.step);
+    for (int i = 0; i < n; ++i) c.moved += try_jump(i);
   }
 
   if (auto bad = find_spacing_violation(c.medium, options.gap))

@@ -8,13 +8,18 @@ namespace softdrop {
 
 NLOHMANN_JSON_SERIALIZE_ENUM(ConstraintOrder, {{ConstraintOrder::sequential, "sequential"},
                                                {ConstraintOrder::red_black, "red-black"}})
+NLOHMANN_JSON_SERIALIZE_ENUM(StrategyKind, {{StrategyKind::paper, "paper"},
+                                            {StrategyKind::es, "es"},
+                                            {StrategyKind::lahc, "lahc"}})
 
 namespace {
 
 // Keys added after files already existed. A missing one reads as what older builds did: the
-// default for the constraint order, no rest test (0) for the rest test's keys.
+// default for the constraint order and the strategy (paper) and its options, no rest test (0) for
+// the rest test's keys.
 bool optional_key(const std::string& key) {
-  return key == "constraint-order" || key == "rest-window" || key == "rest-distance";
+  return key == "constraint-order" || key == "rest-window" || key == "rest-distance" || key == "strategy" ||
+         key == "target-success" || key == "history-length";
 }
 template <class T>
 void set_legacy(const std::string& key, T& value) {
@@ -61,6 +66,9 @@ void visit_search(Options& o, F&& f) {
   f("single-step", o.single_step);
   f("max-redraws", o.max_redraws);
   f("gap", o.gap);
+  f("strategy", o.strategy.kind);
+  f("target-success", o.strategy.target_success);
+  f("history-length", o.strategy.history_length);
   visit_droplet(o.droplet, f);
   visit_exit(o.run, f);
   f("path-interval", o.run.path_interval);

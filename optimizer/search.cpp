@@ -3,9 +3,6 @@
 // speculative_drive.cpp.
 #include "softdrop/search.hpp"
 
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -15,6 +12,7 @@
 
 #include "evaluation.hpp"
 #include "softdrop/spacing.hpp"
+#include "softdrop/strategy.hpp"
 #include "validation.hpp"
 
 namespace softdrop {
@@ -50,6 +48,30 @@ const char* to_string(Termination termination) {
   return "?";
 }
 
+const char* to_string(StrategyKind kind) {
+  switch (kind) {
+    case StrategyKind::paper: return "paper";
+    case StrategyKind::es: return "es";
+    case StrategyKind::lahc: return "lahc";
+  }
+  return "?";
+}
+
+StrategyKind parse_strategy(const std::string& name) {
+  if (name == "paper") return StrategyKind::paper;
+  if (name == "es") return StrategyKind::es;
+  if (name == "lahc") return StrategyKind::lahc;
+  throw std::invalid_argument("strategy = '" + name + "': must be paper, es or lahc");
+}
+
+bool StrategyOptions::IsValid(std::string* why) const {
+  if (!(target_success > 0 && target_success < 1))
+    return fail(why, "target-success = " + num(target_success) + ": must be in (0, 1)");
+  if (history_length < 1 || history_length > 100'000)
+    return fail(why, "history-length = " + std::to_string(history_length) + ": must be in [1, 1e5]");
+  return true;
+}
+
 bool SearchOptions::IsValid(std::string* why) const {
   if (lambda < 1 || lambda > 4096) return fail(why, "lambda = " + std::to_string(lambda) + ": must be in [1, 4096]");
   if (single_every < 0) return fail(why, "single-every = " + std::to_string(single_every) + ": must be >= 0");
@@ -59,6 +81,7 @@ bool SearchOptions::IsValid(std::string* why) const {
   if (max_redraws < 0 || max_redraws > 1'000'000)
     return fail(why, "max-redraws = " + std::to_string(max_redraws) + ": must be in [0, 1e6]");
   if (!std::isfinite(gap) || gap < 0) return fail(why, "gap = " + num(gap) + ": must be >= 0");
+  if (!strategy.IsValid(why)) return false;
   if (!droplet.IsValid(why)) return false;
   if (!run.IsValid(why)) return false;
   if (run.path_interval < 1) return fail(why, "path-interval = " + std::to_string(run.path_interval) + ": must be >= 1");
@@ -139,32 +162,28 @@ Generation initial_generation(const Medium& medium, const SearchOptions& options
 }
 
 Search::Search(const SearchOptions& options, Configuration best, std::int64_t last_generation)
+    : Search(options, best, best, "", last_generation) {}
+
+Search::Search(const SearchOptions& options, Configuration best, Configuration current, const std::string& state,
+               std::int64_t last_generation)
     : options_(options), best_(std::move(best)), last_(last_generation) {
   check_medium(best_.medium, options_);
   if (best_.eval.outcome != Outcome::passed)
     throw std::invalid_argument("search: the best configuration's droplet did not pass");
+  if (current.eval.outcome != Outcome::passed)
+    throw std::invalid_argument("search: the current configuration's droplet did not pass");
   if (last_ < 0) throw std::invalid_argument("search: last generation " + std::to_string(last_) + " < 0");
+  strategy_ = make_strategy(options_, std::move(current), state);
 }
 
-Generation Search::next(int threads) {
+Search::~Search() = default;
+Search::Search(Search&&) noexcept = default;
+
+Generation Search::next(int threads, int lanes) {
   const auto t0 = std::chrono::steady_clock::now();
-  Generation g;
-  g.number = last_ + 1;
-  g.kind = move_kind(g.number, options_);
-  g.candidates.resize(static_cast<std::size_t>(options_.lambda));
-  auto work = [&](int k) {
-    Candidate c = make_candidate(best_, g.number, k, options_);
-    c.eval = evaluate(c.medium, options_);
-    g.candidates[static_cast<std::size_t>(k)] = std::move(c);
-  };
-  if (options_.lambda == 1 || threads == 1) {
-    for (int k = 0; k < options_.lambda; ++k) work(k);
-  } else {
-    tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-    arena.execute([&] { tbb::parallel_for(0, options_.lambda, work); });
-  }
-  return complete(std::move(g.candidates),
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  std::vector<Candidate> candidates = strategy_->propose(last_ + 1);
+  detail::evaluate_candidates(candidates, options_, threads, lanes);
+  return complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
 }
 
 Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
@@ -175,14 +194,18 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
   if (static_cast<int>(g.candidates.size()) != options_.lambda)
     throw std::logic_error("Search::complete: " + std::to_string(g.candidates.size()) + " candidates for lambda " +
                            std::to_string(options_.lambda));
+  g.accepted = strategy_->tell(g.number, g.candidates);
+  // The best so far is always an arrangement the strategy kept (and so the history stored).
   double best_t = best_.eval.tortuosity;
+  int best_k = -1;
   for (const Candidate& c : g.candidates)
-    if (improves(c.eval, best_t)) {
-      best_t = c.eval.tortuosity;
-      g.accepted = c.index;
-    }
-  if (g.accepted >= 0) {
-    const Candidate& c = g.candidates[static_cast<std::size_t>(g.accepted)];
+    if (improves(c.eval, best_t)) best_t = c.eval.tortuosity, best_k = c.index;
+  if (best_k >= 0) {
+    if (best_k != g.accepted)
+      throw std::logic_error("search strategy " + std::string(to_string(options_.strategy.kind)) + ": generation " +
+                             std::to_string(g.number) + " improved the best with candidate " + std::to_string(best_k) +
+                             " but kept " + std::to_string(g.accepted));
+    const Candidate& c = g.candidates[static_cast<std::size_t>(best_k)];
     best_.generation = g.number;
     best_.medium = c.medium;
     best_.eval = c.eval;
@@ -191,6 +214,7 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
   g.best_t = best_.eval.tortuosity;
   g.touched = static_cast<int>(best_.eval.touched.size());
   g.seconds = seconds;
+  g.state = strategy_->state();
   return g;
 }
 

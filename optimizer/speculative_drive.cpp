@@ -19,6 +19,7 @@
 #include "evaluation.hpp"
 #include "pipeline_pause.hpp"
 #include "softdrop/search.hpp"
+#include "softdrop/strategy.hpp"
 #include "validation.hpp"
 #include "worker_threads.hpp"
 
@@ -372,7 +373,10 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   const SearchOptions& so = search.options();
   const int lanes = options.lanes > 0 ? options.lanes : default_lanes(so.lambda, workers, so.droplet.constraint_order);
   std::unique_ptr<Pipeline> pipeline;
-  if (options.speculate && (workers > 1 || lanes > 1) && search.last_generation() < options.generations)
+  // Speculation assumes the paper's rule (a generation that keeps nothing changes nothing); other
+  // strategies evaluate one generation at a time, its candidates on every thread and lane.
+  if (options.speculate && search.strategy().speculative() && (workers > 1 || lanes > 1) &&
+      search.last_generation() < options.generations)
     pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);
   for (;;) {
     if (search.last_generation() >= options.generations) {
@@ -391,7 +395,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
                   std::to_string(search.last_generation());
       break;
     }
-    const Generation g = pipeline ? pipeline->next() : search.next(options.threads);
+    const Generation g = pipeline ? pipeline->next() : search.next(options.threads, options.lanes);
     ++s.generations_run;
     s.evaluations += static_cast<std::int64_t>(g.candidates.size());
     if (g.accepted >= 0) ++s.accepted;

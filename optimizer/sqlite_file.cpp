@@ -129,6 +129,9 @@ CREATE TABLE IF NOT EXISTS sweep_droplets (
 )sql";
 
 
+// Version 3 stores a search strategy's state with each generation (NULL: none, as before).
+constexpr const char* kSchemaV3 = "ALTER TABLE generations ADD COLUMN state TEXT";
+
 // The tables of the current schema; those starting "sweep" came with version 2.
 constexpr const char* kTables[] = {"runs",   "generations", "candidates",    "grains",
                                    "paths",  "sweeps",      "sweep_media",   "sweep_droplets"};
@@ -347,6 +350,10 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
       db->exec("PRAGMA application_id = " + std::to_string(kHistoryApplicationId));
     }
     if (version < 2) db->exec(kSchemaV2);  // migration 1 -> 2: the sweep tables
+    // Migration 2 -> 3: the strategies' state (a column: added only where it is not already).
+    if (version < 3 && db->execAndGet("SELECT count(*) FROM pragma_table_info('generations') WHERE name = 'state'")
+                               .getInt() == 0)
+      db->exec(kSchemaV3);
     if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
     t.commit();
     return db;

@@ -41,7 +41,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       q.bind(10, best.eval.tortuosity);
       q.exec();
       const std::int64_t run = db_.getLastInsertRowid();
-      write_generation(run, g0, best);
+      write_generation(run, g0);
       t.commit();
       return run;
     });
@@ -61,7 +61,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
         throw std::runtime_error("run " + std::to_string(run) + ": generation " + std::to_string(g.number) +
                                  " does not follow the stored generation " + std::to_string(stored) +
                                  " (is another process writing this run?)");
-      write_generation(run, g, best);
+      write_generation(run, g);
       SQLite::Statement u(db_, std::string("UPDATE runs SET generations = ?, evaluations = evaluations + ?, "
                                            "best_t = ?, best_generation = ?, status = 'running', updated = ") +
                                    kNow + " WHERE id = ?");
@@ -107,8 +107,10 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       // One read transaction, so a writer in another process cannot slip a generation in between.
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);
       std::vector<GenerationRecord> out;
-      SQLite::Statement q(db_, "SELECT generation, kind, accepted_candidate, best_t, touched, seconds, finished "
-                               "FROM generations WHERE run_id = ? ORDER BY generation");
+      const bool has_state = schema_version() >= 3;
+      SQLite::Statement q(db_, std::string("SELECT generation, kind, accepted_candidate, best_t, touched, seconds, "
+                                           "finished, ") + (has_state ? "state" : "NULL") +
+                                   " FROM generations WHERE run_id = ? ORDER BY generation");
       q.bind(1, run_id);
       while (q.executeStep()) {
         GenerationRecord g;
@@ -119,6 +121,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
         g.touched = detail::as_int(q.getColumn(4));
         g.seconds = detail::as_real(q.getColumn(5));
         g.finished = detail::as_text(q.getColumn(6));
+        g.state = q.getColumn(7).isNull() ? "" : detail::as_text(q.getColumn(7));
         if (g.generation != static_cast<std::int64_t>(out.size()))
           throw std::runtime_error("run " + std::to_string(run_id) + ": generation " + std::to_string(out.size()) +
                                    " is missing (damaged or edited file?)");
@@ -183,6 +186,18 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       q.reset();
       t.commit();
       return 0;
+    });
+  }
+
+  std::string strategy_state(std::int64_t run_id, std::int64_t generation) override {
+    return guarded([&] {
+      if (schema_version() < 3) return std::string();
+      SQLite::Statement q(db_, "SELECT state FROM generations WHERE run_id = ? AND generation = ?");
+      q.bind(1, run_id);
+      q.bind(2, generation);
+      if (!q.executeStep())
+        throw std::runtime_error("run " + std::to_string(run_id) + ": no generation " + std::to_string(generation));
+      return q.getColumn(0).isNull() ? std::string() : detail::as_text(q.getColumn(0));
     });
   }
 
@@ -253,6 +268,9 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       "SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, periodic, "
       "generations, evaluations, best_t, best_generation FROM runs";
 
+  // A version-2 file opened for reading is read as it is (no state column).
+  int schema_version() { return db_.execAndGet("PRAGMA user_version").getInt(); }
+
   static RunRecord read_run(SQLite::Statement& q) {
     RunRecord r;
     r.id = detail::as_int64(q.getColumn(0));
@@ -274,12 +292,12 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     return r;
   }
 
-  // Inside a transaction: the generation, its candidates and, if accepted, the new best's grains
-  // (with the touched flag) and path.
-  void write_generation(std::int64_t run, const Generation& g, const Configuration& best) {
+  // Inside a transaction: the generation, its candidates and, if it kept one, that candidate's
+  // grains (with the touched flag) and path.
+  void write_generation(std::int64_t run, const Generation& g) {
     const std::int64_t rid = run, gen = g.number;
     SQLite::Statement q(db_, std::string("INSERT INTO generations (run_id, generation, kind, accepted_candidate, "
-                                         "best_t, touched, seconds, finished) VALUES (?, ?, ?, ?, ?, ?, ?, ") +
+                                         "best_t, touched, seconds, state, finished) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ") +
                                  kNow + ")");
     q.bind(1, rid);
     q.bind(2, gen);
@@ -288,6 +306,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     q.bind(5, g.best_t);
     q.bind(6, g.touched);
     q.bind(7, g.seconds);
+    if (!g.state.empty()) q.bind(8, g.state);
     q.exec();
 
     SQLite::Statement c(db_, "INSERT INTO candidates (run_id, generation, candidate, moved_grain, moved, outcome, "
@@ -309,14 +328,15 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       c.exec();
     }
     if (g.accepted < 0) return;
-    if (best.generation != g.number) throw std::logic_error("append: accepted generation but best is older");
+    const Candidate& kept = g.candidates.at(static_cast<std::size_t>(g.accepted));
+    if (kept.eval.outcome != Outcome::passed) throw std::logic_error("append: the kept candidate did not pass");
 
-    std::vector<std::uint8_t> touched(best.medium.grains.size(), 0);
-    for (const std::int32_t i : best.eval.touched) touched.at(static_cast<std::size_t>(i)) = 1;
+    std::vector<std::uint8_t> touched(kept.medium.grains.size(), 0);
+    for (const std::int32_t i : kept.eval.touched) touched.at(static_cast<std::size_t>(i)) = 1;
     SQLite::Statement gq(db_, "INSERT INTO grains (run_id, generation, grain, x, y, r, touched) "
                               "VALUES (?, ?, ?, ?, ?, ?, ?)");
-    for (std::size_t i = 0; i < best.medium.grains.size(); ++i) {
-      const Grain& gr = best.medium.grains[i];
+    for (std::size_t i = 0; i < kept.medium.grains.size(); ++i) {
+      const Grain& gr = kept.medium.grains[i];
       gq.reset();
       gq.bind(1, rid);
       gq.bind(2, gen);
@@ -328,13 +348,13 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       gq.exec();
     }
     SQLite::Statement pq(db_, "INSERT INTO paths (run_id, generation, point, x, y) VALUES (?, ?, ?, ?, ?)");
-    for (std::size_t i = 0; i < best.eval.path_x.size(); ++i) {
+    for (std::size_t i = 0; i < kept.eval.path_x.size(); ++i) {
       pq.reset();
       pq.bind(1, rid);
       pq.bind(2, gen);
       pq.bind(3, static_cast<std::int64_t>(i));
-      pq.bind(4, best.eval.path_x[i]);
-      pq.bind(5, best.eval.path_y[i]);
+      pq.bind(4, kept.eval.path_x[i]);
+      pq.bind(5, kept.eval.path_y[i]);
       pq.exec();
     }
   }

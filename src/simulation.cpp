@@ -667,7 +667,6 @@ class RunStepper {
     record(0);
     entered_ = cy_ < H_;
     checkpoint_y_ = cy_;
-    rest_y_ = cy_;
   }
 
   bool finished() const { return finished_; }
@@ -728,14 +727,19 @@ class RunStepper {
       }
       checkpoint_y_ = cy_;
     }
-    if (rest_window_ > 0 && k % rest_window_ == 0) {
-      if (rest_y_ - cy_ < o_.rest_distance) {
-        std::ostringstream r;
-        r << "at rest: centre of mass moved down " << rest_y_ - cy_ << " < " << o_.rest_distance << " in the last "
-          << o_.rest_window << " time units, at y = " << cy_;
-        return finish(Outcome::stuck, r.str(), k);
+    if (rest_window_ > 0) {
+      // The centre's travel in any direction: a droplet bouncing off a grain travels far while
+      // making no net progress, and is not at rest.
+      rest_travel_ += distance(pcx, pcy, cx_, cy_);
+      if (k % rest_window_ == 0) {
+        if (rest_travel_ < o_.rest_distance) {
+          std::ostringstream r;
+          r << "at rest: centre of mass travelled " << rest_travel_ << " < " << o_.rest_distance << " in the last "
+            << o_.rest_window << " time units, at y = " << cy_;
+          return finish(Outcome::stuck, r.str(), k);
+        }
+        rest_travel_ = 0;
       }
-      rest_y_ = cy_;
     }
     if (k == o_.max_steps)
       finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent", k);
@@ -777,7 +781,7 @@ class RunStepper {
   Simulation* sim_;
   const RunOptions& o_;
   RunSummary s_;
-  double dt_ = 0, H_ = 0, cx_ = 0, cy_ = 0, checkpoint_y_ = 0, rest_y_ = 0;
+  double dt_ = 0, H_ = 0, cx_ = 0, cy_ = 0, checkpoint_y_ = 0, rest_travel_ = 0;
   std::int64_t window_ = 1, rest_window_ = 0, k_ = 0;
   std::vector<std::int64_t> snapshot_steps_;
   std::size_t next_snapshot_ = 0;

@@ -105,10 +105,10 @@ TEST(History, TheWalIsCheckpointedAndStaysBounded) {
   Configuration best;
   const Generation g0 = initial_generation(test::small_search_medium(), o, &best);
   const std::int64_t id = h->create_run(search_params_to_json(o), o, g0, best);
-  best.eval.path_x.assign(2000, 1.5);
-  best.eval.path_y.assign(2000, 2.5);
   Generation g = g0;
   g.kind = MoveKind::all;
+  g.candidates[0].eval.path_x.assign(2000, 1.5);  // the kept candidate's path is stored
+  g.candidates[0].eval.path_y.assign(2000, 2.5);
   for (int i = 1; i <= 600; ++i) {
     g.number = best.generation = i;
     best.eval.tortuosity += 1e-3;

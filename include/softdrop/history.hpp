@@ -14,8 +14,9 @@
 namespace softdrop {
 
 /// The schema version this build writes (PRAGMA user_version). Files with a higher version are
-/// refused; files with a lower one are migrated when opened for writing (1 -> 2 adds the sweeps).
-constexpr int kHistorySchemaVersion = 2;
+/// refused; files with a lower one are read as they are and migrated when opened for writing
+/// (1 -> 2 adds the sweeps, 2 -> 3 the strategies' state of each generation).
+constexpr int kHistorySchemaVersion = 3;
 /// PRAGMA application_id of a softdrop database: "SDRP".
 constexpr std::int32_t kHistoryApplicationId = 0x53445250;
 
@@ -59,6 +60,7 @@ struct GenerationRecord {
   int touched = 0;
   double seconds = 0;
   std::string finished;  ///< UTC time it was written
+  std::string state;     ///< the strategy's state after it (JSON; empty: none)
   std::vector<CandidateRecord> candidates;
 };
 
@@ -70,7 +72,8 @@ class History {
   /// Creates a run together with its generation 0; returns its id.
   virtual std::int64_t create_run(const std::string& params_json, const SearchOptions& options,
                                   const Generation& initial, const Configuration& best) = 0;
-  /// Appends generation g of `run`; `best` is the best after it (stored when g was accepted).
+  /// Appends generation g of `run` with its strategy state; the arrangement it kept (its accepted
+  /// candidate: grains, touched set, path) is stored. `best` is the best after it.
   /// Throws if the generation is not the next one (e.g. another process writes the same run).
   virtual void append(std::int64_t run, const Generation& g, const Configuration& best) = 0;
   /// Sets a run's status (running, finished, interrupted).
@@ -85,9 +88,12 @@ class History {
   /// are a JSON object, and its generations are exactly 0 to its last one, each with candidates
   /// and none without its generation. Cheaper than generations() on a long run.
   virtual void check_run(std::int64_t run) = 0;
-  /// The best configuration as of `generation` (the last accepted one at or before it), with its
-  /// tortuosity, touched grains and path; generation < 0 means the latest.
+  /// The arrangement kept as of `generation` (the last accepted one at or before it), with its
+  /// tortuosity, touched grains and path; generation < 0 means the latest. For the paper's
+  /// strategy this is the best as of then; for others the best is at the run's best_generation.
   virtual Configuration configuration(std::int64_t run, std::int64_t generation) = 0;
+  /// The strategy state stored with `generation` ("" if none).
+  virtual std::string strategy_state(std::int64_t run, std::int64_t generation) = 0;
 };
 
 /// How to open a history file.

@@ -13,6 +13,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,28 @@ const char* to_string(MoveKind kind);
 /// Parses "initial" / "all" / "single"; throws std::invalid_argument naming the value.
 MoveKind parse_move_kind(const std::string& name);
 
+/// How a search chooses its candidates and what it keeps (see strategy.hpp).
+enum class StrategyKind {
+  paper,  ///< the paper's hill climb: keep the best candidate that beats the current arrangement
+  es,     ///< (1 + lambda) evolution strategy: the paper's moves, with step sizes that adapt
+  lahc    ///< late acceptance hill climbing: also keeps candidates no worse than L generations ago
+};
+const char* to_string(StrategyKind kind);
+/// Parses paper / es / lahc; throws std::invalid_argument naming the value.
+StrategyKind parse_strategy(const std::string& name);
+
+/// The strategy and its own options; each strategy reads only its own.
+struct StrategyOptions {
+  StrategyKind kind = StrategyKind::paper;
+  /// es: the share of generations that should improve. A move kind's step grows when its moves
+  /// succeed more often than this, and shrinks otherwise (Rechenberg's 1/5 rule).
+  double target_success = 0.2;
+  /// lahc: a candidate is kept if it is no worse than the current arrangement, or than the
+  /// current arrangement of `history_length` generations before (Burke and Bykov).
+  int history_length = 50;
+  bool IsValid(std::string* why) const;
+};
+
 /// Everything that defines a search (and so must not change when it is resumed).
 struct SearchOptions {
   std::uint64_t seed = 1;   ///< seed of the moves
@@ -43,6 +66,7 @@ struct SearchOptions {
   /// grain stays where it was (which always satisfies the rule).
   int max_redraws = 20;
   double gap = 0.13;        ///< spacing rule: surface gap >= gap x the larger radius
+  StrategyOptions strategy; ///< how candidates are chosen and kept
   DropletParams droplet;    ///< the droplet pushed through every candidate
   /// Exit conditions of each evaluation. path_interval is the sampling of the stored best path
   /// (steps); traces and snapshots are not used.
@@ -88,10 +112,11 @@ struct Generation {
   std::int64_t number = 0;
   MoveKind kind = MoveKind::all;
   std::vector<Candidate> candidates;
-  int accepted = -1;       ///< index of the accepted candidate, -1 if none improved
+  int accepted = -1;       ///< index of the candidate the strategy kept (paper: the improvement), -1: none
   double best_t = 0;       ///< best tortuosity after this generation
   int touched = 0;         ///< grains touched in the best's run after this generation
   double seconds = 0;      ///< wall time of the generation
+  std::string state;       ///< the strategy's state after it (JSON object; empty: none)
 };
 
 /// The move kind of generation g >= 1.
@@ -103,32 +128,51 @@ MoveKind move_kind(std::int64_t generation, const SearchOptions& options);
 Candidate make_candidate(const Configuration& parent, std::int64_t generation, int index,
                          const SearchOptions& options);
 
+/// A candidate made from `parent` by a move of `kind` (all or single) whose jumps have radius
+/// `radius`, drawing its random numbers from the stream `stream`; make_candidate is the paper's
+/// choice of kind, radius and stream. The same guarantees as make_candidate.
+Candidate make_move(const Configuration& parent, MoveKind kind, double radius, std::uint64_t stream, int index,
+                    const SearchOptions& options);
+
 /// Evaluates the starting arrangement as generation 0. Throws std::runtime_error naming the
 /// outcome if the droplet does not pass, or if the arrangement breaks the spacing rule.
 Generation initial_generation(const Medium& medium, const SearchOptions& options,
                               Configuration* best);
 
-/// The search state: options, current best and the last generation done.
+class Strategy;
+
+/// The search state: options, the strategy (with its current arrangement), the best so far and
+/// the last generation done.
 class Search {
  public:
+  /// A search whose best (and current arrangement) is `best`, at generation `last_generation`.
   /// Throws std::invalid_argument for invalid options or a best that did not pass.
   Search(const SearchOptions& options, Configuration best, std::int64_t last_generation);
+  /// A resumed search whose strategy moves on from `current` with the stored `state` (see
+  /// Strategy::state), and whose best so far is `best`.
+  Search(const SearchOptions& options, Configuration best, Configuration current, const std::string& state,
+         std::int64_t last_generation);
+  ~Search();
+  Search(Search&&) noexcept;
 
-  /// Runs generation last_generation() + 1 with up to `threads` threads (0: all cores) and updates
-  /// the best. The result does not depend on `threads`.
-  Generation next(int threads = 0);
+  /// Runs generation last_generation() + 1, its candidates on up to `threads` threads (0: all
+  /// cores), `lanes` stepped together on each (0: the default), and updates the best. The result
+  /// does not depend on `threads` or `lanes`.
+  Generation next(int threads = 0, int lanes = 0);
   /// Completes generation last_generation() + 1 from its evaluated candidates (all lambda of them,
-  /// in index order): keeps the best strict improvement and updates the best. next() and the
+  /// in index order): the strategy keeps one or none, and the best is updated. next() and the
   /// pipelined drive both end here.
   Generation complete(std::vector<Candidate> candidates, double seconds);
 
   const Configuration& best() const { return best_; }
+  const Strategy& strategy() const { return *strategy_; }
   std::int64_t last_generation() const { return last_; }
   const SearchOptions& options() const { return options_; }
 
  private:
   SearchOptions options_;
   Configuration best_;
+  std::unique_ptr<Strategy> strategy_;
   std::int64_t last_;
 };
 

@@ -31,9 +31,10 @@ struct RunOptions {
   std::int64_t max_steps = 2'000'000;  ///< step budget (timeout)
   double stuck_window = 0.5;           ///< time window of the stuck test (time units)
   double stuck_distance = 5.0;         ///< downward progress required per window (length)
-  /// The rest test, which ends a stuck droplet early: a centre of mass that moved down less than
-  /// rest_distance within rest_window (time units; 0: no rest test) is at rest, and the run ends
-  /// stuck. A droplet squeezing slowly through a throat still moves, so it is left to the stuck test.
+  /// The rest test, which ends a stuck droplet early: a centre of mass that travelled less than
+  /// rest_distance in all, in any direction, within rest_window (time units; 0: no rest test) is
+  /// at rest, and the run ends stuck. A droplet bouncing off a grain or squeezing slowly through a
+  /// throat still travels, so it is left to the stuck test.
   double rest_window = 0;
   double rest_distance = 0;            ///< (length units)
   int check_interval = 64;             ///< steps between self-intersection / grain-inside checks

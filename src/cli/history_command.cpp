@@ -32,7 +32,7 @@ CLI::App* add_export_command(CLI::App& app, ExportArgs& a) {
   s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
   s->add_option("--run", a.run, "Run id")->required();
   s->add_option("--generation", a.generation,
-                "The best configuration as of this generation (default: the run's best)")
+                "The arrangement kept as of this generation (default: the run's best)")
       ->check(index_check());
   s->add_option("--output,-o", a.output, "Grain file to write (.json, otherwise CSV)")->required();
   s->add_option("--simulate-config", a.simulate_config,
@@ -57,17 +57,24 @@ int run_history(const HistoryArgs& a) {
   auto history = open_history(a.db, OpenMode::read_only);
   Table t;
   if (a.run == 0) {
-    t.header = {"run", "created", "status", "grains", "generations", "evaluations", "best_t", "best_generation",
-                "lambda", "seed", "version"};
-    for (const RunRecord& r : history->runs())
-      t.rows.push_back({r.id, r.created, r.status, r.grains, r.generations, r.evaluations, r.best_t,
+    t.header = {"run", "created", "status", "strategy", "grains", "generations", "evaluations", "best_t",
+                "best_generation", "lambda", "seed", "version"};
+    for (const RunRecord& r : history->runs()) {
+      const auto params = nlohmann::json::parse(r.params, nullptr, false);
+      const std::string strategy = params.is_object() ? params.value("strategy", "paper") : "?";
+      t.rows.push_back({r.id, r.created, r.status, strategy, r.grains, r.generations, r.evaluations, r.best_t,
                         r.best_generation, r.lambda, r.seed, r.version});
+    }
   } else if (a.best) {
     t.header = {"generation", "kind", "best_t", "touched"};
+    double best = 0;
     for (const GenerationRecord& g : history->generations(a.run))
-      if (g.accepted >= 0) t.rows.push_back({g.generation, g.kind, g.best_t, g.touched});
+      if (g.generation == 0 || g.best_t > best) {  // the generations that raised the best
+        best = g.best_t;
+        t.rows.push_back({g.generation, g.kind, g.best_t, g.touched});
+      }
   } else {
-    t.header = {"generation", "kind", "accepted", "candidate_t", "outcomes", "best_t", "touched", "seconds"};
+    t.header = {"generation", "kind", "accepted", "candidate_t", "outcomes", "best_t", "touched", "seconds", "state"};
     for (const GenerationRecord& g : history->generations(a.run)) {
       // The generation's best passing candidate, and every candidate's outcome.
       bool any = false;
@@ -78,7 +85,7 @@ int run_history(const HistoryArgs& a) {
         outcomes += (outcomes.empty() ? "" : ";") + c.outcome;
       }
       t.rows.push_back({g.generation, g.kind, g.accepted >= 0 ? 1 : 0, or_null(any, top), outcomes, g.best_t,
-                        g.touched, g.seconds});
+                        g.touched, g.seconds, g.state});
     }
   }
   t.print(std::cout, a.format);
@@ -91,7 +98,7 @@ int run_export(const ExportArgs& a) {
   auto history = open_history(a.db, OpenMode::read_only);
   const RunRecord run = history->run(a.run);
   check_stored_generation(a.generation, run);
-  const Configuration c = history->configuration(a.run, a.generation);
+  const Configuration c = history->configuration(a.run, a.generation < 0 ? run.best_generation : a.generation);
   save_medium(a.output, c.medium);
   if (!a.simulate_config.empty()) {
     // The droplet and exit options of the run, so that simulate pushes the same droplet from the

@@ -53,6 +53,20 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->capture_default_str();
   g->add_option("--single-step", a.search.single_step, "Single move: jump radius of the grain (length units)")
       ->capture_default_str();
+  g->add_option_function<std::string>(
+       "--strategy", [&a](const std::string& v) { a.search.strategy.kind = parse_strategy(v); },
+       "paper (the paper's hill climb), es (its moves with step sizes that adapt) or lahc (late acceptance: "
+       "also keeps candidates no worse than history-length generations ago)")
+      ->check(CLI::IsMember({"paper", "es", "lahc"}))
+      ->default_str(to_string(a.search.strategy.kind));
+  g->add_option("--target-success", a.search.strategy.target_success,
+                "es: share of candidates that should improve; steps grow above it, shrink below")
+      ->capture_default_str()
+      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--target-success", StrategyKind::es); });
+  g->add_option("--history-length", a.search.strategy.history_length,
+                "lahc: generations back that a candidate is compared with")
+      ->capture_default_str()
+      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--history-length", StrategyKind::lahc); });
   g->add_option("--max-redraws", a.search.max_redraws,
                 "Redraws of a jump refused by the spacing rule before the grain stays put")
       ->capture_default_str();
@@ -184,6 +198,11 @@ void check_optimize(OptimizeArgs& a) {
   if (a.start_attempts < 1)
     throw std::invalid_argument("start-attempts = " + std::to_string(a.start_attempts) + ": must be >= 1");
   if (a.resume < 0) throw std::invalid_argument("resume = " + std::to_string(a.resume) + ": not a run id");
+  if (a.resume == 0)  // on resume the stored strategy decides (checked against the stored run)
+    for (const auto& [option, kind] : a.strategy_options)
+      if (kind != a.search.strategy.kind)
+        throw std::invalid_argument(option.substr(2) + ": an option of --strategy " + to_string(kind) +
+                                    ", not used by --strategy " + to_string(a.search.strategy.kind));
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   if (a.resume == 0) {  // a resumed run takes its options from the history
     // (0 grains would mean "fill to a porosity" to the medium generator, which optimize does not offer)
@@ -212,24 +231,34 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
                                   std::to_string(run) + (runs.empty() ? " (it has no runs)" : " (its last run is " + std::to_string(runs.back().id) + ")"));
     history->check_run(run);
     const RunRecord rec = history->run(run);
-    const nlohmann::json stored = nlohmann::json::parse(rec.params);
-    if (const std::string bad = contradictions(given, stored, cmd); !bad.empty())
-      throw std::invalid_argument("resume " + std::to_string(run) + ": the command line contradicts the stored run: " + bad);
+    nlohmann::json stored = nlohmann::json::parse(rec.params);
     try {
       a.search = search_params_from_json(rec.params);
     } catch (const std::exception& e) {
       throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(run) + ": " + e.what());
     }
-    Configuration best = history->configuration(run, -1);
-    // The stored best must come out the same with this build, or the history would fork.
-    const Evaluation check = evaluate(best.medium, a.search);
-    if (check.outcome != Outcome::passed || check.tortuosity != best.eval.tortuosity || check.touched != best.eval.touched)
-      throw std::runtime_error("resume " + std::to_string(run) + ": this build gives T = " + fmt(check.tortuosity) +
-                               " for the stored best of generation " + std::to_string(best.generation) +
-                               ", the run stored " + fmt(best.eval.tortuosity) +
-                               " (built with other numerics? resuming would not continue the same history)");
-    best.eval = check;
-    search = std::make_unique<Search>(a.search, std::move(best), rec.generations);
+    // Keys a run stored before they existed read as what it did (the paper's strategy, ...).
+    const nlohmann::json read_back = nlohmann::json::parse(search_params_to_json(a.search));
+    for (const auto& [key, value] : read_back.items())
+      if (!stored.contains(key)) stored[key] = value;
+    if (const std::string bad = contradictions(given, stored, cmd); !bad.empty())
+      throw std::invalid_argument("resume " + std::to_string(run) + ": the command line contradicts the stored run: " + bad);
+    // The strategy moves on from the last kept arrangement; the best may be an earlier one.
+    Configuration current = history->configuration(run, -1);
+    Configuration best = rec.best_generation == current.generation ? current
+                                                                     : history->configuration(run, rec.best_generation);
+    // Both must come out the same with this build, or the history would fork.
+    for (Configuration* c : {&current, &best}) {
+      const Evaluation check = evaluate(c->medium, a.search);
+      if (check.outcome != Outcome::passed || check.tortuosity != c->eval.tortuosity || check.touched != c->eval.touched)
+        throw std::runtime_error("resume " + std::to_string(run) + ": this build gives T = " + fmt(check.tortuosity) +
+                                 " for the stored arrangement of generation " + std::to_string(c->generation) +
+                                 ", the run stored " + fmt(c->eval.tortuosity) +
+                                 " (built with other numerics? resuming would not continue the same history)");
+      c->eval = check;
+    }
+    search = std::make_unique<Search>(a.search, std::move(best), std::move(current),
+                                      history->strategy_state(run, rec.generations), rec.generations);
     if (!a.quiet)
       std::cerr << "optimize: resuming run " << run << " of " << a.db << " at generation " << rec.generations
                 << " (best T " << fmt(rec.best_t, 8) << ")\n";
@@ -270,6 +299,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   j["version"] = kVersion;
   j["db"] = a.db;
   j["run"] = run;
+  j["strategy"] = to_string(a.search.strategy.kind);
   j["termination"] = to_string(summary.termination);
   j["message"] = summary.message;
   j["last_generation"] = summary.last_generation;

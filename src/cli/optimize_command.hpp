@@ -5,6 +5,8 @@
 #include <CLI/CLI.hpp>
 #include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli/common_options.hpp"
 #include "softdrop/search.hpp"
@@ -25,6 +27,8 @@ struct OptimizeArgs {
   bool quiet = false;
   std::string format = "table";
   std::string json_file;
+  /// Options of one strategy given on the command line, with the strategy that uses each.
+  std::vector<std::pair<std::string, StrategyKind>> strategy_options;
 
   OptimizeArgs();
 };

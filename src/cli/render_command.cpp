@@ -202,7 +202,7 @@ int render_search(RenderArgs& a) {
   auto history = open_history(a.db, OpenMode::read_only);
   const RunRecord run = history->run(a.run_id);
   check_stored_generation(a.generation, run);
-  const Configuration best = history->configuration(a.run_id, a.generation);
+  const Configuration best = history->configuration(a.run_id, a.generation < 0 ? run.best_generation : a.generation);
   Scene scene;
   scene.medium = best.medium;
   scene.filled.assign(best.medium.grains.size(), 0);
@@ -211,9 +211,11 @@ int render_search(RenderArgs& a) {
   Rgba thin = parse_colour(a.path_colour);
   thin.a = 0.35;
   Series curve;
+  double raised = 0;  // the earlier bests: the generations that raised the best T
   for (const GenerationRecord& g : history->generations(a.run_id)) {
     if (g.generation > best.generation) break;
-    if (g.accepted < 0) continue;
+    if (g.generation > 0 && !(g.best_t > raised)) continue;
+    raised = g.best_t;
     curve.x.push_back(static_cast<double>(g.generation));
     curve.y.push_back(g.best_t);
     if (g.generation == best.generation) continue;

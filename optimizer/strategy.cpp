@@ -1,0 +1,179 @@
+// The search strategies (strategy.hpp): the paper's hill climb, a (1 + lambda) evolution strategy
+// with adaptive step sizes, and late acceptance hill climbing.
+#include "softdrop/strategy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "evaluation.hpp"
+#include "softdrop/random.hpp"
+
+namespace softdrop {
+namespace {
+using detail::improves;
+
+// The random stream of candidate k of generation g: the same for every strategy.
+std::uint64_t stream(const SearchOptions& o, std::int64_t g, int k) {
+  return derive_seed(derive_seed(o.seed, static_cast<std::uint64_t>(g)), static_cast<std::uint64_t>(k));
+}
+
+// The candidate of the generation that passed with the highest T (the earliest on a tie), -1 if none.
+int best_passed(const std::vector<Candidate>& candidates) {
+  int best = -1;
+  for (const Candidate& c : candidates)
+    if (c.eval.outcome == Outcome::passed &&
+        (best < 0 || c.eval.tortuosity > candidates[static_cast<std::size_t>(best)].eval.tortuosity))
+      best = c.index;
+  return best;
+}
+
+class Base : public Strategy {
+ public:
+  Base(const SearchOptions& o, Configuration current) : o_(o), current_(std::move(current)) {}
+  const Configuration& current() const override { return current_; }
+
+ protected:
+  int keep(std::int64_t generation, const std::vector<Candidate>& candidates, int k) {
+    if (k < 0) return -1;
+    const Candidate& c = candidates[static_cast<std::size_t>(k)];
+    current_ = {generation, c.medium, c.eval};
+    return k;
+  }
+  // The paper's candidates: its move kinds, steps and streams.
+  std::vector<Candidate> paper_candidates(std::int64_t generation) const {
+    std::vector<Candidate> out;
+    for (int k = 0; k < o_.lambda; ++k) out.push_back(make_candidate(current_, generation, k, o_));
+    return out;
+  }
+  // The best strict improvement of the current arrangement, -1 if none.
+  int best_improvement(const std::vector<Candidate>& candidates) const {
+    int best = -1;
+    double t = current_.eval.tortuosity;
+    for (const Candidate& c : candidates)
+      if (improves(c.eval, t)) t = c.eval.tortuosity, best = c.index;
+    return best;
+  }
+
+  SearchOptions o_;
+  Configuration current_;
+};
+
+// The paper's hill climb: every candidate from the current arrangement, which is also the best.
+class Paper final : public Base {
+ public:
+  using Base::Base;
+  std::vector<Candidate> propose(std::int64_t generation) const override { return paper_candidates(generation); }
+  int tell(std::int64_t generation, const std::vector<Candidate>& candidates) override {
+    return keep(generation, candidates, best_improvement(candidates));
+  }
+  std::string state() const override { return ""; }
+  bool speculative() const override { return true; }
+};
+
+// (1 + lambda) evolution strategy: the paper's two move kinds, spread over the candidates in the
+// paper's proportion (every single-every-th candidate of the run is a single move), each kind with a
+// step size of its own that follows the 1/5 success rule per candidate (Kern et al. 2004): a
+// success multiplies it by exp(1/d), a failure by exp(-p/(1-p)/d), so it settles where a share p of
+// the candidates improve. Elitist: the best strict improvement is kept.
+class Evolution final : public Base {
+ public:
+  Evolution(const SearchOptions& o, Configuration current, const std::string& state) : Base(o, std::move(current)) {
+    steps_ = {o.step, o.single_step};
+    if (state.empty()) return;
+    const auto j = nlohmann::json::parse(state, nullptr, false);
+    if (!j.is_object() || !j.contains("step") || !j.contains("single-step") || !j["step"].is_number() ||
+        !j["single-step"].is_number())
+      throw std::invalid_argument("strategy es: stored state '" + state + "' is not an es state");
+    steps_ = {j["step"].get<double>(), j["single-step"].get<double>()};
+  }
+  std::vector<Candidate> propose(std::int64_t generation) const override {
+    std::vector<Candidate> out;
+    for (int k = 0; k < o_.lambda; ++k) {
+      const MoveKind kind = kind_of(generation, k);
+      out.push_back(make_move(current_, kind, steps_[kind == MoveKind::single], stream(o_, generation, k), k, o_));
+    }
+    return out;
+  }
+  int tell(std::int64_t generation, const std::vector<Candidate>& candidates) override {
+    const double p = o_.strategy.target_success;
+    const double up = std::exp(1.0 / kDamping), down = std::exp(-p / (1 - p) / kDamping);
+    for (const Candidate& c : candidates) {
+      double& s = steps_[c.kind == MoveKind::single];
+      s *= improves(c.eval, current_.eval.tortuosity) ? up : down;
+      // Below the smallest step a jump barely changes the path; above a quarter of the box a
+      // jump is a new arrangement, not a move.
+      s = std::clamp(s, kMinStep, 0.25 * current_.medium.width);
+    }
+    return keep(generation, candidates, best_improvement(candidates));
+  }
+  std::string state() const override {
+    return nlohmann::json{{"step", steps_[0]}, {"single-step", steps_[1]}}.dump();
+  }
+
+ private:
+  static constexpr double kDamping = 3;
+  static constexpr double kMinStep = 0.05;  // length units
+  MoveKind kind_of(std::int64_t generation, int k) const {
+    const std::int64_t n = (generation - 1) * o_.lambda + k + 1;  // the candidate's number in the run
+    return o_.single_every > 0 && n % o_.single_every == 0 ? MoveKind::single : MoveKind::all;
+  }
+  std::vector<double> steps_;  // all-grain move, single move
+};
+
+// Late acceptance hill climbing (Burke and Bykov 2017): the generation's best passed candidate is
+// kept if it is no worse than the current arrangement or than the current arrangement of
+// history-length generations before, so the search walks plateaus and crosses shallow dips; the
+// best so far is kept apart by the search. The paper's moves.
+class LateAcceptance final : public Base {
+ public:
+  LateAcceptance(const SearchOptions& o, Configuration current, const std::string& state)
+      : Base(o, std::move(current)) {
+    const auto length = static_cast<std::size_t>(o.strategy.history_length);
+    history_.assign(length, current_.eval.tortuosity);
+    if (state.empty()) return;
+    const auto j = nlohmann::json::parse(state, nullptr, false);
+    if (!j.is_object() || !j.contains("history") || !j["history"].is_array() || j["history"].size() != length)
+      throw std::invalid_argument("strategy lahc: stored state is not an lahc state of history-length " +
+                                  std::to_string(length));
+    for (std::size_t i = 0; i < length; ++i) {
+      if (!j["history"][i].is_number()) throw std::invalid_argument("strategy lahc: stored state holds a non-number");
+      history_[i] = j["history"][i].get<double>();
+    }
+  }
+  std::vector<Candidate> propose(std::int64_t generation) const override { return paper_candidates(generation); }
+  int tell(std::int64_t generation, const std::vector<Candidate>& candidates) override {
+    const auto v = static_cast<std::size_t>(generation % static_cast<std::int64_t>(history_.size()));
+    int k = best_passed(candidates);
+    if (k >= 0) {
+      const double t = candidates[static_cast<std::size_t>(k)].eval.tortuosity;
+      if (!(t >= current_.eval.tortuosity || t >= history_[v])) k = -1;
+    }
+    const int kept = keep(generation, candidates, k);
+    history_[v] = current_.eval.tortuosity;
+    return kept;
+  }
+  std::string state() const override { return nlohmann::json{{"history", history_}}.dump(); }
+
+ private:
+  std::vector<double> history_;  // the current T of the last history-length generations, by generation mod length
+};
+
+}  // namespace
+
+std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configuration current, const std::string& state) {
+  switch (options.strategy.kind) {
+    case StrategyKind::paper:
+      if (!state.empty()) throw std::invalid_argument("strategy paper: it keeps no state, but one is stored");
+      return std::make_unique<Paper>(options, std::move(current));
+    case StrategyKind::es: return std::make_unique<Evolution>(options, std::move(current), state);
+    case StrategyKind::lahc: return std::make_unique<LateAcceptance>(options, std::move(current), state);
+  }
+  throw std::invalid_argument("strategy: unknown kind");
+}
+
+}  // namespace softdrop

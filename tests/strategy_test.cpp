@@ -1,0 +1,197 @@
+// The search strategies: their rules on evaluations made up for the test, the same history at any
+// thread or lane count, a stored state that resumes bit for bit (also after SIGKILLs at random
+// instants), and their options on the command line.
+#include <gtest/gtest.h>
+#include <signal.h>
+
+#include <chrono>
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <random>
+#include <thread>
+
+#include "search_cli.hpp"
+#include "search_fixtures.hpp"
+#include "softdrop/strategy.hpp"
+
+namespace softdrop {
+namespace {
+
+Configuration start(const SearchOptions& o) {
+  Configuration best;
+  initial_generation(test::small_search_medium(), o, &best);
+  return best;
+}
+
+// Candidates of a generation with made-up results: T > 0 passed with that T, otherwise stuck.
+std::vector<Candidate> results(const Strategy& s, std::int64_t g, std::vector<double> ts) {
+  std::vector<Candidate> c = s.propose(g);
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    c[k].eval.outcome = ts[k] > 0 ? Outcome::passed : Outcome::stuck;
+    c[k].eval.tortuosity = ts[k] > 0 ? ts[k] : 0;
+  }
+  return c;
+}
+
+TEST(Strategy, LateAcceptanceKeepsAWorseCandidateNoWorseThanLengthGenerationsAgo) {
+  SearchOptions o = test::small_search_options(2);
+  o.strategy.kind = StrategyKind::lahc;
+  o.strategy.history_length = 3;
+  const Configuration s0 = start(o);
+  const double t0 = s0.eval.tortuosity;
+  auto s = make_strategy(o, s0, "");
+  EXPECT_EQ(s->tell(1, results(*s, 1, {t0 + 0.2, t0 + 0.1})), 0);  // better: kept
+  EXPECT_EQ(s->current().eval.tortuosity, t0 + 0.2);
+  // Worse than the current, but no worse than the current of three generations back (t0).
+  EXPECT_EQ(s->tell(2, results(*s, 2, {t0 - 0.1, t0 + 0.05})), 1);
+  EXPECT_EQ(s->current().eval.tortuosity, t0 + 0.05);
+  EXPECT_EQ(s->tell(3, results(*s, 3, {t0 - 0.5, 0})), -1);  // worse than both: not kept
+  EXPECT_EQ(s->tell(4, results(*s, 4, {0, 0})), -1);         // nothing passed
+  // The state round-trips: a strategy made from it decides as this one does.
+  auto again = make_strategy(o, s->current(), s->state());
+  EXPECT_EQ(again->state(), s->state());
+  const auto next = results(*s, 5, {t0 + 0.04, 0});
+  EXPECT_EQ(again->tell(5, next), s->tell(5, next));
+  EXPECT_THROW(make_strategy(o, s0, R"({"history": [1, 2]})"), std::invalid_argument);
+}
+
+TEST(Strategy, EvolutionStepsGrowWithSuccessesAndShrinkWithFailures) {
+  SearchOptions o = test::small_search_options(4);
+  o.strategy.kind = StrategyKind::es;
+  o.single_every = 4;  // candidate 4 of every generation is a single move
+  const Configuration s0 = start(o);
+  const double t0 = s0.eval.tortuosity;
+  auto s = make_strategy(o, s0, "");
+  auto steps = [&] {
+    const auto j = nlohmann::json::parse(s->state());
+    return std::pair{j["step"].get<double>(), j["single-step"].get<double>()};
+  };
+  EXPECT_EQ(steps(), std::pair(o.step, o.single_step));
+  const auto c = results(*s, 1, {t0 + 0.1, t0 + 0.2, t0 - 0.1, 0});
+  EXPECT_EQ(c[3].kind, MoveKind::single);
+  EXPECT_EQ(c[0].kind, MoveKind::all);
+  EXPECT_EQ(s->tell(1, c), 1);  // elitist: the best strict improvement
+  // All moves: 2 successes, 1 failure at p = 0.2: exp((2 - 0.25) / 3); single: 1 failure.
+  EXPECT_DOUBLE_EQ(steps().first, o.step * std::exp(1.0 / 3) * std::exp(1.0 / 3) * std::exp(-0.25 / 3));
+  EXPECT_DOUBLE_EQ(steps().second, o.single_step * std::exp(-0.25 / 3));
+  for (int g = 2; g < 200; ++g) s->tell(g, results(*s, g, {0, 0, 0, 0}));
+  EXPECT_EQ(steps().first, 0.05);  // failures shrink it to the floor, no further
+  // The steps are the jump radii of its candidates (all moves: every grain within 0.05).
+  const Medium& from = s->current().medium;
+  const auto later = s->propose(200);
+  for (std::size_t i = 0; i < from.grains.size(); ++i) {
+    double dx = later[0].medium.grains[i].x - from.grains[i].x;
+    if (std::abs(dx) > 0.5 * from.width) dx -= std::copysign(from.width, dx);  // across the periodic seam
+    EXPECT_LE(std::hypot(dx, later[0].medium.grains[i].y - from.grains[i].y), 0.05 + 1e-12) << i;
+  }
+}
+
+std::vector<Generation> run_search(const SearchOptions& o, int generations, int threads, int lanes) {
+  Search s(o, start(o), 0);
+  std::vector<Generation> out;
+  for (int g = 0; g < generations; ++g) out.push_back(s.next(threads, lanes));
+  return out;
+}
+
+void expect_same(const std::vector<Generation>& a, const std::vector<Generation>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t g = 0; g < a.size(); ++g) {
+    EXPECT_EQ(a[g].accepted, b[g].accepted) << g;
+    EXPECT_EQ(a[g].best_t, b[g].best_t) << g;
+    EXPECT_EQ(a[g].state, b[g].state) << g;
+    for (std::size_t k = 0; k < a[g].candidates.size(); ++k)
+      EXPECT_EQ(a[g].candidates[k].eval.tortuosity, b[g].candidates[k].eval.tortuosity) << g << " " << k;
+  }
+}
+
+TEST(Strategy, EveryStrategyGivesTheSameHistoryAtAnyThreadAndLaneCount) {
+  for (const StrategyKind kind : {StrategyKind::es, StrategyKind::lahc}) {
+    SCOPED_TRACE(to_string(kind));
+    SearchOptions o = test::small_search_options(4);
+    o.strategy.kind = kind;
+    const auto one = run_search(o, 12, 1, 1);
+    expect_same(one, run_search(o, 12, 2, 0));
+    expect_same(one, run_search(o, 12, 2, 3));
+    int kept = 0;
+    for (const Generation& g : one) kept += g.accepted >= 0;
+    EXPECT_GT(kept, 0);
+  }
+}
+
+using test::committed_generations;
+using test::dump;
+using test::fresh;
+using test::has_run;
+using test::kScene;
+using test::run;
+using test::spawn;
+using test::wait_for;
+
+// SIGKILLs at random instants, each followed by a resume: the history equals one that never
+// stopped, and every generation committed before a kill is unchanged (the soak test's rule, for the
+// strategies with a state of their own).
+TEST(Strategy, KilledAtRandomInstantsEveryStrategyResumesBitForBit) {
+  for (const std::string strategy : {"es", "lahc"}) {
+    SCOPED_TRACE(strategy);
+    const std::string args = kScene + " --generations 120 --lambda 2 --threads 2 --strategy " + strategy;
+    const std::string ref = fresh("strategy_ref.db"), killed = fresh("strategy_killed.db");
+    ASSERT_EQ(run("optimize --db " + ref + args).code, 0);
+    std::mt19937 rng(11);
+    std::vector<std::pair<std::int64_t, std::string>> committed;
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      const bool resume = has_run(killed);
+      const pid_t pid = spawn("optimize --db " + killed + args + (resume ? " --resume 1" : ""));
+      std::this_thread::sleep_for(std::chrono::milliseconds(
+          std::uniform_int_distribution<int>(20, test::kAddressSanitizer ? 900 : 350)(rng)));
+      kill(pid, SIGKILL);
+      const int code = wait_for(pid);
+      ASSERT_TRUE(code == -SIGKILL || code == 0) << code;
+      if (const std::int64_t g = committed_generations(killed); g >= 0) committed.emplace_back(g, dump(killed, 1, g));
+    }
+    const auto fin = run("optimize --db " + killed + args + (has_run(killed) ? " --resume 1" : ""));
+    ASSERT_EQ(fin.code, 0) << fin.err;
+    for (const auto& [g, rows] : committed) EXPECT_EQ(dump(killed, 1, g), rows) << "generation " << g;
+    EXPECT_EQ(dump(killed, 1), dump(ref, 1));
+    // The state is stored with every generation and shown by history.
+    const auto h = run("history --db " + killed + " --run 1 --format csv");
+    EXPECT_NE(h.out.find(strategy == "es" ? "single-step" : "history"), std::string::npos);
+    EXPECT_NE(run("history --db " + killed).out.find(strategy), std::string::npos);
+  }
+}
+
+TEST(StrategyCli, BadNamesUnusedOptionsAndContradictionsGetOneLine) {
+  const std::string db = fresh("strategy_cli.db");
+  struct Case {
+    std::string args, names;
+  };
+  for (const Case& c : {Case{"--strategy annealing", "--strategy: annealing not in {paper,es,lahc}"},
+                        Case{"--target-success 0.3", "target-success: an option of --strategy es, not used by --strategy paper"},
+                        Case{"--strategy es --history-length 9", "history-length: an option of --strategy lahc"},
+                        Case{"--strategy es --target-success 1.5", "target-success = 1.5: must be in (0, 1)"}}) {
+    SCOPED_TRACE(c.args);
+    const auto r = run("optimize --db " + db + kScene + c.args);
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(c.names), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(db));
+  ASSERT_EQ(run("optimize --db " + db + kScene + " --generations 3 --strategy lahc --history-length 5").code, 0);
+  const std::string before = dump(db, 1);
+  for (const std::string& args : {std::string(" --strategy es"), std::string(" --history-length 6")}) {
+    const auto r = run("optimize --db " + db + " --resume 1 --generations 5 --quiet" + args);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find("contradicts the stored run"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(dump(db, 1), before);
+  // A run stored before strategies existed is the paper's, and --strategy paper agrees with it.
+  const std::string old = fresh("strategy_old.db");
+  ASSERT_EQ(run("optimize --db " + old + kScene + " --generations 2").code, 0);
+  {
+    SQLite::Database w(old, SQLite::OPEN_READWRITE);
+    w.exec("UPDATE runs SET params = json_remove(params, '$.strategy', '$.target-success', '$.history-length')");
+  }
+  EXPECT_EQ(run("optimize --db " + old + " --resume 1 --generations 4 --quiet --strategy paper").code, 0);
+}
+
+}  // namespace
+}  // namespace softdrop
