@@ -10,7 +10,8 @@ NLOHMANN_JSON_SERIALIZE_ENUM(ConstraintOrder, {{ConstraintOrder::sequential, "se
                                                {ConstraintOrder::red_black, "red-black"}})
 NLOHMANN_JSON_SERIALIZE_ENUM(StrategyKind, {{StrategyKind::paper, "paper"},
                                             {StrategyKind::es, "es"},
-                                            {StrategyKind::lahc, "lahc"}})
+                                            {StrategyKind::lahc, "lahc"},
+                                            {StrategyKind::anneal, "anneal"}})
 
 namespace {
 
@@ -19,7 +20,7 @@ namespace {
 // the rest test's keys.
 bool optional_key(const std::string& key) {
   return key == "constraint-order" || key == "rest-window" || key == "rest-distance" || key == "strategy" ||
-         key == "target-success" || key == "history-length";
+         key == "target-success" || key == "history-length" || key == "temperature" || key == "half-life";
 }
 template <class T>
 void set_legacy(const std::string& key, T& value) {
@@ -69,6 +70,8 @@ void visit_search(Options& o, F&& f) {
   f("strategy", o.strategy.kind);
   f("target-success", o.strategy.target_success);
   f("history-length", o.strategy.history_length);
+  f("temperature", o.strategy.temperature);
+  f("half-life", o.strategy.half_life);
   visit_droplet(o.droplet, f);
   visit_exit(o.run, f);
   f("path-interval", o.run.path_interval);

@@ -53,6 +53,7 @@ const char* to_string(StrategyKind kind) {
     case StrategyKind::paper: return "paper";
     case StrategyKind::es: return "es";
     case StrategyKind::lahc: return "lahc";
+    case StrategyKind::anneal: return "anneal";
   }
   return "?";
 }
@@ -61,7 +62,8 @@ StrategyKind parse_strategy(const std::string& name) {
   if (name == "paper") return StrategyKind::paper;
   if (name == "es") return StrategyKind::es;
   if (name == "lahc") return StrategyKind::lahc;
-  throw std::invalid_argument("strategy = '" + name + "': must be paper, es or lahc");
+  if (name == "anneal") return StrategyKind::anneal;
+  throw std::invalid_argument("strategy = '" + name + "': must be paper, es, lahc or anneal");
 }
 
 bool StrategyOptions::IsValid(std::string* why) const {
@@ -69,6 +71,9 @@ bool StrategyOptions::IsValid(std::string* why) const {
     return fail(why, "target-success = " + num(target_success) + ": must be in (0, 1)");
   if (history_length < 1 || history_length > 100'000)
     return fail(why, "history-length = " + std::to_string(history_length) + ": must be in [1, 1e5]");
+  if (!(temperature > 0) || !std::isfinite(temperature))
+    return fail(why, "temperature = " + num(temperature) + ": must be > 0");
+  if (!(half_life > 0) || !std::isfinite(half_life)) return fail(why, "half-life = " + num(half_life) + ": must be > 0");
   return true;
 }
 

@@ -1,5 +1,5 @@
 // The search strategies (strategy.hpp): the paper's hill climb, a (1 + lambda) evolution strategy
-// with adaptive step sizes, and late acceptance hill climbing.
+// with adaptive step sizes, late acceptance hill climbing and simulated annealing.
 #include "softdrop/strategy.hpp"
 
 #include <algorithm>
@@ -163,6 +163,37 @@ class LateAcceptance final : public Base {
   std::vector<double> history_;  // the current T of the last history-length generations, by generation mod length
 };
 
+// Simulated annealing (Kirkpatrick et al. 1983): the generation's best passed candidate is kept if
+// it is no worse than the current arrangement, or else with probability exp(dT / temperature),
+// the temperature halving every half-life generations; the best so far is kept apart by the
+// search. The draw comes from the generation's stream lambda, which no candidate uses, so the
+// state is only the current arrangement. The paper's moves.
+class Annealing final : public Base {
+ public:
+  Annealing(const SearchOptions& o, Configuration current, const std::string& state) : Base(o, std::move(current)) {
+    if (!state.empty() && !nlohmann::json::parse(state, nullptr, false).is_object())
+      throw std::invalid_argument("strategy anneal: stored state '" + state + "' is not an anneal state");
+  }
+  std::vector<Candidate> propose(std::int64_t generation) const override { return paper_candidates(generation); }
+  int tell(std::int64_t generation, const std::vector<Candidate>& candidates) override {
+    temperature_ = temperature(generation);
+    int k = best_passed(candidates);
+    if (k >= 0) {
+      const double dt = candidates[static_cast<std::size_t>(k)].eval.tortuosity - current_.eval.tortuosity;
+      Rng rng(stream(o_, generation, o_.lambda));
+      if (dt < 0 && !(rng.uniform() < std::exp(dt / temperature_))) k = -1;
+    }
+    return keep(generation, candidates, k);
+  }
+  std::string state() const override { return nlohmann::json{{"temperature", temperature_}}.dump(); }
+
+ private:
+  double temperature(std::int64_t generation) const {
+    return o_.strategy.temperature * std::exp2(-static_cast<double>(generation) / o_.strategy.half_life);
+  }
+  double temperature_ = 0;  // of the last generation told (shown in the history; not needed to resume)
+};
+
 }  // namespace
 
 std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configuration current, const std::string& state) {
@@ -172,6 +203,7 @@ std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configurat
       return std::make_unique<Paper>(options, std::move(current));
     case StrategyKind::es: return std::make_unique<Evolution>(options, std::move(current), state);
     case StrategyKind::lahc: return std::make_unique<LateAcceptance>(options, std::move(current), state);
+    case StrategyKind::anneal: return std::make_unique<Annealing>(options, std::move(current), state);
   }
   throw std::invalid_argument("strategy: unknown kind");
 }

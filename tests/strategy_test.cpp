@@ -86,6 +86,29 @@ TEST(Strategy, EvolutionStepsGrowWithSuccessesAndShrinkWithFailures) {
   }
 }
 
+TEST(Strategy, AnnealingKeepsWorseCandidatesLessOftenAsItCools) {
+  SearchOptions o = test::small_search_options(2);
+  o.strategy.kind = StrategyKind::anneal;
+  o.strategy.temperature = 0.02;
+  o.strategy.half_life = 50;
+  const Configuration s0 = start(o);
+  const double t0 = s0.eval.tortuosity;
+  int hot = 0, cold = 0;
+  for (int g = 1; g <= 200; ++g) {  // each generation from the start: a candidate 0.01 worse
+    auto s = make_strategy(o, s0, "");
+    const int kept = s->tell(g, results(*s, g, {t0 - 0.01, 0}));
+    if (g <= 20) hot += kept == 0;
+    if (g > 180) cold += kept == 0;
+  }
+  // At g <= 20 the temperature is about 0.02 (keep about exp(-0.5) = 61 %), at g > 180 about
+  // 0.0017 (exp(-5.9), 0.3 %).
+  EXPECT_GT(hot, 6);
+  EXPECT_LE(cold, 1);
+  auto s = make_strategy(o, s0, "");
+  EXPECT_EQ(s->tell(1, results(*s, 1, {t0 + 0.3, t0 + 0.1})), 0);  // better: always kept
+  EXPECT_NE(s->state().find("temperature"), std::string::npos);
+}
+
 std::vector<Generation> run_search(const SearchOptions& o, int generations, int threads, int lanes) {
   Search s(o, start(o), 0);
   std::vector<Generation> out;
@@ -105,7 +128,7 @@ void expect_same(const std::vector<Generation>& a, const std::vector<Generation>
 }
 
 TEST(Strategy, EveryStrategyGivesTheSameHistoryAtAnyThreadAndLaneCount) {
-  for (const StrategyKind kind : {StrategyKind::es, StrategyKind::lahc}) {
+  for (const StrategyKind kind : {StrategyKind::es, StrategyKind::lahc, StrategyKind::anneal}) {
     SCOPED_TRACE(to_string(kind));
     SearchOptions o = test::small_search_options(4);
     o.strategy.kind = kind;
@@ -131,7 +154,7 @@ using test::wait_for;
 // stopped, and every generation committed before a kill is unchanged (the soak test's rule, for the
 // strategies with a state of their own).
 TEST(Strategy, KilledAtRandomInstantsEveryStrategyResumesBitForBit) {
-  for (const std::string strategy : {"es", "lahc"}) {
+  for (const std::string strategy : {"es", "lahc", "anneal"}) {
     SCOPED_TRACE(strategy);
     const std::string args = kScene + " --generations 120 --lambda 2 --threads 2 --strategy " + strategy;
     const std::string ref = fresh("strategy_ref.db"), killed = fresh("strategy_killed.db");
@@ -154,7 +177,8 @@ TEST(Strategy, KilledAtRandomInstantsEveryStrategyResumesBitForBit) {
     EXPECT_EQ(dump(killed, 1), dump(ref, 1));
     // The state is stored with every generation and shown by history.
     const auto h = run("history --db " + killed + " --run 1 --format csv");
-    EXPECT_NE(h.out.find(strategy == "es" ? "single-step" : "history"), std::string::npos);
+    EXPECT_NE(h.out.find(strategy == "es" ? "single-step" : strategy == "lahc" ? "history" : "temperature"),
+              std::string::npos);
     EXPECT_NE(run("history --db " + killed).out.find(strategy), std::string::npos);
   }
 }
@@ -164,7 +188,8 @@ TEST(StrategyCli, BadNamesUnusedOptionsAndContradictionsGetOneLine) {
   struct Case {
     std::string args, names;
   };
-  for (const Case& c : {Case{"--strategy annealing", "--strategy: annealing not in {paper,es,lahc}"},
+  for (const Case& c : {Case{"--strategy tabu", "--strategy: tabu not in {paper,es,lahc,anneal}"},
+                        Case{"--strategy lahc --temperature 0.1", "temperature: an option of --strategy anneal"},
                         Case{"--target-success 0.3", "target-success: an option of --strategy es, not used by --strategy paper"},
                         Case{"--strategy es --history-length 9", "history-length: an option of --strategy lahc"},
                         Case{"--strategy es --target-success 1.5", "target-success = 1.5: must be in (0, 1)"}}) {

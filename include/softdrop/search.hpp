@@ -37,10 +37,11 @@ MoveKind parse_move_kind(const std::string& name);
 enum class StrategyKind {
   paper,  ///< the paper's hill climb: keep the best candidate that beats the current arrangement
   es,     ///< (1 + lambda) evolution strategy: the paper's moves, with step sizes that adapt
-  lahc    ///< late acceptance hill climbing: also keeps candidates no worse than L generations ago
+  lahc,   ///< late acceptance hill climbing: also keeps candidates no worse than L generations ago
+  anneal  ///< simulated annealing: keeps a worse candidate with probability exp(dT / temperature)
 };
 const char* to_string(StrategyKind kind);
-/// Parses paper / es / lahc; throws std::invalid_argument naming the value.
+/// Parses paper / es / lahc / anneal; throws std::invalid_argument naming the value.
 StrategyKind parse_strategy(const std::string& name);
 
 /// The strategy and its own options; each strategy reads only its own.
@@ -52,6 +53,10 @@ struct StrategyOptions {
   /// lahc: a candidate is kept if it is no worse than the current arrangement, or than the
   /// current arrangement of `history_length` generations before (Burke and Bykov).
   int history_length = 50;
+  /// anneal: the temperature at generation 0, in units of T; it halves every `half_life`
+  /// generations.
+  double temperature = 0.01;
+  double half_life = 1000;  ///< anneal: generations
   bool IsValid(std::string* why) const;
 };
 

@@ -5,7 +5,7 @@
 # steps spent). Usage: bash results/stuck_test/run.sh [THREADS [SETTING...]]   (needs ./build/softdrop)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-S=./build/softdrop
+S=${SOFTDROP:-./build/softdrop}
 THREADS=${1:-0}
 OUT=results/stuck_test
 TMP=$(mktemp -d)

@@ -55,9 +55,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->capture_default_str();
   g->add_option_function<std::string>(
        "--strategy", [&a](const std::string& v) { a.search.strategy.kind = parse_strategy(v); },
-       "paper (the paper's hill climb), es (its moves with step sizes that adapt) or lahc (late acceptance: "
-       "also keeps candidates no worse than history-length generations ago)")
-      ->check(CLI::IsMember({"paper", "es", "lahc"}))
+       "paper (the paper's hill climb), es (its moves with step sizes that adapt), lahc (late acceptance: "
+       "also keeps candidates no worse than history-length generations ago) or anneal (simulated annealing)")
+      ->check(CLI::IsMember({"paper", "es", "lahc", "anneal"}))
       ->default_str(to_string(a.search.strategy.kind));
   g->add_option("--target-success", a.search.strategy.target_success,
                 "es: share of candidates that should improve; steps grow above it, shrink below")
@@ -67,6 +67,14 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
                 "lahc: generations back that a candidate is compared with")
       ->capture_default_str()
       ->each([&a](const std::string&) { a.strategy_options.emplace_back("--history-length", StrategyKind::lahc); });
+  g->add_option("--temperature", a.search.strategy.temperature,
+                "anneal: temperature at generation 0 (units of T): a candidate dT worse is kept with probability "
+                "exp(dT / temperature)")
+      ->capture_default_str()
+      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--temperature", StrategyKind::anneal); });
+  g->add_option("--half-life", a.search.strategy.half_life, "anneal: generations in which the temperature halves")
+      ->capture_default_str()
+      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--half-life", StrategyKind::anneal); });
   g->add_option("--max-redraws", a.search.max_redraws,
                 "Redraws of a jump refused by the spacing rule before the grain stays put")
       ->capture_default_str();

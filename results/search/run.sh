@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# The strategies compared: best T against evaluations and wall seconds, for every strategy, over
+# seeds, on three problems. Each search is one database under results/search/db/ (not committed);
+# running the script again resumes every search to the budget given, so a long comparison can be
+# run in parts. Writes curves.csv (problem, strategy, seed, generation, evaluations, seconds,
+# best_t) and summary.csv (per problem and strategy: the median, least and largest best T over the
+# seeds at 1/4, 1/2 and all of the budget).
+#   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
+#   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal"
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+S=${SOFTDROP:-./build/softdrop}
+EVALUATIONS=${1:-2000}
+SEEDS=${2:-"1 2 3"}
+PROBLEMS=${3:-"default dense large"}
+STRATEGIES=${4:-"paper es lahc anneal"}
+OUT=results/search
+mkdir -p "$OUT/db"
+
+problem_options() {
+  case $1 in
+    default) echo "--grains 60 --width 300 --height 300" ;;            # phi ~ 0.735
+    dense) echo "--grains 100 --width 300 --height 300" ;;             # phi ~ 0.56
+    large) echo "--grains 150 --width 500 --height 500" ;;             # phi ~ 0.76
+    *) echo "unknown problem '$1'" >&2; exit 2 ;;
+  esac
+}
+# Candidates per generation: the paper's hill climb speculates ahead on every thread with 2; the
+# others evaluate a whole generation at once, so they get enough candidates for every lane.
+lambda_of() { case $1 in paper) echo 2 ;; *) echo 8 ;; esac; }
+
+for problem in $PROBLEMS; do
+  for strategy in $STRATEGIES; do
+    for seed in $SEEDS; do
+      db="$OUT/db/$problem-$strategy-$seed.db"
+      lambda=$(lambda_of "$strategy")
+      generations=$(( (EVALUATIONS + lambda - 1) / lambda ))
+      echo "search: $problem $strategy seed $seed: $EVALUATIONS evaluations" >&2
+      if [[ -f $db ]]; then
+        $S optimize --db "$db" --resume 1 --generations "$generations" --quiet > /dev/null
+      else
+        # shellcheck disable=SC2046
+        $S optimize --db "$db" $(problem_options "$problem") --strategy "$strategy" --lambda "$lambda" \
+          --seed "$seed" --medium-seed "$seed" --generations "$generations" --quiet > /dev/null
+      fi
+    done
+  done
+done
+
+echo "problem,strategy,seed,generation,evaluations,seconds,best_t" > "$OUT/curves.csv"
+for db in "$OUT"/db/*.db; do
+  name=$(basename "$db" .db); IFS=- read -r problem strategy seed <<< "$name"
+  sqlite3 -csv "$db" "SELECT '$problem', '$strategy', $seed, g.generation,
+                             1 + g.generation * (SELECT lambda FROM runs WHERE id = 1),
+                             sum(g.seconds) OVER (ORDER BY g.generation), g.best_t
+                      FROM generations g WHERE g.run_id = 1 ORDER BY g.generation" >> "$OUT/curves.csv"
+done
+
+sqlite3 :memory: <<SQL > "$OUT/summary.csv"
+.mode csv
+.import $OUT/curves.csv curves
+.headers on
+WITH budget AS (SELECT $EVALUATIONS AS e),
+at AS (  -- best T of each search once it had spent a share of the budget
+  SELECT problem, strategy, seed, f.share, max(CAST(best_t AS REAL)) AS t, max(CAST(seconds AS REAL)) AS s
+  FROM curves, budget, (SELECT 0.25 AS share UNION ALL SELECT 0.5 UNION ALL SELECT 1.0) f
+  WHERE CAST(evaluations AS INTEGER) <= f.share * budget.e
+  GROUP BY problem, strategy, seed, f.share),
+ranked AS (SELECT *, row_number() OVER (PARTITION BY problem, strategy, share ORDER BY t) AS r,
+                  count(*) OVER (PARTITION BY problem, strategy, share) AS n FROM at)
+SELECT problem, strategy, CAST(share * (SELECT e FROM budget) AS INTEGER) AS evaluations, n AS seeds,
+       round(avg(CASE WHEN r IN ((n + 1) / 2, (n + 2) / 2) THEN t END), 4) AS median_best_t,
+       round(min(t), 4) AS least, round(max(t), 4) AS largest, round(avg(s), 1) AS mean_seconds
+FROM ranked GROUP BY problem, strategy, share ORDER BY problem, share, median_best_t DESC;
+SQL
+cat "$OUT/summary.csv"
