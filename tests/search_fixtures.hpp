@@ -26,4 +26,11 @@ inline Medium small_search_medium() {
   return generate_medium(m);
 }
 
+/// Generation 0 of a search on the small medium: the configuration a search starts from.
+inline Configuration small_search_start(const SearchOptions& o) {
+  Configuration best;
+  initial_generation(small_search_medium(), o, &best);
+  return best;
+}
+
 }  // namespace softdrop::test

@@ -15,12 +15,6 @@
 namespace softdrop {
 namespace {
 
-Configuration start(const SearchOptions& o) {
-  Configuration best;
-  initial_generation(test::small_search_medium(), o, &best);
-  return best;
-}
-
 double periodic_dx(double a, double b, double w) {
   double d = b - a;
   return d - w * std::round(d / w);
@@ -77,7 +71,7 @@ void expect_same_history(const Reference& a, const Driven& b) {
 
 TEST(Mutation, AllGrainMoveKeepsSpacingRadiiAndStepBound) {
   const SearchOptions o = test::small_search_options();
-  const Configuration parent = start(o);
+  const Configuration parent = test::small_search_start(o);
   for (int k = 0; k < 20; ++k) {
     const Candidate c = make_candidate(parent, 1, k, o);
     ASSERT_EQ(c.kind, MoveKind::all);
@@ -101,7 +95,7 @@ TEST(Mutation, AllGrainMoveKeepsSpacingRadiiAndStepBound) {
 
 TEST(Mutation, IsDeterministicPerGenerationAndIndex) {
   const SearchOptions o = test::small_search_options();
-  const Configuration parent = start(o);
+  const Configuration parent = test::small_search_start(o);
   EXPECT_EQ(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 3, 1, o).medium);
   EXPECT_NE(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 3, 2, o).medium);
   EXPECT_NE(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 4, 1, o).medium);
@@ -112,7 +106,7 @@ TEST(Mutation, IsDeterministicPerGenerationAndIndex) {
 
 TEST(Mutation, SingleMoveMovesOneTouchedGrain) {
   SearchOptions o = test::small_search_options();
-  const Configuration parent = start(o);
+  const Configuration parent = test::small_search_start(o);
   ASSERT_FALSE(parent.eval.touched.empty());
   EXPECT_EQ(move_kind(10, o), MoveKind::single);
   EXPECT_EQ(move_kind(11, o), MoveKind::all);
@@ -207,7 +201,7 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
     SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads, " +
                  std::to_string(lanes) + " lanes");
     const SearchOptions o = test::small_search_options(lambda);
-    const Configuration best = start(o);
+    const Configuration best = test::small_search_start(o);
     const Reference a = one_at_a_time(o, best, 16);
     DriveOptions d;
     d.generations = 16;
@@ -225,7 +219,7 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
   // time.
   SearchOptions rb = test::small_search_options(2);
   rb.droplet.constraint_order = ConstraintOrder::red_black;
-  const Configuration rb_best = start(rb);
+  const Configuration rb_best = test::small_search_start(rb);
   DriveOptions d;
   d.generations = 16;
   d.threads = 2;
@@ -252,7 +246,7 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
   // from it; another candidate finishing later may still win. On one thread the lanes finish in a
   // fixed order (shortest run first), so both cases happen at the same places on every run.
   const SearchOptions o = test::small_search_options(4);
-  const Configuration best = start(o);
+  const Configuration best = test::small_search_start(o);
   const Reference a = one_at_a_time(o, best, 16);
   int accepted = 0, won_by_a_later_finisher = 0;
   for (const Generation& g : a.history) {
@@ -305,7 +299,7 @@ TEST(Search, ASlowCompletionKeepsTheHistory) {
   // must not see the generation half-completed. (With the completion outside the pipeline's lock
   // this threw "generation 2 accepted -1, predicted 0".)
   const SearchOptions o = test::small_search_options(4);
-  const Configuration best = start(o);
+  const Configuration best = test::small_search_start(o);
   const Reference a = one_at_a_time(o, best, 16);
   struct Pause {
     Pause() { detail::pipeline_completion_pause_ms.store(20); }
@@ -323,7 +317,7 @@ TEST(Search, PredictionsAheadOfUndecidedGenerationsKeepTheHistory) {
   // finishes an improvement while an earlier one still runs. It then goes on from that candidate,
   // assuming the earlier ones accept nothing, and drops that work if one of them does.
   const SearchOptions o = test::small_search_options(1);
-  const Configuration best = start(o);
+  const Configuration best = test::small_search_start(o);
   const Reference a = one_at_a_time(o, best, 24);
   for (int threads : {1, 2}) {
     SCOPED_TRACE(std::to_string(threads) + " threads");
@@ -352,7 +346,7 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
           std::tuple{2, 4, 4}, std::tuple{4, 1, one_thread}, std::tuple{4, 16, 1}}) {
       SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
       const SearchOptions o = test::small_search_options(lambda);
-      Search s(o, start(o), 0);
+      Search s(o, test::small_search_start(o), 0);
       DriveOptions d;
       d.generations = 1;
       d.threads = threads;
@@ -372,7 +366,7 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
         DriveOptions r;
         r.generations = 1;
         r.threads = threads;
-        Search one(rb, start(rb), 0);
+        Search one(rb, test::small_search_start(rb), 0);
         const SearchSummary sum = drive(one, r, nullptr);
         const bool blocks =
             width == VectorWidth::avx512 || (width == VectorWidth::avx && (lambda >= 2 || threads == 1));
@@ -391,10 +385,10 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
   d.generations = 1;
   d.threads = 2;
   d.lanes = 3;  // as given
-  Search s(o, start(o), 0);
+  Search s(o, test::small_search_start(o), 0);
   EXPECT_EQ(drive(s, d, nullptr).speculation.lanes, 3);
   d.speculate = false;
-  Search plain(o, start(o), 0);
+  Search plain(o, test::small_search_start(o), 0);
   const SearchSummary none = drive(plain, d, nullptr);
   EXPECT_EQ(none.speculation.threads, 0);
   EXPECT_EQ(none.speculation.lanes, 0);

@@ -17,12 +17,6 @@
 namespace softdrop {
 namespace {
 
-Configuration start(const SearchOptions& o) {
-  Configuration best;
-  initial_generation(test::small_search_medium(), o, &best);
-  return best;
-}
-
 // Candidates of a generation with made-up results: T > 0 passed with that T, otherwise stuck.
 std::vector<Candidate> results(const Strategy& s, std::int64_t g, std::vector<double> ts) {
   std::vector<Candidate> c = s.propose(g);
@@ -37,7 +31,7 @@ TEST(Strategy, LateAcceptanceKeepsAWorseCandidateNoWorseThanLengthGenerationsAgo
   SearchOptions o = test::small_search_options(2);
   o.strategy.kind = StrategyKind::lahc;
   o.strategy.history_length = 3;
-  const Configuration s0 = start(o);
+  const Configuration s0 = test::small_search_start(o);
   const double t0 = s0.eval.tortuosity;
   auto s = make_strategy(o, s0, "");
   EXPECT_EQ(s->tell(1, results(*s, 1, {t0 + 0.2, t0 + 0.1})), 0);  // better: kept
@@ -59,7 +53,7 @@ TEST(Strategy, EvolutionStepsGrowWithSuccessesAndShrinkWithFailures) {
   SearchOptions o = test::small_search_options(4);
   o.strategy.kind = StrategyKind::es;
   o.single_every = 4;  // candidate 4 of every generation is a single move
-  const Configuration s0 = start(o);
+  const Configuration s0 = test::small_search_start(o);
   const double t0 = s0.eval.tortuosity;
   auto s = make_strategy(o, s0, "");
   auto steps = [&] {
@@ -91,7 +85,7 @@ TEST(Strategy, AnnealingKeepsWorseCandidatesLessOftenAsItCools) {
   o.strategy.kind = StrategyKind::anneal;
   o.strategy.temperature = 0.02;
   o.strategy.half_life = 50;
-  const Configuration s0 = start(o);
+  const Configuration s0 = test::small_search_start(o);
   const double t0 = s0.eval.tortuosity;
   int hot = 0, cold = 0;
   for (int g = 1; g <= 200; ++g) {  // each generation from the start: a candidate 0.01 worse
@@ -110,7 +104,7 @@ TEST(Strategy, AnnealingKeepsWorseCandidatesLessOftenAsItCools) {
 }
 
 std::vector<Generation> run_search(const SearchOptions& o, int generations, int threads, int lanes) {
-  Search s(o, start(o), 0);
+  Search s(o, test::small_search_start(o), 0);
   std::vector<Generation> out;
   for (int g = 0; g < generations; ++g) out.push_back(s.next(threads, lanes));
   return out;
