@@ -47,9 +47,10 @@ StrategyKind parse_strategy(const std::string& name);
 /// The strategy and its own options; each strategy reads only its own.
 struct StrategyOptions {
   StrategyKind kind = StrategyKind::paper;
-  /// es: the share of generations that should improve. A move kind's step grows when its moves
-  /// succeed more often than this, and shrinks otherwise (Rechenberg's 1/5 rule).
-  double target_success = 0.2;
+  /// es: the share of candidates that should improve. A move kind's step grows when its moves
+  /// succeed more often than this, and shrinks otherwise (Rechenberg's rule, whose 1/5 suits
+  /// smooth problems; here far fewer moves improve, and 1/5 shrinks the steps to their floor).
+  double target_success = 0.02;
   /// lahc: a candidate is kept if it is no worse than the current arrangement, or than the
   /// current arrangement of `history_length` generations before (Burke and Bykov).
   int history_length = 50;
