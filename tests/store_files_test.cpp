@@ -112,7 +112,7 @@ TEST(DamagedRuns, AreRefusedByResumeAsByHistoryNamingTheFile) {
 
 TEST(TwoSweepsAtOnce, BothFinishAndTheStoreHoldsEachUnitOnce) {
   const std::string ref = fresh("two_ref.db"), db = fresh("two.db");
-  const std::string args = " --preset quick --media 3 --quiet --threads 1";
+  const std::string args = " --preset quick --media 2 --droplets 4 --quiet --threads 1";
   ASSERT_EQ(run("sweep --db " + ref + args).code, 0);
   // The second starts a little later, so it both meets units the first is computing and units
   // the first has stored.

@@ -150,12 +150,12 @@ using test::wait_for;
 TEST(Strategy, KilledAtRandomInstantsEveryStrategyResumesBitForBit) {
   for (const std::string strategy : {"es", "lahc", "anneal"}) {
     SCOPED_TRACE(strategy);
-    const std::string args = kScene + " --generations 120 --lambda 2 --threads 2 --strategy " + strategy;
+    const std::string args = kScene + " --generations 50 --lambda 4 --threads 2 --strategy " + strategy;
     const std::string ref = fresh("strategy_ref.db"), killed = fresh("strategy_killed.db");
     ASSERT_EQ(run("optimize --db " + ref + args).code, 0);
     std::mt19937 rng(11);
     std::vector<std::pair<std::int64_t, std::string>> committed;
-    for (int attempt = 0; attempt < 8; ++attempt) {
+    for (int attempt = 0; attempt < 6; ++attempt) {
       const bool resume = has_run(killed);
       const pid_t pid = spawn("optimize --db " + killed + args + (resume ? " --resume 1" : ""));
       std::this_thread::sleep_for(std::chrono::milliseconds(
