@@ -1,13 +1,14 @@
 #pragma once
 /// \file search.hpp
-/// The maximum-tortuosity search of the paper (section 6 of DESIGN.md): a hill climb over grain
-/// arrangements. Each generation makes candidates from the current best (all grains jiggle, or on
-/// every `single_every`-th generation one grain the droplet touched moves), pushes the droplet
-/// through each, and keeps the best candidate whose tortuosity is strictly higher.
+/// The maximum-tortuosity search (section 6 of DESIGN.md). Each generation makes candidates from
+/// the current arrangement (all grains jiggle, or one grain the droplet touched moves), pushes the
+/// droplet through each, and its strategy (strategy.hpp) keeps one or none. The paper's strategy
+/// is a hill climb: it keeps the best candidate whose tortuosity is strictly higher.
 ///
 /// Randomness is counter-based: candidate k of generation g draws from the stream
-/// derive_seed(derive_seed(seed, g), k). The generator state of a search is therefore just (seed,
-/// last generation), which makes resuming exact and results independent of the thread count.
+/// derive_seed(derive_seed(seed, g), k). The generator state of a search is therefore (seed, last
+/// generation) and the strategy's stored state, which makes resuming exact and results
+/// independent of the thread count.
 /// This module knows nothing about storage; callers log generations through the callback.
 
 #include <atomic>
