@@ -20,8 +20,9 @@ mkdir -p "$OUT/db"
 problem_options() {
   case $1 in
     default) echo "--grains 60 --width 300 --height 300" ;;            # phi ~ 0.735
-    dense) echo "--grains 100 --width 300 --height 300" ;;             # phi ~ 0.56
-    large) echo "--grains 150 --width 500 --height 500" ;;             # phi ~ 0.76
+    # more, smaller grains (radii 6-11; 100 of radii 8-16 leave phi ~ 0.56, where no start passes)
+    dense) echo "--grains 100 --width 300 --height 300 --r-min 6 --r-max 11" ;;  # phi ~ 0.76
+    large) echo "--grains 150 --width 500 --height 500" ;;             # phi ~ 0.72
     *) echo "unknown problem '$1'" >&2; exit 2 ;;
   esac
 }
