@@ -13,6 +13,14 @@ namespace softdrop::detail {
 // droplet (ties go to the earlier candidate, so the choice does not depend on threads).
 inline bool improves(const Evaluation& e, double best_t) { return e.outcome == Outcome::passed && e.tortuosity > best_t; }
 
+// The candidate that improves on `t` the most (the earliest on a tie), -1 if none improves.
+inline int best_improvement(const std::vector<Candidate>& candidates, double t) {
+  int best = -1;
+  for (const Candidate& c : candidates)
+    if (improves(c.eval, t)) t = c.eval.tortuosity, best = c.index;
+  return best;
+}
+
 // The run options of an evaluation: no area trace, no snapshots.
 RunOptions evaluation_run(const RunOptions& run);
 

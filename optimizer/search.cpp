@@ -19,7 +19,6 @@ namespace softdrop {
 using detail::as_evaluation;
 using detail::evaluation_run;
 using detail::fail;
-using detail::improves;
 using detail::num;
 
 const char* to_string(MoveKind kind) {
@@ -201,10 +200,7 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
                            std::to_string(options_.lambda));
   g.accepted = strategy_->tell(g.number, g.candidates);
   // The best so far is always an arrangement the strategy kept (and so the history stored).
-  double best_t = best_.eval.tortuosity;
-  int best_k = -1;
-  for (const Candidate& c : g.candidates)
-    if (improves(c.eval, best_t)) best_t = c.eval.tortuosity, best_k = c.index;
+  const int best_k = detail::best_improvement(g.candidates, best_.eval.tortuosity);
   if (best_k >= 0) {
     if (best_k != g.accepted)
       throw std::logic_error("search strategy " + std::string(to_string(options_.strategy.kind)) + ": generation " +

@@ -139,6 +139,12 @@ constexpr const char* kTables[] = {"runs",   "generations", "candidates",    "gr
 // A WAL file's header; frames follow it.
 constexpr off_t kWalHeaderBytes = 32;
 
+// The size of the file at `path` in bytes, -1 if there is none.
+off_t file_size(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 ? st.st_size : -1;
+}
+
 // Reads what the file is before SQLite touches it: missing, empty, or an SQLite file whose header
 // is consistent with its size. Returns false for "no usable content yet" (missing or empty).
 bool check_file(const std::string& path, OpenMode mode) {
@@ -164,8 +170,7 @@ bool check_file(const std::string& path, OpenMode mode) {
   // file is valid: its missing pages are still in the WAL, and SQLite reads them from there. So
   // with WAL frames present the size is SQLite's to judge (quick_check, below, reads every page in
   // use); without them a short file really is truncated.
-  struct stat wal {};
-  const bool wal_frames = ::stat((path + "-wal").c_str(), &wal) == 0 && wal.st_size > kWalHeaderBytes;
+  const bool wal_frames = file_size(path + "-wal") > kWalHeaderBytes;
   // The in-header size is valid when the change counter matches version-valid-for.
   if (!wal_frames && h.fileChangeCounter == h.versionValidFor && h.databaseSizePages > 0 &&
       static_cast<unsigned long long>(st.st_size) <
@@ -235,10 +240,7 @@ void set_row_status(SQLite::Database& db, const char* table, std::int64_t id, co
 }
 
 namespace {
-bool exists(const std::string& path) {
-  struct stat st {};
-  return ::stat(path.c_str(), &st) == 0;
-}
+bool exists(const std::string& path) { return file_size(path) >= 0; }
 
 // `path` as an SQLite URI for an immutable file: read without locks or a -shm file.
 std::string immutable_uri(const std::string& path) {
@@ -264,8 +266,7 @@ std::unique_ptr<SQLite::Database> connect(const std::string& path, int flags) {
   if ((flags & SQLite::OPEN_CREATE) == 0 && exists(path)) {
     const std::string::size_type slash = path.rfind('/');
     const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
-    struct stat wal {};
-    const bool wal_frames = ::stat((path + "-wal").c_str(), &wal) == 0 && wal.st_size > 0;
+    const bool wal_frames = file_size(path + "-wal") > 0;
     if (::access(folder.c_str(), W_OK) != 0 && ::access(path.c_str(), W_OK) != 0 && !exists(path + "-shm") &&
         !wal_frames && !exists(path + "-journal"))
       return std::make_unique<SQLite::Database>(immutable_uri(path), SQLite::OPEN_READONLY | SQLite::OPEN_URI, 60'000);
@@ -279,8 +280,7 @@ void validate(const std::string& path, OpenMode mode) {
   // be left as it was found, so those made here are removed again.
   const bool had_wal = exists(path + "-wal"), had_shm = exists(path + "-shm");
   auto tidy = [&] {
-    struct stat wal {};
-    if (!had_wal && ::stat((path + "-wal").c_str(), &wal) == 0 && wal.st_size == 0) ::unlink((path + "-wal").c_str());
+    if (!had_wal && file_size(path + "-wal") == 0) ::unlink((path + "-wal").c_str());
     if (!had_shm && !exists(path + "-wal")) ::unlink((path + "-shm").c_str());
   };
   const bool has_content = check_file(path, mode);

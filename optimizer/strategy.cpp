@@ -52,11 +52,7 @@ class Base : public Strategy {
   }
   // The best strict improvement of the current arrangement, -1 if none.
   int best_improvement(const std::vector<Candidate>& candidates) const {
-    int best = -1;
-    double t = current_.eval.tortuosity;
-    for (const Candidate& c : candidates)
-      if (improves(c.eval, t)) t = c.eval.tortuosity, best = c.index;
-    return best;
+    return detail::best_improvement(candidates, current_.eval.tortuosity);
   }
 
   SearchOptions o_;
