@@ -78,7 +78,7 @@ void add_exit_options(CLI::Option_group* g, RunOptions& r) {
   g->add_option("--rest-window", r.rest_window,
                 "Rest test window (time units; 0: none): a droplet at rest is stuck without waiting for the stuck test")
       ->capture_default_str();
-  g->add_option("--rest-distance", r.rest_distance, "Downward progress below which a droplet is at rest (length units)")
+  g->add_option("--rest-distance", r.rest_distance, "Travel of the centre of mass, in any direction, below which a droplet is at rest (length units)")
       ->capture_default_str();
 }
 
