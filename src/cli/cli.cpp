@@ -57,6 +57,7 @@ Cli::Cli() {
   export_cmd_ = add_export_command(app, export_);
   add_study_commands(app, sweep_, sweep_merge_, sweep_report_, fit_, averagings_);
   render_cmd_ = add_render_command(app, render_);
+  calibrate_cmd_ = add_calibrate_command(app, calibrate_);
 }
 
 void Cli::parse(int argc, const char* const* argv) { app.parse(argc, argv); }
@@ -66,6 +67,7 @@ void Cli::check() {
   if (optimize_cmd_->parsed()) check_optimize(optimize_);
   if (app.got_subcommand("sweep")) check_sweep(sweep_, *app.get_subcommand("sweep"));
   if (render_cmd_->parsed()) check_render(render_);
+  if (calibrate_cmd_->parsed()) check_calibrate(calibrate_);
 }
 
 int Cli::run() {
@@ -83,6 +85,7 @@ int Cli::run() {
   if (app.got_subcommand("fit")) return run_fit(fit_);
   if (app.got_subcommand("averagings")) return run_averagings(averagings_);
   if (render_cmd_->parsed()) return run_render(render_, *render_cmd_);
+  if (calibrate_cmd_->parsed()) return run_calibrate(calibrate_);
   return 0;
 }
 

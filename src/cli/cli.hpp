@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "cli/calibrate_command.hpp"
 #include "cli/history_command.hpp"
 #include "cli/optimize_command.hpp"
 #include "cli/render_command.hpp"
@@ -42,11 +43,13 @@ class Cli {
   FitArgs fit_;
   AveragingArgs averagings_;
   RenderArgs render_;
+  CalibrateArgs calibrate_;
   CLI::App* simulate_cmd_ = nullptr;
   CLI::App* optimize_cmd_ = nullptr;
   CLI::App* history_cmd_ = nullptr;
   CLI::App* export_cmd_ = nullptr;
   CLI::App* render_cmd_ = nullptr;
+  CLI::App* calibrate_cmd_ = nullptr;
 };
 
 /// The whole program: parses, runs, and turns every error into one line on stderr. Returns the

@@ -8,6 +8,7 @@
 
 #include "cli/history_command.hpp"
 #include "cli/output.hpp"
+#include "softdrop/area_trace.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/history.hpp"
 #include "softdrop/porosity.hpp"
@@ -296,8 +297,7 @@ int render_animation_command(RenderArgs& a) {
   return 0;
 }
 
-// The ring's area every few steps, and when it enters (lowest mass reaches y = H) and leaves (highest
-// mass below y = 0) the medium. S0 is the area at the entry.
+// The ring's area every few steps (trace_area), entry and exit marked; S0 is the area at the entry.
 constexpr int kTraceInterval = 20;  // steps between area samples of the trace
 
 int render_trace(RenderArgs& a) {
@@ -308,27 +308,11 @@ int render_trace(RenderArgs& a) {
   if (!a.csv.empty()) check_output_path("--csv", a.csv);
   const Medium medium = medium_of(a);
   const double x0 = start_of(a, medium);
-  Simulation sim(a.droplet, medium);
-  const RunSummary whole = sim.run(x0, a.run);  // deterministic: the replay below is the same run
-  sim.place_above(x0);
-  const int every = kTraceInterval;
-  std::vector<double> t, area;
-  double enter = NAN, leave = NAN, s0 = NAN;
-  // A droplet that passed is followed until its last mass is below y = 0 (at most 20 000 more steps).
-  const std::int64_t end = whole.outcome == Outcome::passed ? whole.steps + 20000 : whole.steps;
-  for (std::int64_t step = 0; step <= end; ++step) {
-    if (step > 0 && !sim.step()) break;
-    const auto& st = sim.state();
-    const double lo = *std::min_element(st.y.begin(), st.y.end()), hi = *std::max_element(st.y.begin(), st.y.end());
-    const double time = static_cast<double>(step) * a.droplet.dt;
-    if (std::isnan(enter) && lo <= medium.height) enter = time, s0 = sim.area();
-    if (step % every == 0) t.push_back(time), area.push_back(sim.area());
-    if (std::isnan(leave) && hi < 0) {
-      leave = time;
-      if (step % every != 0) t.push_back(time), area.push_back(sim.area());
-      break;
-    }
-  }
+  const AreaTrace trace = trace_area(a.droplet, medium, x0, a.run, kTraceInterval);
+  const RunSummary& whole = trace.run;
+  const std::vector<double>& t = trace.t;
+  const std::vector<double>& area = trace.area;
+  const double enter = trace.enter, leave = trace.leave, s0 = trace.s0;
   if (std::isnan(s0)) throw std::runtime_error("trace: the droplet never reached the medium");
   Series ratio;
   ratio.colour = parse_colour(a.droplet_colour);
@@ -352,9 +336,7 @@ int render_trace(RenderArgs& a) {
     write_file_atomically(a.csv, out.str());
   }
   render_chart(c, style, a.output);
-  double lo = INFINITY, hi = -INFINITY;
-  for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] >= enter && (std::isnan(leave) || t[i] <= leave)) lo = std::min(lo, area[i] / s0), hi = std::max(hi, area[i] / s0);
+  const double lo = trace.min_ratio, hi = trace.max_ratio;
   std::cerr << "trace: enters at t = " << fmt(enter, 5) << ", leaves at t = " << (std::isnan(leave) ? "never" : fmt(leave, 5))
             << "; inside the medium S/S0 spans [" << fmt(lo, 5) << ", " << fmt(hi, 5) << "]\n";
   return 0;

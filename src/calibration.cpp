@@ -1,0 +1,173 @@
+#include "softdrop/calibration.hpp"
+
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+#include <utility>
+
+#include "softdrop/area_trace.hpp"
+#include "softdrop/batch.hpp"
+#include "softdrop/random.hpp"
+
+namespace softdrop {
+
+double paper_tortuosity(double phi) { return 1.58 - 0.58 * std::pow(phi, 3.87); }
+
+SweepOptions CalibrationOptions::default_sweep() {
+  SweepOptions s;
+  s.porosities = {0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
+  s.media = 10;
+  s.droplets = 20;
+  return s;
+}
+
+bool CalibrationOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (!sweep.IsValid(why)) return false;
+  if (!(trace_porosity > 0 && trace_porosity < 1))
+    return fail("trace-porosity = " + std::to_string(trace_porosity) + ": must be in (0, 1)");
+  if (trace_media < 0 || trace_media > 1000)
+    return fail("trace-media = " + std::to_string(trace_media) + ": must be in [0, 1000]");
+  if (trace_droplets < 0 || trace_droplets > 10000)
+    return fail("trace-droplets = " + std::to_string(trace_droplets) + ": must be in [0, 10000]");
+  return true;
+}
+
+namespace {
+
+// Accumulates T over passed droplets: mean and standard error (sample sd / sqrt(n)).
+struct Mean {
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  void add(double t) { sum += t, sum2 += t * t, ++n; }
+  double mean() const { return n > 0 ? sum / n : 0; }
+  double standard_error() const {
+    if (n < 2) return 0;
+    const double m = mean();
+    return std::sqrt(std::max(0.0, (sum2 - n * m * m) / (n - 1)) / n);
+  }
+};
+
+void score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& media, CalibrationResult* r) {
+  const std::size_t count = sweep.porosities.size();
+  std::vector<Mean> t(count);
+  std::vector<double> porosity(count, 0.0);
+  std::vector<int> n_media(count, 0);
+  r->points.assign(count, {});
+  long droplets = 0, stuck = 0, diverged = 0;
+  for (const SweepMedium& m : media) {
+    const std::size_t i = static_cast<std::size_t>(m.unit.porosity);
+    CalibrationPoint& p = r->points[i];
+    porosity[i] += m.porosity, ++n_media[i];
+    p.droplets += static_cast<int>(m.droplets.size());
+    p.passed += m.passed, p.stuck += m.stuck, p.diverged += m.diverged;
+    for (const SweepDroplet& d : m.droplets) {
+      if (d.outcome == Outcome::passed) t[i].add(d.tortuosity);
+      r->steps += static_cast<double>(d.steps);
+    }
+  }
+  double sum2 = 0, measured2 = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    CalibrationPoint& p = r->points[i];
+    p.target_porosity = sweep.porosities[i];
+    p.porosity = n_media[i] > 0 ? porosity[i] / n_media[i] : p.target_porosity;
+    p.mean_t = t[i].mean();
+    p.standard_error = t[i].standard_error();
+    p.paper_t = paper_tortuosity(p.porosity);
+    const double miss = p.passed >= 2 ? p.mean_t - p.paper_t : p.paper_t - 1;
+    p.within = p.passed >= 2 && std::abs(miss) <= std::max(0.03, 2 * p.standard_error);
+    sum2 += miss * miss;
+    if (p.passed >= 2) measured2 += miss * miss, ++r->measured;
+    r->within += p.within;
+    droplets += p.droplets, stuck += p.stuck, diverged += p.diverged;
+  }
+  r->rms_distance = count > 0 ? std::sqrt(sum2 / static_cast<double>(count)) : 0;
+  r->measured_rms = r->measured > 0 ? std::sqrt(measured2 / r->measured) : 0;
+  r->stuck_fraction = droplets > 0 ? static_cast<double>(stuck) / static_cast<double>(droplets) : 0;
+  r->diverged_fraction = static_cast<double>(diverged);  // divided once the traces are counted in
+}
+
+// The traces' media: the sweep's box and radii, non-overlapping at trace_porosity.
+Medium trace_medium(const CalibrationOptions& o, int index) {
+  MediumOptions mo = o.sweep.medium;
+  mo.kind = MediumKind::non_overlapping;
+  mo.porosity = o.trace_porosity;
+  mo.grains = 0;
+  mo.seed = derive_seed(o.sweep.seed, 0x5452414345ULL + static_cast<std::uint64_t>(index));  // "TRACE"
+  return generate_medium(mo);
+}
+
+}  // namespace
+
+CalibrationResult run_calibration(const CalibrationOptions& o, const DropletParams& droplet, int threads,
+                                  const std::function<void(long, long)>& progress) {
+  std::string why;
+  if (!o.IsValid(&why)) throw std::invalid_argument(why);
+  if (!droplet.IsValid(&why)) throw std::invalid_argument(why);
+  SweepOptions sweep = o.sweep;
+  sweep.droplet = droplet;
+  const std::vector<SweepUnit> units = sweep_units(sweep);
+  const long traces = static_cast<long>(o.trace_media) * o.trace_droplets;
+  const long total = static_cast<long>(units.size()) * sweep.droplets + traces;
+  std::atomic<long> done{0};
+  std::mutex report;
+  auto tick = [&](long n) {
+    const long now = done += n;
+    if (!progress) return;
+    std::lock_guard<std::mutex> lock(report);
+    progress(now, total);
+  };
+
+  std::vector<SweepMedium> media;
+  run_sweep_units(sweep, units, threads, [&](SweepMedium&& m) {
+    tick(static_cast<long>(m.droplets.size()));
+    media.push_back(std::move(m));
+  });
+  // Completion order varies with the threads; the sums must not.
+  std::sort(media.begin(), media.end(), [](const SweepMedium& a, const SweepMedium& b) {
+    return std::pair(a.unit.porosity, a.unit.medium) < std::pair(b.unit.porosity, b.unit.medium);
+  });
+  CalibrationResult r;
+  score_points(sweep, media, &r);
+
+  std::vector<Medium> trace_media;
+  for (int m = 0; m < o.trace_media; ++m) trace_media.push_back(trace_medium(o, m));
+  std::vector<AreaTrace> runs(static_cast<std::size_t>(traces));
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] {
+    tbb::parallel_for(0L, traces, [&](long k) {
+      const int m = static_cast<int>(k / o.trace_droplets), d = static_cast<int>(k % o.trace_droplets);
+      BatchOptions starts;
+      starts.seed = derive_seed(o.sweep.seed ^ 0x5354415254ULL, static_cast<std::uint64_t>(m));
+      const Medium& medium = trace_media[static_cast<std::size_t>(m)];
+      const double x0 = batch_start_x(starts, medium, droplet, d);
+      runs[static_cast<std::size_t>(k)] = trace_area(droplet, medium, x0, o.sweep.run, 1000);
+      tick(1);
+    });
+  });
+  double lo = INFINITY, hi = -INFINITY;
+  for (const AreaTrace& t : runs) {
+    ++r.trace_runs;
+    r.trace_passed += t.run.outcome == Outcome::passed;
+    r.trace_diverged += t.run.outcome == Outcome::diverged;
+    if (std::isnan(t.s0)) continue;
+    lo = std::min(lo, t.min_ratio), hi = std::max(hi, t.max_ratio);
+  }
+  r.area_min = std::isfinite(lo) ? lo : NAN;
+  r.area_max = std::isfinite(hi) ? hi : NAN;
+  r.area_both_sides = std::isfinite(lo) && lo < 0.95 && hi > 1.02;
+  const double all = static_cast<double>(units.size()) * sweep.droplets + static_cast<double>(traces);
+  r.diverged_fraction = all > 0 ? (r.diverged_fraction + r.trace_diverged) / all : 0;
+  r.score = r.rms_distance + r.diverged_fraction + 0.05 * (r.area_both_sides ? 0 : 1) + 0.05 * r.stuck_fraction;
+  return r;
+}
+
+}  // namespace softdrop

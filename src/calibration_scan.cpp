@@ -1,0 +1,139 @@
+// The scan grid of a calibration: axes parsed from "name=values", applied to DropletParams.
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+#include "softdrop/calibration.hpp"
+
+namespace softdrop {
+namespace {
+
+struct Field {
+  const char* name;
+  double DropletParams::*real;
+  int DropletParams::*whole;
+};
+
+const Field kFields[] = {
+    {"masses", nullptr, &DropletParams::masses},
+    {"mass", &DropletParams::mass, nullptr},
+    {"radius", &DropletParams::radius, nullptr},
+    {"nrt", &DropletParams::nrt, nullptr},
+    {"ks", &DropletParams::ks, nullptr},
+    {"kd", &DropletParams::kd, nullptr},
+    {"kc", &DropletParams::kc, nullptr},
+    {"cc", &DropletParams::cc, nullptr},
+    {"max-strain", &DropletParams::max_strain, nullptr},
+    {"max-depth", &DropletParams::max_depth, nullptr},
+    {"viscosity", &DropletParams::viscosity, nullptr},
+    {"constraint-iterations", nullptr, &DropletParams::constraint_iterations},
+};
+
+const Field* find_field(const std::string& name) {
+  for (const Field& f : kFields)
+    if (name == f.name) return &f;
+  return nullptr;
+}
+
+// A finite number taking the whole text, or an error naming the axis.
+double number(const std::string& text, const std::string& axis) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  if (text.empty() || end != begin + text.size() || !std::isfinite(v))
+    throw std::invalid_argument("scan '" + axis + "': '" + text + "' is not a finite number");
+  return v;
+}
+
+std::vector<std::string> split(const std::string& text, char by) {
+  std::vector<std::string> parts;
+  std::size_t from = 0;
+  for (std::size_t at; (at = text.find(by, from)) != std::string::npos; from = at + 1)
+    parts.push_back(text.substr(from, at - from));
+  parts.push_back(text.substr(from));
+  return parts;
+}
+
+}  // namespace
+
+std::vector<std::string> scan_parameter_names() {
+  std::vector<std::string> names;
+  for (const Field& f : kFields) names.emplace_back(f.name);
+  return names;
+}
+
+ScanAxis parse_scan_axis(const std::string& text) {
+  const std::size_t eq = text.find('=');
+  if (eq == std::string::npos) throw std::invalid_argument("scan '" + text + "': expected name=values");
+  ScanAxis axis{text.substr(0, eq), {}};
+  const Field* field = find_field(axis.name);
+  if (!field) {
+    std::string known;
+    for (const std::string& n : scan_parameter_names()) known += (known.empty() ? "" : ", ") + n;
+    throw std::invalid_argument("scan '" + text + "': unknown parameter '" + axis.name + "' (one of " + known + ")");
+  }
+  const std::string values = text.substr(eq + 1);
+  if (values.empty()) throw std::invalid_argument("scan '" + text + "': no values");
+  if (values.find(':') != std::string::npos) {
+    const std::vector<std::string> p = split(values, ':');
+    if (p.size() != 3 && !(p.size() == 4 && p[3] == "log"))
+      throw std::invalid_argument("scan '" + text + "': a range is lo:hi:n or lo:hi:n:log");
+    const double lo = number(p[0], text), hi = number(p[1], text), n = number(p[2], text);
+    const bool log = p.size() == 4;
+    if (lo > hi) throw std::invalid_argument("scan '" + text + "': inverted range (lo > hi)");
+    if (n < 2 || n > 1000 || n != std::floor(n))
+      throw std::invalid_argument("scan '" + text + "': n must be a whole number in [2, 1000]");
+    if (log && !(lo > 0)) throw std::invalid_argument("scan '" + text + "': a log range needs lo > 0");
+    const int count = static_cast<int>(n);
+    for (int i = 0; i < count; ++i) {
+      const double f = static_cast<double>(i) / (count - 1);
+      axis.values.push_back(i == count - 1 ? hi : log ? lo * std::pow(hi / lo, f) : lo + (hi - lo) * f);
+    }
+  } else {
+    for (const std::string& v : split(values, ',')) axis.values.push_back(number(v, text));
+  }
+  if (field->whole)
+    for (double& v : axis.values) {
+      if (v != std::round(v) || std::abs(v) > 1e9) throw std::invalid_argument("scan '" + text + "': " + axis.name + " takes whole numbers");
+      v = std::round(v);
+    }
+  return axis;
+}
+
+void set_scan_parameter(DropletParams& params, const std::string& name, double value) {
+  const Field* field = find_field(name);
+  if (!field) throw std::invalid_argument("scan: unknown parameter '" + name + "'");
+  if (field->real) params.*(field->real) = value;
+  else params.*(field->whole) = static_cast<int>(value);
+}
+
+DropletParams apply_setting(const DropletParams& base, const std::string& text) {
+  DropletParams params = base;
+  std::istringstream words(text);
+  int count = 0;
+  for (std::string word; words >> word; ++count) {
+    const ScanAxis one = parse_scan_axis(word);
+    if (one.values.size() != 1) throw std::invalid_argument("setting '" + text + "': '" + word + "' must give one value");
+    set_scan_parameter(params, one.name, one.values[0]);
+  }
+  if (count == 0) throw std::invalid_argument("setting '" + text + "': no assignments");
+  return params;
+}
+
+std::vector<DropletParams> scan_settings(const DropletParams& base, const std::vector<ScanAxis>& axes) {
+  std::vector<DropletParams> settings{base};
+  for (const ScanAxis& axis : axes) {
+    std::vector<DropletParams> next;
+    for (const DropletParams& s : settings)
+      for (double v : axis.values) {
+        next.push_back(s);
+        set_scan_parameter(next.back(), axis.name, v);
+      }
+    settings = std::move(next);
+  }
+  return settings;
+}
+
+}  // namespace softdrop

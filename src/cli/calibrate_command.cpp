@@ -1,0 +1,248 @@
+#include "cli/calibrate_command.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/output.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/render.hpp"
+
+namespace softdrop::cli {
+
+CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
+  CLI::App* c = app.add_subcommand(
+      "calibrate", "Scan droplet parameters against the paper: a small sweep and area traces per setting, ranked");
+  c->fallthrough();
+  auto* g = c->add_option_group("Calibration", "what every setting runs, and the grid");
+  g->add_option("--scan", a.scans,
+                "An axis of the grid, name=v1,v2,... or name=lo:hi:n or name=lo:hi:n:log (repeat for more axes; "
+                "names: masses, mass, radius, nrt, ks, kd, kc, cc, max-strain, max-depth, viscosity, "
+                "constraint-iterations); the other parameters come from the Droplet options")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  g->add_option("--setting", a.settings,
+                "Or one setting to run, \"name=value name=value ...\" over the Droplet options (repeat for more; "
+                "not with --scan)")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  auto& s = a.calibration.sweep;
+  g->add_option("--porosities", s.porosities, "Target porosities of each setting's sweep (overlapping media)")
+      ->delimiter(',')
+      ->capture_default_str();
+  g->add_option("--media", s.media, "Media per porosity")->capture_default_str();
+  g->add_option("--droplets", s.droplets, "Droplets per medium, from random starts")->capture_default_str();
+  g->add_option("--seed", s.seed, "Seed of media and start positions (the same for every setting)")
+      ->capture_default_str()
+      ->check(seed_check());
+  g->add_option("--trace-porosity", a.calibration.trace_porosity, "Porosity of the area traces' non-overlapping media")
+      ->capture_default_str();
+  g->add_option("--trace-media", a.calibration.trace_media, "Media of the area traces")->capture_default_str();
+  g->add_option("--trace-droplets", a.calibration.trace_droplets, "Area-traced droplets per trace medium")
+      ->capture_default_str();
+  g->add_flag("--skip-unstable", a.skip_unstable,
+              "Record settings the limits refuse (unstable at their dt) as refused rows instead of refusing the scan");
+  g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
+  g->add_flag("--quiet", a.quiet, "No progress on stderr");
+  auto* o = c->add_option_group("Output");
+  o->add_option("--format", a.format, "The ranking on stdout: table, csv or json")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"table", "csv", "json"}));
+  o->add_option("--csv", a.csv, "One row per setting (parameters, figures, score), rewritten as each setting ends");
+  o->add_option("--points", a.points, "One row per setting and porosity: <T>, its error, the paper's f(phi), stuck");
+  o->add_option("--plot", a.plot, "The best settings' <T>(phi) against the paper's curve (.png, .svg, .pdf)");
+  o->add_option("--best", a.best, "Settings drawn in the plot")->capture_default_str();
+  add_medium_options(c, a.medium, false)->get_option("--medium")->description("(not used by calibrate)");
+  auto* d = add_droplet_options(c, s.droplet);
+  add_exit_options(d, s.run);
+  return c;
+}
+
+std::vector<DropletParams> check_calibrate(CalibrateArgs& a) {
+  if (!a.medium.file.empty()) throw std::invalid_argument("medium: calibrate generates its media; --medium is not used");
+  resolve_medium(a.medium);
+  a.calibration.sweep.medium = a.medium.options;
+  std::string why;
+  if (!a.calibration.IsValid(&why)) throw std::invalid_argument(why);
+  check_threads(a.threads);
+  if (a.best < 1 || a.best > 20) throw std::invalid_argument("best = " + std::to_string(a.best) + ": must be in [1, 20]");
+  if (!a.csv.empty()) check_output_path("--csv", a.csv);
+  if (!a.points.empty()) check_output_path("--points", a.points);
+  if (!a.plot.empty()) check_picture_path("--plot", a.plot);
+  std::vector<ScanAxis> axes;
+  double count = 1;
+  for (const std::string& text : a.scans) {
+    axes.push_back(parse_scan_axis(text));
+    for (const ScanAxis& earlier : std::vector<ScanAxis>(axes.begin(), axes.end() - 1))
+      if (earlier.name == axes.back().name) throw std::invalid_argument("scan '" + text + "': " + earlier.name + " scanned twice");
+    count *= static_cast<double>(axes.back().values.size());
+  }
+  if (count > 10000) throw std::invalid_argument("scan: " + fmt(count, 6) + " settings; at most 10 000");
+  if (!a.settings.empty() && !a.scans.empty()) throw std::invalid_argument("setting: --setting and --scan do not mix");
+  std::vector<DropletParams> settings;
+  for (const std::string& text : a.settings) settings.push_back(apply_setting(a.calibration.sweep.droplet, text));
+  if (a.settings.empty()) settings = scan_settings(a.calibration.sweep.droplet, axes);
+  if (!a.skip_unstable)
+    for (std::size_t i = 0; i < settings.size(); ++i)
+      if (!settings[i].IsValid(&why))
+        throw std::invalid_argument("setting " + std::to_string(i) + ": " + why + " (--skip-unstable records it instead)");
+  return settings;
+}
+
+namespace {
+
+struct Row {
+  int setting = 0;
+  DropletParams droplet;
+  std::string refused;  ///< why the limits refuse it, or empty
+  CalibrationResult result;
+  double seconds = 0;
+};
+
+nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+Table settings_table(const std::vector<const Row*>& rows) {
+  Table t;
+  t.header = {"setting", "status", "masses", "mass", "radius", "nrt", "ks", "kd", "kc", "cc", "max_strain",
+              "max_depth", "viscosity", "constraint_iterations", "score", "rms_distance", "measured_rms", "measured", "within", "stuck_fraction",
+              "diverged_fraction", "area_min", "area_max", "area_both_sides", "trace_passed", "trace_runs",
+              "steps_per_second", "seconds"};
+  for (const Row* r : rows) {
+    const DropletParams& d = r->droplet;
+    const CalibrationResult& c = r->result;
+    const bool ok = r->refused.empty();
+    auto fig = [&](double v) { return ok ? number_or_null(v) : nlohmann::json(nullptr); };
+    t.rows.push_back({r->setting, ok ? "ok" : "refused: " + r->refused, d.masses, d.mass, d.radius, d.nrt, d.ks, d.kd,
+                      d.kc, d.cc, d.max_strain, d.max_depth, d.viscosity, d.constraint_iterations, fig(c.score),
+                      fig(c.rms_distance), fig(c.measured_rms), ok ? nlohmann::json(c.measured) : nullptr,
+                      ok ? nlohmann::json(c.within) : nullptr, fig(c.stuck_fraction),
+                      fig(c.diverged_fraction), fig(c.area_min), fig(c.area_max),
+                      ok ? nlohmann::json(c.area_both_sides) : nullptr, ok ? nlohmann::json(c.trace_passed) : nullptr,
+                      ok ? nlohmann::json(c.trace_runs) : nullptr,
+                      fig(r->seconds > 0 ? c.steps / r->seconds : NAN), fig(r->seconds)});
+  }
+  return t;
+}
+
+Table points_table(const std::vector<const Row*>& rows) {
+  Table t;
+  t.header = {"setting", "target_porosity", "porosity", "droplets", "passed", "stuck", "diverged", "mean_t",
+              "standard_error", "paper_t", "within"};
+  for (const Row* r : rows)
+    for (const CalibrationPoint& p : r->result.points)
+      t.rows.push_back({r->setting, p.target_porosity, p.porosity, p.droplets, p.passed, p.stuck, p.diverged,
+                        p.passed > 0 ? nlohmann::json(p.mean_t) : nullptr,
+                        p.passed > 1 ? nlohmann::json(p.standard_error) : nullptr, p.paper_t, p.within});
+  return t;
+}
+
+void write_table(const Table& t, const std::string& path) {
+  std::ostringstream out;
+  t.print(out, "csv");
+  write_file_atomically(path, out.str());
+}
+
+// The best settings' points with error bars over the paper's curve.
+void plot_best(const std::vector<const Row*>& ranked, int best, const std::string& path) {
+  Chart c;
+  Series paper;
+  for (int i = 0; i <= 100; ++i) {
+    const double phi = 0.45 + 0.55 * i / 100.0;
+    paper.x.push_back(phi), paper.y.push_back(paper_tortuosity(phi));
+  }
+  paper.label = "paper: 1.58 - 0.58 phi^3.87";
+  paper.colour = {0.1, 0.1, 0.1, 1};
+  c.series.push_back(paper);
+  const Rgba colours[] = {{0.8, 0.1, 0.1, 1}, {0.1, 0.35, 0.8, 1}, {0.1, 0.6, 0.2, 1}, {0.7, 0.4, 0.0, 1},
+                          {0.5, 0.1, 0.6, 1}};
+  int drawn = 0;
+  for (const Row* r : ranked) {
+    if (drawn == best) break;
+    if (!r->refused.empty()) continue;
+    Series s;
+    s.style = Series::Style::points;
+    s.width = 4;
+    s.colour = colours[drawn % 5];
+    for (const CalibrationPoint& p : r->result.points)
+      if (p.passed >= 2) s.x.push_back(p.porosity), s.y.push_back(p.mean_t), s.err.push_back(p.standard_error);
+    s.label = "setting " + std::to_string(r->setting) + " (score " + fmt(r->result.score, 3) + ")";
+    if (!s.x.empty()) c.series.push_back(std::move(s)), ++drawn;
+  }
+  c.x_label = "porosity phi";
+  c.y_label = "mean tortuosity <T>";
+  c.title = "calibration: the best settings against the paper";
+  render_chart(c, RenderStyle{}, path);
+}
+
+}  // namespace
+
+int run_calibrate(CalibrateArgs& a) {
+  const std::vector<DropletParams> settings = check_calibrate(a);
+  StopOnSignal stop("\nsoftdrop: finishing the setting in flight (Ctrl-C again to leave now)\n");
+  std::vector<Row> rows;
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool tty = ::isatty(2) != 0;
+  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
+  auto ranked = [&] {
+    std::vector<const Row*> r;
+    for (const Row& row : rows) r.push_back(&row);
+    std::stable_sort(r.begin(), r.end(), [](const Row* x, const Row* y) {
+      if (x->refused.empty() != y->refused.empty()) return x->refused.empty();
+      return x->result.score < y->result.score;
+    });
+    return r;
+  };
+  for (std::size_t i = 0; i < settings.size() && !stop.requested(); ++i) {
+    Row row;
+    row.setting = static_cast<int>(i);
+    row.droplet = settings[i];
+    std::string why;
+    if (!settings[i].IsValid(&why)) {
+      row.refused = why;
+    } else {
+      const auto s0 = std::chrono::steady_clock::now();
+      auto last = s0;
+      const double before = elapsed();
+      row.result = run_calibration(a.calibration, settings[i], a.threads, [&](long done, long total) {
+        const auto now = std::chrono::steady_clock::now();
+        if (a.quiet || (done != total && now - last < std::chrono::seconds(tty ? 1 : 30))) return;
+        last = now;
+        // ETA: this setting's pace for its rest, the mean setting's time for the settings after it.
+        const double spent = std::chrono::duration<double>(now - s0).count();
+        const double rest = spent / static_cast<double>(done) * static_cast<double>(total - done);
+        const double per_setting = i > 0 ? before / static_cast<double>(i) : spent + rest;
+        const double eta = rest + per_setting * static_cast<double>(settings.size() - i - 1);
+        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << " (" << i + 1 << " of " << settings.size() << "), droplets "
+                  << done << "/" << total << ", ETA " << fmt(eta, 3) << " s" << (tty ? "\033[K" : "\n") << std::flush;
+      });
+      row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
+      if (!a.quiet)
+        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << ": score " << fmt(row.result.score, 4)
+                  << ", rms " << fmt(row.result.rms_distance, 4) << " (measured " << fmt(row.result.measured_rms, 4)
+                  << ")" << ", stuck " << fmt(row.result.stuck_fraction, 3)
+                  << ", diverged " << fmt(row.result.diverged_fraction, 3) << ", S/S0 in ["
+                  << fmt(row.result.area_min, 4) << ", " << fmt(row.result.area_max, 4) << "]"
+                  << (tty ? "\033[K\n" : "\n");
+    }
+    rows.push_back(std::move(row));
+    std::vector<const Row*> in_order;
+    for (const Row& r : rows) in_order.push_back(&r);
+    if (!a.csv.empty()) write_table(settings_table(in_order), a.csv);
+    if (!a.points.empty()) write_table(points_table(in_order), a.points);
+  }
+  const std::vector<const Row*> best = ranked();
+  if (!a.plot.empty() && std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.refused.empty(); }))
+    plot_best(best, a.best, a.plot);
+  settings_table(best).print(std::cout, a.format);
+  if (!a.quiet)
+    std::cerr << "calibrate: " << rows.size() << " of " << settings.size() << " settings in " << fmt(elapsed(), 4)
+              << " s\n";
+  return stop.exit_code();
+}
+
+}  // namespace softdrop::cli

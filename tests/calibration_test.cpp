@@ -1,0 +1,241 @@
+// The calibration against the paper: scan grids, area traces, one setting's figures and score,
+// determinism, and the command's bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "cli_run.hpp"
+#include "softdrop/area_trace.hpp"
+#include "softdrop/calibration.hpp"
+
+namespace {
+using namespace softdrop;
+using softdrop::test::run;
+using softdrop::test::temp_path;
+
+TEST(ScanAxis, ListsAndRanges) {
+  EXPECT_EQ(parse_scan_axis("mass=0.01,0.1,1").values, (std::vector<double>{0.01, 0.1, 1}));
+  EXPECT_EQ(parse_scan_axis("radius=4:10:4").values, (std::vector<double>{4, 6, 8, 10}));
+  const ScanAxis log = parse_scan_axis("nrt=1e5:1e7:3:log");
+  ASSERT_EQ(log.values.size(), 3u);
+  EXPECT_EQ(log.values[0], 1e5);
+  EXPECT_NEAR(log.values[1], 1e6, 1e-6);
+  EXPECT_EQ(log.values[2], 1e7);  // the end is exact, not lo * (hi / lo)
+  EXPECT_EQ(parse_scan_axis("masses=20,40").name, "masses");
+}
+
+TEST(ScanAxis, BadAxesNameWhatIsWrong) {
+  struct Case {
+    std::string text, says;
+  };
+  for (const Case& c : {Case{"mass", "expected name=values"}, Case{"colour=1", "unknown parameter 'colour'"},
+                        Case{"mass=", "no values"}, Case{"mass=1,,2", "'' is not a finite number"},
+                        Case{"mass=nan", "'nan' is not a finite number"}, Case{"mass=1,inf", "'inf' is not"},
+                        Case{"mass=1:0.1:3", "inverted range"}, Case{"mass=0.1:1:1", "n must be a whole number"},
+                        Case{"mass=0.1:1:2.5", "n must be"}, Case{"nrt=0:1e6:3:log", "log range needs lo > 0"},
+                        Case{"mass=1:2", "lo:hi:n"}, Case{"masses=20.5", "whole numbers"},
+                        Case{"masses=1e300", "whole numbers"}}) {
+    SCOPED_TRACE(c.text);
+    try {
+      parse_scan_axis(c.text);
+      ADD_FAILURE() << "accepted";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(c.says), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("scan '"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(ScanAxis, SettingsVaryTheFirstAxisSlowest) {
+  const DropletParams base;
+  const auto s = scan_settings(base, {parse_scan_axis("mass=1,2"), parse_scan_axis("masses=20,30,40")});
+  ASSERT_EQ(s.size(), 6u);
+  EXPECT_EQ(s[0].mass, 1);
+  EXPECT_EQ(s[0].masses, 20);
+  EXPECT_EQ(s[2].masses, 40);
+  EXPECT_EQ(s[3].mass, 2);
+  EXPECT_EQ(s[3].masses, 20);
+  EXPECT_EQ(s[5].nrt, base.nrt);  // what is not scanned comes from the base
+  EXPECT_EQ(scan_settings(base, {}).size(), 1u);
+}
+
+TEST(ScanAxis, ExplicitSettingsOverrideTheBase) {
+  const DropletParams base;
+  const DropletParams s = apply_setting(base, "radius=5.5  mass=0.5 masses=30");
+  EXPECT_EQ(s.radius, 5.5);
+  EXPECT_EQ(s.mass, 0.5);
+  EXPECT_EQ(s.masses, 30);
+  EXPECT_EQ(s.nrt, base.nrt);
+  for (const std::string bad : {"", "mass=1,2", "mass=1:2:3", "bogus=1", "mass=x"}) {
+    SCOPED_TRACE(bad);
+    EXPECT_THROW(apply_setting(base, bad), std::invalid_argument);
+  }
+}
+
+TEST(PaperCurve, IsThePapersFit) {
+  EXPECT_DOUBLE_EQ(paper_tortuosity(1.0), 1.0);
+  EXPECT_NEAR(paper_tortuosity(0.8), 1.58 - 0.58 * std::pow(0.8, 3.87), 1e-15);
+  EXPECT_NEAR(paper_tortuosity(0.95), 1.10, 0.01);
+  EXPECT_NEAR(paper_tortuosity(0.6), 1.50, 0.01);
+}
+
+Medium one_grain() {
+  Medium m;
+  m.width = m.height = 200;
+  m.grains = {{100, 100, 12}};
+  return m;
+}
+
+TEST(AreaTrace, BelongsToTheRunAndStartsAtS0) {
+  DropletParams p;
+  RunOptions run;
+  const Medium medium = one_grain();
+  const AreaTrace t = trace_area(p, medium, 100, run, 50);
+  Simulation sim(p, medium);
+  const RunSummary alone = sim.run(100, run);
+  EXPECT_EQ(t.run.outcome, alone.outcome);
+  EXPECT_EQ(t.run.steps, alone.steps);
+  EXPECT_EQ(t.run.tortuosity, alone.tortuosity);
+  ASSERT_FALSE(std::isnan(t.enter));
+  EXPECT_GT(t.enter, 0);
+  EXPECT_LE(t.min_ratio, 1.0);  // S0 itself is inside the range
+  EXPECT_GE(t.max_ratio, 1.0);
+  EXPECT_LT(t.min_ratio, 0.999);  // the grain squeezes it
+  ASSERT_EQ(t.t.size(), t.area.size());
+  EXPECT_EQ(t.t[1] - t.t[0], 50 * p.dt);
+  if (t.run.outcome == Outcome::passed) {
+    EXPECT_FALSE(std::isnan(t.leave));
+    EXPECT_EQ(t.t.back(), t.leave);
+  }
+  EXPECT_THROW(trace_area(p, medium, 100, run, 0), std::invalid_argument);
+}
+
+CalibrationOptions tiny() {
+  CalibrationOptions o;
+  o.sweep.porosities = {0.7, 0.9};
+  o.sweep.media = 2;
+  o.sweep.droplets = 3;
+  o.sweep.medium.width = o.sweep.medium.height = 200;
+  o.trace_media = 1;
+  o.trace_droplets = 2;
+  return o;
+}
+
+TEST(Calibration, FiguresAddUpAndDoNotDependOnThreads) {
+  const CalibrationOptions o = tiny();
+  const DropletParams p;
+  long calls = 0, last = 0, total = 0;
+  const CalibrationResult a = run_calibration(o, p, 1, [&](long done, long all) { ++calls, last = done, total = all; });
+  const CalibrationResult b = run_calibration(o, p, 2);
+  EXPECT_EQ(total, 2 * 2 * 3 + 2);
+  EXPECT_EQ(last, total);
+  EXPECT_GT(calls, 1);
+  ASSERT_EQ(a.points.size(), 2u);
+  ASSERT_EQ(b.points.size(), 2u);
+  double sum2 = 0, measured2 = 0;
+  int within = 0, measured = 0;
+  for (std::size_t i = 0; i < 2; ++i) {
+    const CalibrationPoint& p1 = a.points[i];
+    EXPECT_EQ(p1.droplets, 6);
+    EXPECT_LE(p1.passed + p1.stuck + p1.diverged, p1.droplets);
+    EXPECT_EQ(p1.paper_t, paper_tortuosity(p1.porosity));
+    EXPECT_EQ(p1.mean_t, b.points[i].mean_t);  // bit for bit
+    EXPECT_EQ(p1.standard_error, b.points[i].standard_error);
+    const double miss = p1.passed >= 2 ? p1.mean_t - p1.paper_t : p1.paper_t - 1;
+    sum2 += miss * miss;
+    if (p1.passed >= 2) measured2 += miss * miss, ++measured;
+    within += p1.within;
+  }
+  EXPECT_DOUBLE_EQ(a.rms_distance, std::sqrt(sum2 / 2));
+  EXPECT_EQ(a.within, within);
+  EXPECT_EQ(a.measured, measured);
+  EXPECT_DOUBLE_EQ(a.measured_rms, measured ? std::sqrt(measured2 / measured) : 0.0);
+  EXPECT_EQ(a.score, b.score);
+  EXPECT_EQ(a.area_min, b.area_min);
+  EXPECT_EQ(a.area_max, b.area_max);
+  EXPECT_EQ(a.trace_runs, 2);
+  EXPECT_DOUBLE_EQ(a.score, a.rms_distance + a.diverged_fraction + 0.05 * (a.area_both_sides ? 0 : 1) +
+                                0.05 * a.stuck_fraction);
+  EXPECT_EQ(a.area_both_sides, a.area_min < 0.95 && a.area_max > 1.02);
+}
+
+TEST(Calibration, RefusesBadOptionsAndUnstableDroplets) {
+  CalibrationOptions o = tiny();
+  DropletParams p;
+  p.mass = 1e-4;  // k_d dt / m = 73: the explicit damping would blow up
+  EXPECT_THROW(run_calibration(o, p, 1), std::invalid_argument);
+  o.trace_porosity = 1.5;
+  EXPECT_THROW(run_calibration(o, DropletParams{}, 1), std::invalid_argument);
+}
+
+TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
+  const std::string csv = temp_path("cal.csv"), points = temp_path("cal_points.csv"), plot = temp_path("cal.png");
+  const auto r = run("calibrate --porosities 0.8 --media 1 --droplets 2 --width 200 --height 200 --trace-media 1 "
+                     "--trace-droplets 1 --scan nrt=1e8,6e8 --scan mass=1,1e-4 --skip-unstable --quiet --format csv "
+                     "--csv " + csv + " --points " + points + " --plot " + plot);
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header.rfind("setting,status,masses,mass,radius,nrt,", 0), 0u) << header;
+  int rows = 0, refused = 0;
+  while (std::getline(in, line)) ++rows, refused += line.find(",\"refused: ") != std::string::npos;
+  EXPECT_EQ(rows, 4);
+  EXPECT_EQ(refused, 2);  // mass 1e-4 is unstable at dt = 2e-5 (the reason is quoted: it has commas)
+  // stdout ranks: the run settings first, by score; the refused last.
+  std::istringstream out(r.out);
+  std::getline(out, line);
+  std::vector<std::string> order;
+  while (std::getline(out, line)) order.push_back(line.substr(line.find(',') + 1, 3));
+  EXPECT_EQ(order, (std::vector<std::string>{"ok,", "ok,", "\"re", "\"re"}));
+  std::ifstream p(points);
+  int point_rows = 0;
+  while (std::getline(p, line)) ++point_rows;
+  EXPECT_EQ(point_rows, 1 + 2);  // the two settings that ran, one porosity each
+  EXPECT_TRUE(std::filesystem::exists(plot));
+  // Explicit settings instead of a grid: one row each, in the order given.
+  const auto two = run("calibrate --porosities 0.8 --media 1 --droplets 2 --width 200 --height 200 --trace-media 0 "
+                       "--quiet --setting 'radius=8 nrt=3e8' --setting 'radius=9' --csv " + csv);
+  ASSERT_EQ(two.code, 0) << two.err;
+  std::ifstream again(csv);
+  std::vector<std::string> lines;
+  while (std::getline(again, line)) lines.push_back(line);
+  ASSERT_EQ(lines.size(), 3u);
+  auto cells = [](const std::string& row) {
+    std::vector<std::string> c;
+    std::istringstream row_in(row);
+    for (std::string cell; std::getline(row_in, cell, ',');) c.push_back(cell);
+    return c;
+  };
+  const auto first = cells(lines[1]), second = cells(lines[2]);  // setting, status, masses, mass, radius, nrt
+  EXPECT_EQ(first[0] + first[1] + first[4] + first[5], "0ok8300000000") << lines[1];
+  EXPECT_EQ(second[0] + second[1] + second[4], "1ok9") << lines[2];
+  EXPECT_EQ(std::stod(second[5]), DropletParams{}.nrt);
+  for (const auto& f : {csv, points, plot}) std::filesystem::remove(f);
+}
+
+TEST(CalibrateCommand, BadInputIsOneLineNamingIt) {
+  struct Case {
+    std::string args, says;
+  };
+  for (const Case& c : {Case{"--scan mass=1:0.1:3", "scan 'mass=1:0.1:3': inverted range"},
+                        Case{"--scan mass=", "scan 'mass=': no values"},
+                        Case{"--scan viscosity=nan", "'nan' is not a finite number"},
+                        Case{"--scan mass=1 --scan mass=2", "mass scanned twice"},
+                        Case{"--scan mass=1,1e-4", "setting 1: dt = 2.0000000000000002e-05: too large for the stiffness"},
+                        Case{"--porosities 0.5,1.2", "porosit"}, Case{"--trace-media -1", "trace-media = -1"},
+                        Case{"--best 0", "best = 0"},
+                        Case{"--setting mass=1 --scan nrt=1e8", "--setting and --scan do not mix"},
+                        Case{"--setting 'mass=1,2'", "must give one value"}, Case{"--medium x.json", "--medium is not used"}}) {
+    SCOPED_TRACE(c.args);
+    const auto r = run("calibrate --quiet " + c.args);
+    EXPECT_NE(r.code, 0);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+  }
+}
+
+}  // namespace
