@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <mutex>
 #include <stdexcept>
 #include <utility>
@@ -107,6 +108,27 @@ Medium trace_medium(const CalibrationOptions& o, int index) {
 
 }  // namespace
 
+double resting_travel(const DropletParams& droplet) {
+  Medium floor{200, 200, true, {}};
+  for (int i = 0; i < 10; ++i) floor.grains.push_back({10.0 + 20.0 * i, 100, 12});
+  Simulation sim(droplet, floor);
+  sim.place_above(37.0);
+  const auto settle = static_cast<std::int64_t>(std::llround(0.4 / droplet.dt));
+  const auto follow = static_cast<std::int64_t>(std::llround(1.0 / droplet.dt));
+  for (std::int64_t k = 0; k < settle; ++k)
+    if (!sim.step()) return NAN;
+  double px, py, path = 0;
+  sim.centre_of_mass(&px, &py);
+  for (std::int64_t k = 0; k < follow; ++k) {
+    if (!sim.step()) return NAN;
+    double cx, cy;
+    sim.centre_of_mass(&cx, &cy);
+    path += std::hypot(cx - px, cy - py);
+    px = cx, py = cy;
+  }
+  return path / (static_cast<double>(follow) * droplet.dt);
+}
+
 CalibrationResult run_calibration(const CalibrationOptions& o, const DropletParams& droplet, int threads,
                                   const std::function<void(long, long)>& progress) {
   std::string why;
@@ -166,7 +188,9 @@ CalibrationResult run_calibration(const CalibrationOptions& o, const DropletPara
   r.area_both_sides = std::isfinite(lo) && lo < 0.95 && hi > 1.02;
   const double all = static_cast<double>(units.size()) * sweep.droplets + static_cast<double>(traces);
   r.diverged_fraction = all > 0 ? (r.diverged_fraction + r.trace_diverged) / all : 0;
-  r.score = r.rms_distance + r.diverged_fraction + 0.05 * (r.area_both_sides ? 0 : 1) + 0.05 * r.stuck_fraction;
+  r.resting_travel = resting_travel(droplet);
+  r.comes_to_rest = r.resting_travel <= 0.01;  // NaN (diverged) does not
+  r.score = r.rms_distance + r.diverged_fraction + (r.comes_to_rest ? 0 : 1) + 0.05 * (r.area_both_sides ? 0 : 1) + 0.05 * r.stuck_fraction;
   return r;
 }
 

@@ -28,7 +28,7 @@ TEST(BadValues, GetOneLineNamingTheOption) {
            Case{"simulate --x0 nan", "--x0: 'nan' is not a finite number", 2},
            Case{"simulate --x0 inf", "--x0: 'inf' is not a finite number", 2},
            Case{"simulate --x0 -1e300", "x0 = -1.0000000000000001e+300: the droplet must start inside the box", 1},
-           Case{"simulate --walls --x0 600 --width 500", "x0 = 600: the droplet must start inside the box, x0 in [10, 490]", 1},
+           Case{"simulate --walls --x0 600 --width 500", "x0 = 600: the droplet must start inside the box, x0 in [8, 492]", 1},
            Case{"render snapshots --times 0.01 -o " + temp_path("s.png") + " --x0 -3", "x0 = -3", 1},
            Case{"optimize --db " + db + " --seed -1", "--seed: '-1' is not a whole number in [0, 2^64 - 1]", 2},
            Case{"optimize --db " + db + " --seed 18446744073709551616", "is more than 2^64 - 1", 2},

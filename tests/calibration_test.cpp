@@ -157,9 +157,27 @@ TEST(Calibration, FiguresAddUpAndDoNotDependOnThreads) {
   EXPECT_EQ(a.area_min, b.area_min);
   EXPECT_EQ(a.area_max, b.area_max);
   EXPECT_EQ(a.trace_runs, 2);
-  EXPECT_DOUBLE_EQ(a.score, a.rms_distance + a.diverged_fraction + 0.05 * (a.area_both_sides ? 0 : 1) +
-                                0.05 * a.stuck_fraction);
+  EXPECT_EQ(a.resting_travel, b.resting_travel);
+  EXPECT_EQ(a.comes_to_rest, a.resting_travel <= 0.01);
+  EXPECT_DOUBLE_EQ(a.score, a.rms_distance + a.diverged_fraction + (a.comes_to_rest ? 0 : 1) +
+                                0.05 * (a.area_both_sides ? 0 : 1) + 0.05 * a.stuck_fraction);
   EXPECT_EQ(a.area_both_sides, a.area_min < 0.95 && a.area_max > 1.02);
+}
+
+// A droplet whose gas pushes each mass by more than about 0.4 % of an edge a step buzzes against
+// its contacts for ever; one below comes to rest on a floor.
+TEST(Calibration, TheRestingTestTellsABuzzingDropletFromAResting) {
+  DropletParams quiet, buzzing;
+  quiet.mass = buzzing.mass = 0.5;
+  quiet.radius = buzzing.radius = 5.5;
+  quiet.masses = buzzing.masses = 30;
+  quiet.kc = buzzing.kc = 2e8;
+  quiet.cc = buzzing.cc = 2e4;
+  quiet.viscosity = buzzing.viscosity = 5000;
+  quiet.nrt = 4e8;
+  buzzing.nrt = 1.1e9;
+  EXPECT_LT(resting_travel(quiet), 1e-6);
+  EXPECT_GT(resting_travel(buzzing), 10.0);
 }
 
 TEST(Calibration, RefusesBadOptionsAndUnstableDroplets) {

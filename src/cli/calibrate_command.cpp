@@ -110,7 +110,7 @@ Table settings_table(const std::vector<const Row*>& rows) {
   Table t;
   t.header = {"setting", "status", "masses", "mass", "radius", "nrt", "ks", "kd", "kc", "cc", "max_strain",
               "max_depth", "viscosity", "constraint_iterations", "score", "rms_distance", "measured_rms", "measured", "within", "stuck_fraction",
-              "diverged_fraction", "area_min", "area_max", "area_both_sides", "trace_passed", "trace_runs",
+              "diverged_fraction", "area_min", "area_max", "area_both_sides", "trace_passed", "trace_runs", "resting_travel", "comes_to_rest",
               "steps_per_second", "seconds"};
   for (const Row* r : rows) {
     const DropletParams& d = r->droplet;
@@ -123,7 +123,8 @@ Table settings_table(const std::vector<const Row*>& rows) {
                       ok ? nlohmann::json(c.within) : nullptr, fig(c.stuck_fraction),
                       fig(c.diverged_fraction), fig(c.area_min), fig(c.area_max),
                       ok ? nlohmann::json(c.area_both_sides) : nullptr, ok ? nlohmann::json(c.trace_passed) : nullptr,
-                      ok ? nlohmann::json(c.trace_runs) : nullptr,
+                      ok ? nlohmann::json(c.trace_runs) : nullptr, fig(c.resting_travel),
+                      ok ? nlohmann::json(c.comes_to_rest) : nullptr,
                       fig(r->seconds > 0 ? c.steps / r->seconds : NAN), fig(r->seconds)});
   }
   return t;
@@ -226,7 +227,8 @@ int run_calibrate(CalibrateArgs& a) {
                   << ", rms " << fmt(row.result.rms_distance, 4) << " (measured " << fmt(row.result.measured_rms, 4)
                   << ")" << ", stuck " << fmt(row.result.stuck_fraction, 3)
                   << ", diverged " << fmt(row.result.diverged_fraction, 3) << ", S/S0 in ["
-                  << fmt(row.result.area_min, 4) << ", " << fmt(row.result.area_max, 4) << "]"
+                  << fmt(row.result.area_min, 4) << ", " << fmt(row.result.area_max, 4) << "], at rest "
+                  << (row.result.comes_to_rest ? "yes" : "no (travels " + fmt(row.result.resting_travel, 3) + " a time unit)")
                   << (tty ? "\033[K\n" : "\n");
     }
     rows.push_back(std::move(row));
