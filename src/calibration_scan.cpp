@@ -111,6 +111,7 @@ void set_scan_parameter(DropletParams& params, const std::string& name, double v
 
 DropletParams apply_setting(const DropletParams& base, const std::string& text) {
   DropletParams params = base;
+  if (text == "defaults") return params;
   std::istringstream words(text);
   int count = 0;
   for (std::string word; words >> word; ++count) {
@@ -134,6 +135,22 @@ std::vector<DropletParams> scan_settings(const DropletParams& base, const std::v
     settings = std::move(next);
   }
   return settings;
+}
+
+std::vector<std::string> scan_labels(const std::vector<ScanAxis>& axes) {
+  std::vector<std::string> labels{""};
+  for (const ScanAxis& axis : axes) {
+    std::vector<std::string> next;
+    for (const std::string& l : labels)
+      for (double v : axis.values) {
+        std::ostringstream text;
+        text << l << (l.empty() ? "" : " ") << axis.name << '=' << v;  // 6 digits: a label, not data
+        next.push_back(text.str());
+      }
+    labels = std::move(next);
+  }
+  if (axes.empty()) labels = {"defaults"};
+  return labels;
 }
 
 }  // namespace softdrop

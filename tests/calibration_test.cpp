@@ -60,6 +60,11 @@ TEST(ScanAxis, SettingsVaryTheFirstAxisSlowest) {
   EXPECT_EQ(s[3].masses, 20);
   EXPECT_EQ(s[5].nrt, base.nrt);  // what is not scanned comes from the base
   EXPECT_EQ(scan_settings(base, {}).size(), 1u);
+  const auto labels = scan_labels({parse_scan_axis("mass=1,2"), parse_scan_axis("masses=20,30,40")});
+  ASSERT_EQ(labels.size(), 6u);
+  EXPECT_EQ(labels[0], "mass=1 masses=20");
+  EXPECT_EQ(labels[5], "mass=2 masses=40");
+  EXPECT_EQ(scan_labels({}), (std::vector<std::string>{"defaults"}));
 }
 
 TEST(ScanAxis, ExplicitSettingsOverrideTheBase) {
@@ -69,6 +74,9 @@ TEST(ScanAxis, ExplicitSettingsOverrideTheBase) {
   EXPECT_EQ(s.mass, 0.5);
   EXPECT_EQ(s.masses, 30);
   EXPECT_EQ(s.nrt, base.nrt);
+  const DropletParams same = apply_setting(base, "defaults");
+  EXPECT_EQ(same.radius, base.radius);
+  EXPECT_EQ(same.nrt, base.nrt);
   for (const std::string bad : {"", "mass=1,2", "mass=1:2:3", "bogus=1", "mass=x"}) {
     SCOPED_TRACE(bad);
     EXPECT_THROW(apply_setting(base, bad), std::invalid_argument);

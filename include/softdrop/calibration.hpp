@@ -104,10 +104,14 @@ ScanAxis parse_scan_axis(const std::string& text);
 void set_scan_parameter(DropletParams& params, const std::string& name, double value);
 
 /// `base` with the assignments of `text`, "name=value name=value ..." (names as for scan axes;
-/// one value each). Throws std::invalid_argument naming the setting for a bad assignment.
+/// one value each), or `base` itself for "defaults". Throws std::invalid_argument naming the
+/// setting for a bad assignment.
 DropletParams apply_setting(const DropletParams& base, const std::string& text);
 
 /// Every combination of the axes' values over `base`, the first axis varying slowest.
 std::vector<DropletParams> scan_settings(const DropletParams& base, const std::vector<ScanAxis>& axes);
+/// The labels of scan_settings' settings, in the same order: "name=value ..." over the axes
+/// ("defaults" without axes).
+std::vector<std::string> scan_labels(const std::vector<ScanAxis>& axes);
 
 }  // namespace softdrop

@@ -63,7 +63,7 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
   return c;
 }
 
-std::vector<DropletParams> check_calibrate(CalibrateArgs& a) {
+std::vector<DropletParams> check_calibrate(CalibrateArgs& a, std::vector<std::string>* labels) {
   if (!a.medium.file.empty()) throw std::invalid_argument("medium: calibrate generates its media; --medium is not used");
   resolve_medium(a.medium);
   a.calibration.sweep.medium = a.medium.options;
@@ -87,6 +87,7 @@ std::vector<DropletParams> check_calibrate(CalibrateArgs& a) {
   std::vector<DropletParams> settings;
   for (const std::string& text : a.settings) settings.push_back(apply_setting(a.calibration.sweep.droplet, text));
   if (a.settings.empty()) settings = scan_settings(a.calibration.sweep.droplet, axes);
+  if (labels) *labels = a.settings.empty() ? scan_labels(axes) : a.settings;
   if (!a.skip_unstable)
     for (std::size_t i = 0; i < settings.size(); ++i)
       if (!settings[i].IsValid(&why))
@@ -98,6 +99,7 @@ namespace {
 
 struct Row {
   int setting = 0;
+  std::string label;  ///< the setting's assignments
   DropletParams droplet;
   std::string refused;  ///< why the limits refuse it, or empty
   CalibrationResult result;
@@ -111,7 +113,7 @@ Table settings_table(const std::vector<const Row*>& rows) {
   t.header = {"setting", "status", "masses", "mass", "radius", "nrt", "ks", "kd", "kc", "cc", "max_strain",
               "max_depth", "viscosity", "constraint_iterations", "score", "rms_distance", "measured_rms", "measured", "within", "stuck_fraction",
               "diverged_fraction", "area_min", "area_max", "area_both_sides", "trace_passed", "trace_runs", "resting_travel", "comes_to_rest",
-              "steps_per_second", "seconds"};
+              "steps_per_second", "seconds", "label"};
   for (const Row* r : rows) {
     const DropletParams& d = r->droplet;
     const CalibrationResult& c = r->result;
@@ -125,7 +127,7 @@ Table settings_table(const std::vector<const Row*>& rows) {
                       ok ? nlohmann::json(c.area_both_sides) : nullptr, ok ? nlohmann::json(c.trace_passed) : nullptr,
                       ok ? nlohmann::json(c.trace_runs) : nullptr, fig(c.resting_travel),
                       ok ? nlohmann::json(c.comes_to_rest) : nullptr,
-                      fig(r->seconds > 0 ? c.steps / r->seconds : NAN), fig(r->seconds)});
+                      fig(r->seconds > 0 ? c.steps / r->seconds : NAN), fig(r->seconds), r->label});
   }
   return t;
 }
@@ -171,7 +173,7 @@ void plot_best(const std::vector<const Row*>& ranked, int best, const std::strin
     s.colour = colours[drawn % 5];
     for (const CalibrationPoint& p : r->result.points)
       if (p.passed >= 2) s.x.push_back(p.porosity), s.y.push_back(p.mean_t), s.err.push_back(p.standard_error);
-    s.label = "setting " + std::to_string(r->setting) + " (score " + fmt(r->result.score, 3) + ")";
+    s.label = r->label + " (score " + fmt(r->result.score, 3) + ")";
     if (!s.x.empty()) c.series.push_back(std::move(s)), ++drawn;
   }
   c.x_label = "porosity phi";
@@ -183,7 +185,8 @@ void plot_best(const std::vector<const Row*>& ranked, int best, const std::strin
 }  // namespace
 
 int run_calibrate(CalibrateArgs& a) {
-  const std::vector<DropletParams> settings = check_calibrate(a);
+  std::vector<std::string> labels;
+  const std::vector<DropletParams> settings = check_calibrate(a, &labels);
   StopOnSignal stop("\nsoftdrop: finishing the setting in flight (Ctrl-C again to leave now)\n");
   std::vector<Row> rows;
   const auto t0 = std::chrono::steady_clock::now();
@@ -201,6 +204,7 @@ int run_calibrate(CalibrateArgs& a) {
   for (std::size_t i = 0; i < settings.size() && !stop.requested(); ++i) {
     Row row;
     row.setting = static_cast<int>(i);
+    row.label = labels[i];
     row.droplet = settings[i];
     std::string why;
     if (!settings[i].IsValid(&why)) {

@@ -26,8 +26,9 @@ struct CalibrateArgs {
 
 CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& args);
 /// Checks the options and builds the settings, without running; throws std::invalid_argument
-/// naming the bad parameter (an unstable setting included, unless --skip-unstable).
-std::vector<DropletParams> check_calibrate(CalibrateArgs& args);
+/// naming the bad parameter (an unstable setting included, unless --skip-unstable). `labels`, if
+/// given, receives each setting's assignments.
+std::vector<DropletParams> check_calibrate(CalibrateArgs& args, std::vector<std::string>* labels = nullptr);
 int run_calibrate(CalibrateArgs& args);
 
 }  // namespace softdrop::cli
