@@ -21,7 +21,7 @@ struct OptimizeArgs {
   int threads = 0;
   bool no_speculation = false;     ///< evaluate one generation at a time
   int lanes = 0;                   ///< candidates each thread steps together (DriveOptions::lanes)
-  int start_attempts = 20;         ///< random starting media tried until the droplet passes
+  int start_attempts = 100;        ///< random starting media tried until the droplet passes
   SearchOptions search;
   MediumArgs medium;
   bool quiet = false;
