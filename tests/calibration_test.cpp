@@ -172,8 +172,8 @@ TEST(Calibration, FiguresAddUpAndDoNotDependOnThreads) {
   EXPECT_EQ(a.area_both_sides, a.area_min < 0.95 && a.area_max > 1.02);
 }
 
-// A droplet whose gas pushes each mass by more than about 0.4 % of an edge a step buzzes against
-// its contacts for ever; one below comes to rest on a floor.
+// A droplet whose gas pushes each mass hard (about 0.9 % of an edge a step here) buzzes against its
+// contacts for ever; the same droplet with a third of the gas comes to rest on a floor.
 TEST(Calibration, TheRestingTestTellsABuzzingDropletFromAResting) {
   DropletParams quiet, buzzing;
   quiet.mass = buzzing.mass = 0.5;
@@ -224,7 +224,7 @@ TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
   EXPECT_TRUE(std::filesystem::exists(plot));
   // Explicit settings instead of a grid: one row each, in the order given.
   const auto two = run("calibrate --porosities 0.8 --media 1 --droplets 2 --width 200 --height 200 --trace-media 0 "
-                       "--quiet --setting 'radius=8 nrt=3e8' --setting 'radius=9' --csv " + csv);
+                       "--quiet --setting 'radius=8 nrt=3e8' --setting 'wider: radius=9' --csv " + csv);
   ASSERT_EQ(two.code, 0) << two.err;
   std::ifstream again(csv);
   std::vector<std::string> lines;
@@ -240,6 +240,8 @@ TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
   EXPECT_EQ(first[0] + first[1] + first[4] + first[5], "0ok8300000000") << lines[1];
   EXPECT_EQ(second[0] + second[1] + second[4], "1ok9") << lines[2];
   EXPECT_EQ(std::stod(second[5]), DropletParams{}.nrt);
+  EXPECT_EQ(first.back(), "radius=8 nrt=3e8");  // the label: the setting's text, or the name before ':'
+  EXPECT_EQ(second.back(), "wider");
   for (const auto& f : {csv, points, plot}) std::filesystem::remove(f);
 }
 

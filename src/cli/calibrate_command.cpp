@@ -27,8 +27,8 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
                 "constraint-iterations); the other parameters come from the Droplet options")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   g->add_option("--setting", a.settings,
-                "Or one setting to run, \"name=value name=value ...\" over the Droplet options (repeat for more; "
-                "not with --scan)")
+                "Or one setting to run, \"[label:] name=value name=value ...\" over the Droplet options (repeat for "
+                "more; not with --scan)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   auto& s = a.calibration.sweep;
   g->add_option("--porosities", s.porosities, "Target porosities of each setting's sweep (overlapping media)")
@@ -85,9 +85,15 @@ std::vector<DropletParams> check_calibrate(CalibrateArgs& a, std::vector<std::st
   if (count > 10000) throw std::invalid_argument("scan: " + fmt(count, 6) + " settings; at most 10 000");
   if (!a.settings.empty() && !a.scans.empty()) throw std::invalid_argument("setting: --setting and --scan do not mix");
   std::vector<DropletParams> settings;
-  for (const std::string& text : a.settings) settings.push_back(apply_setting(a.calibration.sweep.droplet, text));
+  std::vector<std::string> names;  // "name: assignments" names a setting; otherwise its text does
+  for (const std::string& text : a.settings) {
+    const std::size_t colon = text.find(':');
+    const bool named = colon != std::string::npos && text.find('=') > colon;
+    names.push_back(named ? text.substr(0, colon) : text);
+    settings.push_back(apply_setting(a.calibration.sweep.droplet, named ? text.substr(colon + 1) : text));
+  }
   if (a.settings.empty()) settings = scan_settings(a.calibration.sweep.droplet, axes);
-  if (labels) *labels = a.settings.empty() ? scan_labels(axes) : a.settings;
+  if (labels) *labels = a.settings.empty() ? scan_labels(axes) : names;
   if (!a.skip_unstable)
     for (std::size_t i = 0; i < settings.size(); ++i)
       if (!settings[i].IsValid(&why))
