@@ -83,6 +83,17 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     });
   }
 
+  void set_param(std::int64_t run, const std::string& key, const std::string& json_value) override {
+    guarded([&] {
+      SQLite::Statement q(db_, "UPDATE runs SET params = json_set(params, ?, json(?)) WHERE id = ?");
+      q.bind(1, "$.\"" + key + "\"");
+      q.bind(2, json_value);
+      q.bind(3, run);
+      if (q.exec() != 1) throw std::runtime_error("no run " + std::to_string(run));
+      return 0;
+    });
+  }
+
   std::vector<RunRecord> runs() override {
     return guarded([&] {
       std::vector<RunRecord> out;

@@ -207,3 +207,54 @@ TEST(Optimize, BadDatabaseFilesGiveOneLineAndStayUnchanged) {
 }
 
 }  // namespace
+
+namespace {
+
+// A resume without --generations goes on to the run's own target; one at or below the stored
+// generation says so and leaves the run alone; the summary counts what the history counts.
+TEST(Optimize, ResumeGoesToTheStoredTargetAndSaysWhenThereIsNothingToDo) {
+  const std::string db = softdrop::test::fresh("target.db"), ref = softdrop::test::fresh("target_ref.db");
+  const Result first = run("optimize --db " + db + kScene + " --generations 4");
+  ASSERT_EQ(first.code, 0) << first.err;
+  EXPECT_NE(first.out.find("4 generations, "), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find(" 5 evaluations"), std::string::npos) << first.out;  // generation 0's counted
+  const Result history = run("history --db " + db + " --format csv");
+  EXPECT_NE(history.out.find(",4,5,"), std::string::npos) << history.out;  // generations 4, evaluations 5
+  auto status = [&] {
+    SQLite::Database d(db, SQLite::OPEN_READONLY);
+    return d.execAndGet("SELECT status FROM runs WHERE id = 1").getString();
+  };
+  // At its target already: nothing to do, with or without a lower --generations.
+  for (const std::string more : {"", " --generations 3", " --generations 4"}) {
+    SCOPED_TRACE(more);
+    const Result again = run("optimize --db " + db + kScene + " --resume 1" + more);
+    ASSERT_EQ(again.code, 0) << again.err;
+    EXPECT_NE(again.out.find("nothing to do: run 1 is at generation 4"), std::string::npos) << again.out;
+    EXPECT_EQ(status(), "finished");
+  }
+  // A higher target is stored: the next resume without --generations goes no further, and the
+  // run equals one started with that target.
+  ASSERT_EQ(run("optimize --db " + db + kScene + " --resume 1 --generations 7").code, 0);
+  EXPECT_NE(run("optimize --db " + db + kScene + " --resume 1").out.find("nothing to do: run 1 is at generation 7"),
+            std::string::npos);
+  ASSERT_EQ(run("optimize --db " + ref + kScene + " --generations 7").code, 0);
+  EXPECT_EQ(dump(db, 1), dump(ref, 1));
+  // A run stopped short of its target (here: marked so by hand, as a kill or a time limit leaves it)
+  // keeps its status when a resume asks for less, and goes on to its target when asked for nothing.
+  {
+    SQLite::Database d(db, SQLite::OPEN_READWRITE);
+    d.exec("UPDATE runs SET status = 'interrupted', params = json_set(params, '$.\"target-generations\"', 9)");
+  }
+  const Result less = run("optimize --db " + db + kScene + " --resume 1 --generations 6");
+  EXPECT_NE(less.out.find("nothing to do: run 1 is at generation 7 (target 6)"), std::string::npos) << less.out;
+  EXPECT_EQ(status(), "interrupted");
+  const Result rest = run("optimize --db " + db + kScene + " --resume 1");
+  EXPECT_NE(rest.out.find("reached generation 9"), std::string::npos) << rest.out;
+  EXPECT_EQ(status(), "finished");
+  const Result json = run("optimize --db " + db + kScene + " --resume 1 --format json");
+  const nlohmann::json j = nlohmann::json::parse(json.out);
+  EXPECT_EQ(j["termination"], "nothing to do");
+  EXPECT_EQ(j["last_generation"], 9);
+}
+
+}  // namespace

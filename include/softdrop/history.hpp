@@ -78,6 +78,8 @@ class History {
   virtual void append(std::int64_t run, const Generation& g, const Configuration& best) = 0;
   /// Sets a run's status (running, finished, interrupted).
   virtual void set_status(std::int64_t run, const std::string& status) = 0;
+  /// Sets one key of a run's stored parameters (a JSON value, e.g. "target-generations" = "500").
+  virtual void set_param(std::int64_t run, const std::string& key, const std::string& json_value) = 0;
 
   virtual std::vector<RunRecord> runs() = 0;
   /// Throws std::runtime_error naming the id if there is no such run.

@@ -40,7 +40,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   h->add_option("--resume", a.resume, "Continue this run of the database instead of starting a new one");
 
   auto* g = s->add_option_group("Search", "stored with the run; a resume must not contradict them");
-  g->add_option("--generations", a.generations, "Run up to this generation number")->capture_default_str();
+  g->add_option("--generations", a.generations,
+                "Run up to this generation number (a resume without it goes on to the run's own target)")
+      ->capture_default_str();
   g->add_option("--time-limit", a.time_limit, "Stop after this many wall seconds (0: no limit)")
       ->capture_default_str();
   g->add_option("--lambda", a.search.lambda, "Candidates per generation, evaluated in parallel (1: the paper)")
@@ -229,6 +231,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   std::unique_ptr<History> history;
   std::int64_t run = a.resume;
   std::unique_ptr<Search> search;
+  std::int64_t initial_evaluations = 0;  // generation 0's, counted with this session's when it made them
   if (run > 0) {
     history = open_history(a.db, OpenMode::read_only);  // checks the file before any write
     history.reset();
@@ -251,6 +254,27 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
       if (!stored.contains(key)) stored[key] = value;
     if (const std::string bad = contradictions(given, stored, cmd); !bad.empty())
       throw std::invalid_argument("resume " + std::to_string(run) + ": the command line contradicts the stored run: " + bad);
+    // Without --generations a resume goes on to the run's own target (runs stored before targets
+    // were: the default); a target at or below the last generation leaves the run as it is.
+    const bool target_given = cmd.get_option("--generations")->count() > 0;
+    if (!target_given && stored.contains("target-generations") && stored["target-generations"].is_number_integer())
+      a.generations = stored["target-generations"].get<std::int64_t>();
+    if (a.generations <= rec.generations) {
+      const std::string line = "nothing to do: run " + std::to_string(run) + " is at generation " +
+                               std::to_string(rec.generations) + " (target " + std::to_string(a.generations) + ")";
+      nlohmann::json j{{"version", kVersion}, {"db", a.db}, {"run", run}, {"termination", "nothing to do"},
+                       {"message", line}, {"last_generation", rec.generations}, {"generations_run", 0},
+                       {"evaluations", 0}, {"best_tortuosity", rec.best_t}, {"best_generation", rec.best_generation}};
+      // A run killed after its last generation but before it was marked finished is finished.
+      const bool at_own_target = stored.contains("target-generations") && stored["target-generations"].is_number_integer() &&
+                                 rec.generations >= stored["target-generations"].get<std::int64_t>();
+      if (at_own_target && rec.status != "finished") history->set_status(run, "finished");
+      if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+      std::cout << (a.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
+      return 0;
+    }
+    if (target_given && stored.value("target-generations", nlohmann::json()) != nlohmann::json(a.generations))
+      history->set_param(run, "target-generations", std::to_string(a.generations));
     // The strategy moves on from the last kept arrangement; the best may be an earlier one.
     Configuration current = history->configuration(run, -1);
     Configuration best = rec.best_generation == current.generation ? current
@@ -277,8 +301,11 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
     if (!std::filesystem::exists(a.db)) check_output_path("--db", a.db);
     Configuration best;
     const Generation g0 = start(a, &best);
+    initial_evaluations = static_cast<std::int64_t>(g0.candidates.size());
     history = open_history(a.db, OpenMode::create);
-    run = history->create_run(given.dump(), a.search, g0, best);
+    nlohmann::json params = given;
+    params["target-generations"] = a.generations;  // where a resume without --generations goes on to
+    run = history->create_run(params.dump(), a.search, g0, best);
     search = std::make_unique<Search>(a.search, std::move(best), 0);
     if (!a.quiet)
       std::cerr << "optimize: run " << run << " in " << a.db << ": " << search->best().medium.grains.size()
@@ -312,7 +339,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   j["message"] = summary.message;
   j["last_generation"] = summary.last_generation;
   j["generations_run"] = summary.generations_run;
-  j["evaluations"] = summary.evaluations;
+  j["evaluations"] = summary.evaluations + initial_evaluations;
   j["accepted"] = summary.accepted;
   j["best_tortuosity"] = best.eval.tortuosity;
   j["best_generation"] = best.generation;
@@ -337,7 +364,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
               << "best T       " << fmt(best.eval.tortuosity, 10) << " (generation " << best.generation << ", "
               << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n"
               << "this session " << summary.generations_run << " generations, " << summary.accepted
-              << " accepted, " << summary.evaluations << " evaluations, "
+              << " accepted, " << summary.evaluations + initial_evaluations << " evaluations, "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
     const SpeculationStats& sp = summary.speculation;
     const double dropped_share =
