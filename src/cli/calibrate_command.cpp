@@ -57,7 +57,10 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
   o->add_option("--points", a.points, "One row per setting and porosity: <T>, its error, the paper's f(phi), stuck");
   o->add_option("--plot", a.plot, "The best settings' <T>(phi) against the paper's curve (.png, .svg, .pdf)");
   o->add_option("--best", a.best, "Settings drawn in the plot")->capture_default_str();
-  add_medium_options(c, a.medium, false)->get_option("--medium")->description("(not used by calibrate)");
+  auto* medium = add_medium_options(c, a.medium, false);
+  medium->get_option("--medium")->description("(not used by calibrate)");
+  medium->get_option("--porosity")->description("(not used by calibrate: see --porosities)");
+  medium->get_option("--kind")->description("Media of each setting's sweep (the area traces' are non-overlapping)");
   auto* d = add_droplet_options(c, s.droplet);
   add_exit_options(d, s.run);
   return c;
