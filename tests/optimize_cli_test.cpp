@@ -218,6 +218,7 @@ TEST(Optimize, ResumeGoesToTheStoredTargetAndSaysWhenThereIsNothingToDo) {
   ASSERT_EQ(first.code, 0) << first.err;
   EXPECT_NE(first.out.find("4 generations, "), std::string::npos) << first.out;
   EXPECT_NE(first.out.find(" 5 evaluations"), std::string::npos) << first.out;  // generation 0's counted
+  EXPECT_EQ(first.out.find("speculation"), std::string::npos) << "only with --verbose: " << first.out;
   const Result history = run("history --db " + db + " --format csv");
   EXPECT_NE(history.out.find(",4,5,"), std::string::npos) << history.out;  // generations 4, evaluations 5
   auto status = [&] {
@@ -237,7 +238,9 @@ TEST(Optimize, ResumeGoesToTheStoredTargetAndSaysWhenThereIsNothingToDo) {
   ASSERT_EQ(run("optimize --db " + db + kScene + " --resume 1 --generations 7").code, 0);
   EXPECT_NE(run("optimize --db " + db + kScene + " --resume 1").out.find("nothing to do: run 1 is at generation 7"),
             std::string::npos);
-  ASSERT_EQ(run("optimize --db " + ref + kScene + " --generations 7").code, 0);
+  const Result verbose = run("optimize --db " + ref + kScene + " --generations 7 --verbose");
+  ASSERT_EQ(verbose.code, 0) << verbose.err;
+  EXPECT_NE(verbose.out.find("speculation  "), std::string::npos) << verbose.out;
   EXPECT_EQ(dump(db, 1), dump(ref, 1));
   // A run stopped short of its target (here: marked so by hand, as a kill or a time limit leaves it)
   // keeps its status when a resume asks for less, and goes on to its target when asked for nothing.

@@ -107,6 +107,8 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->check(CLI::IsMember({"table", "json"}));
   o->add_option("--json", a.json_file, "Also write the JSON summary to this file");
   o->add_flag("--quiet", a.quiet, "No progress on stderr");
+  o->add_flag("--verbose", a.verbose,
+              "Also print how the speculation went: threads, lanes, evaluations dropped (JSON always has it)");
   return s;
 }
 
@@ -366,17 +368,19 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
               << "this session " << summary.generations_run << " generations, " << summary.accepted
               << " accepted, " << summary.evaluations + initial_evaluations << " evaluations, "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
-    const SpeculationStats& sp = summary.speculation;
-    const double dropped_share =
-        sp.kept_steps > 0 ? 100.0 * static_cast<double>(sp.dropped_steps) / static_cast<double>(sp.kept_steps) : 0.0;
-    if (sp.threads == 0)
-      std::cout << "speculation  off (one generation at a time)\n";
-    else
-      std::cout << "speculation  " << sp.threads << " threads x " << sp.lanes << " lanes, " << sp.dropped
-                << " evaluations dropped (" << sp.dropped_steps << " steps, " << fmt(dropped_share, 3)
-                << " % of the kept evaluations' " << sp.kept_steps << "), " << sp.predictions
-                << " acceptances predicted (" << sp.predictions_ahead << " ahead of an undecided generation, "
-                << sp.mispredictions << " overturned)\n";
+    if (a.verbose) {  // for those who tune --lanes and --threads
+      const SpeculationStats& sp = summary.speculation;
+      const double dropped_share =
+          sp.kept_steps > 0 ? 100.0 * static_cast<double>(sp.dropped_steps) / static_cast<double>(sp.kept_steps) : 0.0;
+      if (sp.threads == 0)
+        std::cout << "speculation  off (one generation at a time)\n";
+      else
+        std::cout << "speculation  " << sp.threads << " threads x " << sp.lanes << " lanes, " << sp.dropped
+                  << " evaluations dropped (" << sp.dropped_steps << " steps, " << fmt(dropped_share, 3)
+                  << " % of the kept evaluations' " << sp.kept_steps << "), " << sp.predictions
+                  << " acceptances predicted (" << sp.predictions_ahead << " ahead of an undecided generation, "
+                  << sp.mispredictions << " overturned)\n";
+    }
   }
   return summary.termination == Termination::interrupted ? stop.exit_code() : 0;
 }

@@ -25,6 +25,7 @@ struct OptimizeArgs {
   SearchOptions search;
   MediumArgs medium;
   bool quiet = false;
+  bool verbose = false;            ///< also print how the speculation went
   std::string format = "table";
   std::string json_file;
   /// Options of one strategy given on the command line, with the strategy that uses each.
