@@ -43,6 +43,22 @@ TEST(Cli, BadInputGivesOneLineNamingTheParameterAndNoOutput) {
   }
 }
 
+// Progress lines say how far a command is in percent (and, before the end, its ETA); the last one
+// is always written, and with stderr in a pipe each is a plain line.
+TEST(Cli, ProgressLinesEndAtOneHundredPercent) {
+  const Result sim = run("simulate --droplets 4 --porosity 0.9");
+  ASSERT_EQ(sim.code, 0) << sim.err;
+  EXPECT_NE(sim.err.find("simulate: droplets done: 4/4 (100 %)\n"), std::string::npos) << sim.err;
+  EXPECT_EQ(sim.err.find('\r'), std::string::npos) << "a pipe gets plain lines";
+  const std::string db = softdrop::test::temp_path("progress.db");
+  std::filesystem::remove(db);
+  const Result opt = run("optimize --db " + db + " --grains 16 --width 160 --height 120 --medium-seed 2 --generations 3");
+  ASSERT_EQ(opt.code, 0) << opt.err;
+  EXPECT_NE(opt.err.find("generation 3/3"), std::string::npos) << opt.err;
+  EXPECT_NE(opt.err.find(" 100 %\n"), std::string::npos) << opt.err;
+  for (const auto* suffix : {"", "-wal", "-shm"}) std::filesystem::remove(db + suffix);
+}
+
 TEST(Cli, OutputIntoMissingDirectoryFailsBeforeRunning) {
   const Result r = run("simulate --runs /nonexistent_dir/x.csv");
   EXPECT_NE(r.code, 0);

@@ -149,8 +149,9 @@ std::string contradictions(const nlohmann::json& given, const nlohmann::json& st
 // Progress on stderr: at most once a second on a terminal, every 10 s otherwise.
 class SearchProgress {
  public:
-  SearchProgress(std::int64_t run, std::int64_t target, bool quiet)
-      : run_(run), target_(target), quiet_(quiet), tty_(::isatty(2) != 0), t0_(clock::now()), last_(t0_) {}
+  /// `from`: the generation the session starts after (0 for a new run, the stored one on resume).
+  SearchProgress(std::int64_t run, std::int64_t from, std::int64_t target, bool quiet)
+      : run_(run), from_(from), target_(target), quiet_(quiet), tty_(::isatty(2) != 0), t0_(clock::now()), last_(t0_) {}
   void update(const Generation& g, const Configuration& best, bool force) {
     ++generations_;
     evaluations_ += static_cast<std::int64_t>(g.candidates.size());
@@ -163,13 +164,14 @@ class SearchProgress {
     std::ostringstream line;
     line << "optimize: run " << run_ << " generation " << g.number << "/" << target_ << "  best T "
          << fmt(best.eval.tortuosity, 8) << " (gen " << best.generation << ")  accepted " << accepted_ << "/"
-         << generations_ << "  " << fmt(s > 0 ? static_cast<double>(evaluations_) / s : 0.0, 3) << " eval/s";
+         << generations_ << "  " << fmt(s > 0 ? static_cast<double>(evaluations_) / s : 0.0, 3) << " eval/s  "
+         << percent_and_eta(s, static_cast<double>(g.number - from_), static_cast<double>(target_ - from_));
     std::cerr << (tty_ ? "\r" : "") << line.str() << (tty_ && !force ? "\033[K" : "\n") << std::flush;
   }
 
  private:
   using clock = std::chrono::steady_clock;
-  std::int64_t run_, target_;
+  std::int64_t run_, from_, target_;
   bool quiet_, tty_;
   clock::time_point t0_, last_;
   std::int64_t generations_ = 0, evaluations_ = 0, accepted_ = 0;
@@ -316,7 +318,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   }
 
   StopOnSignal stop("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
-  SearchProgress progress(run, a.generations, a.quiet);
+  SearchProgress progress(run, search->last_generation(), a.generations, a.quiet);
   DriveOptions drive_options;
   drive_options.generations = a.generations;
   drive_options.time_limit = a.time_limit;

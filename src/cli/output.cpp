@@ -1,10 +1,12 @@
 #include "cli/output.hpp"
+
 #include "temp_files.hpp"
 
 #include "softdrop/render.hpp"
 
 #include <unistd.h>
 
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -33,15 +35,24 @@ void check_picture_path(const std::string& option, const std::string& path) {
   check_output_path(option, path);
 }
 
+std::string percent_and_eta(double elapsed, double done, double total) {
+  const double share = total > 0 ? done / total : 1;
+  std::string text = fmt(std::floor(100 * share), 3) + " %";
+  if (done > 0 && done < total) text += ", ETA " + fmt(std::ceil(elapsed / done * (total - done)), 6) + " s";
+  return text;
+}
+
 Progress::Progress(std::string label)
-    : label_(std::move(label)), last_(std::chrono::steady_clock::now()), tty_(::isatty(2) != 0) {}
+    : label_(std::move(label)), t0_(std::chrono::steady_clock::now()), last_(t0_), tty_(::isatty(2) != 0) {}
 
 void Progress::update(long done, long total) {
   const auto now = std::chrono::steady_clock::now();
-  if (done != total && now - last_ < std::chrono::seconds(1)) return;
+  if (done != total && now - last_ < (tty_ ? std::chrono::seconds(1) : std::chrono::seconds(10))) return;
   last_ = now;
-  std::cerr << (tty_ ? "\r" : "") << label_ << ": " << done << "/" << total
-            << (tty_ && done != total ? "" : "\n") << std::flush;
+  const double elapsed = std::chrono::duration<double>(now - t0_).count();
+  std::cerr << (tty_ ? "\r" : "") << label_ << ": " << done << "/" << total << " ("
+            << percent_and_eta(elapsed, static_cast<double>(done), static_cast<double>(total)) << ")"
+            << (tty_ && done != total ? "\033[K" : "\n") << std::flush;
 }
 
 namespace {

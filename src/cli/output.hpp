@@ -17,8 +17,11 @@ void check_output_path(const std::string& option, const std::string& path);
 /// check_output_path for a picture, and its extension names a format render can write.
 void check_picture_path(const std::string& option, const std::string& path);
 
-/// Throttled progress line on stderr ("label: done/total"), at most about once per second, and
-/// always for the last item.
+/// "P %, ETA S s" for `done` of `total` after `elapsed` seconds (the rest at the pace so far).
+std::string percent_and_eta(double elapsed, double done, double total);
+
+/// Throttled progress line on stderr ("label: done/total (P %, ETA S s)"): on a terminal one line
+/// updated in place about once a second, in a pipe a plain line every 10 s; always the last item.
 class Progress {
  public:
   explicit Progress(std::string label);
@@ -26,7 +29,7 @@ class Progress {
 
  private:
   std::string label_;
-  std::chrono::steady_clock::time_point last_;
+  std::chrono::steady_clock::time_point t0_, last_;
   bool tty_;
 };
 
