@@ -261,3 +261,41 @@ TEST(Optimize, ResumeGoesToTheStoredTargetAndSaysWhenThereIsNothingToDo) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Optimize, HistoryListsCandidatesAndTheStoredOptions) {
+  const std::string db = softdrop::test::fresh("candidates.db");
+  ASSERT_EQ(run("optimize --db " + db + kScene + " --generations 3 --lambda 2").code, 0);
+  const Result c = run("history --db " + db + " --run 1 --candidates --format csv");
+  ASSERT_EQ(c.code, 0) << c.err;
+  std::istringstream lines(c.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "generation,candidate,accepted,outcome,t,steps,touched,moved_grain,moved,seconds,reason");
+  int rows = 0, accepted = 0;
+  while (std::getline(lines, line)) {
+    ++rows;
+    accepted += line.find(",1,passed,") != std::string::npos || line.find(",1,stuck,") != std::string::npos;
+  }
+  EXPECT_EQ(rows, 1 + 3 * 2);  // generation 0's one, then lambda = 2 a generation
+  EXPECT_GE(accepted, 1);      // generation 0's candidate is its arrangement
+  EXPECT_LE(accepted, 4);      // at most one a generation
+  const Result runs = run("history --db " + db + " --format json");
+  const nlohmann::json r = nlohmann::json::parse(runs.out);
+  EXPECT_EQ(r[0]["evaluations"], rows);
+  const Result p = run("history --db " + db + " --run 1 --params --format csv");
+  ASSERT_EQ(p.code, 0) << p.err;
+  EXPECT_NE(p.out.find("\nlambda,2\n"), std::string::npos) << p.out;
+  EXPECT_NE(p.out.find("\ntarget-generations,3\n"), std::string::npos) << p.out;
+  EXPECT_NE(p.out.find("\nstrategy,paper\n"), std::string::npos) << p.out;
+  for (const std::string bad : {"--candidates", "--params"}) {
+    const Result e = run("history --db " + db + " " + bad);
+    EXPECT_EQ(e.code, 1);
+    EXPECT_NE(e.err.find(bad + " needs --run"), std::string::npos) << e.err;
+  }
+  EXPECT_EQ(run("history --db " + db + " --run 1 --best --candidates").code, 2);
+  EXPECT_NE(run("history --help").out.find("candidate_t = the best T among"), std::string::npos);
+}
+
+}  // namespace

@@ -19,10 +19,22 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
   s->fallthrough();
   s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
   s->add_option("--run", a.run, "List this run's generations instead of the runs");
-  s->add_flag("--best", a.best, "With --run: only accepted generations (the best-T curve)");
+  auto* best = s->add_flag("--best", a.best, "With --run: only the generations that raised the best T (the best-T curve)");
+  auto* candidates = s->add_flag("--candidates", a.candidates, "With --run: one row per candidate of every generation");
+  auto* params = s->add_flag("--params", a.params, "With --run: the options the run was started with (long option names) and its target generation");
+  best->excludes(candidates)->excludes(params);
+  candidates->excludes(params);
   s->add_option("--format", a.format, "table, csv or json")
       ->capture_default_str()
       ->check(CLI::IsMember({"table", "csv", "json"}));
+  s->footer(
+      "Columns. Runs: evaluations = droplets pushed so far (generation 0's included); best_generation = where "
+      "the best T was found. Generations: kind = all (every grain moved) or single (one touched grain); "
+      "accepted = 1 if the strategy kept a candidate; candidate_t = the best T among the generation's passing "
+      "candidates (empty if none passed); outcomes = each candidate's outcome, in order; best_t = the best T "
+      "after it; touched = grains the best arrangement's droplet touched; seconds = wall time; state = the "
+      "strategy's state (JSON). Candidates: moved_grain = the grain a single move moved (empty for all); "
+      "moved = grains moved; t = T if passed; steps = time steps simulated; reason = why its run ended.");
   return s;
 }
 
@@ -54,6 +66,8 @@ void check_stored_generation(std::int64_t generation, const RunRecord& run) {
 
 int run_history(const HistoryArgs& a) {
   if (a.best && a.run == 0) throw std::invalid_argument("best: --best needs --run");
+  if (a.candidates && a.run == 0) throw std::invalid_argument("candidates: --candidates needs --run");
+  if (a.params && a.run == 0) throw std::invalid_argument("params: --params needs --run");
   auto history = open_history(a.db, OpenMode::read_only);
   Table t;
   if (a.run == 0) {
@@ -65,6 +79,22 @@ int run_history(const HistoryArgs& a) {
       t.rows.push_back({r.id, r.created, r.status, strategy, r.grains, r.generations, r.evaluations, r.best_t,
                         r.best_generation, r.lambda, r.seed, r.version});
     }
+  } else if (a.params) {
+    t.header = {"option", "value"};
+    const auto params = nlohmann::json::parse(history->run(a.run).params, nullptr, false);
+    if (!params.is_object())
+      throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(a.run) + " has no readable options");
+    for (const auto& [key, value] : params.items())
+      t.rows.push_back({key, value.is_string() ? value.get<std::string>() : value.dump()});
+  } else if (a.candidates) {
+    t.header = {"generation", "candidate", "accepted", "outcome", "t", "steps", "touched", "moved_grain", "moved",
+                "seconds", "reason"};
+    for (const GenerationRecord& g : history->generations(a.run))
+      for (const CandidateRecord& c : g.candidates)
+        t.rows.push_back({g.generation, c.index, c.index == g.accepted ? 1 : 0, c.outcome,
+                          or_null(c.outcome == "passed", c.tortuosity), c.steps, c.touched,
+                          c.moved_grain >= 0 ? nlohmann::json(c.moved_grain) : nlohmann::json(nullptr), c.moved,
+                          c.seconds, c.reason});
   } else if (a.best) {
     t.header = {"generation", "kind", "best_t", "touched"};
     double best = 0;

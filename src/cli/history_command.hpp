@@ -14,6 +14,8 @@ struct HistoryArgs {
   std::string db = "softdrop.db";
   std::int64_t run = 0;  ///< 0: list runs
   bool best = false;     ///< with --run: only accepted generations (the best-T curve)
+  bool candidates = false;  ///< with --run: one row per candidate
+  bool params = false;      ///< with --run: the stored options, one row each
   std::string format = "table";
 };
 
