@@ -57,7 +57,8 @@ struct Mean {
   }
 };
 
-void score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& media, CalibrationResult* r) {
+// Fills the per-porosity points and the sweep's figures of `r`; returns the sweep's diverged droplets.
+long score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& media, CalibrationResult* r) {
   const std::size_t count = sweep.porosities.size();
   std::vector<Mean> t(count);
   std::vector<double> porosity(count, 0.0);
@@ -93,7 +94,7 @@ void score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& med
   r->rms_distance = count > 0 ? std::sqrt(sum2 / static_cast<double>(count)) : 0;
   r->measured_rms = r->measured > 0 ? std::sqrt(measured2 / r->measured) : 0;
   r->stuck_fraction = droplets > 0 ? static_cast<double>(stuck) / static_cast<double>(droplets) : 0;
-  r->diverged_fraction = static_cast<double>(diverged);  // divided once the traces are counted in
+  return diverged;
 }
 
 // The traces' media: the sweep's box and radii, non-overlapping at trace_porosity.
@@ -158,7 +159,7 @@ CalibrationResult run_calibration(const CalibrationOptions& o, const DropletPara
     return std::pair(a.unit.porosity, a.unit.medium) < std::pair(b.unit.porosity, b.unit.medium);
   });
   CalibrationResult r;
-  score_points(sweep, media, &r);
+  const long sweep_diverged = score_points(sweep, media, &r);
 
   std::vector<Medium> trace_media;
   for (int m = 0; m < o.trace_media; ++m) trace_media.push_back(trace_medium(o, m));
@@ -186,8 +187,7 @@ CalibrationResult run_calibration(const CalibrationOptions& o, const DropletPara
   r.area_min = std::isfinite(lo) ? lo : NAN;
   r.area_max = std::isfinite(hi) ? hi : NAN;
   r.area_both_sides = std::isfinite(lo) && lo < 0.95 && hi > 1.02;
-  const double all = static_cast<double>(units.size()) * sweep.droplets + static_cast<double>(traces);
-  r.diverged_fraction = all > 0 ? (r.diverged_fraction + r.trace_diverged) / all : 0;
+  r.diverged_fraction = total > 0 ? static_cast<double>(sweep_diverged + r.trace_diverged) / static_cast<double>(total) : 0;
   r.resting_travel = resting_travel(droplet);
   r.comes_to_rest = r.resting_travel <= 0.01;  // NaN (diverged) does not
   r.score = r.rms_distance + r.diverged_fraction + (r.comes_to_rest ? 0 : 1) + 0.05 * (r.area_both_sides ? 0 : 1) + 0.05 * r.stuck_fraction;
