@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -261,8 +262,10 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
     // Without --generations a resume goes on to the run's own target (runs stored before targets
     // were: the default); a target at or below the last generation leaves the run as it is.
     const bool target_given = cmd.get_option("--generations")->count() > 0;
-    if (!target_given && stored.contains("target-generations") && stored["target-generations"].is_number_integer())
-      a.generations = stored["target-generations"].get<std::int64_t>();
+    std::optional<std::int64_t> stored_target;
+    if (stored.contains("target-generations") && stored["target-generations"].is_number_integer())
+      stored_target = stored["target-generations"].get<std::int64_t>();
+    if (!target_given && stored_target) a.generations = *stored_target;
     if (a.generations <= rec.generations) {
       const std::string line = "nothing to do: run " + std::to_string(run) + " is at generation " +
                                std::to_string(rec.generations) + " (target " + std::to_string(a.generations) + ")";
@@ -270,14 +273,13 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
                        {"message", line}, {"last_generation", rec.generations}, {"generations_run", 0},
                        {"evaluations", 0}, {"best_tortuosity", rec.best_t}, {"best_generation", rec.best_generation}};
       // A run killed after its last generation but before it was marked finished is finished.
-      const bool at_own_target = stored.contains("target-generations") && stored["target-generations"].is_number_integer() &&
-                                 rec.generations >= stored["target-generations"].get<std::int64_t>();
-      if (at_own_target && rec.status != "finished") history->set_status(run, "finished");
+      if (stored_target && rec.generations >= *stored_target && rec.status != "finished")
+        history->set_status(run, "finished");
       if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
       std::cout << (a.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
       return 0;
     }
-    if (target_given && stored.value("target-generations", nlohmann::json()) != nlohmann::json(a.generations))
+    if (target_given && stored_target != a.generations)
       history->set_param(run, "target-generations", std::to_string(a.generations));
     // The strategy moves on from the last kept arrangement; the best may be an earlier one.
     Configuration current = history->configuration(run, -1);
