@@ -6,12 +6,9 @@
 #include <chrono>
 #include <cmath>
 #include <iostream>
-#include <numeric>
-#include <sstream>
 #include <stdexcept>
 
 #include "cli/output.hpp"
-#include "softdrop/grain_file.hpp"
 #include "softdrop/render.hpp"
 
 namespace softdrop::cli {
@@ -153,12 +150,6 @@ Table points_table(const std::vector<const Row*>& rows) {
   return t;
 }
 
-void write_table(const Table& t, const std::string& path) {
-  std::ostringstream out;
-  t.print(out, "csv");
-  write_file_atomically(path, out.str());
-}
-
 // The best settings' points with error bars over the paper's curve.
 void plot_best(const std::vector<const Row*>& ranked, int best, const std::string& path) {
   Chart c;
@@ -247,8 +238,8 @@ int run_calibrate(CalibrateArgs& a) {
     rows.push_back(std::move(row));
     std::vector<const Row*> in_order;
     for (const Row& r : rows) in_order.push_back(&r);
-    if (!a.csv.empty()) write_table(settings_table(in_order), a.csv);
-    if (!a.points.empty()) write_table(points_table(in_order), a.points);
+    if (!a.csv.empty()) settings_table(in_order).write_csv(a.csv);
+    if (!a.points.empty()) points_table(in_order).write_csv(a.points);
   }
   const std::vector<const Row*> best = ranked();
   if (!a.plot.empty() && std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.refused.empty(); }))

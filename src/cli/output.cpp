@@ -2,6 +2,7 @@
 
 #include "temp_files.hpp"
 
+#include "softdrop/grain_file.hpp"
 #include "softdrop/render.hpp"
 
 #include <unistd.h>
@@ -103,6 +104,12 @@ std::string text(const nlohmann::json& v) {
   return v.dump();
 }
 }  // namespace
+
+void Table::write_csv(const std::string& path) const {
+  std::ostringstream out;
+  print(out, "csv");
+  write_file_atomically(path, out.str());
+}
 
 void Table::print(std::ostream& out, const std::string& format) const {
   if (format == "json") {

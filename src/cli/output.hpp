@@ -63,6 +63,8 @@ struct Table {
   std::vector<std::vector<nlohmann::json>> rows;
   /// format: table, csv or json.
   void print(std::ostream& out, const std::string& format) const;
+  /// The CSV form, written atomically to `path` (temporary file, then rename).
+  void write_csv(const std::string& path) const;
 };
 
 /// Formats a double with the given significant digits (17 = round trip).

@@ -374,11 +374,7 @@ int run_averagings(const AveragingArgs& a) {
   for (const auto& [type, groups] : {std::pair{1, &by_t}, std::pair{2, &by_phi}})
     for (const GroupAverage& g : *groups) t.rows.push_back({type, g.phi, g.t, g.phi_se, g.t_se, g.count});
   t.print(std::cout, "table");
-  if (!a.csv.empty()) {
-    std::ostringstream csv;
-    t.print(csv, "csv");
-    write_file_atomically(a.csv, csv.str());
-  }
+  if (!a.csv.empty()) t.write_csv(a.csv);
   if (!a.plot.empty()) {
     Chart c;
     Series cloud;
