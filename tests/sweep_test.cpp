@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -281,6 +282,7 @@ TEST(SweepCli, FitAndAveragingsRunOnTheStore) {
   EXPECT_NE(f.out.find("AIC"), std::string::npos);
   const auto j = nlohmann::json::parse(std::ifstream(json));
   EXPECT_EQ(j["points"], 5);
+  EXPECT_TRUE(j["preferred"] == "power" || j["preferred"] == "log");
   EXPECT_TRUE(j["power"].contains("b"));
   EXPECT_TRUE(std::filesystem::exists(plot));
   const test::Result a = test::run("averagings --db " + db + " --group 3 --plot " + avg);
@@ -291,6 +293,27 @@ TEST(SweepCli, FitAndAveragingsRunOnTheStore) {
   const test::Result bad = test::run("fit --points " + pts);
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.err.find("line 2"), std::string::npos) << bad.err;
+}
+
+TEST(SweepCli, TheQuickPresetAveragesAndFitsWithoutAVerdictItCannotGive) {
+  const std::string db = fresh("quick.db"), json = fresh("quick_fit.json");
+  ASSERT_EQ(test::run("sweep --db " + db + " --preset quick --quiet").code, 0);
+  // 3 porosities x 2 media: the paper's groups of 100 cannot be formed; groups of 2 are chosen and said.
+  const test::Result a = test::run("averagings --db " + db);
+  ASSERT_EQ(a.code, 0) << a.err;
+  EXPECT_NE(a.err.find("groups of 2 (from the 6 media"), std::string::npos) << a.err;
+  EXPECT_EQ(std::count(a.out.begin(), a.out.end(), '\n'), 1 + 2 * 3) << a.out;  // header, 3 groups a type
+  const test::Result big = test::run("averagings --db " + db + " --group 7");
+  EXPECT_EQ(big.code, 1);
+  EXPECT_NE(big.err.find("group = 7: larger than the 6 media with a passed droplet (use --group 2)"), std::string::npos)
+      << big.err;
+  // 3 points for the 3-parameter power law: a warning and no verdict, in the table and the JSON.
+  const test::Result f = test::run("fit --db " + db + " --json " + json);
+  ASSERT_EQ(f.code, 0) << f.err;
+  EXPECT_NE(f.err.find("leave 0 degrees of freedom"), std::string::npos) << f.err;
+  EXPECT_NE(f.out.find("no verdict"), std::string::npos) << f.out;
+  EXPECT_EQ(f.out.find("is preferred"), std::string::npos) << f.out;
+  EXPECT_TRUE(nlohmann::json::parse(std::ifstream(json))["preferred"].is_null());
 }
 
 TEST(SweepStore, AVersionOneFileIsMigratedAndKeepsItsRuns) {

@@ -75,7 +75,9 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   av->fallthrough();
   av->add_option("--db", v.db, "Sweep store")->capture_default_str();
   av->add_option("--sweep", v.sweep, "Sweep id (default: the only one)");
-  av->add_option("--group", v.group, "Points per group")->capture_default_str();
+  av->add_option("--group", v.group,
+                 "Points per group (default: the paper's 100, or a twentieth of the media when the store has "
+                 "fewer than 2000, at least 2)");
   av->add_option("--csv", v.csv, "Write the groups (type,phi,t,phi_se,t_se,count) to this CSV");
   av->add_option("--plot", v.plot, "Draw the per-medium points and both averagings");
 }
@@ -285,6 +287,11 @@ int run_fit(const FitArgs& a) {
   const FitResult power = fit_law(FitLaw::power, points), log = fit_law(FitLaw::log, points);
   for (const FitResult* r : {&power, &log})
     if (!r->warning.empty()) std::cerr << "fit: warning: " << r->warning << '\n';
+  for (const FitResult* r : {&power, &log})
+    if (r->dof <= 0)
+      std::cerr << "fit: warning: " << to_string(r->law) << " law: " << points.size() << " points for "
+                << r->values.size() << " parameters leave 0 degrees of freedom; its errors and the AIC "
+                << "comparison mean nothing (sweep more porosities)\n";
 
   nlohmann::ordered_json j;
   j["version"] = kVersion;
@@ -303,6 +310,8 @@ int run_fit(const FitArgs& a) {
     j[to_string(r->law)] = f;
   }
   j["delta_aic_log_minus_power"] = log.aic - power.aic;
+  j["preferred"] = power.dof <= 0 || log.dof <= 0 ? nlohmann::ordered_json(nullptr)
+                   : nlohmann::ordered_json(log.aic > power.aic ? "power" : "log");
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (a.format == "json") {
     std::cout << j.dump(2) << '\n';
@@ -315,8 +324,11 @@ int run_fit(const FitArgs& a) {
       std::cout << "   chi2 = " << fmt(r->chi2, 5) << " (dof " << r->dof << ", reduced " << fmt(r->reduced_chi2, 4)
                 << "), AIC = " << fmt(r->aic, 5) << "\n";
     }
-    std::cout << "AIC(log) - AIC(power) = " << fmt(log.aic - power.aic, 4)
-              << (log.aic > power.aic ? " (the power law is preferred)\n" : " (the log law is preferred)\n");
+    std::cout << "AIC(log) - AIC(power) = " << fmt(log.aic - power.aic, 4);
+    if (power.dof <= 0 || log.dof <= 0)
+      std::cout << " (no verdict: a fit with 0 degrees of freedom passes through every point)\n";
+    else
+      std::cout << (log.aic > power.aic ? " (the power law is preferred)\n" : " (the log law is preferred)\n");
     std::cout << "phi         T          se         resid_power  resid_log\n";
     for (std::size_t i = 0; i < points.size(); ++i) {
       std::ostringstream row;
@@ -356,17 +368,34 @@ int run_fit(const FitArgs& a) {
   return 0;
 }
 
-int run_averagings(const AveragingArgs& a) {
-  if (a.group < 1) throw std::invalid_argument("group = " + std::to_string(a.group) + ": must be >= 1");
+namespace {
+// The paper averages 2 000 media in groups of 100 (20 groups); a smaller store gets the same
+// number of groups where it can, and at least 2 media a group so that a group averages something.
+int default_group(std::size_t media) {
+  const auto n = static_cast<int>(std::min<std::size_t>(media, 1'000'000));
+  return std::clamp(n / 20, std::min(2, std::max(n, 1)), 100);
+}
+}  // namespace
+
+int run_averagings(const AveragingArgs& args) {
+  AveragingArgs a = args;
+  if (a.group < 0) throw std::invalid_argument("group = " + std::to_string(a.group) + ": must be >= 1");
   if (!a.plot.empty()) check_picture_path("--plot", a.plot);
   if (!a.csv.empty()) check_output_path("--csv", a.csv);
   auto store = open_sweep_store(a.db, OpenMode::read_only);
   std::vector<MediumPoint> points;
   for (const SweepMedium& m : store->media(pick_sweep(*store, a.sweep, a.db)))
     if (m.passed > 0) points.push_back({m.porosity, m.mean_t});
+  if (points.empty()) throw std::invalid_argument(a.db + ": no medium with a passed droplet to average");
+  if (a.group == 0) {
+    a.group = default_group(points.size());
+    std::cerr << "averagings: groups of " << a.group << " (from the " << points.size()
+              << " media with a passed droplet; --group sets it)\n";
+  }
   if (points.size() < static_cast<std::size_t>(a.group))
     throw std::invalid_argument("group = " + std::to_string(a.group) + ": larger than the " +
-                                std::to_string(points.size()) + " media with a passed droplet");
+                                std::to_string(points.size()) + " media with a passed droplet (use --group " +
+                                std::to_string(default_group(points.size())) + ")");
   const auto by_t = group_averages(points, AveragingType::by_t, a.group);
   const auto by_phi = group_averages(points, AveragingType::by_phi, a.group);
   Table t;

@@ -48,7 +48,7 @@ struct FitArgs {
 struct AveragingArgs {
   std::string db = "sweep.db";
   std::int64_t sweep = 0;
-  int group = 100;
+  int group = 0;  ///< points per group; 0: from the store (see default_group)
   std::string csv, plot;
 };
 
