@@ -1,7 +1,7 @@
 #pragma once
 // Opening a softdrop database (internal to the store): the checks made before anything writes to
 // the file, WAL and foreign keys, and the schema, created or migrated to the current version.
-// The schema is documented in README.md ("The history database"); keep the two in step.
+// The schema is documented in README.md ("The database"); keep the two in step.
 
 #include <SQLiteCpp/SQLiteCpp.h>
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Regenerates the pictures shown in README.md (docs/images/), about 3 minutes on 2 cores.
-# Each command is also written beside its picture in the README.
+# Regenerates the pictures of README.md and docs/pictures.md (docs/images/), about 3 minutes on
+# 2 cores. Each command is also written beside its picture in docs/pictures.md.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh > build.log 2>&1 || { cat build.log; exit 1; }

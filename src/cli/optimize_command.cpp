@@ -89,10 +89,8 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
               "Evaluate one generation at a time (by default idle threads evaluate the next generations "
               "ahead, assuming no acceptance; the history is the same either way)");
   g->add_option("--lanes", a.lanes,
-                "Candidates each thread steps together, in [0, 64] (0: 8; 16 on one thread at lambda >= 2 with "
-                "AVX-512 and the sequential order; 4 at lambda 1 with SSE2 alone; fewer per thread beyond 2 "
-                "threads; 1 with --constraint-order red-black and SSE2 alone, or AVX without AVX-512 at lambda 1 "
-                "on several threads); results do not depend on it")
+                "Candidates each thread steps together, in [0, 64] (0: chosen for this processor, see "
+                "docs/search.md); a matter of speed only: results do not depend on it")
       ->capture_default_str();
   g->add_option("--start-attempts", a.start_attempts,
                 "Random starting media to try until the droplet passes (generated media only)")

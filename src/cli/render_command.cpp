@@ -17,7 +17,7 @@
 namespace softdrop::cli {
 
 CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
-  CLI::App* r = app.add_subcommand("render", "Draw media, droplets, paths, searches and animations (PNG, SVG, PDF, GIF)");
+  CLI::App* r = app.add_subcommand("render", "Draw media, droplets, paths, searches and animations (PNG, SVG, PDF; animations GIF or MP4)");
   r->require_subcommand(1);
   r->fallthrough();  // lets `render medium --config FILE` reach the program-level --config
   auto style = [&](CLI::App* s, const char* formats) {
@@ -64,7 +64,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
       ->check(index_check());
   q->add_option("--curve", a.curve, "Also draw the best-T-versus-generation chart to this file");
 
-  CLI::App* v = r->add_subcommand("animation", "A droplet pushed through the medium, as an animated GIF");
+  CLI::App* v = r->add_subcommand("animation", "A droplet pushed through the medium, as an animated GIF or an MP4 video (.gif, .mp4)");
   style(v, ".gif");
   scene_options(v);
   v->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());

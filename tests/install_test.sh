@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Installs the build into a scratch prefix (cmake --install), builds examples/library/push_droplet.cpp
+# against the installed headers and libraries only, and checks that it gives the program's own
+# tortuosity for the same droplet, to the last digit.
+#   bash tests/install_test.sh BUILD_DIR SOURCE_DIR CXX
+set -euo pipefail
+build=$(realpath "$1"); src=$(realpath "$2"); cxx=$3
+prefix=$(mktemp -d); trap 'rm -rf "$prefix"' EXIT
+cmake --install "$build" --prefix "$prefix" > /dev/null
+for f in bin/softdrop include/softdrop/simulation.hpp include/softdrop/version.hpp lib/libsoftdrop_sim.a; do
+  [[ -e $prefix/$f ]] || { echo "install_test: $f was not installed"; exit 1; }
+done
+"$cxx" -std=c++20 -O2 "$src/examples/library/push_droplet.cpp" -I "$prefix/include" -L "$prefix/lib" \
+  -lsoftdrop_sim -ltbb -lgmp -lmpfr -o "$prefix/push_droplet"
+mine=$("$prefix/push_droplet" 250 | sed -n 's/^tortuosity //p')
+theirs=$("$prefix/bin/softdrop" simulate --x0 250 --format json | sed -n 's/^ *"tortuosity": \([^,]*\),*$/\1/p')
+echo "library: T = $mine; softdrop simulate: T = $theirs"
+[[ -n $mine && $(printf '%.17g' "$mine") == $(printf '%.17g' "$theirs") ]]
