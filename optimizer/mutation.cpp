@@ -1,5 +1,8 @@
 // Making a candidate arrangement from its parent: grain jumps checked against the spacing rule.
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
 #include <stdexcept>
 #include <string>
 
@@ -30,11 +33,51 @@ double wrap(double x, double width) {
   return x;
 }
 
+// A grain the droplet did not touch, uniformly (any grain if it touched them all).
+int untouched_grain(const std::vector<std::int32_t>& touched, int n, Rng& rng) {
+  const auto free = static_cast<std::uint64_t>(n) - touched.size();
+  if (free == 0) return static_cast<int>(rng.below(static_cast<std::uint64_t>(n)));
+  auto k = rng.below(free);  // the k-th grain not in the (ascending) touched list
+  int i = 0;
+  for (std::size_t t = 0;; ++i) {
+    while (t < touched.size() && touched[t] < i) ++t;
+    if (t < touched.size() && touched[t] == i) continue;
+    if (k-- == 0) return i;
+  }
+}
+
+// Puts grain i next to a random point of the path inside the medium: its centre uniformly in the
+// disc of radius (droplet radius + r) about the point. Redrawn (point and place) while the spacing
+// rule refuses it; returns 1 if it moved.
+int try_relocate(int i, const Evaluation& parent, double droplet_radius, const Medium& m, Rng& rng, int max_redraws,
+                 SpacingIndex& index_of) {
+  std::vector<std::size_t> inside;
+  for (std::size_t p = 0; p < parent.path_y.size(); ++p)
+    if (parent.path_y[p] > 0 && parent.path_y[p] < m.height) inside.push_back(p);
+  if (inside.empty()) return 0;
+  const Grain old = index_of.grain(i);
+  for (int attempt = 0; attempt <= max_redraws; ++attempt) {
+    const std::size_t p = inside[rng.below(inside.size())];
+    double dx = 0, dy = 0;
+    random_jump(rng, droplet_radius + old.r, &dx, &dy);
+    double x = parent.path_x[p] + dx;
+    if (m.periodic) x -= m.width * std::floor(x / m.width);
+    const Grain g{x, parent.path_y[p] + dy, old.r};
+    if (m.periodic && !(g.x >= 0 && g.x < m.width)) continue;
+    if (index_of.can_move(i, g)) {
+      index_of.move(i, g);
+      return 1;
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 MoveKind move_kind(std::int64_t generation, const SearchOptions& options) {
   if (generation <= 0) return MoveKind::initial;
   if (options.single_every > 0 && generation % options.single_every == 0) return MoveKind::single;
+  if (options.relocate_every > 0 && generation % options.relocate_every == 0) return MoveKind::relocate;
   return MoveKind::all;
 }
 
@@ -80,7 +123,11 @@ Candidate make_move(const Configuration& parent, MoveKind kind, double radius, s
   };
 
   const int n = static_cast<int>(m.grains.size());
-  if (c.kind == MoveKind::single) {
+  if (c.kind == MoveKind::relocate) {
+    c.moved_grain = untouched_grain(parent.eval.touched, n, rng);
+    c.moved = try_relocate(c.moved_grain, parent.eval, options.droplet.radius, m, rng, options.max_redraws, index_of);
+    if (c.moved) c.medium.grains[static_cast<std::size_t>(c.moved_grain)] = index_of.grain(c.moved_grain);
+  } else if (c.kind == MoveKind::single) {
     const auto& touched = parent.eval.touched;
     c.moved_grain = touched.empty()
                         ? static_cast<int>(rng.below(static_cast<std::uint64_t>(n)))

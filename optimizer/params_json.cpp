@@ -20,7 +20,8 @@ namespace {
 // the rest test's keys.
 bool optional_key(const std::string& key) {
   return key == "constraint-order" || key == "rest-window" || key == "rest-distance" || key == "strategy" ||
-         key == "target-success" || key == "history-length" || key == "temperature" || key == "half-life";
+         key == "target-success" || key == "history-length" || key == "temperature" || key == "half-life" ||
+         key == "relocate-every";
 }
 template <class T>
 void set_legacy(const std::string& key, T& value) {
@@ -65,6 +66,7 @@ void visit_search(Options& o, F&& f) {
   f("single-every", o.single_every);
   f("step", o.step);
   f("single-step", o.single_step);
+  f("relocate-every", o.relocate_every);
   f("max-redraws", o.max_redraws);
   f("gap", o.gap);
   f("strategy", o.strategy.kind);

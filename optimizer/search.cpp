@@ -26,6 +26,7 @@ const char* to_string(MoveKind kind) {
     case MoveKind::initial: return "initial";
     case MoveKind::all: return "all";
     case MoveKind::single: return "single";
+    case MoveKind::relocate: return "relocate";
   }
   return "?";
 }
@@ -34,7 +35,8 @@ MoveKind parse_move_kind(const std::string& name) {
   if (name == "initial") return MoveKind::initial;
   if (name == "all") return MoveKind::all;
   if (name == "single") return MoveKind::single;
-  throw std::invalid_argument("move kind '" + name + "': expected initial, all or single");
+  if (name == "relocate") return MoveKind::relocate;
+  throw std::invalid_argument("move kind '" + name + "': expected initial, all, single or relocate");
 }
 
 const char* to_string(Termination termination) {
@@ -79,6 +81,7 @@ bool StrategyOptions::IsValid(std::string* why) const {
 bool SearchOptions::IsValid(std::string* why) const {
   if (lambda < 1 || lambda > 4096) return fail(why, "lambda = " + std::to_string(lambda) + ": must be in [1, 4096]");
   if (single_every < 0) return fail(why, "single-every = " + std::to_string(single_every) + ": must be >= 0");
+  if (relocate_every < 0) return fail(why, "relocate-every = " + std::to_string(relocate_every) + ": must be >= 0");
   if (!std::isfinite(step) || step <= 0) return fail(why, "step = " + num(step) + ": must be > 0");
   if (!std::isfinite(single_step) || single_step <= 0)
     return fail(why, "single-step = " + num(single_step) + ": must be > 0");

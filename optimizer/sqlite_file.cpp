@@ -38,7 +38,7 @@ CREATE TABLE IF NOT EXISTS runs (
 CREATE TABLE IF NOT EXISTS generations (
   run_id             INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
   generation         INTEGER NOT NULL,
-  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single')),
+  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single', 'relocate')),
   accepted_candidate INTEGER,
   best_t             REAL NOT NULL,
   touched            INTEGER NOT NULL,
@@ -131,6 +131,26 @@ CREATE TABLE IF NOT EXISTS sweep_droplets (
 
 // Version 3 stores a search strategy's state with each generation (NULL: none, as before).
 constexpr const char* kSchemaV3 = "ALTER TABLE generations ADD COLUMN state TEXT";
+
+// Version 4 lets a generation's kind be 'relocate'. Earlier files have the narrower CHECK, which
+// no stored row can break when widened: it is rewritten in place by SQLite's documented procedure
+// for constraint changes that leave the stored rows valid (the table's SQL in sqlite_master, and
+// schema_version bumped so that every connection rereads it), in the caller's transaction.
+void widen_generation_kinds(SQLite::Database& db) {
+  const std::string before = "CHECK (kind IN ('initial', 'all', 'single'))";
+  const std::string after = "CHECK (kind IN ('initial', 'all', 'single', 'relocate'))";
+  std::string sql = db.execAndGet("SELECT sql FROM sqlite_master WHERE type = 'table' AND name = 'generations'").getString();
+  const auto at = sql.find(before);
+  if (at == std::string::npos) return;  // made at version 4, or widened already
+  sql.replace(at, before.size(), after);
+  const int schema_version = db.execAndGet("PRAGMA schema_version").getInt();
+  db.exec("PRAGMA writable_schema = ON");
+  SQLite::Statement update(db, "UPDATE sqlite_master SET sql = ? WHERE type = 'table' AND name = 'generations'");
+  update.bind(1, sql);
+  update.exec();
+  db.exec("PRAGMA schema_version = " + std::to_string(schema_version + 1));
+  db.exec("PRAGMA writable_schema = OFF");
+}
 
 // The tables of the current schema; those starting "sweep" came with version 2.
 constexpr const char* kTables[] = {"runs",   "generations", "candidates",    "grains",
@@ -354,6 +374,7 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     if (version < 3 && db->execAndGet("SELECT count(*) FROM pragma_table_info('generations') WHERE name = 'state'")
                                .getInt() == 0)
       db->exec(kSchemaV3);
+    if (version < 4) widen_generation_kinds(*db);  // migration 3 -> 4: relocation moves
     if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
     t.commit();
     return db;

@@ -99,6 +99,7 @@ class Evolution final : public Base {
     const double p = o_.strategy.target_success;
     const double up = std::exp(1.0 / kDamping), down = std::exp(-p / (1 - p) / kDamping);
     for (const Candidate& c : candidates) {
+      if (c.kind == MoveKind::relocate) continue;  // no step: the grain goes next to the path
       double& s = steps_[c.kind == MoveKind::single];
       s *= improves(c.eval, current_.eval.tortuosity) ? up : down;
       // Below the smallest step a jump barely changes the path; above a quarter of the box a
@@ -116,7 +117,8 @@ class Evolution final : public Base {
   static constexpr double kMinStep = 0.05;  // length units
   MoveKind kind_of(std::int64_t generation, int k) const {
     const std::int64_t n = (generation - 1) * o_.lambda + k + 1;  // the candidate's number in the run
-    return o_.single_every > 0 && n % o_.single_every == 0 ? MoveKind::single : MoveKind::all;
+    if (o_.single_every > 0 && n % o_.single_every == 0) return MoveKind::single;
+    return o_.relocate_every > 0 && n % o_.relocate_every == 0 ? MoveKind::relocate : MoveKind::all;
   }
   std::vector<double> steps_;  // all-grain move, single move
 };

@@ -16,7 +16,7 @@ namespace softdrop {
 /// The schema version this build writes (PRAGMA user_version). Files with a higher version are
 /// refused; files with a lower one are read as they are and migrated when opened for writing
 /// (1 -> 2 adds the sweeps, 2 -> 3 the strategies' state of each generation).
-constexpr int kHistorySchemaVersion = 3;
+constexpr int kHistorySchemaVersion = 4;
 /// PRAGMA application_id of a softdrop database: "SDRP".
 constexpr std::int32_t kHistoryApplicationId = 0x53445250;
 

@@ -28,10 +28,11 @@ namespace softdrop {
 enum class MoveKind {
   initial,  ///< generation 0: the starting arrangement itself
   all,      ///< every grain jumps by a small random step
-  single    ///< one grain, chosen among those the parent's droplet touched, jumps
+  single,   ///< one grain, chosen among those the parent's droplet touched, jumps
+  relocate  ///< one grain the parent's droplet did not touch is put next to the droplet's path
 };
 const char* to_string(MoveKind kind);
-/// Parses "initial" / "all" / "single"; throws std::invalid_argument naming the value.
+/// Parses "initial" / "all" / "single" / "relocate"; throws std::invalid_argument naming the value.
 MoveKind parse_move_kind(const std::string& name);
 
 /// How a search chooses its candidates and what it keeps (see strategy.hpp).
@@ -69,6 +70,11 @@ struct SearchOptions {
   int single_every = 10;    ///< every this-th generation moves a single touched grain (0: never)
   double step = 1.0;        ///< all-grain move: each grain jumps uniformly within this radius (length)
   double single_step = 5.0; ///< single move: the grain jumps uniformly within this radius (length)
+  /// Every this-th generation (0: never; single moves take precedence) one grain the droplet did
+  /// not touch moves next to a point of the droplet's path: its centre within droplet radius + its
+  /// radius of the point, where the droplet must meet it. A grain the droplet never touches adds
+  /// nothing to T; put in the droplet's way it may turn the path.
+  int relocate_every = 0;
   /// A jump that would break the spacing rule is redrawn up to this many times; after that the
   /// grain stays where it was (which always satisfies the rule).
   int max_redraws = 20;

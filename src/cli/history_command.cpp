@@ -29,11 +29,11 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
       ->check(CLI::IsMember({"table", "csv", "json"}));
   s->footer(
       "Columns. Runs: evaluations = droplets pushed so far (generation 0's included); best_generation = where "
-      "the best T was found. Generations: kind = all (every grain moved) or single (one touched grain); "
+      "the best T was found. Generations: kind = all (every grain moved), single (one touched grain) or relocate (one untouched grain put next to the path); "
       "accepted = 1 if the strategy kept a candidate; candidate_t = the best T among the generation's passing "
       "candidates (empty if none passed); outcomes = each candidate's outcome, in order; best_t = the best T "
       "after it; touched = grains the best arrangement's droplet touched; seconds = wall time; state = the "
-      "strategy's state (JSON). Candidates: moved_grain = the grain a single move moved (empty for all); "
+      "strategy's state (JSON). Candidates: moved_grain = the grain a single or relocate move moved (empty for all); "
       "moved = grains moved; t = T if passed; steps = time steps simulated; reason = why its run ended.");
   return s;
 }

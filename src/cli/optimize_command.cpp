@@ -52,6 +52,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_option("--single-every", a.search.single_every,
                 "Every this-th generation moves one grain the droplet touched (0: never)")
       ->capture_default_str();
+  g->add_option("--relocate-every", a.search.relocate_every,
+                "Every this-th generation puts one grain the droplet did not touch next to its path (0: never)")
+      ->capture_default_str();
   g->add_option("--step", a.search.step, "All-grain move: jump radius of each grain (length units)")
       ->capture_default_str();
   g->add_option("--single-step", a.search.single_step, "Single move: jump radius of the grain (length units)")
