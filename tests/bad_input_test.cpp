@@ -53,6 +53,29 @@ TEST(BadValues, GetOneLineNamingTheOption) {
   EXPECT_EQ(run("--check optimize --db " + db + " --seed 18446744073709551615").code, 0);
 }
 
+TEST(BadWords, MistypedOptionsAndCommandsGetTheNearestName) {
+  struct Case {
+    std::string args, says;
+  };
+  for (const Case& c : {
+           Case{"simulate --porosty 0.5", "unknown option '--porosty' (did you mean --porosity?)"},
+           Case{"simulate --porosity=0.5 --thread 2", "unknown option '--thread' (did you mean --threads?)"},
+           Case{"optimize --lamda 2", "unknown option '--lamda' (did you mean --lambda?)"},
+           Case{"render paths --droplet-color 102030", "(did you mean --droplet-colour?)"},
+           Case{"simulat --x0 3", "unknown command 'simulat' (did you mean simulate?)"},
+           Case{"render medum -o m.png", "unknown command 'medum' (did you mean medium?)"},
+           Case{"sweep-reprot --db x.db", "(did you mean sweep-report?)"},
+           // Nothing close: the parser's own message.
+           Case{"simulate --frobnicate", "not expected: --frobnicate"},
+       }) {
+    SCOPED_TRACE(c.args);
+    const Result r = run(c.args);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+  }
+}
+
 // Starts a command, waits until its temporary output file appears, then sends `sig`.
 int signal_while_writing(const std::string& args, const std::string& output, int sig) {
   const pid_t pid = spawn(args);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli/output.hpp"
+#include "cli/suggest.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
@@ -96,7 +97,8 @@ int main(int argc, char** argv) {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return cli.app.exit(e);  // --help, --version
-    std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
+    const std::string correction = suggest_correction(cli.app, argc, argv);
+    std::cerr << "softdrop: error: " << (correction.empty() ? one_line(e.what()) : correction) << '\n';
     return 2;
   }
   try {
