@@ -6,7 +6,8 @@
 # best_t) and summary.csv (per problem and strategy: the median, least and largest best T over the
 # seeds at 1/4, 1/2 and all of the budget).
 #   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
-#   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal"
+#   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal es+r3"
+# A strategy NAME+rN is NAME with --relocate-every N.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 S=${SOFTDROP:-./build/softdrop}
@@ -28,7 +29,12 @@ problem_options() {
 }
 # Candidates per generation: the paper's hill climb speculates ahead on every thread with 2; the
 # others evaluate a whole generation at once, so they get enough candidates for every lane.
-lambda_of() { case $1 in paper) echo 2 ;; *) echo 8 ;; esac; }
+lambda_of() { case ${1%%+*} in paper) echo 2 ;; *) echo 8 ;; esac; }
+strategy_options() {
+  local name=${1%%+*} relocate=""
+  [[ $1 == *+r* ]] && relocate="--relocate-every ${1##*+r}"
+  echo "--strategy $name $relocate"
+}
 
 for problem in $PROBLEMS; do
   for strategy in $STRATEGIES; do
@@ -41,7 +47,7 @@ for problem in $PROBLEMS; do
         $S optimize --db "$db" --resume 1 --generations "$generations" --quiet > /dev/null
       else
         # shellcheck disable=SC2046
-        $S optimize --db "$db" $(problem_options "$problem") --strategy "$strategy" --lambda "$lambda" \
+        $S optimize --db "$db" $(problem_options "$problem") $(strategy_options "$strategy") --lambda "$lambda" \
           --seed "$seed" --medium-seed "$seed" --generations "$generations" --quiet > /dev/null
       fi
     done
