@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <nlopt.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <istream>
 #include <limits>
@@ -22,19 +23,46 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name)
   auto bad = [&](const std::string& what) {
     return std::runtime_error("--points '" + name + "' line " + std::to_string(number) + ": " + what);
   };
+  auto split = [](const std::string& text) {
+    std::vector<std::string> fields;
+    std::istringstream s(text);
+    for (std::string f; std::getline(s, f, ',');) fields.push_back(f);
+    if (!text.empty() && text.back() == ',') fields.emplace_back();
+    return fields;
+  };
+  std::size_t columns = 0, phi = 0, t = 0, se = 0;
+  bool sweep_report = false;
   while (std::getline(in, line)) {
     ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
-    if (!header) {
-      if (line.rfind("phi,t,se", 0) != 0) throw bad("expected the header phi,t,se");
+    const std::vector<std::string> f = split(line);
+    if (!header) {  // phi,t,se; or sweep-report --format csv, whose points are phi, mean_t, standard_error
+      auto at = [&](const char* column) { return std::size_t(std::find(f.begin(), f.end(), column) - f.begin()); };
+      sweep_report = at("t") == f.size() && at("mean_t") < f.size();
+      phi = at("phi"), t = at(sweep_report ? "mean_t" : "t"), se = at(sweep_report ? "standard_error" : "se");
+      if (phi == f.size() || t == f.size() || se == f.size())
+        throw bad("expected the header phi,t,se (or sweep-report --format csv's columns)");
       header = true;
+      columns = f.size();
       continue;
     }
+    if (f.size() != columns) throw bad("expected " + std::to_string(columns) + " fields, as the header");
+    // sweep-report leaves T and its error empty where fewer than two droplets passed: not a point
+    if (sweep_report && (f[t].empty() || f[se].empty())) continue;
     if (out.size() == kMaxFitPoints) throw bad("more than the limit of " + std::to_string(kMaxFitPoints) + " points");
-    std::istringstream s(line);
     FitPoint p;
-    char c1 = 0, c2 = 0;
-    if (!(s >> p.phi >> c1 >> p.t >> c2 >> p.se) || c1 != ',' || c2 != ',') throw bad("expected three numbers phi,t,se");
+    std::size_t used = 0;
+    try {
+      p.phi = std::stod(f[phi], &used);
+      if (used != f[phi].size()) throw std::invalid_argument("");
+      p.t = std::stod(f[t], &used);
+      if (used != f[t].size()) throw std::invalid_argument("");
+      p.se = std::stod(f[se], &used);
+      if (used != f[se].size()) throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw bad("expected numbers for phi, t and se");
+    }
     out.push_back(p);
   }
   return out;

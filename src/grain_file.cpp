@@ -1,5 +1,6 @@
 #include "softdrop/grain_file.hpp"
 #include "temp_files.hpp"
+#include "validation.hpp"
 
 #include <unistd.h>
 
@@ -12,6 +13,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace softdrop {
 namespace {
@@ -100,7 +102,7 @@ Medium load_json(const std::string& path, std::istream& in) {
 
 Medium load_csv(const std::string& path, std::istream& in) {
   Medium m;
-  bool have_w = false, have_h = false, have_header = false;
+  bool have_w = false, have_h = false, have_header = false, box_columns = false;
   std::string line;
   int number = 0;
   while (std::getline(in, line)) {
@@ -118,22 +120,33 @@ Medium load_csv(const std::string& path, std::istream& in) {
       continue;
     }
     if (!have_header) {
-      if (line != "x,y,r") bad(path, "line " + std::to_string(number) + ": expected header x,y,r, got " + printable(line));
+      if (line == "x,y,r,width,height,periodic") box_columns = true;
+      else if (line != "x,y,r")
+        bad(path, "line " + std::to_string(number) + ": expected header x,y,r,width,height,periodic (or x,y,r), got " +
+                      printable(line));
       have_header = true;
       continue;
     }
+    std::vector<std::string> f;
     std::stringstream fields(line);
-    std::string fx, fy, fr, extra;
-    if (!std::getline(fields, fx, ',') || !std::getline(fields, fy, ',') ||
-        !std::getline(fields, fr, ',') || std::getline(fields, extra, ','))
-      bad(path, "line " + std::to_string(number) + ": expected 3 fields x,y,r");
+    for (std::string field; f.size() <= 6 && std::getline(fields, field, ',');) f.push_back(trim(field));
+    const std::size_t expected = box_columns ? 6 : 3;
+    if (f.size() != expected)
+      bad(path, "line " + std::to_string(number) + ": expected " + std::to_string(expected) + " fields " +
+                    (box_columns ? "x,y,r,width,height,periodic" : "x,y,r"));
     if (m.grains.size() == kMaxFileGrains)
       bad(path, "line " + std::to_string(number) + ": more than the limit of " + std::to_string(kMaxFileGrains) + " grains");
-    m.grains.push_back({parse_number(path, number, trim(fx)), parse_number(path, number, trim(fy)),
-                        parse_number(path, number, trim(fr))});
+    m.grains.push_back({parse_number(path, number, f[0]), parse_number(path, number, f[1]), parse_number(path, number, f[2])});
+    if (box_columns) {  // the box on every row, the same on every row
+      const double w = parse_number(path, number, f[3]), h = parse_number(path, number, f[4]);
+      const bool periodic = parse_bool(path, number, f[5]);
+      if (have_w && !(w == m.width && h == m.height && periodic == m.periodic))
+        bad(path, "line " + std::to_string(number) + ": width, height or periodic differ from the rows above");
+      m.width = w, m.height = h, m.periodic = periodic, have_w = have_h = true;
+    }
   }
-  if (!have_header) bad(path, "no x,y,r header");
-  if (!have_w || !have_h) bad(path, "missing '# width=' or '# height=' line");
+  if (!have_header) bad(path, "no x,y,r,width,height,periodic header");
+  if (!have_w || !have_h) bad(path, "missing the box: no grain row with width and height, and no '# width=' or '# height=' line");
   return m;
 }
 
@@ -190,7 +203,6 @@ void write_file_atomically(const std::string& path, const std::string& content) 
 
 void save_medium(const std::string& path, const Medium& medium) {
   std::ostringstream out;
-  out.precision(17);
   if (ends_with(path, ".json")) {
     nlohmann::json j;
     j["format"] = "softdrop-medium";
@@ -202,9 +214,17 @@ void save_medium(const std::string& path, const Medium& medium) {
     for (const Grain& g : medium.grains) j["grains"].push_back({{"x", g.x}, {"y", g.y}, {"r", g.r}});
     out << j.dump(1) << '\n';
   } else {
-    out << "# softdrop medium\n# width=" << medium.width << "\n# height=" << medium.height
-        << "\n# periodic=" << (medium.periodic ? "true" : "false") << "\nx,y,r\n";
-    for (const Grain& g : medium.grains) out << g.x << ',' << g.y << ',' << g.r << '\n';
+    // One plain table (pandas reads it as is): the box on every row. A medium without grains has
+    // no row to carry it, and keeps it in comment lines (the older form, still read).
+    const std::string periodic = medium.periodic ? "true" : "false";
+    if (medium.grains.empty())
+      out << "# softdrop medium\n# width=" << detail::num(medium.width) << "\n# height=" << detail::num(medium.height)
+          << "\n# periodic=" << periodic << "\nx,y,r\n";
+    else
+      out << "x,y,r,width,height,periodic\n";
+    for (const Grain& g : medium.grains)
+      out << detail::num(g.x) << ',' << detail::num(g.y) << ',' << detail::num(g.r) << ',' << detail::num(medium.width)
+          << ',' << detail::num(medium.height) << ',' << periodic << '\n';
   }
   write_file_atomically(path, out.str());
 }

@@ -78,6 +78,16 @@ bool MediumOptions::IsValid(std::string* why) const {
   if (!std::isfinite(gap) || gap < 0) return fail(why, "gap = " + num(gap) + ": must be >= 0");
   if (max_failed_attempts <= 0)
     return fail(why, "max-failed-attempts = " + std::to_string(max_failed_attempts) + ": must be > 0");
+  // Non-overlapping grains of radius >= r_min, kept gap * r_min apart and inside the box in y,
+  // are disjoint once each is grown by gap * r_min / 2: their area cannot exceed the (grown) box's.
+  if (kind == MediumKind::non_overlapping && grains > 0) {
+    const double grown = r_min * (1 + 0.5 * gap);
+    const double room = width * (height + gap * r_min) / (M_PI * grown * grown);
+    if (grains > room)
+      return fail(why, "grains = " + std::to_string(grains) + ": cannot fit in " + num(width) + " x " + num(height) +
+                           ": even the smallest grains (radius " + num(r_min) + ", gap " + num(gap) +
+                           ") would need more than the box's area; at most " + num(std::floor(room)));
+  }
   // Refuse a porosity target that needs more grains than any medium may hold, before allocating.
   if (grains == 0) {
     const double solid = kind == MediumKind::overlapping ? -std::log(porosity) : 1 - porosity;

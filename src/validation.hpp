@@ -1,7 +1,7 @@
 #pragma once
 // Helpers of the IsValid functions: a message naming the parameter, and numbers printed exactly.
 
-#include <sstream>
+#include <charconv>
 #include <string>
 
 namespace softdrop::detail {
@@ -12,12 +12,12 @@ inline bool fail(std::string* why, const std::string& message) {
   return false;
 }
 
-/// A double with 17 significant digits (round trip), for error messages.
+/// The shortest decimal that reads back as the same double (0.8, not 0.80000000000000004), for
+/// messages and files alike.
 inline std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
+  char buffer[64];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, v).ptr;
+  return std::string(buffer, end);
 }
 
 }  // namespace softdrop::detail

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "softdrop/medium.hpp"
 
@@ -37,6 +38,25 @@ TEST(GrainFile, JsonAndCsvRoundTripExactly) {
     EXPECT_EQ(load_medium(path), m) << ext;
     std::filesystem::remove(path);
   }
+}
+
+// The CSV softdrop writes is one plain table: a header and one row a grain, every row with the box,
+// numbers in their shortest exact form. A medium without grains keeps its box in comment lines.
+TEST(GrainFile, CsvIsOnePlainTableWithTheBoxOnEveryRow) {
+  const std::string path = temp_path("plain.csv");
+  save_medium(path, Medium{300, 200, true, {{0.8, 10, 8}, {150.25, 100.5, 16}}});
+  std::ifstream in(path);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "x,y,r,width,height,periodic\n0.8,10,8,300,200,true\n150.25,100.5,16,300,200,true\n");
+  const Medium empty{40, 30, false, {}};
+  save_medium(path, empty);
+  EXPECT_EQ(load_medium(path), empty);
+  write(path, "x,y,r,width,height,periodic\n1,2,3,40,30,false\n5,6,3,40,31,false\n");
+  EXPECT_NE(load_error(path).find("line 3: width, height or periodic differ from the rows above"), std::string::npos)
+      << load_error(path);
+  write(path, "x,y,r,width,height,periodic\n1,2,3,40,30\n");
+  EXPECT_NE(load_error(path).find("line 2: expected 6 fields"), std::string::npos) << load_error(path);
+  std::filesystem::remove(path);
 }
 
 TEST(GrainFile, HandWrittenCsvLoads) {

@@ -122,8 +122,9 @@ TEST(FitPointsFile, BadLinesAndTooManyPointsNameTheFileAndLine) {
     std::string text, message;
   };
   for (const Case& c : {Case{"x,y\n", "--points 'p.csv' line 1: expected the header"},
-                        Case{"phi,t,se\n0.5;1.5;0.1\n", "--points 'p.csv' line 2: expected three numbers"},
-                        Case{"phi,t,se\n0.5,1.5\n", "line 2: expected three numbers"}}) {
+                        Case{"phi,t,se\n0.5;1.5;0.1\n", "--points 'p.csv' line 2: expected 3 fields, as the header"},
+                        Case{"phi,t,se\n0.5,1.5x,0.1\n", "line 2: expected numbers for phi, t and se"},
+                        Case{"phi,t,se\n0.5,1.5\n", "line 2: expected 3 fields"}}) {
     std::istringstream in(c.text);
     try {
       softdrop::read_fit_points(in, "p.csv");

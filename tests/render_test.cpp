@@ -10,6 +10,7 @@
 #include <functional>
 #include <sstream>
 
+#include "csv_table.hpp"
 #include "cli_run.hpp"
 #include "softdrop/render.hpp"
 
@@ -244,20 +245,17 @@ TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
   const std::string csv = fresh("trace.csv"), png = fresh("trace.png");
   const test::Result r = test::run("render trace --medium " + kPore + " --x0 100 --csv " + csv + " -o " + png + " --size 400");
   ASSERT_EQ(r.code, 0) << r.err;
-  std::ifstream in(csv);
-  std::string line;
-  double enter = -1, leave = -1;
+  const test::CsvTable table = test::read_csv_table(csv);
+  double enter = -1, leave = -1;  // the first sample inside the medium, and below it
   std::vector<double> t, ratio;
-  while (std::getline(in, line)) {
-    if (line.rfind("# enter=", 0) == 0) enter = std::stod(line.substr(8));
-    if (line.rfind("# leave=", 0) == 0) leave = std::stod(line.substr(8));
-    if (line.empty() || line[0] == '#' || line[0] == 't') continue;
-    std::istringstream s(line);
-    double a, b, c;
-    char k;
-    s >> a >> k >> b >> k >> c;
-    t.push_back(a);
-    ratio.push_back(c);
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    EXPECT_EQ(table.cell(i, "droplet"), "0");
+    t.push_back(table.number(i, "t"));
+    ratio.push_back(table.number(i, "area_ratio"));
+    const std::string& phase = table.cell(i, "phase");
+    if (phase == "inside" && enter < 0) enter = t.back();
+    if (phase == "below" && leave < 0) leave = t.back();
+    EXPECT_TRUE(phase == "above" ? enter < 0 : phase == "inside" ? enter >= 0 && leave < 0 : leave >= 0) << phase;
   }
   ASSERT_GT(t.size(), 50u);
   EXPECT_GT(enter, 0);

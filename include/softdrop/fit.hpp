@@ -47,8 +47,9 @@ struct FitResult {
 /// Most points a points file may hold.
 constexpr std::size_t kMaxFitPoints = 1'000'000;
 
-/// Reads a points file: optional `#` comment lines, the header `phi,t,se`, then one point per
-/// line. Throws std::runtime_error naming `name` and the line on a bad line or more than
+/// Reads a points file: optional `#` comment lines, a header naming the columns phi, t and se
+/// (others are ignored), then one point per line; or the output of `sweep-report --format csv`
+/// (phi, mean_t, standard_error; rows without a standard error are skipped). Throws std::runtime_error naming `name` and the line on a bad line or more than
 /// kMaxFitPoints points (the values themselves are checked by fit_law).
 std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name);
 

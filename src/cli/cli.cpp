@@ -7,6 +7,8 @@
 
 #include "cli/output.hpp"
 #include "cli/suggest.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/sweep.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
@@ -41,6 +43,18 @@ std::string one_line(std::string message) {
   return message;
 }
 
+// --check goes one step beyond the run's own checks where it can: a generated non-overlapping
+// medium is generated as the run would, so a grain count or porosity that random placement cannot
+// reach is reported now rather than when the run starts.
+void check_placement(MediumOptions o) {
+  if (o.kind != MediumKind::non_overlapping) return;
+  try {
+    (void)generate_medium(o);
+  } catch (const std::runtime_error& e) {
+    throw std::invalid_argument(e.what());
+  }
+}
+
 }  // namespace
 
 Cli::Cli() {
@@ -51,7 +65,11 @@ Cli::Cli() {
   app.set_config("--config", "", "Read options from this TOML/INI file (keys: long option names)");
   app.config_formatter(std::make_shared<SubcommandConfig>(app));
   app.allow_config_extras(CLI::config_extras_mode::error);
-  app.add_flag("--check", check_only_, "Check the options and exit without running (exit 0: they are valid)");
+  app.add_flag("--check", check_only_,
+               "Check the options, the output folders, and that a generated non-overlapping medium can be "
+               "placed (it is generated, which may take seconds), then exit without running or writing (exit 0: "
+               "valid). It cannot know whether droplets will pass, or whether optimize finds a starting medium "
+               "its droplet passes");
   simulate_cmd_ = add_simulate_command(app, simulate_);
   optimize_cmd_ = add_optimize_command(app, optimize_);
   history_cmd_ = add_history_command(app, history_);
@@ -64,9 +82,23 @@ Cli::Cli() {
 void Cli::parse(int argc, const char* const* argv) { app.parse(argc, argv); }
 
 void Cli::check() {
-  if (simulate_cmd_->parsed()) check_simulate(simulate_);
-  if (optimize_cmd_->parsed()) check_optimize(optimize_);
-  if (app.got_subcommand("sweep")) check_sweep(sweep_, *app.get_subcommand("sweep"));
+  if (simulate_cmd_->parsed()) {
+    check_simulate(simulate_);
+    if (simulate_.medium.file.empty()) check_placement(simulate_.medium.options);
+  }
+  if (optimize_cmd_->parsed()) {
+    check_optimize(optimize_);
+    if (optimize_.medium.file.empty() && optimize_.resume == 0) check_placement(optimize_.medium.options);
+  }
+  if (app.got_subcommand("sweep")) {
+    check_sweep(sweep_, *app.get_subcommand("sweep"));
+    for (int p = 0; p < static_cast<int>(sweep_.sweep.porosities.size()); ++p) {  // each porosity's first medium
+      MediumOptions o = sweep_.sweep.medium;
+      o.porosity = sweep_.sweep.porosities[static_cast<std::size_t>(p)];
+      o.seed = sweep_medium_seed(sweep_.sweep, SweepUnit{p, 0});
+      check_placement(o);
+    }
+  }
   if (render_cmd_->parsed()) check_render(render_);
   if (calibrate_cmd_->parsed()) check_calibrate(calibrate_);
 }

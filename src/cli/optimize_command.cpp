@@ -351,7 +351,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
   j["best_tortuosity"] = best.eval.tortuosity;
   j["best_generation"] = best.generation;
   j["grains"] = best.medium.grains.size();
-  j["touched_grains"] = best.eval.touched.size();
+  j["touched"] = best.eval.touched.size();
   j["wall_seconds"] = summary.seconds;
   j["evaluations_per_second"] = summary.evaluations_per_second();
   j["speculation"] = {{"threads", summary.speculation.threads},

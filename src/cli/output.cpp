@@ -1,6 +1,7 @@
 #include "cli/output.hpp"
 
 #include "temp_files.hpp"
+#include "validation.hpp"
 
 #include "softdrop/grain_file.hpp"
 #include "softdrop/render.hpp"
@@ -154,7 +155,23 @@ void Table::print(std::ostream& out, const std::string& format) const {
   }
 }
 
+void write_area_traces(const std::string& path, const std::vector<AreaTrace>& traces) {
+  std::ostringstream out;
+  out << "droplet,t,area,area_ratio,phase\n";
+  for (std::size_t d = 0; d < traces.size(); ++d) {
+    const AreaTrace& tr = traces[d];
+    for (std::size_t i = 0; i < tr.t.size(); ++i) {
+      const double t = tr.t[i];
+      const char* phase = !(t >= tr.enter) ? "above" : !(t >= tr.leave) ? "inside" : "below";  // NaN: never
+      out << d << ',' << fmt(t) << ',' << fmt(tr.area[i]) << ',' << (std::isnan(tr.s0) ? "" : fmt(tr.area[i] / tr.s0))
+          << ',' << phase << '\n';
+    }
+  }
+  write_file_atomically(path, out.str());
+}
+
 std::string fmt(double v, int digits) {
+  if (digits >= 17) return detail::num(v);  // every digit that matters, and no more
   std::ostringstream s;
   s.precision(digits);
   s << v;

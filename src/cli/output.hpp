@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "softdrop/area_trace.hpp"
+
 namespace softdrop::cli {
 
 /// Throws std::runtime_error naming `option` if `path` cannot be created (missing directory,
@@ -67,7 +69,13 @@ struct Table {
   void write_csv(const std::string& path) const;
 };
 
+/// Writes area traces as one CSV (atomically): droplet, t (time units), area (length units
+/// squared), area_ratio (S / S0, S0 the droplet's area when it reached the medium; empty if it
+/// never did), phase (above: before its lowest mass reached y = H; inside; below: after its highest
+/// mass left y = 0). Droplet i is traces[i].
+void write_area_traces(const std::string& path, const std::vector<AreaTrace>& traces);
+
 /// Formats a double with the given significant digits (17 = round trip).
-std::string fmt(double v, int digits = 17);
+std::string fmt(double v, int digits = 17);  // 17 and more: the shortest that reads back the same
 
 }  // namespace softdrop::cli

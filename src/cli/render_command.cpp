@@ -327,14 +327,7 @@ int render_trace(RenderArgs& a) {
   c.y_label = "area ratio S(t) / S0";
   c.title = std::string(to_string(whole.outcome)) + (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") +
             "; " + describe(medium);
-  if (!a.csv.empty()) {
-    std::ostringstream out;
-    out.precision(17);
-    out << "# enter=" << enter << "\n# leave=" << (std::isnan(leave) ? std::string("") : fmt(leave)) << "\n# s0=" << s0
-        << "\n# outcome=" << to_string(whole.outcome) << "\nt,area,ratio\n";
-    for (std::size_t i = 0; i < t.size(); ++i) out << t[i] << ',' << area[i] << ',' << area[i] / s0 << '\n';
-    write_file_atomically(a.csv, out.str());
-  }
+  if (!a.csv.empty()) write_area_traces(a.csv, {trace});
   render_chart(c, style, a.output);
   const double lo = trace.min_ratio, hi = trace.max_ratio;
   std::cerr << "trace: enters at t = " << fmt(enter, 5) << ", leaves at t = " << (std::isnan(leave) ? "never" : fmt(leave, 5))

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "cli/output.hpp"
+#include "softdrop/area_trace.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/version.hpp"
@@ -37,10 +38,13 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
       ->capture_default_str()
       ->check(CLI::IsMember({"table", "json"}));
   o->add_option("--json", a.json_file, "Also write the JSON summary to this file");
+  o->add_flag("--quiet", a.quiet, "No progress on stderr");
   o->add_option("--runs", a.runs_csv, "CSV, one row per droplet: start, outcome, T, steps, touched");
   o->add_option("--paths", a.paths_csv, "CSV of centre-of-mass paths (droplet,t,x,y)");
   o->add_option("--path-interval", a.run.path_interval, "Steps between path samples (default 100 with --paths)");
-  o->add_option("--trace", a.trace_csv, "CSV of the ring area S(t) (droplet,t,area,ratio)");
+  o->add_option("--trace", a.trace_csv,
+                "CSV of the ring area S(t), each droplet replayed to its exit (droplet,t,area,area_ratio,phase; "
+                "as render trace --csv)");
   o->add_option("--trace-interval", a.run.area_interval, "Steps between area samples (default 100 with --trace)");
   o->add_option("--snapshots", a.snapshots_csv, "CSV of ring boundaries at --snapshot-times (droplet,t,mass,x,y)");
   o->add_option("--snapshot-times", a.run.snapshot_times, "Times (time units) of boundary snapshots")
@@ -78,7 +82,7 @@ nlohmann::json run_json(const RunSummary& r, int i) {
           {"reason", r.reason},
           {"tortuosity", r.outcome == Outcome::passed ? nlohmann::json(r.tortuosity) : nlohmann::json()},
           {"steps", r.steps},
-          {"touched_grains", r.touched.size()},
+          {"touched", r.touched.size()},
           {"min_area_ratio", r.min_area_ratio},
           {"max_penetration", r.max_penetration}};
 }
@@ -97,7 +101,7 @@ int run_simulate(SimulateArgs& a) {
   const auto t0 = std::chrono::steady_clock::now();
   const std::vector<RunSummary> runs =
       run_batch(a.droplet, medium, a.run, a.batch,
-                a.batch.droplets > 1 ? std::function<void(int, int)>(
+                a.batch.droplets > 1 && !a.quiet ? std::function<void(int, int)>(
                                            [&](int done, int total) { progress.update(done, total); })
                                      : std::function<void(int, int)>());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -120,6 +124,8 @@ int run_simulate(SimulateArgs& a) {
   j["wall_seconds"] = seconds;
   j["steps_per_second"] = seconds > 0 ? total_steps / seconds : 0.0;
   if (runs.size() == 1) j["run"] = run_json(runs[0], 0);
+  j["runs"] = nlohmann::json::array();  // the --runs CSV's records, with the reason
+  for (std::size_t i = 0; i < runs.size(); ++i) j["runs"].push_back(run_json(runs[i], static_cast<int>(i)));
 
   std::ostringstream table;
   table << std::setprecision(6);
@@ -145,30 +151,30 @@ int run_simulate(SimulateArgs& a) {
   auto csv = [&](const std::string& path, const std::string& header, auto&& rows) {
     if (path.empty()) return;
     std::ostringstream out;
-    out.precision(17);
     out << header << '\n';
     for (std::size_t i = 0; i < runs.size(); ++i) rows(out, static_cast<int>(i), runs[i]);
     write_file_atomically(path, out.str());
   };
   csv(a.runs_csv, "droplet,start_x,outcome,tortuosity,steps,touched,min_area_ratio,max_penetration",
       [](std::ostream& o, int i, const RunSummary& r) {
-        o << i << ',' << r.start_x << ',' << to_string(r.outcome) << ','
-          << (r.outcome == Outcome::passed ? fmt(r.tortuosity) : "") << ',' << r.steps << ','
-          << r.touched.size() << ',' << r.min_area_ratio << ',' << r.max_penetration << '\n';
+        o << i << ',' << fmt(r.start_x) << ',' << to_string(r.outcome) << ','
+          << (r.outcome == Outcome::passed ? fmt(r.tortuosity) : "") << ',' << r.steps << ',' << r.touched.size()
+          << ',' << fmt(r.min_area_ratio) << ',' << fmt(r.max_penetration) << '\n';
       });
   csv(a.paths_csv, "droplet,t,x,y", [](std::ostream& o, int i, const RunSummary& r) {
     for (std::size_t k = 0; k < r.path_t.size(); ++k)
-      o << i << ',' << r.path_t[k] << ',' << r.path_x[k] << ',' << r.path_y[k] << '\n';
+      o << i << ',' << fmt(r.path_t[k]) << ',' << fmt(r.path_x[k]) << ',' << fmt(r.path_y[k]) << '\n';
   });
-  const double area0 = a.droplet.inflated_area();
-  csv(a.trace_csv, "droplet,t,area,ratio", [&](std::ostream& o, int i, const RunSummary& r) {
-    for (std::size_t k = 0; k < r.area_t.size(); ++k)
-      o << i << ',' << r.area_t[k] << ',' << r.area[k] << ',' << r.area[k] / area0 << '\n';
-  });
+  if (!a.trace_csv.empty()) {  // each droplet replayed by trace_area, as render trace does
+    std::vector<AreaTrace> traces;
+    for (const RunSummary& r : runs)
+      traces.push_back(trace_area(a.droplet, medium, r.start_x, a.run, a.run.area_interval));
+    write_area_traces(a.trace_csv, traces);
+  }
   csv(a.snapshots_csv, "droplet,t,mass,x,y", [](std::ostream& o, int i, const RunSummary& r) {
     for (const Snapshot& sn : r.snapshots)
       for (std::size_t k = 0; k < sn.x.size(); ++k)
-        o << i << ',' << sn.time << ',' << k << ',' << sn.x[k] << ',' << sn.y[k] << '\n';
+        o << i << ',' << fmt(sn.time) << ',' << k << ',' << fmt(sn.x[k]) << ',' << fmt(sn.y[k]) << '\n';
   });
 
   if (a.format == "json")

@@ -22,6 +22,7 @@ struct SimulateArgs {
   double x0 = std::numeric_limits<double>::quiet_NaN();
   std::string format = "table";
   std::string runs_csv, paths_csv, trace_csv, snapshots_csv, json_file;
+  bool quiet = false;  ///< no progress on stderr
 };
 
 /// Registers the subcommand and its options on `app`; returns it.

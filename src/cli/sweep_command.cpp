@@ -64,7 +64,7 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   ft->fallthrough();
   auto* src = ft->add_option_group("Data");
   src->add_option("--db", f.db, "Sweep store: fit its per-porosity points");
-  src->add_option("--points", f.points, "Or a CSV file with columns phi,t,se")->check(CLI::ExistingFile);
+  src->add_option("--points", f.points, "Or a CSV file with columns phi,t,se (or the output of sweep-report --format csv)")->check(CLI::ExistingFile);
   src->require_option(1);
   ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)");
   ft->add_option("--plot", f.plot, "Also draw T(phi) with error bars and both fits (.png, .svg, .pdf)");
