@@ -7,7 +7,7 @@ PKGS=(
   libeigen3-dev libnlopt-cxx-dev libnlopt-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libsqlite3-dev sqlite3 libsqlitecpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libcli11-dev nlohmann-json3-dev libcairo2-dev libgif-dev fonts-dejavu-core libtinyxml2-dev ffmpeg libtbb-dev
+  libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libcairo2-dev libgif-dev fonts-dejavu-core libtinyxml2-dev ffmpeg libtbb-dev
 )
 missing=()
 for p in "${PKGS[@]}"; do

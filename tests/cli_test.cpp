@@ -104,6 +104,33 @@ TEST(Cli, ConfigFileSetsOptions) {
   EXPECT_NE(b.err.find("porosity"), std::string::npos) << b.err;
 }
 
+// TOML as TOML: a quoted '#' is a character of the string, arrays are lists, tables name commands;
+// a file that is not TOML is refused naming its line; .ini files are read as INI.
+TEST(Cli, ConfigFilesAreRealToml) {
+  const std::string toml = temp("colours.toml"), svg = temp("colours.svg");
+  std::ofstream(toml) << "# a comment\ngrain-colour = \"#ff0000\"  # red\n"
+                         "porosity = 0.9\nwidth = 100\nheight = 100\nsize = 50\nno-caption = true\n";
+  const Result c = run("render medium --config " + toml + " -o " + svg);
+  ASSERT_EQ(c.code, 0) << c.err;
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("rgb(100%,0%,0%)"), std::string::npos) << "the grains are drawn in the quoted colour";
+  const std::string sweep = temp("sweep_config.toml"), db = temp("sweep_config.db");
+  std::filesystem::remove(db);
+  std::ofstream(sweep) << "[sweep]\nporosities = [0.8, 0.9]\nmedia = 1\ndroplets = 2\npreset = \"quick\"\n";
+  const Result s = run("sweep --config " + sweep + " --db " + db + " --quiet --format json");
+  ASSERT_EQ(s.code, 0) << s.err;
+  EXPECT_EQ(nlohmann::json::parse(s.out).size(), 2u);  // one point a porosity of the array
+  const std::string not_toml = temp("not_toml.toml"), ini = temp("plain.ini");
+  std::ofstream(not_toml) << "porosity = 0.8\nkind = non-overlapping\n";
+  const Result n = run("simulate --config " + not_toml);
+  EXPECT_EQ(n.code, 2);
+  EXPECT_EQ(std::count(n.err.begin(), n.err.end(), '\n'), 1) << n.err;
+  EXPECT_NE(n.err.find("config file '" + not_toml + "' line 2, column"), std::string::npos) << n.err;
+  std::ofstream(ini) << "porosity = 0.8\nkind = non-overlapping\n";
+  EXPECT_EQ(run("--check simulate --config " + ini).code, 0);
+}
+
 TEST(Cli, HelpDocumentsUnitsAndDefaults) {
   const Result r = run("simulate --help");
   EXPECT_EQ(r.code, 0);

@@ -5,6 +5,7 @@
 #include <memory>
 #include <vector>
 
+#include "cli/config_file.hpp"
 #include "cli/output.hpp"
 #include "cli/suggest.hpp"
 #include "softdrop/medium.hpp"
@@ -13,28 +14,6 @@
 
 namespace softdrop::cli {
 namespace {
-
-// Reads a TOML/INI file whose plain keys (`porosity = 0.8`) are the long options of the
-// subcommand that was chosen, so a config file looks like the command line without dashes.
-class SubcommandConfig : public CLI::ConfigTOML {
- public:
-  explicit SubcommandConfig(const CLI::App& app) : app_(app) {}
-  std::vector<CLI::ConfigItem> from_config(std::istream& input) const override {
-    auto parsed = CLI::ConfigTOML::from_config(input);
-    // The chain of chosen subcommands, e.g. render -> medium.
-    std::vector<std::string> chain;
-    for (const CLI::App* a = &app_; !a->get_subcommands().empty();) {
-      a = a->get_subcommands().back();
-      chain.push_back(a->get_name());
-    }
-    for (auto& item : parsed)
-      if (item.parents.empty()) item.parents = chain;
-    return parsed;
-  }
-
- private:
-  const CLI::App& app_;
-};
 
 // Errors are one line, whatever the library that raised them put in its message.
 std::string one_line(std::string message) {

@@ -1,0 +1,25 @@
+#pragma once
+// --config files: TOML read by a real TOML parser (toml++), handed to the command-line parser as
+// the options they name.
+#include <CLI/CLI.hpp>
+#include <istream>
+#include <string>
+#include <vector>
+
+namespace softdrop::cli {
+
+/// Reads a TOML file whose plain keys (`porosity = 0.8`) are the long options of the subcommand
+/// that was chosen, so a config file looks like the command line without dashes; keys under a
+/// table ([sweep]) belong to the command of that name. Strings, numbers, booleans and arrays of
+/// them are values; a quoted "#ff0000" is a string. A file that is not TOML gets one error naming
+/// its line and column; a file ending in .ini is read as INI instead (CLI11's reader).
+class SubcommandConfig : public CLI::ConfigTOML {
+ public:
+  explicit SubcommandConfig(const CLI::App& app) : app_(app) {}
+  std::vector<CLI::ConfigItem> from_config(std::istream& input) const override;
+
+ private:
+  const CLI::App& app_;
+};
+
+}  // namespace softdrop::cli
