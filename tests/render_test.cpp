@@ -272,6 +272,29 @@ TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
   EXPECT_EQ(read_png(png).width, 400);
 }
 
+TEST(RenderCli, CurvesDrawSeveralSearchesAndNameWhatTheyCannotDraw) {
+  const std::string a = fresh("curves-a-1.db"), b = fresh("curves-a-2.db"), png = fresh("curves.png");
+  const std::string search = " --grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 "
+                             "--stuck-distance 1 --generations 3 --quiet";
+  for (const auto& [db, seed] : {std::pair{a, 7}, std::pair{b, 8}})
+    ASSERT_EQ(test::run("optimize --db " + db + search + " --seed " + std::to_string(seed)).code, 0);
+  for (const std::string x : {"evaluations", "seconds"}) {
+    const test::Result r = test::run("render curves --db " + a + " --db " + b + " --x " + x + " --size 500 -o " + png);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const Png p = read_png(png);
+    EXPECT_EQ(p.width, 500);
+    EXPECT_GT(p.non_background, 2000);
+  }
+  const test::Result labels = test::run("render curves --db " + a + " --db " + b + " --label one -o " + png);
+  EXPECT_EQ(labels.code, 1);
+  EXPECT_NE(labels.err.find("label: 1 labels for 2 databases"), std::string::npos) << labels.err;
+  ASSERT_EQ(test::run("optimize --db " + a + search + " --seed 9").code, 0);  // a second run in a
+  const test::Result two = test::run("render curves --db " + a + " -o " + png);
+  EXPECT_EQ(two.code, 1);
+  EXPECT_NE(two.err.find("holds 2 runs; choose one with --run ID"), std::string::npos) << two.err;
+  EXPECT_EQ(test::run("render curves --db " + a + " --run 2 -o " + png).code, 0);
+}
+
 TEST(RenderCli, MissingOrMalformedInputsGiveOneLineAndNoPicture) {
   const std::string bad_grains = fresh("bad_grains.json");
   std::ofstream(bad_grains) << "{\"format\": \"softdrop-medium\", \"version\": 1, \"width\": 10";

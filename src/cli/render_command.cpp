@@ -75,11 +75,20 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   style(t, ".png, .svg or .pdf");
   scene_options(t);
   t->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
-  t->add_option("--csv", a.csv, "Also write the samples (t, area, ratio) to this CSV");
+  t->add_option("--csv", a.csv, "Also write the samples (droplet, t, area, area_ratio, phase) to this CSV");
+
+  CLI::App* c = r->add_subcommand("curves", "The best T of several searches against evaluations (or seconds), one line each");
+  style(c, ".png, .svg or .pdf");
+  c->add_option("--db", a.dbs, "A search's SQLite history (repeat for more searches)")->required();
+  c->add_option("--run", a.run_id, "Run id in every file (default: each file's only run)");
+  c->add_option("--label", a.labels,
+                "Legend label, one a --db in order (default: the file name without a trailing -<seed>; "
+                "equal labels share a colour)");
+  c->add_option("--x", a.x_axis, "evaluations or seconds (wall, summed over generations)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"evaluations", "seconds"}));
   return r;
 }
-
-namespace {
 
 RenderStyle style_of(const RenderArgs& a) {
   RenderStyle s;
@@ -92,6 +101,8 @@ RenderStyle style_of(const RenderArgs& a) {
   if (!s.IsValid(&why)) throw std::invalid_argument(why);
   return s;
 }
+
+namespace {
 
 Medium medium_of(RenderArgs& a) {
   resolve_medium(a.medium);
@@ -353,6 +364,7 @@ int run_render(RenderArgs& a, const CLI::App& render) {
   if (which == "paths") return render_paths(a);
   if (which == "search") return render_search(a);
   if (which == "trace") return render_trace(a);
+  if (which == "curves") return render_curves(a);
   return render_animation_command(a);
 }
 

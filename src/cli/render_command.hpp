@@ -1,5 +1,5 @@
 #pragma once
-// `softdrop render medium|snapshots|paths|search|animation`: pictures through the one drawing
+// `softdrop render medium|snapshots|paths|search|animation|trace|curves`: pictures through the one drawing
 // module (softdrop/render.hpp).
 
 #include <CLI/CLI.hpp>
@@ -33,9 +33,16 @@ struct RenderArgs {
   double fps = 25, speed = 0.02;  ///< animation: frames per second, time units per second
   int max_frames = 1500;
   std::string csv;            ///< trace: the area samples
+  std::vector<std::string> dbs, labels;  ///< curves: the searches and their legend labels
+  std::string x_axis = "evaluations";    ///< curves: evaluations or seconds
 };
 
-/// Registers `render` and its six subcommands; returns `render`.
+/// The picture options as a RenderStyle; throws std::invalid_argument naming a bad colour or size.
+RenderStyle style_of(const RenderArgs& args);
+/// `render curves` (render_curves.cpp).
+int render_curves(RenderArgs& args);
+
+/// Registers `render` and its seven subcommands; returns `render`.
 CLI::App* add_render_command(CLI::App& app, RenderArgs& args);
 /// Runs the chosen subcommand of `render`.
 /// Checks the options shared by the pictures without drawing; throws std::invalid_argument.
