@@ -295,6 +295,26 @@ TEST(SweepCli, FitAndAveragingsRunOnTheStore) {
   EXPECT_NE(bad.err.find("line 2"), std::string::npos) << bad.err;
 }
 
+TEST(SweepCli, ASecondSweepInAFileIsToldHowItDiffersAndTheListingShowsOnlyThat) {
+  const std::string db = fresh("two_sweeps.db");
+  const test::Result first = test::run("sweep --db " + db + " --preset quick");
+  ASSERT_EQ(first.code, 0);
+  EXPECT_EQ(first.err.find("other sweep"), std::string::npos) << first.err;
+  const test::Result again = test::run("sweep --db " + db + " --preset quick");  // the same: continued, no word
+  EXPECT_EQ(again.err.find("other sweep"), std::string::npos) << again.err;
+  const test::Result second = test::run("sweep --db " + db + " --preset quick --droplets 4 --porosities 0.8,0.9");
+  ASSERT_EQ(second.code, 0);
+  EXPECT_NE(second.err.find("holds 1 other sweep(s); this is a new one, nearest sweep 1, which differs in: droplets 8 -> 4, "
+                            "porosities [0.8,0.9,0.98] -> [0.8,0.9]"),
+            std::string::npos)
+      << second.err;
+  const test::Result list = test::run("sweep-report --db " + db + " --format csv");
+  ASSERT_EQ(list.code, 0) << list.err;
+  EXPECT_NE(list.out.find("differs_in"), std::string::npos) << list.out;
+  EXPECT_NE(list.out.find(",\"droplets=8 porosities=[0.8,0.9,0.98]\"\n"), std::string::npos) << list.out;
+  EXPECT_EQ(list.out.find("\"seed\""), std::string::npos) << "only the options that differ: " << list.out;
+}
+
 TEST(SweepCli, TheQuickPresetAveragesAndFitsWithoutAVerdictItCannotGive) {
   const std::string db = fresh("quick.db"), json = fresh("quick_fit.json");
   ASSERT_EQ(test::run("sweep --db " + db + " --preset quick --quiet").code, 0);

@@ -13,14 +13,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/options_diff.hpp"
 #include "cli/output.hpp"
-#include "softdrop/averaging.hpp"
-#include "softdrop/fit.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/params_json.hpp"
-#include "softdrop/render.hpp"
 #include "softdrop/sweep_store.hpp"
-#include "softdrop/version.hpp"
 
 namespace softdrop::cli {
 
@@ -82,6 +79,16 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   av->add_option("--plot", v.plot, "Draw the per-medium points and both averagings");
 }
 
+std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db) {
+  if (id > 0) return store.sweep(id).id;
+  const auto all = store.sweeps();
+  if (all.size() == 1) return all[0].id;
+  throw std::invalid_argument(all.empty() ? "--db '" + db + "': holds no sweep"
+                                          : "--sweep: '" + db + "' holds " + std::to_string(all.size()) +
+                                                " sweeps; choose one with --sweep ID (softdrop sweep-report --db " +
+                                                db + " lists them)");
+}
+
 namespace {
 
 void apply_preset(SweepArgs& a, const CLI::App& cmd) {
@@ -109,16 +116,6 @@ std::pair<int, int> parse_shard(const std::string& text) {
   throw std::invalid_argument("shard = '" + text + "': expected i/n with 0 <= i < n");
 }
 
-std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db) {
-  if (id > 0) return store.sweep(id).id;
-  const auto all = store.sweeps();
-  if (all.size() == 1) return all[0].id;
-  throw std::invalid_argument(all.empty() ? "--db '" + db + "': holds no sweep"
-                                          : "--sweep: '" + db + "' holds " + std::to_string(all.size()) +
-                                                " sweeps; choose one with --sweep ID (softdrop sweep-report --db " +
-                                                db + " lists them)");
-}
-
 Table points_table(const std::vector<SweepPoint>& points) {
   Table t;
   t.header = {"target_phi", "phi", "media", "droplets", "passed", "mean_t", "standard_error", "stuck_fraction"};
@@ -130,12 +127,37 @@ Table points_table(const std::vector<SweepPoint>& points) {
 }
 
 // Sweeps are listed by sweep-report when no id is given and the store holds several.
+// Each sweep with the options that set it apart from the others (all of them are in the sweeps
+// table's params column).
 void list_sweeps(SweepStore& store, const std::string& format) {
+  const auto sweeps = store.sweeps();
+  std::vector<std::string> params;
+  for (const SweepRecord& r : sweeps) params.push_back(r.params);
+  const std::vector<std::string> keys = varying_options(params);
   Table t;
-  t.header = {"sweep", "created", "status", "units", "done", "version", "params"};
-  for (const SweepRecord& r : store.sweeps())
-    t.rows.push_back({r.id, r.created, r.status, r.units, r.done, r.version, r.params});
+  t.header = {"sweep", "created", "status", "units", "done", "version", "differs_in"};
+  for (const SweepRecord& r : sweeps)
+    t.rows.push_back({r.id, r.created, r.status, r.units, r.done, r.version, options_text(r.params, keys)});
   t.print(std::cout, format);
+}
+
+// A new sweep in a file that holds others: which one it is nearest, and in what it differs, so a
+// sweep meant to continue another is seen not to.
+void say_how_it_differs(SweepStore& store, const std::string& db, const std::string& params) {
+  std::int64_t nearest = 0;
+  std::vector<std::string> fewest;
+  for (const SweepRecord& r : store.sweeps()) {
+    if (r.params == params) return;  // the same sweep, continued
+    const auto keys = varying_options({r.params, params});
+    if (nearest == 0 || keys.size() < fewest.size()) nearest = r.id, fewest = keys;
+  }
+  if (nearest == 0) return;
+  std::string diff;
+  for (const std::string& k : fewest)
+    diff += (diff.empty() ? "" : ", ") + k + " " + options_text(store.sweep(nearest).params, {k}).substr(k.size() + 1) +
+            " -> " + options_text(params, {k}).substr(k.size() + 1);
+  std::cerr << "sweep: '" << db << "' holds " << store.sweeps().size() << " other sweep(s); this is a new one, "
+            << "nearest sweep " << nearest << ", which differs in: " << diff << "\n";
 }
 
 }  // namespace
@@ -156,6 +178,7 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd) {
 
   auto store = open_sweep_store(a.db, OpenMode::create);
   const std::string params = sweep_params_to_json(a.sweep);
+  if (!a.quiet) say_how_it_differs(*store, a.db, params);
   const std::int64_t id = store->find_or_create(params, a.sweep);
   const std::vector<SweepUnit> done = store->done_units(id);
   std::vector<SweepUnit> todo;
@@ -268,165 +291,6 @@ int run_sweep_report(const SweepReportArgs& a) {
                       m.stuck, m.timeout, m.diverged, m.passed ? nlohmann::json(m.mean_t) : nlohmann::json(),
                       m.passed > 1 ? nlohmann::json(m.standard_error) : nlohmann::json(), m.stuck_fraction, m.seconds});
   t.print(std::cout, a.format);
-  return 0;
-}
-
-int run_fit(const FitArgs& a) {
-  if (!a.plot.empty()) check_picture_path("--plot", a.plot);
-  if (!a.json_file.empty()) check_output_path("--json", a.json_file);
-  std::vector<FitPoint> points;
-  if (!a.points.empty()) {
-    std::ifstream in(a.points);
-    if (!in) throw std::runtime_error("--points '" + a.points + "': cannot read");
-    points = read_fit_points(in, a.points);
-  } else {
-    auto store = open_sweep_store(a.db, OpenMode::read_only);
-    for (const SweepPoint& p : sweep_points(store->media(pick_sweep(*store, a.sweep, a.db))))
-      if (p.passed > 1 && p.standard_error > 0) points.push_back({p.porosity, p.mean_t, p.standard_error});
-  }
-  const FitResult power = fit_law(FitLaw::power, points), log = fit_law(FitLaw::log, points);
-  for (const FitResult* r : {&power, &log})
-    if (!r->warning.empty()) std::cerr << "fit: warning: " << r->warning << '\n';
-  for (const FitResult* r : {&power, &log})
-    if (r->dof <= 0)
-      std::cerr << "fit: warning: " << to_string(r->law) << " law: " << points.size() << " points for "
-                << r->values.size() << " parameters leave 0 degrees of freedom; its errors and the AIC "
-                << "comparison mean nothing (sweep more porosities)\n";
-
-  nlohmann::ordered_json j;
-  j["version"] = kVersion;
-  j["points"] = points.size();
-  for (const FitResult* r : {&power, &log}) {
-    nlohmann::ordered_json f;
-    f["law"] = r->law == FitLaw::power ? "T = a - c phi^b" : "T = 1 - p ln(phi)";
-    for (std::size_t i = 0; i < r->names.size(); ++i) f[r->names[i]] = {{"value", r->values[i]}, {"error", r->errors[i]}};
-    f["chi2"] = r->chi2;
-    f["dof"] = r->dof;
-    f["reduced_chi2"] = r->reduced_chi2;
-    f["aic"] = r->aic;
-    f["residuals"] = r->residuals;
-    f["message"] = r->message;
-    if (!r->warning.empty()) f["warning"] = r->warning;
-    j[to_string(r->law)] = f;
-  }
-  j["delta_aic_log_minus_power"] = log.aic - power.aic;
-  j["preferred"] = power.dof <= 0 || log.dof <= 0 ? nlohmann::ordered_json(nullptr)
-                   : nlohmann::ordered_json(log.aic > power.aic ? "power" : "log");
-  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
-  if (a.format == "json") {
-    std::cout << j.dump(2) << '\n';
-  } else {
-    std::cout << points.size() << " points\n";
-    for (const FitResult* r : {&power, &log}) {
-      std::cout << (r->law == FitLaw::power ? "T = a - c phi^b  " : "T = 1 - p ln phi ");
-      for (std::size_t i = 0; i < r->names.size(); ++i)
-        std::cout << "  " << r->names[i] << " = " << fmt(r->values[i], 5) << " +- " << fmt(r->errors[i], 2);
-      std::cout << "   chi2 = " << fmt(r->chi2, 5) << " (dof " << r->dof << ", reduced " << fmt(r->reduced_chi2, 4)
-                << "), AIC = " << fmt(r->aic, 5) << "\n";
-    }
-    std::cout << "AIC(log) - AIC(power) = " << fmt(log.aic - power.aic, 4);
-    if (power.dof <= 0 || log.dof <= 0)
-      std::cout << " (no verdict: a fit with 0 degrees of freedom passes through every point)\n";
-    else
-      std::cout << (log.aic > power.aic ? " (the power law is preferred)\n" : " (the log law is preferred)\n");
-    std::cout << "phi         T          se         resid_power  resid_log\n";
-    for (std::size_t i = 0; i < points.size(); ++i) {
-      std::ostringstream row;
-      row << std::left << std::setw(12) << fmt(points[i].phi, 6) << std::setw(11) << fmt(points[i].t, 6) << std::setw(11)
-          << fmt(points[i].se, 3) << std::setw(13) << fmt(power.residuals[i], 3) << fmt(log.residuals[i], 3);
-      std::cout << row.str() << "\n";
-    }
-  }
-  if (!a.plot.empty()) {
-    Chart c;
-    Series data;
-    data.style = Series::Style::points;
-    data.width = 3.5;
-    data.colour = Rgba{0.1, 0.1, 0.1, 1};
-    data.label = "<T>, sweep";
-    for (const FitPoint& p : points) data.x.push_back(p.phi), data.y.push_back(p.t), data.err.push_back(p.se);
-    double lo = 1, hi = 0;
-    for (const FitPoint& p : points) lo = std::min(lo, p.phi), hi = std::max(hi, p.phi);
-    auto curve = [&](const FitResult& r, Rgba colour, const std::string& label) {
-      Series s;
-      s.colour = colour;
-      s.label = label;
-      for (int i = 0; i <= 100; ++i) {
-        const double phi = lo + (hi - lo) * i / 100.0;
-        s.x.push_back(phi);
-        s.y.push_back(fit_law_value(r.law, r.values, phi));
-      }
-      return s;
-    };
-    c.series = {curve(power, Rgba{0.8, 0.1, 0.1, 1},
-                      "a - c phi^b: a=" + fmt(power.values[0], 3) + " b=" + fmt(power.values[1], 3) + " c=" + fmt(power.values[2], 3)),
-                curve(log, Rgba{0.1, 0.3, 0.8, 1}, "1 - p ln phi: p=" + fmt(log.values[0], 3)), data};
-    c.x_label = "porosity phi";
-    c.y_label = "tortuosity <T>";
-    render_chart(c, RenderStyle{}, a.plot);
-  }
-  return 0;
-}
-
-namespace {
-// The paper averages 2 000 media in groups of 100 (20 groups); a smaller store gets the same
-// number of groups where it can, and at least 2 media a group so that a group averages something.
-int default_group(std::size_t media) {
-  const auto n = static_cast<int>(std::min<std::size_t>(media, 1'000'000));
-  return std::clamp(n / 20, std::min(2, std::max(n, 1)), 100);
-}
-}  // namespace
-
-int run_averagings(const AveragingArgs& args) {
-  AveragingArgs a = args;
-  if (a.group < 0) throw std::invalid_argument("group = " + std::to_string(a.group) + ": must be >= 1");
-  if (!a.plot.empty()) check_picture_path("--plot", a.plot);
-  if (!a.csv.empty()) check_output_path("--csv", a.csv);
-  auto store = open_sweep_store(a.db, OpenMode::read_only);
-  std::vector<MediumPoint> points;
-  for (const SweepMedium& m : store->media(pick_sweep(*store, a.sweep, a.db)))
-    if (m.passed > 0) points.push_back({m.porosity, m.mean_t});
-  if (points.empty()) throw std::invalid_argument(a.db + ": no medium with a passed droplet to average");
-  if (a.group == 0) {
-    a.group = default_group(points.size());
-    std::cerr << "averagings: groups of " << a.group << " (from the " << points.size()
-              << " media with a passed droplet; --group sets it)\n";
-  }
-  if (points.size() < static_cast<std::size_t>(a.group))
-    throw std::invalid_argument("group = " + std::to_string(a.group) + ": larger than the " +
-                                std::to_string(points.size()) + " media with a passed droplet (use --group " +
-                                std::to_string(default_group(points.size())) + ")");
-  const auto by_t = group_averages(points, AveragingType::by_t, a.group);
-  const auto by_phi = group_averages(points, AveragingType::by_phi, a.group);
-  Table t;
-  t.header = {"type", "phi", "t", "phi_se", "t_se", "count"};
-  for (const auto& [type, groups] : {std::pair{1, &by_t}, std::pair{2, &by_phi}})
-    for (const GroupAverage& g : *groups) t.rows.push_back({type, g.phi, g.t, g.phi_se, g.t_se, g.count});
-  t.print(std::cout, "table");
-  if (!a.csv.empty()) t.write_csv(a.csv);
-  if (!a.plot.empty()) {
-    Chart c;
-    Series cloud;
-    cloud.style = Series::Style::points;
-    cloud.width = 1.6;
-    cloud.colour = Rgba{0.6, 0.6, 0.6, 0.6};
-    cloud.label = "media (" + std::to_string(points.size()) + ")";
-    for (const MediumPoint& p : points) cloud.x.push_back(p.phi), cloud.y.push_back(p.t);
-    auto series = [](const std::vector<GroupAverage>& groups, Rgba colour, const std::string& label) {
-      Series s;
-      s.colour = colour;
-      s.label = label;
-      s.width = 2.5;
-      for (const GroupAverage& g : groups) s.x.push_back(g.phi), s.y.push_back(g.t), s.err.push_back(g.t_se);
-      return s;
-    };
-    c.series = {cloud, series(by_t, Rgba{0.8, 0.1, 0.1, 1}, "type 1: sorted by T"),
-                series(by_phi, Rgba{0.1, 0.3, 0.8, 1}, "type 2: sorted by phi")};
-    c.x_label = "porosity phi";
-    c.y_label = "tortuosity <T>";
-    c.title = "groups of " + std::to_string(a.group) + " media";
-    render_chart(c, RenderStyle{}, a.plot);
-  }
   return 0;
 }
 

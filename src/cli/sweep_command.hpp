@@ -11,6 +11,10 @@
 #include "cli/common_options.hpp"
 #include "softdrop/sweep.hpp"
 
+namespace softdrop {
+class SweepStore;
+}
+
 namespace softdrop::cli {
 
 struct SweepArgs {
@@ -60,7 +64,10 @@ std::pair<int, int> check_sweep(SweepArgs& args, const CLI::App& command);
 int run_sweep(SweepArgs& args, const CLI::App& command);
 int run_sweep_merge(const SweepMergeArgs& args);
 int run_sweep_report(const SweepReportArgs& args);
-int run_fit(const FitArgs& args);
+/// The sweep `id` of the store, or its only sweep when id is 0; throws std::invalid_argument
+/// naming the file when it holds none or several.
+std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db);
+int run_fit(const FitArgs& args);  // fit_command.cpp, as run_averagings
 int run_averagings(const AveragingArgs& args);
 
 }  // namespace softdrop::cli
