@@ -370,9 +370,14 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       set(cr, s.colour);
       cairo_set_line_width(cr, s.style == Series::Style::points ? 1.2 : s.width);
       if (!s.err.empty())
-        for (std::size_t i = 0; i < s.x.size(); ++i) {
-          cairo_move_to(cr, px(s.x[i]), py(s.y[i] - s.err[i]));
-          cairo_line_to(cr, px(s.x[i]), py(s.y[i] + s.err[i]));
+        for (std::size_t i = 0; i < s.x.size(); ++i) {  // the bar and its caps
+          const double x = px(s.x[i]), lo = py(s.y[i] - s.err[i]), hi = py(s.y[i] + s.err[i]), cap = 0.3 * font;
+          cairo_move_to(cr, x, lo);
+          cairo_line_to(cr, x, hi);
+          cairo_move_to(cr, x - cap, lo);
+          cairo_line_to(cr, x + cap, lo);
+          cairo_move_to(cr, x - cap, hi);
+          cairo_line_to(cr, x + cap, hi);
           cairo_stroke(cr);
         }
       if (s.style == Series::Style::points) {

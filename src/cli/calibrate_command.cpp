@@ -176,8 +176,8 @@ void plot_best(const std::vector<const Row*>& ranked, int best, const std::strin
     s.label = r->label + " (score " + fmt(r->result.score, 3) + ")";
     if (!s.x.empty()) c.series.push_back(std::move(s)), ++drawn;
   }
-  c.x_label = "porosity phi";
-  c.y_label = "mean tortuosity <T>";
+  c.x_label = "porosity φ";
+  c.y_label = "mean tortuosity ⟨T⟩";
   c.title = "calibration: the best settings against the paper";
   render_chart(c, RenderStyle{}, path);
 }

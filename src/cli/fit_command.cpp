@@ -91,7 +91,7 @@ int run_fit(const FitArgs& a) {
     data.style = Series::Style::points;
     data.width = 3.5;
     data.colour = Rgba{0.1, 0.1, 0.1, 1};
-    data.label = "<T>, sweep";
+    data.label = "⟨T⟩ ± standard error";
     for (const FitPoint& p : points) data.x.push_back(p.phi), data.y.push_back(p.t), data.err.push_back(p.se);
     double lo = 1, hi = 0;
     for (const FitPoint& p : points) lo = std::min(lo, p.phi), hi = std::max(hi, p.phi);
@@ -106,11 +106,14 @@ int run_fit(const FitArgs& a) {
       }
       return s;
     };
+    auto value = [](const FitResult& r, std::size_t i) {
+      return r.names[i] + " = " + fmt(r.values[i], 3) + " ± " + fmt(r.errors[i], 2);
+    };
     c.series = {curve(power, Rgba{0.8, 0.1, 0.1, 1},
-                      "a - c phi^b: a=" + fmt(power.values[0], 3) + " b=" + fmt(power.values[1], 3) + " c=" + fmt(power.values[2], 3)),
-                curve(log, Rgba{0.1, 0.3, 0.8, 1}, "1 - p ln phi: p=" + fmt(log.values[0], 3)), data};
-    c.x_label = "porosity phi";
-    c.y_label = "tortuosity <T>";
+                      "a − c φᵇ: " + value(power, 0) + ", " + value(power, 1) + ", " + value(power, 2)),
+                curve(log, Rgba{0.1, 0.3, 0.8, 1}, "1 − p ln φ: " + value(log, 0)), data};
+    c.x_label = "porosity φ";
+    c.y_label = "tortuosity ⟨T⟩";
     render_chart(c, RenderStyle{}, a.plot);
   }
   return 0;
@@ -170,8 +173,8 @@ int run_averagings(const AveragingArgs& args) {
     };
     c.series = {cloud, series(by_t, Rgba{0.8, 0.1, 0.1, 1}, "type 1: sorted by T"),
                 series(by_phi, Rgba{0.1, 0.3, 0.8, 1}, "type 2: sorted by phi")};
-    c.x_label = "porosity phi";
-    c.y_label = "tortuosity <T>";
+    c.x_label = "porosity φ";
+    c.y_label = "tortuosity ⟨T⟩";
     c.title = "groups of " + std::to_string(a.group) + " media";
     render_chart(c, RenderStyle{}, a.plot);
   }

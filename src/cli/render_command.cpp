@@ -334,8 +334,8 @@ int render_trace(RenderArgs& a) {
   c.markers = {enter};
   c.marker_labels = {"enters"};
   if (!std::isnan(leave)) c.markers.push_back(leave), c.marker_labels.push_back("leaves");
-  c.x_label = "time t";
-  c.y_label = "area ratio S(t) / S0";
+  c.x_label = "time t (time units)";
+  c.y_label = "area ratio S(t) / S₀";
   c.title = std::string(to_string(whole.outcome)) + (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") +
             "; " + describe(medium);
   if (!a.csv.empty()) write_area_traces(a.csv, {trace});
