@@ -272,6 +272,18 @@ TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
   EXPECT_EQ(read_png(png).width, 400);
 }
 
+// Passed and stuck droplets in their own colours.
+TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
+  const std::string svg = fresh("paths_colours.svg");
+  const test::Result ok = test::run("render paths --porosity 0.75 --width 200 --height 200 --droplets 8 --seed 1 "
+                                    "--path-colour '#ff0000' --stuck-colour '#0000ff' -o " + svg);
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  std::ifstream in(svg);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("rgb(100%,0%,0%)"), std::string::npos) << "passed paths";
+  EXPECT_NE(text.find("rgb(0%,0%,100%)"), std::string::npos) << "stuck paths";
+}
+
 TEST(RenderCli, CurvesDrawSeveralSearchesAndNameWhatTheyCannotDraw) {
   const std::string a = fresh("curves-a-1.db"), b = fresh("curves-a-2.db"), png = fresh("curves.png");
   const std::string search = " --grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 "

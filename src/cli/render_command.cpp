@@ -54,6 +54,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   p->add_option("--droplets", a.batch.droplets, "Droplets from random starts")->capture_default_str();
   p->add_option("--seed", a.batch.seed, "Seed of the start positions")->capture_default_str()->check(seed_check());
   p->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
+  p->add_option("--stuck-colour", a.stuck_colour, "Path colour of droplets that did not pass")->capture_default_str();
   p->add_option("--alpha", a.alpha, "Opacity of one path (0: automatic, 10 / droplets, at least 0.03)")->capture_default_str();
 
   CLI::App* q = r->add_subcommand("search", "A search's best configuration, its path, earlier paths, touched grains");
@@ -122,6 +123,23 @@ Polyline path_line(const std::vector<double>& x, const std::vector<double>& y, R
   p.y = y;
   p.colour = colour;
   p.width = width;
+  return p;
+}
+
+// The part of a path inside or below the medium (y <= top): the start above it is cut at y = top.
+Polyline below_top(Polyline p, double top) {
+  std::size_t first = 0;
+  while (first < p.y.size() && p.y[first] > top) ++first;
+  if (first == p.y.size()) return Polyline{{}, {}, p.colour, p.width};
+  if (first > 0) {  // the crossing of y = top, between the last point above and the first below
+    const std::size_t i = first - 1;
+    const double f = (p.y[i] - top) / (p.y[i] - p.y[first]);
+    p.x[i] += f * (p.x[first] - p.x[i]);
+    p.y[i] = top;
+    first = i;
+  }
+  p.x.erase(p.x.begin(), p.x.begin() + static_cast<std::ptrdiff_t>(first));
+  p.y.erase(p.y.begin(), p.y.begin() + static_cast<std::ptrdiff_t>(first));
   return p;
 }
 
@@ -198,11 +216,14 @@ int render_paths(RenderArgs& a) {
   const auto runs = run_batch(a.droplet, scene.medium, run, a.batch,
                               [&](int done, int total) { progress.update(done, total); });
   const double alpha = a.alpha > 0 ? a.alpha : std::min(1.0, std::max(0.03, 10.0 / a.batch.droplets));
-  Rgba colour = parse_colour(a.path_colour);
-  colour.a = alpha;
-  for (const RunSummary& r : runs) scene.lines.push_back(path_line(r.path_x, r.path_y, colour, 1.5));
+  Rgba passed = parse_colour(a.path_colour), stuck = parse_colour(a.stuck_colour);
+  passed.a = stuck.a = alpha;
+  for (const RunSummary& r : runs)
+    scene.lines.push_back(below_top(path_line(r.path_x, r.path_y, r.outcome == Outcome::passed ? passed : stuck, 1.5),
+                                    scene.medium.height));
   const BatchStats stats = summarize(runs);
-  scene.caption = std::to_string(stats.droplets) + " droplets, " + std::to_string(stats.passed) + " passed" +
+  scene.caption = std::to_string(stats.droplets) + " droplets: " + std::to_string(stats.passed) + " passed, " +
+                  std::to_string(stats.droplets - stats.passed) + " did not" +
                   (stats.passed ? ", <T> = " + fmt(stats.mean_tortuosity, 4) : "") + "; " + describe(scene.medium);
   render_scene(scene, style, a.output);
   return 0;
