@@ -125,20 +125,40 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
   cairo_save(cr);
   cairo_rectangle(cr, px(0), py(g.y1), g.scale * m.width, g.scale * (g.y1 - g.y0));
   cairo_clip(cr);
-  // Grains, with their periodic images at the edges; each grain is one path.
-  for (std::size_t i = 0; i < m.grains.size(); ++i) {
-    const Grain& gr = m.grains[i];
-    const bool fill = i < scene.filled.size() && scene.filled[i];
+  // Grains, with their periodic images at the edges; each grain is one path (or, solid, all of
+  // them one path, filled with the nonzero rule: their union).
+  auto images = [&](const Grain& gr) {
     std::vector<double> xs{gr.x};
     if (m.periodic) {
       if (gr.x - gr.r < 0) xs.push_back(gr.x + m.width);
       if (gr.x + gr.r > m.width) xs.push_back(gr.x - m.width);
     }
-    for (double x : xs) {
+    return xs;
+  };
+  if (style.solid_grains) {
+    cairo_new_path(cr);
+    for (const Grain& gr : m.grains)
+      for (double x : images(gr)) {
+        cairo_new_sub_path(cr);
+        cairo_arc(cr, px(x), py(gr.y), g.scale * gr.r, 0, 2 * M_PI);
+      }
+    set(cr, style.solid);
+    cairo_set_fill_rule(cr, CAIRO_FILL_RULE_WINDING);
+    cairo_fill(cr);
+  }
+  for (std::size_t i = 0; i < m.grains.size(); ++i) {
+    const Grain& gr = m.grains[i];
+    const bool fill = i < scene.filled.size() && scene.filled[i];
+    if (style.solid_grains && !fill) continue;
+    for (double x : images(gr)) {
       cairo_new_path(cr);
       cairo_arc(cr, px(x), py(gr.y), g.scale * gr.r, 0, 2 * M_PI);
       if (fill) {
         set(cr, style.touched);
+        if (style.solid_grains) {
+          cairo_fill(cr);
+          continue;
+        }
         cairo_fill_preserve(cr);
       }
       set(cr, style.grain);

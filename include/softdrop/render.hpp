@@ -36,6 +36,10 @@ struct RenderStyle {
   Rgba box{0.55, 0.55, 0.55, 1};         ///< the medium's box
   Rgba text{0, 0, 0, 1};
   double grain_line = 1.2;
+  /// Draw the grains as one solid region, the union of the discs in `solid` (touched ones in
+  /// `touched`), not as outlines: for overlapping grains, whose outlines would cross inside solid.
+  bool solid_grains = false;
+  Rgba solid{0.70, 0.73, 0.78, 1};
   double margin = 12;
   bool caption = true;                   ///< a line of text under the picture
 

@@ -110,6 +110,23 @@ Medium medium_of(RenderArgs& a) {
   return a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
 }
 
+// Whether any two grains overlap (sorted by their left edge, each compared with those that start
+// before it ends; periodic images are not needed for the answer in any medium of many grains).
+bool grains_overlap(const Medium& m) {
+  std::vector<Grain> g = m.grains;
+  std::sort(g.begin(), g.end(), [](const Grain& a, const Grain& b) { return a.x - a.r < b.x - b.r; });
+  for (std::size_t i = 0; i < g.size(); ++i)
+    for (std::size_t j = i + 1; j < g.size() && g[j].x - g[j].r < g[i].x + g[i].r; ++j)
+      if (std::hypot(g[i].x - g[j].x, g[i].y - g[j].y) < g[i].r + g[j].r) return true;
+  return false;
+}
+
+// Overlapping grains are drawn as their solid union; others as outlined discs.
+void draw(const Scene& scene, RenderStyle style, const std::string& path) {
+  style.solid_grains = grains_overlap(scene.medium);
+  render_scene(scene, style, path);
+}
+
 std::string describe(const Medium& m) {
   std::ostringstream s;
   s << m.grains.size() << " grains, porosity " << fmt(exact_porosity(m), 4) << ", " << m.width << " x " << m.height
@@ -155,7 +172,7 @@ int render_medium(RenderArgs& a) {
   scene.medium = medium_of(a);
   scene.caption = describe(scene.medium);
   scene.top_room = 0;
-  render_scene(scene, style_of(a), a.output);
+  draw(scene, style_of(a), a.output);
   return 0;
 }
 
@@ -198,7 +215,7 @@ int render_snapshots(RenderArgs& a) {
   if (r.snapshots.size() < a.times.size())
     std::cerr << "render: " << a.times.size() - r.snapshots.size() << " snapshot time(s) after the run ended ("
               << to_string(r.outcome) << " at t = " << fmt(static_cast<double>(r.steps) * a.droplet.dt, 4) << ")\n";
-  render_scene(scene, style, a.output);
+  draw(scene, style, a.output);
   return 0;
 }
 
@@ -225,7 +242,7 @@ int render_paths(RenderArgs& a) {
   scene.caption = std::to_string(stats.droplets) + " droplets: " + std::to_string(stats.passed) + " passed, " +
                   std::to_string(stats.droplets - stats.passed) + " did not" +
                   (stats.passed ? ", <T> = " + fmt(stats.mean_tortuosity, 4) : "") + "; " + describe(scene.medium);
-  render_scene(scene, style, a.output);
+  draw(scene, style, a.output);
   return 0;
 }
 
@@ -259,7 +276,7 @@ int render_search(RenderArgs& a) {
   scene.caption = "run " + std::to_string(a.run_id) + ", generation " + std::to_string(best.generation) +
                   ": T = " + fmt(best.eval.tortuosity, 5) + ", " + std::to_string(best.eval.touched.size()) +
                   " grains touched (filled); " + describe(best.medium);
-  render_scene(scene, style, a.output);
+  draw(scene, style, a.output);
   if (!a.curve.empty()) {
     // The curve continues flat to the last stored generation.
     curve.x.push_back(static_cast<double>(std::max(best.generation, a.generation < 0 ? run.generations : a.generation)));
@@ -280,8 +297,9 @@ int render_search(RenderArgs& a) {
 int render_animation_command(RenderArgs& a) {
   if (!std::isfinite(a.speed) || a.speed <= 0) throw std::invalid_argument("speed = " + fmt(a.speed) + ": must be > 0");
   if (!std::isfinite(a.fps) || a.fps <= 0 || a.fps > 100) throw std::invalid_argument("fps = " + fmt(a.fps) + ": must be in (0, 100]");
-  const RenderStyle style = style_of(a);
+  RenderStyle style = style_of(a);
   const Medium medium = medium_of(a);
+  style.solid_grains = grains_overlap(medium);
   const double x0 = start_of(a, medium);
   // First the whole run (deterministic), to know its length; then a replay that draws frames.
   Simulation sim(a.droplet, medium);
