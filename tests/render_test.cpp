@@ -272,6 +272,26 @@ TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
   EXPECT_EQ(read_png(png).width, 400);
 }
 
+// Overlapping grains are one solid region (one filled path, no outlines); separate grains outlines.
+TEST(RenderCli, OverlappingGrainsAreDrawnAsTheirSolidUnion) {
+  auto colours = [](const std::string& kind) {
+    const std::string svg = fresh("union_" + kind + ".svg");
+    EXPECT_EQ(test::run("render medium --kind " + kind + " --porosity 0.8 --width 100 --height 100 -o " + svg).code, 0);
+    std::ifstream in(svg);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    int solid = 0, outlines = 0;
+    for (std::size_t at = 0; (at = text.find("rgb(", at)) != std::string::npos; ++at) {
+      solid += text.compare(at, 16, "rgb(70%,73%,78%)") == 0;
+      outlines += text.compare(at, 14, "rgb(12.156863%") == 0;  // the default grain colour
+    }
+    return std::pair{solid, outlines};
+  };
+  EXPECT_EQ(colours("overlapping"), std::pair(1, 0));
+  const auto [solid, outlines] = colours("non-overlapping");
+  EXPECT_EQ(solid, 0);
+  EXPECT_GT(outlines, 3);
+}
+
 // Passed and stuck droplets in their own colours.
 TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
   const std::string svg = fresh("paths_colours.svg");
