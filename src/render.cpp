@@ -188,6 +188,15 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
       cairo_stroke(cr);
     }
   }
+  if (!scene.labels.empty()) {
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
+    cairo_set_font_size(cr, std::max(9.0, 0.016 * g.width));
+    for (const Label& l : scene.labels) {
+      set(cr, l.colour);
+      cairo_move_to(cr, px(l.x), py(l.y));
+      cairo_show_text(cr, l.text.c_str());
+    }
+  }
   cairo_restore(cr);
 
   // The medium's box (dashed above the top, where the droplet starts).

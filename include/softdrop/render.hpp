@@ -56,10 +56,18 @@ struct Polyline {
 };
 
 /// What to draw: a medium, grains to fill, polylines on top, a caption.
+/// A short text at a point of the medium (its left end; medium coordinates, y up).
+struct Label {
+  double x = 0, y = 0;
+  std::string text;
+  Rgba colour{0, 0, 0, 1};
+};
+
 struct Scene {
   Medium medium;
   std::vector<std::uint8_t> filled;  ///< per grain, nonzero: fill it (touched grains)
   std::vector<Polyline> lines;
+  std::vector<Label> labels;         ///< drawn on top of everything in the box
   std::string caption;
   /// Extra room above the medium (length units) so that droplets starting above it are seen;
   /// -1: fit the polylines.

@@ -208,6 +208,12 @@ int render_snapshots(RenderArgs& a) {
       const double shift = std::floor(cx / scene.medium.width) * scene.medium.width;
       for (double& x : ring.x) x -= shift;
     }
+    // Its time, just right of the ring.
+    const double right = *std::max_element(ring.x.begin(), ring.x.end());
+    double cy = 0;
+    for (double y : ring.y) cy += y;
+    scene.labels.push_back({right + 0.3 * a.droplet.radius, cy / static_cast<double>(ring.y.size()),
+                            "t = " + fmt(sn.time, 4), Rgba{droplet.r, droplet.g, droplet.b, 1}});
     scene.lines.push_back(std::move(ring));
   }
   scene.caption = std::to_string(r.snapshots.size()) + " snapshots; " + to_string(r.outcome) +
