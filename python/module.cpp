@@ -1,0 +1,244 @@
+// The `softdrop` Python module's compiled core (`softdrop._core`): media, droplets and runs on the
+// same libraries as the command line, so the same inputs give the same bits. Long runs release
+// the GIL and stop on Ctrl-C (KeyboardInterrupt). Bad arguments raise ValueError with the
+// library's one-line message.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "softdrop/batch.hpp"
+#include "softdrop/droplet.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/porosity.hpp"
+#include "softdrop/simulation.hpp"
+#include "softdrop/version.hpp"
+
+namespace py = pybind11;
+using namespace softdrop;
+
+namespace {
+
+// Sets the attributes named by keyword arguments, refusing a name the object does not have.
+void set_keywords(py::object self, const py::kwargs& kwargs) {
+  for (const auto& [key, value] : kwargs) {
+    const std::string name = py::str(key);
+    if (!py::hasattr(self, name.c_str()))
+      throw std::invalid_argument(name + ": not a parameter of " + std::string(py::str(self.get_type().attr("__name__"))));
+    py::setattr(self, name.c_str(), value);
+  }
+}
+
+// Ctrl-C in the interpreter stops a run: polled through RunOptions::cancelled, with the GIL taken
+// for the check only.
+RunOptions interruptible(RunOptions run, bool* interrupted) {
+  run.cancelled = [interrupted] {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      *interrupted = true;
+      return true;
+    }
+    return false;
+  };
+  return run;
+}
+
+py::array_t<double> grain_array(const Medium& m) {
+  py::array_t<double> a({static_cast<py::ssize_t>(m.grains.size()), py::ssize_t{3}});
+  auto v = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < m.grains.size(); ++i) {
+    const auto k = static_cast<py::ssize_t>(i);
+    v(k, 0) = m.grains[i].x, v(k, 1) = m.grains[i].y, v(k, 2) = m.grains[i].r;
+  }
+  return a;
+}
+
+// A boolean image of the box, rows from the top: True in the pore space (PoreSpy's convention).
+py::array_t<bool> pore_image(const Medium& m, int pixels) {
+  if (pixels < 1 || pixels > 20000) throw std::invalid_argument("pixels = " + std::to_string(pixels) + ": must be in [1, 20000]");
+  const double scale = pixels / m.width;
+  const auto rows = static_cast<py::ssize_t>(std::max(1.0, std::round(m.height * scale)));
+  py::array_t<bool> image({rows, static_cast<py::ssize_t>(pixels)});
+  auto v = image.mutable_unchecked<2>();
+  for (py::ssize_t r = 0; r < rows; ++r)
+    for (py::ssize_t c = 0; c < pixels; ++c) v(r, c) = true;
+  for (const Grain& g : m.grains)  // each grain clears the pixels whose centres it covers
+    for (int image_shift : {-1, 0, 1}) {
+      if (image_shift != 0 && !m.periodic) continue;
+      const double gx = g.x + image_shift * m.width;
+      const auto c0 = std::max<py::ssize_t>(0, static_cast<py::ssize_t>(std::floor((gx - g.r) * scale)));
+      const auto c1 = std::min<py::ssize_t>(pixels - 1, static_cast<py::ssize_t>(std::ceil((gx + g.r) * scale)));
+      for (py::ssize_t c = c0; c <= c1; ++c) {
+        const double x = (static_cast<double>(c) + 0.5) / scale - gx;
+        if (std::abs(x) > g.r) continue;
+        const double half = std::sqrt(g.r * g.r - x * x);
+        for (py::ssize_t r = 0; r < rows; ++r) {
+          const double y = m.height - (static_cast<double>(r) + 0.5) / scale;
+          if (std::abs(y - g.y) <= half) v(r, c) = false;
+        }
+      }
+    }
+  return image;
+}
+
+py::dict summary_dict(const RunSummary& s, bool with_path) {
+  py::dict d;
+  d["outcome"] = to_string(s.outcome);
+  d["reason"] = s.reason;
+  d["tortuosity"] = s.outcome == Outcome::passed ? s.tortuosity : std::numeric_limits<double>::quiet_NaN();
+  d["steps"] = s.steps;
+  d["start_x"] = s.start_x;
+  d["touched"] = s.touched;
+  d["min_area_ratio"] = s.min_area_ratio;
+  d["max_penetration"] = s.max_penetration;
+  if (with_path) {
+    py::array_t<double> path({static_cast<py::ssize_t>(s.path_t.size()), py::ssize_t{3}});
+    auto v = path.mutable_unchecked<2>();
+    for (std::size_t i = 0; i < s.path_t.size(); ++i) {
+      const auto k = static_cast<py::ssize_t>(i);
+      v(k, 0) = s.path_t[i], v(k, 1) = s.path_x[i], v(k, 2) = s.path_y[i];
+    }
+    d["path"] = path;
+  }
+  return d;
+}
+
+void check(const DropletParams& params, const RunOptions& run) {
+  std::string why;
+  if (!params.IsValid(&why) || !run.IsValid(&why)) throw std::invalid_argument(why);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+  m.doc() = "softdrop's compiled core; use the softdrop package";
+  m.attr("__version__") = kVersion;
+
+  py::class_<DropletParams>(m, "DropletParams", "The droplet, in the paper's numerical units (see docs/model.md)")
+      .def(py::init([](const py::kwargs& kw) {
+        auto p = py::cast(DropletParams{});
+        set_keywords(p, kw);
+        return p.cast<DropletParams>();
+      }))
+      .def_readwrite("masses", &DropletParams::masses)
+      .def_readwrite("mass", &DropletParams::mass)
+      .def_readwrite("radius", &DropletParams::radius)
+      .def_readwrite("nrt", &DropletParams::nrt)
+      .def_readwrite("ks", &DropletParams::ks)
+      .def_readwrite("kd", &DropletParams::kd)
+      .def_readwrite("kc", &DropletParams::kc)
+      .def_readwrite("cc", &DropletParams::cc)
+      .def_readwrite("gravity", &DropletParams::gravity)
+      .def_readwrite("dt", &DropletParams::dt)
+      .def_readwrite("max_strain", &DropletParams::max_strain)
+      .def_readwrite("constraint_iterations", &DropletParams::constraint_iterations)
+      .def_readwrite("max_depth", &DropletParams::max_depth)
+      .def_readwrite("viscosity", &DropletParams::viscosity);
+
+  py::class_<RunOptions>(m, "RunOptions", "When a run ends, and what it records")
+      .def(py::init([](const py::kwargs& kw) {
+        auto r = py::cast(RunOptions{});
+        set_keywords(r, kw);
+        return r.cast<RunOptions>();
+      }))
+      .def_readwrite("max_steps", &RunOptions::max_steps)
+      .def_readwrite("stuck_window", &RunOptions::stuck_window)
+      .def_readwrite("stuck_distance", &RunOptions::stuck_distance)
+      .def_readwrite("rest_window", &RunOptions::rest_window)
+      .def_readwrite("rest_distance", &RunOptions::rest_distance)
+      .def_readwrite("path_interval", &RunOptions::path_interval);
+
+  py::class_<Medium>(m, "Medium", "A box of disc grains (length units)")
+      .def_static(
+          "generate",
+          [](const std::string& kind, double porosity, double width, double height, double r_min, double r_max,
+             std::uint64_t seed, double gap, bool periodic, int grains) {
+            MediumOptions o;
+            o.kind = parse_medium_kind(kind);
+            o.porosity = porosity, o.width = width, o.height = height, o.r_min = r_min, o.r_max = r_max;
+            o.seed = seed, o.gap = gap, o.periodic = periodic, o.grains = grains;
+            std::string why;
+            if (!o.IsValid(&why)) throw std::invalid_argument(why);
+            py::gil_scoped_release release;
+            return generate_medium(o);
+          },
+          py::arg("kind") = "overlapping", py::arg("porosity") = 0.8, py::arg("width") = 500.0,
+          py::arg("height") = 500.0, py::arg("r_min") = 8.0, py::arg("r_max") = 16.0, py::arg("seed") = 1,
+          py::arg("gap") = 0.13, py::arg("periodic") = true, py::arg("grains") = 0,
+          "A random medium, as `softdrop simulate` generates it (the same options give the same grains)")
+      .def_static(
+          "from_arrays",
+          [](const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& r, double width,
+             double height, bool periodic) {
+            if (x.size() != y.size() || x.size() != r.size())
+              throw std::invalid_argument("x, y, r: must have the same length");
+            Medium med;
+            med.width = width, med.height = height, med.periodic = periodic;
+            for (std::size_t i = 0; i < x.size(); ++i) med.grains.push_back({x[i], y[i], r[i]});
+            std::string why;
+            if (!med.IsValid(&why)) throw std::invalid_argument(why);
+            return med;
+          },
+          py::arg("x"), py::arg("y"), py::arg("r"), py::arg("width"), py::arg("height"), py::arg("periodic") = true)
+      .def_static("load", [](const std::string& path) { return load_medium(path); }, py::arg("path"),
+                  "Reads a grain file (.json, or CSV)")
+      .def("save", [](const Medium& med, const std::string& path) { save_medium(path, med); }, py::arg("path"))
+      .def_readonly("width", &Medium::width)
+      .def_readonly("height", &Medium::height)
+      .def_readonly("periodic", &Medium::periodic)
+      .def_property_readonly("grains", &grain_array, "N x 3 array of x, y, r")
+      .def("porosity", &exact_porosity, "The exact void fraction of the box")
+      .def("to_image", &pore_image, py::arg("pixels"),
+           "Boolean image, `pixels` wide, rows from the top: True in the pore space")
+      .def("__len__", [](const Medium& med) { return med.grains.size(); })
+      .def("__repr__", [](const Medium& med) {
+        return "<softdrop.Medium: " + std::to_string(med.grains.size()) + " grains, " + std::to_string(med.width) +
+               " x " + std::to_string(med.height) + (med.periodic ? ", periodic>" : ", walls>");
+      });
+
+  m.def(
+      "_simulate",
+      [](const Medium& medium, double x0, const DropletParams& params, const RunOptions& run, bool path) {
+        check(params, run);
+        RunOptions options = run;
+        if (path && options.path_interval == 0) options.path_interval = 100;
+        bool interrupted = false;
+        RunSummary s;
+        {
+          py::gil_scoped_release release;
+          Simulation sim(params, medium);
+          if (!(x0 >= 0 && x0 <= medium.width)) throw std::invalid_argument("x0 = " + std::to_string(x0) + ": must be in [0, width]");
+          try {
+            s = sim.run(x0, interruptible(options, &interrupted));
+          } catch (const RunCancelled&) {
+          }
+        }
+        if (interrupted) throw py::error_already_set();
+        return summary_dict(s, path);
+      },
+      py::arg("medium"), py::arg("x0"), py::arg("params"), py::arg("run"), py::arg("path"));
+
+  m.def(
+      "_simulate_many",
+      [](const Medium& medium, int droplets, std::uint64_t seed, int threads, const DropletParams& params,
+         const RunOptions& run) {
+        check(params, run);
+        if (droplets < 1 || droplets > 10'000'000) throw std::invalid_argument("n = " + std::to_string(droplets) + ": must be in [1, 1e7]");
+        BatchOptions batch;
+        batch.droplets = droplets, batch.seed = seed, batch.threads = threads;
+        std::vector<RunSummary> runs;
+        {
+          py::gil_scoped_release release;
+          runs = run_batch(params, medium, run, batch, {});
+        }
+        py::list out;
+        for (const RunSummary& s : runs) out.append(summary_dict(s, false));
+        return out;
+      },
+      py::arg("medium"), py::arg("n"), py::arg("seed"), py::arg("threads"), py::arg("params"), py::arg("run"));
+}

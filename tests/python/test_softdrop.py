@@ -1,0 +1,94 @@
+"""The Python module against the program: the same inputs give the same bits; data frames have
+the program's columns; bad input raises ValueError with the library's one-line message."""
+import json
+import math
+import os
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import softdrop
+
+CLI = os.environ["SOFTDROP_CLI"]
+
+
+def cli(*args):
+    done = subprocess.run([CLI, *args], capture_output=True, text=True, check=True)
+    return done.stdout
+
+
+def test_one_droplet_has_the_programs_bits():
+    medium = softdrop.Medium.generate()
+    run = softdrop.simulate(medium, x0=250, path=True)
+    theirs = json.loads(cli("simulate", "--x0", "250", "--format", "json"))
+    assert run.outcome == theirs["run"]["outcome"] == "passed"
+    assert run.tortuosity == theirs["run"]["tortuosity"]  # exactly
+    assert run.steps == theirs["run"]["steps"]
+    assert len(run.touched) == theirs["run"]["touched"]
+    assert run.path.shape[1] == 3 and run.path.shape[0] > 10
+    assert medium.porosity() == theirs["medium"]["porosity"]
+
+
+def test_many_droplets_are_the_programs_rows(tmp_path):
+    medium = softdrop.Medium.generate(width=200, height=200)
+    frame = softdrop.simulate_many(medium, 12, seed=3, threads=2)
+    csv = tmp_path / "runs.csv"
+    cli("simulate", "--width", "200", "--height", "200", "--droplets", "12", "--seed", "3", "--runs", str(csv), "--quiet")
+    theirs = pd.read_csv(csv, float_precision="round_trip")  # the default parser may miss the last bit
+    assert list(frame.columns) == list(theirs.columns) + ["reason"]
+    for column in ["start_x", "steps", "touched", "min_area_ratio", "max_penetration"]:
+        assert frame[column].tolist() == theirs[column].tolist(), column
+    assert frame["outcome"].tolist() == theirs["outcome"].tolist()
+    passed = frame["outcome"] == "passed"
+    assert frame.loc[passed, "tortuosity"].tolist() == theirs.loc[passed, "tortuosity"].tolist()
+    assert frame.loc[~passed, "tortuosity"].isna().all()
+    assert frame.dtypes["steps"] == np.int64 and frame.dtypes["tortuosity"] == np.float64
+
+
+def test_media_as_arrays_files_and_images(tmp_path):
+    medium = softdrop.Medium.generate("non-overlapping", porosity=0.8, width=200, height=200, seed=4)
+    grains = medium.grains
+    assert grains.shape == (len(medium), 3)
+    again = softdrop.Medium.from_arrays(grains[:, 0], grains[:, 1], grains[:, 2], medium.width, medium.height)
+    assert np.array_equal(again.grains, grains) and again.porosity() == medium.porosity()
+    path = tmp_path / "m.csv"
+    medium.save(str(path))
+    assert np.array_equal(softdrop.Medium.load(str(path)).grains, grains)
+    theirs = tmp_path / "theirs.json"
+    cli("simulate", "--kind", "non-overlapping", "--porosity", "0.8", "--width", "200", "--height", "200",
+        "--medium-seed", "4", "--save-medium", str(theirs))
+    assert np.array_equal(softdrop.Medium.load(str(theirs)).grains, grains)
+    image = medium.to_image(400)
+    assert image.shape == (400, 400) and image.dtype == bool
+    assert abs(image.mean() - medium.porosity()) < 0.01  # pore fraction of the pixels
+
+
+@pytest.mark.parametrize("call, says", [
+    (lambda: softdrop.Medium.generate(porosity=1.5), "porosity = 1.5: must be in (0, 1)"),
+    (lambda: softdrop.Medium.generate(kind="sponge"), "sponge"),
+    (lambda: softdrop.Medium.from_arrays([1, 2], [1], [3, 3], 100, 100), "x, y, r: must have the same length"),
+    (lambda: softdrop.DropletParams(masess=30), "masess: not a parameter of DropletParams"),
+    (lambda: softdrop.simulate(softdrop.Medium.generate(width=100, height=100), params=softdrop.DropletParams(masses=-3)),
+     "masses"),
+    (lambda: softdrop.simulate(softdrop.Medium.generate(width=100, height=100), x0=-5), "x0 = "),
+    (lambda: softdrop.simulate_many(softdrop.Medium.generate(width=100, height=100), 0), "n = 0"),
+])
+def test_bad_input_raises_value_error_naming_it(call, says):
+    with pytest.raises(ValueError) as error:
+        call()
+    assert says in str(error.value)
+    assert "\n" not in str(error.value)
+
+
+def test_a_missing_grain_file_is_named():
+    with pytest.raises(Exception) as error:
+        softdrop.Medium.load("/nonexistent/grains.json")
+    assert "/nonexistent/grains.json" in str(error.value)
+
+
+def test_run_options_end_runs_as_the_program_does():
+    medium = softdrop.Medium.generate(width=200, height=200)
+    run = softdrop.simulate(medium, x0=20, run=softdrop.RunOptions(max_steps=50))
+    assert run.outcome == "timeout" and run.steps == 50 and math.isnan(run.tortuosity)
