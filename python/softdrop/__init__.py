@@ -8,10 +8,11 @@ for bit. Lengths, times and masses are in the paper's numerical units (see docs/
     run = softdrop.simulate(medium, x0=200, path=True)
     table = softdrop.simulate_many(medium, 200, seed=3)   # a pandas DataFrame
 """
-from ._core import DropletParams, Medium, RunOptions, __version__  # noqa: F401
+from ._core import DropletParams, Medium, RunOptions, StoreError, __version__  # noqa: F401
 from . import _core
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "simulate", "simulate_many", "__version__"]
+__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "read_history",
+           "best_arrangement", "__version__"]
 
 
 class Result(dict):
@@ -44,3 +45,24 @@ def simulate_many(medium, n, seed=1, threads=0, params=None, run=None):
     frame["touched"] = frame["touched"].map(len)
     return frame[["droplet", "start_x", "outcome", "tortuosity", "steps", "touched", "min_area_ratio",
                   "max_penetration", "reason"]]
+
+
+def read_history(db):
+    """A search history (the SQLite file of `softdrop optimize`), read by the program's own store:
+    a dict of pandas DataFrames `runs`, `generations` and `candidates` (one row a run, generation,
+    candidate; the columns of the database's tables, see the README). A file the store refuses
+    raises StoreError naming it."""
+    import pandas as pd
+
+    rows = _core._read_history(str(db))
+    frames = {name: pd.DataFrame(rows[name]) for name in ("runs", "generations", "candidates")}
+    for name, column in (("generations", "accepted_candidate"), ("candidates", "moved_grain")):
+        if column in frames[name]:
+            frames[name][column] = frames[name][column].astype("Int64")  # missing: <NA>
+    return frames
+
+
+def best_arrangement(db, run=1, generation=-1):
+    """The arrangement a search kept as of `generation` (-1: the latest; the best for the paper's
+    strategy): a Result with medium (a Medium), generation, tortuosity, touched and path (x, y rows)."""
+    return Result(_core._arrangement(str(db), int(run), int(generation)))

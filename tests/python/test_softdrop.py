@@ -92,3 +92,31 @@ def test_run_options_end_runs_as_the_program_does():
     medium = softdrop.Medium.generate(width=200, height=200)
     run = softdrop.simulate(medium, x0=20, run=softdrop.RunOptions(max_steps=50))
     assert run.outcome == "timeout" and run.steps == 50 and math.isnan(run.tortuosity)
+
+
+def test_a_search_history_reads_as_the_program_reads_it(tmp_path):
+    db = tmp_path / "search.db"
+    cli("optimize", "--db", str(db), "--grains", "16", "--width", "160", "--height", "120", "--medium-seed", "2",
+        "--stuck-window", "0.1", "--stuck-distance", "1", "--generations", "6", "--lambda", "2", "--quiet")
+    h = softdrop.read_history(db)
+    theirs = json.loads(cli("history", "--db", str(db), "--run", "1", "--format", "json"))
+    assert len(h["runs"]) == 1 and h["runs"].loc[0, "generations"] == 6
+    assert h["runs"].loc[0, "evaluations"] == len(h["candidates"]) == 1 + 6 * 2
+    assert h["generations"]["best_t"].tolist() == [g["best_t"] for g in theirs]
+    assert h["generations"].dtypes["accepted_candidate"] == "Int64"
+    passed = h["candidates"]["outcome"] == "passed"
+    assert h["candidates"].loc[~passed, "tortuosity"].isna().all()
+    best = softdrop.best_arrangement(db, run=1)
+    assert best.tortuosity == h["runs"].loc[0, "best_t"]
+    # The stored arrangement pushes the same droplet to the same T.
+    params = softdrop.DropletParams()
+    again = softdrop.simulate(best.medium, run=softdrop.RunOptions(stuck_window=0.1, stuck_distance=1), params=params)
+    assert again.tortuosity == best.tortuosity
+
+
+def test_a_foreign_database_raises_store_error_naming_it(tmp_path):
+    bad = tmp_path / "notes.db"
+    bad.write_text("not a database at all " * 40)
+    with pytest.raises(softdrop.StoreError) as error:
+        softdrop.read_history(bad)
+    assert str(bad) in str(error.value)
