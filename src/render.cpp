@@ -47,7 +47,9 @@ Rgba parse_colour(const std::string& text) {
 }
 
 bool RenderStyle::IsValid(std::string* why) const {
-  if (width < 16 || width > 10000) return fail(why, "size = " + std::to_string(width) + ": must be in [16, 10000] pixels");
+  if (width < 16 || width > 10000) return fail(why, "size = " + std::to_string(width) + ": must be in [16, 10000] points");
+  if (!(dpi >= 36 && dpi <= 1200)) return fail(why, "dpi = " + num(dpi) + ": must be in [36, 1200]");
+  if (width * dpi / 72 > 20000) return fail(why, "size = " + std::to_string(width) + " at dpi = " + num(dpi) + ": more than 20000 pixels wide");
   if (!std::isfinite(grain_line) || grain_line <= 0) return fail(why, "grain-line = " + num(grain_line) + ": must be > 0");
   if (!std::isfinite(margin) || margin < 0) return fail(why, "margin = " + num(margin) + ": must be >= 0");
   return true;
@@ -222,13 +224,18 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
 
 // Draws with `paint(cr)` on a surface of the format of `path`, into a temporary file renamed over
 // `path` on success.
-void write_picture(const std::string& path, int width, int height, const std::function<void(cairo_t*)>& paint) {
+void write_picture(const std::string& path, int width, int height, double dpi,
+                   const std::function<void(cairo_t*)>& paint) {
   const ImageFormat format = image_format_for(path);
+  const double scale = format == ImageFormat::png ? dpi / 72 : 1.0;  // pixels a point
   const detail::TempName tmp_name(path);
   const std::string& tmp = tmp_name.str();
   cairo_surface_t* raw = nullptr;
   switch (format) {
-    case ImageFormat::png: raw = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, width, height); break;
+    case ImageFormat::png:
+      raw = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, static_cast<int>(std::ceil(width * scale)),
+                                       static_cast<int>(std::ceil(height * scale)));
+      break;
     case ImageFormat::svg: raw = cairo_svg_surface_create(tmp.c_str(), width, height); break;
     case ImageFormat::pdf: raw = cairo_pdf_surface_create(tmp.c_str(), width, height); break;
     case ImageFormat::gif:
@@ -244,6 +251,7 @@ void write_picture(const std::string& path, int width, int height, const std::fu
     throw failed(cairo_status_to_string(cairo_surface_status(surface.get())));
   {
     CairoPtr cr(cairo_create(surface.get()), cairo_destroy);
+    cairo_scale(cr.get(), scale, scale);
     paint(cr.get());
     if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) throw failed(cairo_status_to_string(cairo_status(cr.get())));
   }
@@ -289,7 +297,7 @@ void render_scene(const Scene& scene, const RenderStyle& style, const std::strin
   if (!style.IsValid(&why)) throw std::invalid_argument(why);
   if (!scene.medium.IsValid(&why)) throw std::invalid_argument(why);
   const Geometry g = geometry_of(scene, style);
-  write_picture(path, g.width, g.height, [&](cairo_t* cr) { draw_scene(cr, scene, style, g); });
+  write_picture(path, g.width, g.height, style.dpi, [&](cairo_t* cr) { draw_scene(cr, scene, style, g); });
 }
 
 void render_chart(const Chart& chart, const RenderStyle& style, const std::string& path) {
@@ -317,7 +325,7 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
   y0 -= pad;
   y1 += pad;
   const int w = style.width, h = static_cast<int>(std::lround(0.62 * style.width));
-  write_picture(path, w, h, [&](cairo_t* cr) {
+  write_picture(path, w, h, style.dpi, [&](cairo_t* cr) {
     set(cr, style.background);
     cairo_paint(cr);
     const double font = std::max(10.0, 0.022 * w);
@@ -425,26 +433,31 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       cairo_stroke(cr);
     }
     cairo_restore(cr);
-    // Legend, top right.
-    double ly = top + 1.4 * font;
+    // Legend, top right; its font shrinks until the longest entry fits inside the plot.
+    double widest = 0;
+    for (const Series& s : chart.series)
+      if (!s.label.empty()) cairo_text_extents(cr, s.label.c_str(), &ext), widest = std::max(widest, ext.x_advance);
+    const double lf = widest + 3.4 * font > right - left ? font * (right - left) / (widest + 3.4 * font) : font;
+    cairo_set_font_size(cr, lf);
+    double ly = top + 1.4 * lf;
     for (const Series& s : chart.series) {
       if (s.label.empty()) continue;
       cairo_text_extents(cr, s.label.c_str(), &ext);
-      const double lx = right - ext.x_advance - 3.2 * font;
+      const double lx = right - ext.x_advance - 3.2 * lf;
       set(cr, s.colour);
       if (s.style == Series::Style::points) {
-        cairo_arc(cr, lx + 1.2 * font, ly - 0.35 * font, std::max(2.5, s.width), 0, 2 * M_PI);
+        cairo_arc(cr, lx + 1.2 * lf, ly - 0.35 * lf, std::max(2.5, s.width), 0, 2 * M_PI);
         cairo_fill(cr);
       } else {
         cairo_set_line_width(cr, s.width);
-        cairo_move_to(cr, lx, ly - 0.35 * font);
-        cairo_line_to(cr, lx + 2.4 * font, ly - 0.35 * font);
+        cairo_move_to(cr, lx, ly - 0.35 * lf);
+        cairo_line_to(cr, lx + 2.4 * lf, ly - 0.35 * lf);
         cairo_stroke(cr);
       }
       set(cr, style.text);
-      cairo_move_to(cr, lx + 2.8 * font, ly);
+      cairo_move_to(cr, lx + 2.8 * lf, ly);
       cairo_show_text(cr, s.label.c_str());
-      ly += 1.4 * font;
+      ly += 1.4 * lf;
     }
   });
 }

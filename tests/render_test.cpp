@@ -292,6 +292,23 @@ TEST(RenderCli, OverlappingGrainsAreDrawnAsTheirSolidUnion) {
   EXPECT_GT(outlines, 3);
 }
 
+// --size is in points and --dpi sets a PNG's pixels an inch: the same picture, drawn finer.
+TEST(RenderCli, PrintSizesScalePngsAndBadOnesAreRefusedFirst) {
+  const std::string png = fresh("print.png");
+  ASSERT_EQ(test::run("render medium --medium " + kPore + " --size 200 --dpi 144 --no-caption -o " + png).code, 0);
+  EXPECT_EQ(read_png(png).width, 400);
+  const std::string db = fresh("print.db"), plot = fresh("print_fit.png");
+  ASSERT_EQ(test::run("sweep --db " + db + " --preset quick --porosities 0.8,0.85,0.9,0.95 --quiet").code, 0);
+  ASSERT_EQ(test::run("fit --db " + db + " --plot " + plot + " --size 252 --dpi 300").code, 0);
+  EXPECT_EQ(read_png(plot).width, 1050);  // 3.5 inches at 300 dpi
+  const std::string never = fresh("never_print.png");
+  const test::Result bad = test::run("fit --db " + db + " --plot " + never + " --dpi 5000");
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_NE(bad.err.find("dpi = 5000: must be in [36, 1200]"), std::string::npos) << bad.err;
+  EXPECT_TRUE(bad.out.empty()) << "refused before anything is fitted";
+  EXPECT_FALSE(std::filesystem::exists(never));
+}
+
 // Passed and stuck droplets in their own colours.
 TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
   const std::string svg = fresh("paths_colours.svg");

@@ -29,7 +29,10 @@ Rgba parse_colour(const std::string& text);
 
 /// How pictures look. Lengths are in output pixels (points for SVG and PDF).
 struct RenderStyle {
-  int width = 800;                       ///< picture width; the height follows the aspect ratio
+  int width = 800;                       ///< picture width in points (1/72 inch); the height follows
+  /// PNG resolution: a PNG is width * dpi / 72 pixels wide, drawn the same (SVG and PDF are
+  /// resolution-free). 72: a pixel a point; 300 for print.
+  double dpi = 72;
   Rgba background{1, 1, 1, 1};
   Rgba grain{0.12, 0.16, 0.22, 1};       ///< grain outlines ("wire spheres")
   Rgba touched{0.25, 0.27, 0.30, 1};     ///< fill of grains the droplet touched

@@ -18,9 +18,19 @@
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
+namespace {
+RenderStyle plot_style(int size, double dpi) {
+  RenderStyle style;
+  style.width = size;
+  style.dpi = dpi;
+  std::string why;
+  if (!style.IsValid(&why)) throw std::invalid_argument(why);
+  return style;
+}
+}  // namespace
 
 int run_fit(const FitArgs& a) {
-  if (!a.plot.empty()) check_picture_path("--plot", a.plot);
+  if (!a.plot.empty()) check_picture_path("--plot", a.plot), plot_style(a.size, a.dpi);
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   std::vector<FitPoint> points;
   if (!a.points.empty()) {
@@ -114,7 +124,7 @@ int run_fit(const FitArgs& a) {
                 curve(log, Rgba{0.1, 0.3, 0.8, 1}, "1 − p ln φ: " + value(log, 0)), data};
     c.x_label = "porosity φ";
     c.y_label = "tortuosity ⟨T⟩";
-    render_chart(c, RenderStyle{}, a.plot);
+    render_chart(c, plot_style(a.size, a.dpi), a.plot);
   }
   return 0;
 }
@@ -131,7 +141,7 @@ int default_group(std::size_t media) {
 int run_averagings(const AveragingArgs& args) {
   AveragingArgs a = args;
   if (a.group < 0) throw std::invalid_argument("group = " + std::to_string(a.group) + ": must be >= 1");
-  if (!a.plot.empty()) check_picture_path("--plot", a.plot);
+  if (!a.plot.empty()) check_picture_path("--plot", a.plot), plot_style(a.size, a.dpi);
   if (!a.csv.empty()) check_output_path("--csv", a.csv);
   auto store = open_sweep_store(a.db, OpenMode::read_only);
   std::vector<MediumPoint> points;
@@ -176,7 +186,7 @@ int run_averagings(const AveragingArgs& args) {
     c.x_label = "porosity φ";
     c.y_label = "tortuosity ⟨T⟩";
     c.title = "groups of " + std::to_string(a.group) + " media";
-    render_chart(c, RenderStyle{}, a.plot);
+    render_chart(c, plot_style(a.size, a.dpi), a.plot);
   }
   return 0;
 }

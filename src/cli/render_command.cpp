@@ -24,7 +24,8 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
     s->fallthrough();
     auto* g = s->add_option_group("Picture");
     g->add_option("--output,-o", a.output, std::string("Picture file: ") + formats + " (format from the extension)")->required();
-    g->add_option("--size", a.size, "Width in pixels (points for SVG/PDF); the height follows")->capture_default_str();
+    g->add_option("--size", a.size, "Width in points (1/72 inch; pixels at --dpi 72); the height follows")->capture_default_str();
+    g->add_option("--dpi", a.dpi, "PNG resolution: pixels an inch (300 for print)")->capture_default_str();
     g->add_option("--background", a.background, "Colour #rrggbb[aa]")->capture_default_str();
     g->add_option("--grain-colour", a.grain_colour, "Grain outline colour")->capture_default_str();
     g->add_option("--touched-colour", a.touched_colour, "Fill of grains the droplet touched")->capture_default_str();
@@ -94,6 +95,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
 RenderStyle style_of(const RenderArgs& a) {
   RenderStyle s;
   s.width = a.size;
+  s.dpi = a.dpi;
   s.background = parse_colour(a.background);
   s.grain = parse_colour(a.grain_colour);
   s.touched = parse_colour(a.touched_colour);

@@ -16,6 +16,7 @@ namespace softdrop::cli {
 struct RenderArgs {
   std::string output;
   int size = 800;
+  double dpi = 72;
   std::string background = "#ffffff", grain_colour = "#1f2938", touched_colour = "#40454d",
               path_colour = "#cc1a1a", droplet_colour = "#1f4fcc", stuck_colour = "#1f4fcc";
   bool no_caption = false;

@@ -65,6 +65,8 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   src->require_option(1);
   ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)");
   ft->add_option("--plot", f.plot, "Also draw T(phi) with error bars and both fits (.png, .svg, .pdf)");
+  ft->add_option("--size", f.size, "Plot width in points (1/72 inch)")->capture_default_str();
+  ft->add_option("--dpi", f.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
   ft->add_option("--json", f.json_file, "Also write the fits as JSON to this file");
   ft->add_option("--format", f.format, "table or json")->capture_default_str()->check(CLI::IsMember({"table", "json"}));
 
@@ -77,6 +79,8 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
                  "fewer than 2000, at least 2)");
   av->add_option("--csv", v.csv, "Write the groups (type,phi,t,phi_se,t_se,count) to this CSV");
   av->add_option("--plot", v.plot, "Draw the per-medium points and both averagings");
+  av->add_option("--size", v.size, "Plot width in points (1/72 inch)")->capture_default_str();
+  av->add_option("--dpi", v.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
 }
 
 std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db) {

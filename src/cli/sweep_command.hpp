@@ -45,6 +45,8 @@ struct FitArgs {
   std::int64_t sweep = 0;
   std::string points;       ///< ... or a CSV with columns phi,t,se
   std::string plot;         ///< T(phi) with error bars and both fits
+  int size = 800;           ///< plot width (points)
+  double dpi = 72;          ///< PNG pixels an inch
   std::string format = "table";
   std::string json_file;
 };
@@ -54,6 +56,8 @@ struct AveragingArgs {
   std::int64_t sweep = 0;
   int group = 0;  ///< points per group; 0: from the store (see default_group)
   std::string csv, plot;
+  int size = 800;   ///< plot width (points)
+  double dpi = 72;  ///< PNG pixels an inch
 };
 
 void add_study_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, SweepReportArgs& report,
