@@ -3,10 +3,12 @@
 # seeds, on three problems. Each search is one database under results/search/db/ (not committed);
 # running the script again resumes every search to the budget given, so a long comparison can be
 # run in parts. Writes curves.csv (problem, strategy, seed, generation, evaluations, seconds,
-# best_t) and summary.csv (per problem and strategy: the median, least and largest best T over the
-# seeds at 1/4, 1/2 and all of the budget).
+# best_t), summary.csv (per problem and strategy: the median, least and largest best T over the
+# seeds after 750, 3 000, 8 000 and 20 000 evaluations, for the seeds that got that far) and
+# curves.png (every search's best T against evaluations).
 #   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
 #   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal es+r3"
+#        bash results/search/run.sh report   (no search: the tables and the plot from the databases)
 # A strategy NAME+rN is NAME with --relocate-every N.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -24,6 +26,8 @@ problem_options() {
     # more, smaller grains (radii 6-11; 100 of radii 8-16 leave phi ~ 0.56, where no start passes)
     dense) echo "--grains 100 --width 300 --height 300 --r-min 6 --r-max 11" ;;  # phi ~ 0.76
     large) echo "--grains 150 --width 500 --height 500" ;;             # phi ~ 0.72
+    # grains of the droplet's radius: the ones it rolls along down shallow slopes (see README)
+    fine) echo "--grains 100 --width 300 --height 300 --r-min 8 --r-max 8" ;;  # phi ~ 0.78
     *) echo "unknown problem '$1'" >&2; exit 2 ;;
   esac
 }
@@ -37,6 +41,7 @@ strategy_options() {
 }
 
 for problem in $PROBLEMS; do
+  [[ $EVALUATIONS == report ]] && break  # only the tables and the plot, from the searches there are
   for strategy in $STRATEGIES; do
     for seed in $SEEDS; do
       db="$OUT/db/$problem-$strategy-$seed.db"
@@ -63,21 +68,27 @@ for db in "$OUT"/db/*.db; do
                       FROM generations g WHERE g.run_id = 1 ORDER BY g.generation" >> "$OUT/curves.csv"
 done
 
+# Best T at fixed budgets, over the seeds whose search got that far (searches of several budgets
+# can share the folder).
 sqlite3 :memory: <<SQL > "$OUT/summary.csv"
 .mode csv
 .import $OUT/curves.csv curves
 .headers on
-WITH budget AS (SELECT $EVALUATIONS AS e),
-at AS (  -- best T of each search once it had spent a share of the budget
-  SELECT problem, strategy, seed, f.share, max(CAST(best_t AS REAL)) AS t, max(CAST(seconds AS REAL)) AS s
-  FROM curves, budget, (SELECT 0.25 AS share UNION ALL SELECT 0.5 UNION ALL SELECT 1.0) f
-  WHERE CAST(evaluations AS INTEGER) <= f.share * budget.e
-  GROUP BY problem, strategy, seed, f.share),
-ranked AS (SELECT *, row_number() OVER (PARTITION BY problem, strategy, share ORDER BY t) AS r,
-                  count(*) OVER (PARTITION BY problem, strategy, share) AS n FROM at)
-SELECT problem, strategy, CAST(share * (SELECT e FROM budget) AS INTEGER) AS evaluations, n AS seeds,
+WITH checkpoints(e) AS (VALUES (750), (3000), (8000), (20000)),
+reached AS (SELECT problem, strategy, seed, max(CAST(evaluations AS INTEGER)) AS last FROM curves
+            GROUP BY problem, strategy, seed),
+at AS (  -- best T of each search once it had spent e evaluations
+  SELECT c.problem, c.strategy, c.seed, k.e, max(CAST(c.best_t AS REAL)) AS t, max(CAST(c.seconds AS REAL)) AS s
+  FROM curves c JOIN reached r ON r.problem = c.problem AND r.strategy = c.strategy AND r.seed = c.seed
+  JOIN checkpoints k ON CAST(c.evaluations AS INTEGER) <= k.e AND r.last >= k.e
+  GROUP BY c.problem, c.strategy, c.seed, k.e),
+ranked AS (SELECT *, row_number() OVER (PARTITION BY problem, strategy, e ORDER BY t) AS r,
+                  count(*) OVER (PARTITION BY problem, strategy, e) AS n FROM at)
+SELECT problem, strategy, e AS evaluations, n AS seeds,
        round(avg(CASE WHEN r IN ((n + 1) / 2, (n + 2) / 2) THEN t END), 4) AS median_best_t,
        round(min(t), 4) AS least, round(max(t), 4) AS largest, round(avg(s), 1) AS mean_seconds
-FROM ranked GROUP BY problem, strategy, share ORDER BY problem, share, median_best_t DESC;
+FROM ranked GROUP BY problem, strategy, e ORDER BY problem, e, median_best_t DESC;
 SQL
 cat "$OUT/summary.csv"
+# shellcheck disable=SC2046
+$S render curves $(for db in "$OUT"/db/default-*.db; do echo --db "$db"; done) --size 900 -o "$OUT/curves.png"
