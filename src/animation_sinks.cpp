@@ -135,7 +135,7 @@ class VideoSink final : public FrameSink {
       : path_(path), tmp_name_(path), tmp_(tmp_name_.str()), width_(width), height_(height) {
     if (std::system("command -v ffmpeg > /dev/null 2>&1") != 0)
       throw output_error(path_, "writing .mp4 needs the ffmpeg program (apt-get install ffmpeg), or use .gif");
-    // H.264 wants even sizes: pad by one pixel where needed.
+    // H.264 wants even sizes; render_animation makes them so (the pad filter is a no-op then).
     const std::string command = "ffmpeg -loglevel error -y -f rawvideo -pixel_format bgr0 -video_size " +
                                 std::to_string(width) + "x" + std::to_string(height) + " -framerate " +
                                 std::to_string(fps) + " -i - -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 " +

@@ -475,7 +475,11 @@ void render_animation(int frames, double fps, const std::function<void(int, Scen
   Scene scene;
   frame(0, scene);
   if (!scene.medium.IsValid(&why)) throw std::invalid_argument(why);
-  const Geometry g = geometry_of(scene, style);  // fixed for all frames
+  Geometry g = geometry_of(scene, style);  // fixed for all frames
+  if (format == ImageFormat::mp4) {  // H.264 wants even sizes: one more row or column of background
+    g.width += g.width % 2;
+    g.height += g.height % 2;
+  }
   std::unique_ptr<detail::FrameSink> sink = format == ImageFormat::gif
                                                 ? detail::gif_sink(path, g.width, g.height, fps)
                                                 : detail::video_sink(path, g.width, g.height, fps);

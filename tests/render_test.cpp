@@ -239,6 +239,24 @@ TEST(RenderCli, AnimationAsMp4ThroughFfmpeg) {
   in.read(head.data(), 12);
   EXPECT_EQ(head.substr(4, 4), "ftyp") << "an ISO media file";
   EXPECT_GT(std::filesystem::file_size(mp4), 1000u);
+  // An odd --size gives even frames whose added column and row are background, not dark padding.
+  const std::string odd = fresh("odd.mp4"), first = fresh("odd_frame.png");
+  ASSERT_EQ(test::run("render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 --size 161 -o " + odd).code, 0);
+  ASSERT_EQ(std::system(("ffmpeg -loglevel error -y -i " + odd + " -vframes 1 " + first).c_str()), 0);
+  cairo_surface_t* s = cairo_image_surface_create_from_png(first.c_str());
+  ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
+  const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+  EXPECT_EQ(w % 2, 0);
+  EXPECT_EQ(h % 2, 0);
+  const unsigned char* data = cairo_image_surface_get_data(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  auto brightness = [&](int x, int y) {
+    const std::uint32_t p = reinterpret_cast<const std::uint32_t*>(data + y * stride)[x];
+    return std::min({(p >> 16) & 0xffu, (p >> 8) & 0xffu, p & 0xffu});
+  };
+  for (int y = 0; y < h; y += 7) EXPECT_GT(brightness(w - 1, y), 200u) << "right column, y = " << y;
+  for (int x = 0; x < w; x += 7) EXPECT_GT(brightness(x, h - 1), 200u) << "bottom row, x = " << x;
+  cairo_surface_destroy(s);
 }
 
 TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
