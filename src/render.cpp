@@ -207,6 +207,28 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
   cairo_rectangle(cr, px(0), py(m.height), g.scale * m.width, g.scale * m.height);
   cairo_stroke(cr);
 
+  if (style.scale_bar) {  // 1, 2 or 5 times a power of ten, about a fifth of the width
+    const double target = 0.2 * m.width, power = std::pow(10.0, std::floor(std::log10(target)));
+    const double length = target >= 5 * power ? 5 * power : target >= 2 * power ? 2 * power : power;
+    const double font = std::max(9.0, 0.018 * g.width), x0 = px(0) + font, y0 = py(0) - font;
+    const std::string label = detail::num(length) + " length units";
+    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_BOLD);
+    cairo_set_font_size(cr, font);
+    cairo_text_extents_t ext;
+    cairo_text_extents(cr, label.c_str(), &ext);
+    set(cr, Rgba{style.background.r, style.background.g, style.background.b, 0.8});  // legible over grains
+    cairo_rectangle(cr, x0 - 0.3 * font, y0 - 1.9 * font, std::max(g.scale * length, ext.x_advance) + 0.6 * font,
+                    2.4 * font);
+    cairo_fill(cr);
+    set(cr, style.text);
+    cairo_set_line_width(cr, std::max(2.0, 0.25 * font));
+    cairo_move_to(cr, x0, y0);
+    cairo_line_to(cr, x0 + g.scale * length, y0);
+    cairo_stroke(cr);
+    cairo_move_to(cr, x0, y0 - 0.6 * font);
+    cairo_show_text(cr, label.c_str());
+  }
+
   if (g.caption_height > 0) {
     set(cr, style.text);
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);

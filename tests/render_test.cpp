@@ -327,6 +327,14 @@ TEST(RenderCli, PrintSizesScalePngsAndBadOnesAreRefusedFirst) {
   EXPECT_FALSE(std::filesystem::exists(never));
 }
 
+TEST(RenderCli, AScaleBarIsDrawnWhenAsked) {
+  const std::string plain = fresh("plain.png"), bar = fresh("bar.png");
+  ASSERT_EQ(test::run("render medium --medium " + kPore + " --size 300 --no-caption -o " + plain).code, 0);
+  ASSERT_EQ(test::run("render medium --medium " + kPore + " --size 300 --no-caption --scale-bar -o " + bar).code, 0);
+  // pore.json is 200 wide: a bar of 20 length units (a tenth of the box's 272 pixels) and its label.
+  EXPECT_GT(read_png(bar).non_background, read_png(plain).non_background + 200);
+}
+
 // Passed and stuck droplets in their own colours.
 TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
   const std::string svg = fresh("paths_colours.svg");

@@ -45,6 +45,7 @@ struct RenderStyle {
   Rgba solid{0.70, 0.73, 0.78, 1};
   double margin = 12;
   bool caption = true;                   ///< a line of text under the picture
+  bool scale_bar = false;                ///< a bar of a round length, labelled, at the box's lower left
 
   bool IsValid(std::string* why) const;
 };

@@ -32,6 +32,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
     g->add_option("--path-colour", a.path_colour, "Centre-of-mass path colour")->capture_default_str();
     g->add_option("--droplet-colour", a.droplet_colour, "Droplet boundary colour")->capture_default_str();
     g->add_flag("--no-caption", a.no_caption, "No line of text under the picture");
+    g->add_flag("--scale-bar", a.scale_bar, "A labelled bar of a round length at the lower left of the box");
   };
   auto scene_options = [&](CLI::App* s) {
     add_medium_options(s, a.medium, false);
@@ -100,6 +101,7 @@ RenderStyle style_of(const RenderArgs& a) {
   s.grain = parse_colour(a.grain_colour);
   s.touched = parse_colour(a.touched_colour);
   s.caption = !a.no_caption;
+  s.scale_bar = a.scale_bar;
   std::string why;
   if (!s.IsValid(&why)) throw std::invalid_argument(why);
   return s;

@@ -20,6 +20,7 @@ struct RenderArgs {
   std::string background = "#ffffff", grain_colour = "#1f2938", touched_colour = "#40454d",
               path_colour = "#cc1a1a", droplet_colour = "#1f4fcc", stuck_colour = "#1f4fcc";
   bool no_caption = false;
+  bool scale_bar = false;
   MediumArgs medium;
   DropletParams droplet;
   RunOptions run;
