@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "softdrop/open_mode.hpp"
 #include "softdrop/search.hpp"
 
 namespace softdrop {
@@ -96,12 +97,6 @@ class History {
   virtual Configuration configuration(std::int64_t run, std::int64_t generation) = 0;
   /// The strategy state stored with `generation` ("" if none).
   virtual std::string strategy_state(std::int64_t run, std::int64_t generation) = 0;
-};
-
-/// How to open a history file.
-enum class OpenMode {
-  read_only,  ///< must exist and be a softdrop database
-  create      ///< created if missing; an existing file must be a softdrop database
 };
 
 /// Opens an SQLite history. A missing file (read_only), a file that is not SQLite, a foreign SQLite

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "softdrop/history.hpp"
+#include "softdrop/open_mode.hpp"
 #include "softdrop/sweep.hpp"
 
 namespace softdrop {
