@@ -35,6 +35,14 @@ void set_keywords(py::object self, const py::kwargs& kwargs) {
   }
 }
 
+// The defaults with the attributes named by keyword arguments set: T(masses=30, ...).
+template <class T>
+T from_keywords(const py::kwargs& kwargs) {
+  py::object object = py::cast(T{});
+  set_keywords(object, kwargs);
+  return object.cast<T>();
+}
+
 // Ctrl-C in the interpreter stops a run: polled through RunOptions::cancelled, with the GIL taken
 // for the check only.
 RunOptions interruptible(RunOptions run, bool* interrupted) {
@@ -155,11 +163,7 @@ PYBIND11_MODULE(_core, m) {
   m.attr("__version__") = kVersion;
 
   py::class_<DropletParams>(m, "DropletParams", "The droplet, in the paper's numerical units (see docs/model.md)")
-      .def(py::init([](const py::kwargs& kw) {
-        auto p = py::cast(DropletParams{});
-        set_keywords(p, kw);
-        return p.cast<DropletParams>();
-      }))
+      .def(py::init(&from_keywords<DropletParams>))
       .def_readwrite("masses", &DropletParams::masses)
       .def_readwrite("mass", &DropletParams::mass)
       .def_readwrite("radius", &DropletParams::radius)
@@ -176,11 +180,7 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("viscosity", &DropletParams::viscosity);
 
   py::class_<RunOptions>(m, "RunOptions", "When a run ends, and what it records")
-      .def(py::init([](const py::kwargs& kw) {
-        auto r = py::cast(RunOptions{});
-        set_keywords(r, kw);
-        return r.cast<RunOptions>();
-      }))
+      .def(py::init(&from_keywords<RunOptions>))
       .def_readwrite("max_steps", &RunOptions::max_steps)
       .def_readwrite("stuck_window", &RunOptions::stuck_window)
       .def_readwrite("stuck_distance", &RunOptions::stuck_distance)
