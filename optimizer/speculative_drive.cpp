@@ -17,16 +17,12 @@
 #include <vector>
 
 #include "evaluation.hpp"
-#include "pipeline_pause.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/strategy.hpp"
 #include "validation.hpp"
 #include "worker_threads.hpp"
 
 namespace softdrop {
-namespace detail {
-std::atomic<int> pipeline_completion_pause_ms{0};
-}  // namespace detail
 using detail::as_evaluation;
 using detail::evaluation_run;
 using detail::improves;
@@ -56,8 +52,8 @@ namespace {
 // history is that of one generation at a time.
 class Pipeline {
  public:
-  Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
-      : search_(search), upto_(last_allowed), lanes_(lanes) {
+  Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed, std::function<void()> before_completion)
+      : search_(search), upto_(last_allowed), lanes_(lanes), before_completion_(std::move(before_completion)) {
     const int lambda = search.options().lambda;
     // Far enough ahead that a slow (stuck) candidate does not leave the lanes empty: four times the
     // generations in flight. bench_scenes search-l2 with 8 lanes, evaluations/s by depth over the
@@ -105,8 +101,7 @@ class Pipeline {
       candidates.push_back(std::move(it->second));
       done_.erase(it);
     }
-    if (const int ms = detail::pipeline_completion_pause_ms.load(std::memory_order_relaxed); ms > 0)
-      std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+    if (before_completion_) before_completion_();
     const Generation gen =
         search_.complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     completed_ = gen.number;
@@ -302,6 +297,7 @@ class Pipeline {
   Search& search_;
   const std::int64_t upto_;
   const int lanes_;
+  const std::function<void()> before_completion_;  // DriveOptions::before_completion
   std::int64_t depth_ = 1;
   std::mutex m_;
   std::condition_variable cv_;
@@ -377,7 +373,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   // strategies evaluate one generation at a time, its candidates on every thread and lane.
   if (options.speculate && search.strategy().speculative() && (workers > 1 || lanes > 1) &&
       search.last_generation() < options.generations)
-    pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);
+    pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations, options.before_completion);
   for (;;) {
     if (search.last_generation() >= options.generations) {
       s.termination = Termination::generations;

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <tuple>
 
-#include "../optimizer/pipeline_pause.hpp"
 #include "fixtures.hpp"
 #include "search_fixtures.hpp"
 #include "softdrop/search.hpp"
@@ -231,8 +230,9 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
 // Drives the generations of `a` from `best` on `threads` threads with `lanes` lanes each, expects
 // a's history, and returns the summary.
 SearchSummary drive_as(const Reference& a, const SearchOptions& o, const Configuration& best, int threads,
-                       int lanes) {
+                       int lanes, std::function<void()> before_completion = {}) {
   DriveOptions d;
+  d.before_completion = std::move(before_completion);
   d.generations = static_cast<std::int64_t>(a.history.size());
   d.threads = threads;
   d.lanes = lanes;
@@ -295,20 +295,17 @@ TEST(Search, PredictedAcceptancesKeepTheHistoryAndOverturnedOnesAreDropped) {
 }
 
 TEST(Search, ASlowCompletionKeepsTheHistory) {
-  // Completing a generation pauses 20 ms after taking its candidates (the fault-injection point of
-  // pipeline_pause.hpp) while the workers go on finishing and predicting later generations: they
+  // Completing a generation pauses 20 ms after taking its candidates (DriveOptions::
+  // before_completion) while the workers go on finishing and predicting later generations: they
   // must not see the generation half-completed. (With the completion outside the pipeline's lock
   // this threw "generation 2 accepted -1, predicted 0".)
   const SearchOptions o = test::small_search_options(4);
   const Configuration best = test::small_search_start(o);
   const Reference a = one_at_a_time(o, best, 16);
-  struct Pause {
-    Pause() { detail::pipeline_completion_pause_ms.store(20); }
-    ~Pause() { detail::pipeline_completion_pause_ms.store(0); }
-  } pause;
+  const auto pause = [] { std::this_thread::sleep_for(std::chrono::milliseconds(20)); };
   for (auto [threads, lanes] : {std::pair{1, 4}, std::pair{2, 3}, std::pair{2, 8}}) {
     SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(lanes) + " lanes");
-    const SearchSummary sum = drive_as(a, o, best, threads, lanes);
+    const SearchSummary sum = drive_as(a, o, best, threads, lanes, pause);
     EXPECT_EQ(sum.speculation.predictions, sum.accepted + sum.speculation.mispredictions);
   }
 }

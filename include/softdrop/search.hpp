@@ -211,6 +211,10 @@ struct DriveOptions {
   /// generation accepts after all).
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
+  /// Called by the speculating drive after it takes a generation's candidates and before it
+  /// completes the generation, while the workers go on (tests slow it down here to check that no
+  /// worker sees a generation half-completed). Empty: nothing.
+  std::function<void()> before_completion;
   /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 8 on 1
   /// and 2 threads (16 on 1 thread at λ >= 2 with AVX-512 and the sequential order, 4 at λ = 1
   /// with SSE2 alone: default_lanes() in speculative_drive.cpp has the measurements); more
