@@ -4,9 +4,13 @@
     PYTHONPATH=build/python python3 examples/python/droplets.py
 
 Generates a medium, pushes one droplet and draws its path, then 200 droplets from random starts
-as a pandas DataFrame. The picture needs matplotlib (python3-matplotlib); without it the numbers
-are printed only.
+as a pandas DataFrame, then runs a 50-generation search with the program and reads its history
+back. The pictures need matplotlib (python3-matplotlib); without it the numbers are printed only.
 """
+import os
+import subprocess
+import tempfile
+
 import softdrop
 
 medium = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
@@ -19,6 +23,16 @@ frame = softdrop.simulate_many(medium, 200, seed=3)
 print(frame.groupby("outcome").size())
 print("mean T of the passed droplets:", frame.loc[frame.outcome == "passed", "tortuosity"].mean())
 
+# A search is run by the program (build/softdrop, or softdrop on the PATH); its history is read here.
+program = "build/softdrop" if os.path.exists("build/softdrop") else "softdrop"
+db = os.path.join(tempfile.mkdtemp(), "search.db")
+subprocess.run([program, "optimize", "--db", db, "--generations", "50", "--lambda", "2", "--quiet"], check=True,
+               stdout=subprocess.DEVNULL)
+history = softdrop.read_history(db)
+curve = history["generations"]
+print("search: best T", history["runs"].loc[0, "best_t"], "after", len(history["candidates"]), "evaluations")
+best = softdrop.best_arrangement(db, run=1)
+
 try:
     import matplotlib.pyplot as plt
 except ImportError:
@@ -30,4 +44,8 @@ if plt is not None:
     ax.plot(run.path[:, 1] % medium.width, run.path[:, 2], ".", markersize=1, color="crimson")
     ax.set_xlim(0, medium.width), ax.set_ylim(0, medium.height), ax.set_aspect("equal")
     fig.savefig("droplet_path.png", dpi=150)
-    print("wrote droplet_path.png")
+    fig, ax = plt.subplots(figsize=(6, 3.5))
+    ax.step(curve["generation"], curve["best_t"], where="post")
+    ax.set_xlabel("generation"), ax.set_ylabel("best T")
+    fig.savefig("search_curve.png", dpi=150)
+    print("wrote droplet_path.png and search_curve.png")

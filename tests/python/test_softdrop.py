@@ -4,6 +4,7 @@ import json
 import math
 import os
 import subprocess
+import sys
 
 import numpy as np
 import pandas as pd
@@ -120,3 +121,12 @@ def test_a_foreign_database_raises_store_error_naming_it(tmp_path):
     with pytest.raises(softdrop.StoreError) as error:
         softdrop.read_history(bad)
     assert str(bad) in str(error.value)
+
+
+def test_the_example_runs(tmp_path):
+    here = os.path.dirname(os.path.abspath(__file__))
+    example = os.path.join(here, "..", "..", "examples", "python", "droplets.py")
+    env = dict(os.environ, PATH=os.path.dirname(CLI) + os.pathsep + os.environ.get("PATH", ""))
+    done = subprocess.run([sys.executable, example], cwd=tmp_path, env=env, capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    assert "search: best T" in done.stdout
