@@ -130,3 +130,23 @@ def test_the_example_runs(tmp_path):
     done = subprocess.run([sys.executable, example], cwd=tmp_path, env=env, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
     assert "search: best T" in done.stdout
+
+
+def test_ctrl_c_stops_a_long_run(tmp_path):
+    script = tmp_path / "long.py"
+    script.write_text(
+        "import softdrop\n"
+        "m = softdrop.Medium.generate('non-overlapping', porosity=0.8)\n"
+        "print('started', flush=True)\n"
+        "try:\n"
+        "    softdrop.simulate(m, x0=100, run=softdrop.RunOptions(max_steps=10**9, stuck_window=1e6, stuck_distance=0))\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n")
+    child = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True, env=dict(os.environ))
+    assert child.stdout.readline().strip() == "started"
+    import signal
+    import time
+    time.sleep(1.0)  # well into the run (a droplet held in a pocket, with no stuck test, runs for minutes)
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=60)
+    assert "interrupted" in out
