@@ -16,11 +16,13 @@
 
 #include "animation_sinks.hpp"
 #include "temp_files.hpp"
+#include "svg_text.hpp"
 #include "validation.hpp"
 
 namespace softdrop {
 using detail::fail;
 using detail::num;
+using detail::show_text;
 
 ImageFormat image_format_for(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -196,7 +198,7 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
     for (const Label& l : scene.labels) {
       set(cr, l.colour);
       cairo_move_to(cr, px(l.x), py(l.y));
-      cairo_show_text(cr, l.text.c_str());
+      show_text(cr, l.text);
     }
   }
   cairo_restore(cr);
@@ -226,7 +228,7 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
     cairo_line_to(cr, x0 + g.scale * length, y0);
     cairo_stroke(cr);
     cairo_move_to(cr, x0, y0 - 0.6 * font);
-    cairo_show_text(cr, label.c_str());
+    show_text(cr, label);
   }
 
   if (g.caption_height > 0) {
@@ -240,7 +242,7 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
     const double room = g.width - 2 * style.margin;
     if (ext.x_advance > room) cairo_set_font_size(cr, font * room / ext.x_advance);
     cairo_move_to(cr, style.margin, g.height - style.margin - 0.3 * g.caption_height);
-    cairo_show_text(cr, scene.caption.c_str());
+    show_text(cr, scene.caption);
   }
 }
 
@@ -271,8 +273,10 @@ void write_picture(const std::string& path, int width, int height, double dpi,
   };
   if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
     throw failed(cairo_status_to_string(cairo_surface_status(surface.get())));
+  std::vector<detail::SvgText> texts;  // SVG: the words, written as <text> after the drawing
   {
     CairoPtr cr(cairo_create(surface.get()), cairo_destroy);
+    if (format == ImageFormat::svg) detail::collect_svg_text(cr.get(), &texts);
     cairo_scale(cr.get(), scale, scale);
     paint(cr.get());
     if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) throw failed(cairo_status_to_string(cairo_status(cr.get())));
@@ -284,6 +288,11 @@ void write_picture(const std::string& path, int width, int height, double dpi,
     cairo_surface_finish(surface.get());
     if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
       throw failed(cairo_status_to_string(cairo_surface_status(surface.get())));
+    try {
+      detail::insert_svg_text(tmp, texts);
+    } catch (const std::runtime_error& e) {
+      throw failed(e.what());
+    }
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
@@ -297,7 +306,7 @@ std::vector<double> nice_ticks(double lo, double hi, int count) {
   const double mag = std::pow(10.0, std::floor(std::log10(raw)));
   double step = mag;
   for (double f : {1.0, 2.0, 5.0, 10.0})
-    if (f * mag >= raw) {
+    if (f * mag >= 0.75 * raw) {  // at least about `count` ticks, rather than at most
       step = f * mag;
       break;
     }
@@ -369,7 +378,7 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       const std::string label = tick_label(t);
       cairo_text_extents(cr, label.c_str(), &ext);
       cairo_move_to(cr, px(t) - ext.width / 2, bottom + 1.3 * font);
-      cairo_show_text(cr, label.c_str());
+      show_text(cr, label);
     }
     for (double t : nice_ticks(y0, y1, 5)) {  // y ticks and grid
       set(cr, grid);
@@ -380,24 +389,24 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       const std::string label = tick_label(t);
       cairo_text_extents(cr, label.c_str(), &ext);
       cairo_move_to(cr, left - ext.width - 0.4 * font, py(t) + 0.35 * font);
-      cairo_show_text(cr, label.c_str());
+      show_text(cr, label);
     }
     set(cr, style.text);
     cairo_rectangle(cr, left, top, right - left, bottom - top);
     cairo_stroke(cr);
     cairo_text_extents(cr, chart.x_label.c_str(), &ext);
     cairo_move_to(cr, (left + right) / 2 - ext.width / 2, h - style.margin - 0.3 * font);
-    cairo_show_text(cr, chart.x_label.c_str());
+    show_text(cr, chart.x_label);
     cairo_save(cr);
     cairo_text_extents(cr, chart.y_label.c_str(), &ext);
     cairo_move_to(cr, style.margin + font, (top + bottom) / 2 + ext.width / 2);
     cairo_rotate(cr, -M_PI / 2);
-    cairo_show_text(cr, chart.y_label.c_str());
+    show_text(cr, chart.y_label);
     cairo_restore(cr);
     if (!chart.title.empty()) {
       cairo_text_extents(cr, chart.title.c_str(), &ext);
       cairo_move_to(cr, (left + right) / 2 - ext.width / 2, style.margin + font);
-      cairo_show_text(cr, chart.title.c_str());
+      show_text(cr, chart.title);
     }
     cairo_save(cr);
     cairo_rectangle(cr, left, top, right - left, bottom - top);
@@ -420,7 +429,7 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
         cairo_text_extents(cr, label.c_str(), &ext);
         const double x = px(chart.markers[i]);
         cairo_move_to(cr, x > (left + right) / 2 ? x - ext.x_advance - 0.3 * font : x + 0.3 * font, bottom - 0.5 * font);
-        cairo_show_text(cr, label.c_str());
+        show_text(cr, label);
       }
     }
     cairo_set_dash(cr, nullptr, 0, 0);
@@ -478,7 +487,7 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       }
       set(cr, style.text);
       cairo_move_to(cr, lx + 2.8 * lf, ly);
-      cairo_show_text(cr, s.label.c_str());
+      show_text(cr, s.label);
       ly += 1.4 * lf;
     }
   });

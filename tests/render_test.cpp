@@ -91,6 +91,47 @@ TEST(Render, SvgParsesAndHasOneCirclePerGrainPlusPeriodicCopies) {
   EXPECT_EQ(count_styled(doc.RootElement(), "stroke:rgb(100%,0%,0%)"), 3);
 }
 
+// Words stay words in SVG: the caption, a chart's labels and ticks are <text> elements (the y
+// label turned by -90 degrees), with the characters escaped, and no glyph outlines.
+TEST(Render, SvgKeepsItsTextAsText) {
+  const std::string scene = fresh("text_scene.svg"), chart = fresh("text_chart.svg");
+  Scene s = small_scene();
+  s.caption = "3 grains & a <caption>";
+  render_scene(s, RenderStyle{}, scene);
+  Chart c;
+  Series line;
+  line.x = {0.6, 0.8, 1.0};
+  line.y = {1.5, 1.3, 1.0};
+  line.label = "a − c φᵇ";
+  c.series = {line};
+  c.x_label = "porosity φ";
+  c.y_label = "tortuosity ⟨T⟩";
+  render_chart(c, RenderStyle{}, chart);
+  auto texts = [](const std::string& path) {
+    tinyxml2::XMLDocument doc;
+    EXPECT_EQ(doc.LoadFile(path.c_str()), tinyxml2::XML_SUCCESS);
+    std::vector<std::pair<std::string, std::string>> out;  // text, transform
+    for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e; e = e->NextSiblingElement("text"))
+      out.emplace_back(e->GetText() ? e->GetText() : "", e->Attribute("transform") ? e->Attribute("transform") : "");
+    return out;
+  };
+  const auto in_scene = texts(scene);
+  ASSERT_EQ(in_scene.size(), 1u);
+  EXPECT_EQ(in_scene[0].first, "3 grains & a <caption>");
+  const auto in_chart = texts(chart);
+  bool x_label = false, y_label = false, legend = false;
+  for (const auto& [text, transform] : in_chart) {
+    x_label |= text == "porosity φ" && transform.empty();
+    y_label |= text == "tortuosity ⟨T⟩" && transform.rfind("rotate(-90 ", 0) == 0;
+    legend |= text == "a − c φᵇ";
+  }
+  EXPECT_TRUE(x_label && y_label && legend);
+  EXPECT_GE(in_chart.size(), 3u + 4u);  // the labels, the legend and the ticks
+  std::ifstream in(chart);
+  const std::string svg((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(svg.find("glyph"), std::string::npos) << "no glyph outlines";
+}
+
 TEST(Render, PdfAndChartAreWritten) {
   const std::string pdf = fresh("scene.pdf");
   render_scene(small_scene(), RenderStyle{}, pdf);

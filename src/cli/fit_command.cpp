@@ -169,8 +169,8 @@ int run_averagings(const AveragingArgs& args) {
     Chart c;
     Series cloud;
     cloud.style = Series::Style::points;
-    cloud.width = 1.6;
-    cloud.colour = Rgba{0.6, 0.6, 0.6, 0.6};
+    cloud.width = 3.2;  // the per-medium points, seen behind the averages
+    cloud.colour = Rgba{0.35, 0.35, 0.35, 0.75};
     cloud.label = "media (" + std::to_string(points.size()) + ")";
     for (const MediumPoint& p : points) cloud.x.push_back(p.phi), cloud.y.push_back(p.t);
     auto series = [](const std::vector<GroupAverage>& groups, Rgba colour, const std::string& label) {
@@ -182,7 +182,7 @@ int run_averagings(const AveragingArgs& args) {
       return s;
     };
     c.series = {cloud, series(by_t, Rgba{0.8, 0.1, 0.1, 1}, "type 1: sorted by T"),
-                series(by_phi, Rgba{0.1, 0.3, 0.8, 1}, "type 2: sorted by phi")};
+                series(by_phi, Rgba{0.1, 0.3, 0.8, 1}, "type 2: sorted by φ")};
     c.x_label = "porosity φ";
     c.y_label = "tortuosity ⟨T⟩";
     c.title = "groups of " + std::to_string(a.group) + " media";
