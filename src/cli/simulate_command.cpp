@@ -99,8 +99,10 @@ int run_simulate(SimulateArgs& a) {
 
   Progress progress("simulate: droplets done");
   const auto t0 = std::chrono::steady_clock::now();
+  RunOptions batch_run = a.run;
+  batch_run.area_interval = 0;  // --trace replays each droplet with trace_area, which records the area
   const std::vector<RunSummary> runs =
-      run_batch(a.droplet, medium, a.run, a.batch,
+      run_batch(a.droplet, medium, batch_run, a.batch,
                 a.batch.droplets > 1 && !a.quiet ? std::function<void(int, int)>(
                                            [&](int done, int total) { progress.update(done, total); })
                                      : std::function<void(int, int)>());
