@@ -247,8 +247,8 @@ bool check_schema(SQLite::Database& db, const std::string& path) {
 
 }  // namespace
 
-std::runtime_error file_error(const std::string& path, const std::string& what) {
-  return std::runtime_error("--db '" + path + "': " + what);
+DatabaseError file_error(const std::string& path, const std::string& what) {
+  return DatabaseError("--db '" + path + "': " + what);
 }
 
 void set_row_status(SQLite::Database& db, const char* table, std::int64_t id, const std::string& status,

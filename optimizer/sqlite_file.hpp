@@ -19,7 +19,7 @@ namespace softdrop::detail {
 inline constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
 
 /// One line naming the database file.
-std::runtime_error file_error(const std::string& path, const std::string& what);
+DatabaseError file_error(const std::string& path, const std::string& what);
 
 /// Checks the file (read-only), then opens it. In create mode a missing file is created and the
 /// schema is created or migrated to kHistorySchemaVersion. Throws std::runtime_error (one line

@@ -11,10 +11,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "bindings.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/grain_file.hpp"
-#include "softdrop/history.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/simulation.hpp"
@@ -22,6 +22,8 @@
 
 namespace py = pybind11;
 using namespace softdrop;
+using softdrop::python::bind_commands;
+using softdrop::python::bind_stores;
 
 namespace {
 
@@ -117,40 +119,6 @@ py::dict summary_dict(const RunSummary& s, bool with_path) {
   return d;
 }
 
-// A search history as rows (lists of dicts, one a row), read through the store the program uses.
-py::dict history_rows(History& h) {
-  py::list runs, generations, candidates;
-  for (const RunRecord& r : h.runs()) {
-    py::dict row;
-    row["id"] = r.id, row["created"] = r.created, row["updated"] = r.updated, row["version"] = r.version;
-    row["status"] = r.status, row["seed"] = r.seed, row["lambda"] = r.lambda, row["grains"] = r.grains;
-    row["width"] = r.width, row["height"] = r.height, row["periodic"] = r.periodic;
-    row["generations"] = r.generations, row["evaluations"] = r.evaluations, row["best_t"] = r.best_t;
-    row["best_generation"] = r.best_generation, row["params"] = r.params;
-    runs.append(row);
-    for (const GenerationRecord& g : h.generations(r.id)) {
-      py::dict gen;
-      gen["run_id"] = r.id, gen["generation"] = g.generation, gen["kind"] = g.kind;
-      gen["accepted_candidate"] = g.accepted >= 0 ? py::object(py::int_(g.accepted)) : py::object(py::none());
-      gen["best_t"] = g.best_t, gen["touched"] = g.touched, gen["seconds"] = g.seconds;
-      gen["finished"] = g.finished, gen["state"] = g.state;
-      generations.append(gen);
-      for (const CandidateRecord& c : g.candidates) {
-        py::dict cand;
-        cand["run_id"] = r.id, cand["generation"] = g.generation, cand["candidate"] = c.index;
-        cand["moved_grain"] = c.moved_grain >= 0 ? py::object(py::int_(c.moved_grain)) : py::object(py::none());
-        cand["moved"] = c.moved, cand["outcome"] = c.outcome, cand["reason"] = c.reason;
-        cand["tortuosity"] = c.outcome == "passed" ? c.tortuosity : std::numeric_limits<double>::quiet_NaN();
-        cand["steps"] = c.steps, cand["touched"] = c.touched, cand["seconds"] = c.seconds;
-        candidates.append(cand);
-      }
-    }
-  }
-  py::dict out;
-  out["runs"] = runs, out["generations"] = generations, out["candidates"] = candidates;
-  return out;
-}
-
 void check(const DropletParams& params, const RunOptions& run) {
   std::string why;
   if (!params.IsValid(&why) || !run.IsValid(&why)) throw std::invalid_argument(why);
@@ -236,45 +204,8 @@ PYBIND11_MODULE(_core, m) {
                " x " + std::to_string(med.height) + (med.periodic ? ", periodic>" : ", walls>");
       });
 
-  // A database the store refuses (missing, foreign, damaged): the store's one line, naming the file.
-  static py::exception<std::runtime_error> store_error(m, "StoreError", PyExc_RuntimeError);
-  auto in_store = [](auto&& read) {
-    try {
-      return read();
-    } catch (const std::runtime_error& e) {
-      PyErr_SetString(store_error.ptr(), e.what());
-      throw py::error_already_set();
-    }
-  };
-  m.def(
-      "_read_history",
-      [in_store](const std::string& db) {
-        return in_store([&] {
-          auto h = open_history(db, OpenMode::read_only);
-          return history_rows(*h);
-        });
-      },
-      py::arg("db"));
-  m.def(
-      "_arrangement",
-      [in_store](const std::string& db, std::int64_t run, std::int64_t generation) {
-        return in_store([&] {
-          auto h = open_history(db, OpenMode::read_only);
-          const Configuration c = h->configuration(run, generation);
-          py::dict d = summary_dict(RunSummary{}, false);
-          d["medium"] = c.medium;
-          d["generation"] = c.generation;
-          d["tortuosity"] = c.eval.tortuosity;
-          d["touched"] = c.eval.touched;
-          py::array_t<double> path({static_cast<py::ssize_t>(c.eval.path_x.size()), py::ssize_t{2}});
-          auto v = path.mutable_unchecked<2>();
-          for (std::size_t i = 0; i < c.eval.path_x.size(); ++i)
-            v(static_cast<py::ssize_t>(i), 0) = c.eval.path_x[i], v(static_cast<py::ssize_t>(i), 1) = c.eval.path_y[i];
-          d["path"] = path;
-          return d;
-        });
-      },
-      py::arg("db"), py::arg("run"), py::arg("generation"));
+  bind_stores(m);
+  bind_commands(m);
 
   m.def(
       "_simulate",

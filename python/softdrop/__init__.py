@@ -7,12 +7,16 @@ for bit. Lengths, times and masses are in the paper's numerical units (see docs/
     medium = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
     run = softdrop.simulate(medium, x0=200, path=True)
     table = softdrop.simulate_many(medium, 200, seed=3)   # a pandas DataFrame
+    summary = softdrop.optimize("search.db", generations=50, lambda_=2, quiet=True)
+    history = softdrop.read_history("search.db")          # DataFrames
 """
+import numbers
+
 from ._core import DropletParams, Medium, RunOptions, StoreError, __version__  # noqa: F401
 from . import _core
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "read_history",
-           "best_arrangement", "__version__"]
+__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "optimize", "sweep",
+           "read_history", "read_sweep", "best_arrangement", "__version__"]
 
 
 class Result(dict):
@@ -37,9 +41,14 @@ def simulate_many(medium, n, seed=1, threads=0, params=None, run=None):
     """n droplets from random starts (drawn from `seed` as `softdrop simulate --droplets n --seed`
     draws them), on `threads` threads (0: all). Returns a pandas DataFrame, one row a droplet, with
     the columns of the program's --runs CSV plus the reason."""
+    rows = _core._simulate_many(medium, int(n), int(seed), int(threads), params or DropletParams(), run or RunOptions())
+    return _runs_frame(rows)
+
+
+def _runs_frame(rows):
+    """simulate_many's DataFrame from the core's rows (one dict a droplet)."""
     import pandas as pd
 
-    rows = _core._simulate_many(medium, int(n), int(seed), int(threads), params or DropletParams(), run or RunOptions())
     frame = pd.DataFrame(rows)
     frame.insert(0, "droplet", range(len(frame)))
     frame["touched"] = frame["touched"].map(len)
@@ -47,19 +56,93 @@ def simulate_many(medium, n, seed=1, threads=0, params=None, run=None):
                   "max_penetration", "reason"]]
 
 
-def read_history(db):
+def _command_line(command, db, options):
+    """The program's command line for keyword options: name=value is --name value (underscores
+    become dashes; lambda_ is --lambda), True is a flag given, False or None an option left out, a
+    list or array is comma-separated. Numbers are written so that they read back exactly."""
+    args = ["softdrop", command, "--db", str(db)]
+    for name, value in options.items():
+        if value is None or value is False:
+            continue
+        flag = "--" + name.rstrip("_").replace("_", "-")
+        if value is True:
+            args.append(flag)
+        elif isinstance(value, (list, tuple)) or getattr(value, "ndim", 0) > 0:
+            args += [flag, ",".join(_number(v) for v in value)]
+        else:
+            args += [flag, _number(value) if isinstance(value, numbers.Number) else str(value)]
+    return args
+
+
+def _number(value):
+    """An integer as itself, any other real number as the shortest text that reads back the same."""
+    if isinstance(value, numbers.Integral):
+        return str(int(value))
+    return repr(float(value))
+
+
+def optimize(db="softdrop.db", callback=None, **options):
+    """Runs `softdrop optimize` in this process: the options are the program's long options as
+    keywords (generations=500, lambda_=4, strategy="es", relocate_every=3, resume=1, quiet=True,
+    ...), with the same defaults and checks, and the history file is the one the program writes.
+
+    `callback(event)`, if given, is called after each generation is committed, with a dict: run,
+    generation, kind, accepted_candidate (None: none kept), candidates, seconds, best_t,
+    best_generation, target_generations. Returning False stops the search there; the run is marked
+    interrupted and `optimize(db, resume=run)` continues it exactly. Ctrl-C stops it the same way,
+    then raises KeyboardInterrupt; an exception in the callback stops it and is raised again.
+
+    Returns the summary `softdrop optimize --format json` prints (run, termination, best_tortuosity,
+    evaluations, ...). Bad options raise ValueError with the program's message; a database the
+    store refuses raises StoreError naming it."""
+    return Result(_core._run_command(_command_line("optimize", db, options), callback))
+
+
+def sweep(db="sweep.db", callback=None, **options):
+    """Runs `softdrop sweep` in this process (the tortuosity-porosity study): options as for
+    optimize (porosities=[0.6, 0.8], media=4, droplets=20, preset="quick", threads=2, ...). The
+    store is the program's: running it again goes on with the media not yet stored.
+
+    `callback(event)` is called after each medium is committed, with a dict: sweep,
+    porosity_index, medium_index, target_porosity, passed, mean_t, media_done, media_to_do.
+    Returning False stops after the media in flight (they are stored); Ctrl-C does too, then
+    raises KeyboardInterrupt. Returns a summary: sweep, status, media, media_stored,
+    media_this_session, droplets_this_session, wall_seconds. read_sweep(db) has the records."""
+    return Result(_core._run_command(_command_line("sweep", db, options), callback))
+
+
+def read_history(db, arrangements=True):
     """A search history (the SQLite file of `softdrop optimize`), read by the program's own store:
-    a dict of pandas DataFrames `runs`, `generations` and `candidates` (one row a run, generation,
-    candidate; the columns of the database's tables, see the README). A file the store refuses
+    a dict of pandas DataFrames with the columns of the database's tables (see the README):
+    `runs`, `generations`, `candidates`, `grains` and `paths` (the arrangements the search kept:
+    generation 0's and each accepted one; arrangements=False leaves these two empty), and
+    `params` (one row a run: run_id and the options stored with it). A file the store refuses
     raises StoreError naming it."""
+    import json
+
     import pandas as pd
 
-    rows = _core._read_history(str(db))
-    frames = {name: pd.DataFrame(rows[name]) for name in ("runs", "generations", "candidates")}
+    tables = _core._read_history(str(db), bool(arrangements))
+    frames = {name: pd.DataFrame(columns) for name, columns in tables.items()}
     for name, column in (("generations", "accepted_candidate"), ("candidates", "moved_grain")):
-        if column in frames[name]:
-            frames[name][column] = frames[name][column].astype("Int64")  # missing: <NA>
+        frames[name][column] = frames[name][column].astype("Int64")  # missing: <NA>
+    frames["grains"]["touched"] = frames["grains"]["touched"].astype(bool)
+    params = pd.json_normalize([json.loads(p) for p in frames["runs"]["params"]])
+    params.insert(0, "run_id", frames["runs"]["id"].to_numpy())
+    frames["params"] = params
     return frames
+
+
+def read_sweep(db, sweep=None):
+    """The records of `softdrop sweep` (all sweeps of the file, or the one with id `sweep`), read
+    by the program's own store: a dict of pandas DataFrames `sweeps`, `media` and `droplets` (the
+    database's tables; mean_t, standard_error and tortuosity are NaN where nothing passed), and
+    `points` (per target porosity, as `softdrop sweep-report` aggregates them). A file the store
+    refuses raises StoreError naming it."""
+    import pandas as pd
+
+    tables = _core._read_sweep(str(db), int(sweep or 0))
+    return {name: pd.DataFrame(columns) for name, columns in tables.items()}
 
 
 def best_arrangement(db, run=1, generation=-1):

@@ -88,10 +88,10 @@ int Cli::run() {
     return 0;
   }
   if (simulate_cmd_->parsed()) return run_simulate(simulate_);
-  if (optimize_cmd_->parsed()) return run_optimize(optimize_, *optimize_cmd_);
+  if (optimize_cmd_->parsed()) return run_optimize(optimize_, *optimize_cmd_, host_);
   if (history_cmd_->parsed()) return run_history(history_);
   if (export_cmd_->parsed()) return run_export(export_);
-  if (app.got_subcommand("sweep")) return run_sweep(sweep_, *app.get_subcommand("sweep"));
+  if (app.got_subcommand("sweep")) return run_sweep(sweep_, *app.get_subcommand("sweep"), host_);
   if (app.got_subcommand("sweep-merge")) return run_sweep_merge(sweep_merge_);
   if (app.got_subcommand("sweep-report")) return run_sweep_report(sweep_report_);
   if (app.got_subcommand("fit")) return run_fit(fit_);
@@ -101,6 +101,11 @@ int Cli::run() {
   return 0;
 }
 
+std::string Cli::parse_error_line(const CLI::ParseError& error, int argc, const char* const* argv) const {
+  const std::string correction = suggest_correction(app, argc, argv);
+  return correction.empty() ? one_line(error.what()) : correction;
+}
+
 int main(int argc, char** argv) {
   remove_temp_files_on_signals();
   Cli cli;
@@ -108,8 +113,7 @@ int main(int argc, char** argv) {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return cli.app.exit(e);  // --help, --version
-    const std::string correction = suggest_correction(cli.app, argc, argv);
-    std::cerr << "softdrop: error: " << (correction.empty() ? one_line(e.what()) : correction) << '\n';
+    std::cerr << "softdrop: error: " << cli.parse_error_line(e, argc, argv) << '\n';
     return 2;
   }
   try {

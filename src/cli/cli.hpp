@@ -7,6 +7,7 @@
 
 #include "cli/calibrate_command.hpp"
 #include "cli/history_command.hpp"
+#include "cli/host.hpp"
 #include "cli/optimize_command.hpp"
 #include "cli/render_command.hpp"
 #include "cli/simulate_command.hpp"
@@ -28,11 +29,18 @@ class Cli {
   void check();
   /// Runs the chosen command (after check(), or only check() with --check); returns the exit code.
   int run();
+  /// Runs optimize and sweep for a host program (see Host) instead of a shell; the other
+  /// commands ignore it. The host must outlive run().
+  void set_host(Host* host) { host_ = host; }
+  /// The one line the program prints for a command line the parser refused (without the
+  /// "softdrop: error: " prefix): the nearest known option or command when there is one.
+  std::string parse_error_line(const CLI::ParseError& error, int argc, const char* const* argv) const;
 
   CLI::App app{"softdrop: soft-body droplets pushed through porous media of disc grains"};
 
  private:
   bool check_only_ = false;
+  Host* host_ = nullptr;
   SimulateArgs simulate_;
   OptimizeArgs optimize_;
   HistoryArgs history_;

@@ -230,7 +230,7 @@ void check_optimize(OptimizeArgs& a) {
   }
 }
 
-int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
+int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   check_optimize(a);
   const nlohmann::json given = params_of(a);
 
@@ -277,7 +277,10 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
       if (stored_target && rec.generations >= *stored_target && rec.status != "finished")
         history->set_status(run, "finished");
       if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
-      std::cout << (a.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
+      if (host)
+        host->summary = j;
+      else
+        std::cout << (a.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
       return 0;
     }
     if (target_given && stored_target != a.generations)
@@ -320,19 +323,24 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
                 << fmt(search->best().eval.tortuosity, 8) << "\n";
   }
 
-  StopOnSignal stop("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
+  std::optional<StopOnSignal> stop;  // a host handles the signals itself
+  if (!host) stop.emplace("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
   SearchProgress progress(run, search->last_generation(), a.generations, a.quiet);
   DriveOptions drive_options;
   drive_options.generations = a.generations;
   drive_options.time_limit = a.time_limit;
-  drive_options.stop = stop.flag();
+  drive_options.stop = stop ? stop->flag() : nullptr;
   drive_options.threads = a.threads;
   drive_options.speculate = !a.no_speculation;
   drive_options.lanes = a.lanes;
   const SearchSummary summary = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
     history->append(run, g, best);
     progress.update(g, best, g.number == a.generations);
-    return true;
+    if (!host || !host->on_progress) return true;
+    return host->on_progress({{"run", run}, {"generation", g.number}, {"kind", to_string(g.kind)},
+                              {"accepted_candidate", g.accepted >= 0 ? nlohmann::json(g.accepted) : nlohmann::json()},
+                              {"candidates", g.candidates.size()}, {"seconds", g.seconds}, {"best_t", best.eval.tortuosity},
+                              {"best_generation", best.generation}, {"target_generations", a.generations}});
   });
   history->set_status(run, summary.termination == Termination::generations ? "finished" : "interrupted");
 
@@ -363,6 +371,10 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
                       {"mispredictions", summary.speculation.mispredictions},
                       {"predictions_ahead", summary.speculation.predictions_ahead}};
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  if (host) {
+    host->summary = j;
+    return 0;
+  }
   if (a.format == "json") {
     std::cout << j.dump(2) << '\n';
   } else {
@@ -387,7 +399,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd) {
                   << sp.mispredictions << " overturned)\n";
     }
   }
-  return summary.termination == Termination::interrupted ? stop.exit_code() : 0;
+  return summary.termination == Termination::interrupted ? stop->exit_code() : 0;
 }
 
 }  // namespace softdrop::cli

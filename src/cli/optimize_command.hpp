@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/common_options.hpp"
+#include "cli/host.hpp"
 #include "softdrop/search.hpp"
 
 namespace softdrop::cli {
@@ -38,7 +39,8 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args);
 
 /// Checks the options without running; throws std::invalid_argument naming the bad parameter.
 void check_optimize(OptimizeArgs& args);
-/// Runs it; `command` is the parsed subcommand (to tell which options were given).
-int run_optimize(OptimizeArgs& args, const CLI::App& command);
+/// Runs it; `command` is the parsed subcommand (to tell which options were given). With a host
+/// (see Host) nothing is printed on stdout and the signals are left to the host.
+int run_optimize(OptimizeArgs& args, const CLI::App& command, Host* host = nullptr);
 
 }  // namespace softdrop::cli

@@ -10,6 +10,7 @@
 #include <iostream>
 #include <mutex>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -18,6 +19,7 @@
 #include "softdrop/grain_file.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/sweep_store.hpp"
+#include "softdrop/version.hpp"
 
 namespace softdrop::cli {
 
@@ -177,7 +179,7 @@ std::pair<int, int> check_sweep(SweepArgs& a, const CLI::App& cmd) {
   return parse_shard(a.shard);
 }
 
-int run_sweep(SweepArgs& a, const CLI::App& cmd) {
+int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
   const auto [shard, shards] = check_sweep(a, cmd);
 
   auto store = open_sweep_store(a.db, OpenMode::create);
@@ -194,7 +196,10 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd) {
               << a.sweep.media << " media x " << a.sweep.droplets << " droplets; shard " << shard << "/" << shards
               << ": " << shard_total - todo.size() << " of " << shard_total << " media already stored\n";
 
-  StopOnSignal stop("\nsoftdrop: finishing the media in flight (Ctrl-C again to leave now; they are then redone next time)\n");
+  std::optional<StopOnSignal> signals;  // a host handles the signals itself
+  if (!host) signals.emplace("\nsoftdrop: finishing the media in flight (Ctrl-C again to leave now; they are then redone next time)\n");
+  std::atomic<bool> host_stop{false};
+  auto stopping = [&] { return signals ? signals->requested() : host_stop.load(); };
   const auto t0 = std::chrono::steady_clock::now();
   const bool tty = ::isatty(2) != 0;
   auto last = t0;
@@ -218,8 +223,14 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd) {
                     << fmt(m.target_porosity, 3) << " <T> " << fmt(m.mean_t, 5) << ", ETA " << fmt(eta, 3) << " s"
                     << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
         }
+        if (host && host->on_progress &&
+            !host->on_progress({{"sweep", id}, {"porosity_index", m.unit.porosity}, {"medium_index", m.unit.medium},
+                                {"target_porosity", m.target_porosity}, {"passed", m.passed},
+                                {"mean_t", m.passed ? nlohmann::json(m.mean_t) : nlohmann::json()},
+                                {"media_done", units_done}, {"media_to_do", todo.size()}}))
+          host_stop = true;
       },
-      [&] { return stop.requested(); },
+      [&] { return stopping(); },
       [&](const SweepUnit& u) {
         std::lock_guard lock(store_lock);
         if (!store->has_unit(id, u)) return false;
@@ -227,16 +238,24 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd) {
         return true;
       });
   const SweepRecord rec = store->sweep(id);
-  store->set_status(id, rec.done == rec.units ? "complete" : stop.requested() ? "interrupted" : "running");
+  const std::string status = rec.done == rec.units ? "complete" : stopping() ? "interrupted" : "running";
+  store->set_status(id, status);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (host) {
+    host->summary = {{"version", kVersion}, {"db", a.db}, {"sweep", id}, {"status", status}, {"media", rec.units},
+                     {"media_stored", rec.done}, {"media_this_session", units_done - units_elsewhere},
+                     {"media_by_another_process", units_elsewhere}, {"droplets_this_session", droplets_done},
+                     {"wall_seconds", seconds}};
+    return 0;
+  }
   points_table(sweep_points(store->media(id))).print(std::cout, a.format);
   if (!a.quiet) {
-    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::cerr << "sweep " << id << ": " << rec.done << " of " << rec.units << " media stored; this session "
-              << units_done - units_elsewhere << " media, " << droplets_done << " droplets in " << fmt(s, 4) << " s"
+              << units_done - units_elsewhere << " media, " << droplets_done << " droplets in " << fmt(seconds, 4) << " s"
               << (units_elsewhere ? ", " + std::to_string(units_elsewhere) + " media stored by another process" : "")
               << "\n";
   }
-  return stop.exit_code();
+  return signals->exit_code();
 }
 
 int run_sweep_merge(const SweepMergeArgs& a) {

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cli/common_options.hpp"
+#include "cli/host.hpp"
 #include "softdrop/sweep.hpp"
 
 namespace softdrop {
@@ -65,7 +66,8 @@ void add_study_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, 
 /// Applies --preset and checks the options without running; returns the shard (i, n). Throws
 /// std::invalid_argument naming the bad parameter.
 std::pair<int, int> check_sweep(SweepArgs& args, const CLI::App& command);
-int run_sweep(SweepArgs& args, const CLI::App& command);
+/// Runs a sweep; with a host (see Host) nothing is printed on stdout and the signals are left to it.
+int run_sweep(SweepArgs& args, const CLI::App& command, Host* host = nullptr);
 int run_sweep_merge(const SweepMergeArgs& args);
 int run_sweep_report(const SweepReportArgs& args);
 /// The sweep `id` of the store, or its only sweep when id is 0; throws std::invalid_argument

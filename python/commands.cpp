@@ -1,0 +1,89 @@
+// The program's optimize and sweep commands run in this process, parsed and run by the command
+// line's own code: the same options, defaults, checks, messages and files as `softdrop optimize`
+// and `softdrop sweep`. The command runs with the GIL released; after each committed generation or
+// medium it takes the GIL to look for Ctrl-C and to call the Python callback.
+#include <pybind11/stl.h>
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "cli/cli.hpp"
+
+namespace softdrop::python {
+namespace {
+
+// JSON to Python objects (the summaries and progress events are small).
+py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+// A Python error raised inside the command (the callback's exception, KeyboardInterrupt), held
+// while the command winds down and raised again once it has returned.
+class PendingError {
+ public:
+  void fetch() { PyErr_Fetch(&type_, &value_, &traceback_); }
+  bool pending() const { return type_ != nullptr; }
+  [[noreturn]] void raise() {
+    PyErr_Restore(type_, value_, traceback_);
+    type_ = value_ = traceback_ = nullptr;
+    throw py::error_already_set();
+  }
+  ~PendingError() {  // with the GIL held: raise() was not reached because the command threw
+    Py_XDECREF(type_), Py_XDECREF(value_), Py_XDECREF(traceback_);
+  }
+
+ private:
+  PyObject *type_ = nullptr, *value_ = nullptr, *traceback_ = nullptr;
+};
+
+py::object run_command(const std::vector<std::string>& args, const py::object& callback) {
+  if (args.size() < 2 || (args[1] != "optimize" && args[1] != "sweep"))
+    throw std::invalid_argument("command: must be optimize or sweep");
+  if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
+    throw std::invalid_argument("callback: must be callable (or None)");
+  std::vector<const char*> argv;
+  for (const std::string& a : args) argv.push_back(a.c_str());
+  const int argc = static_cast<int>(argv.size());
+
+  cli::Cli cli;
+  try {
+    cli.parse(argc, argv.data());
+  } catch (const CLI::ParseError& e) {
+    throw std::invalid_argument(cli.parse_error_line(e, argc, argv.data()));
+  }
+  PendingError error;
+  cli::Host host;
+  host.on_progress = [&](const nlohmann::json& event) {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {  // Ctrl-C: stop here; KeyboardInterrupt once the command is done
+      error.fetch();
+      return false;
+    }
+    if (callback.is_none()) return true;
+    try {
+      const py::object answer = callback(to_python(event));
+      return answer.is_none() || PyObject_IsTrue(answer.ptr()) != 0;
+    } catch (py::error_already_set& e) {
+      e.restore();
+      error.fetch();
+      return false;
+    }
+  };
+  cli.set_host(&host);
+  {
+    py::gil_scoped_release release;
+    cli.run();
+  }
+  if (error.pending()) error.raise();
+  return to_python(host.summary);
+}
+
+}  // namespace
+
+void bind_commands(py::module_& m) {
+  m.def("_run_command", &run_command, py::arg("args"), py::arg("callback"),
+        "Runs `softdrop optimize` or `softdrop sweep` with these arguments (args[0] is the program name) "
+        "in this process; returns the command's JSON summary");
+}
+
+}  // namespace softdrop::python

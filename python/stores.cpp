@@ -1,0 +1,204 @@
+// Search histories and sweep stores read into columns (a dict of equal-length lists per table,
+// which pandas takes as a DataFrame), through the store interfaces the program reads them with.
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <limits>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "softdrop/history.hpp"
+#include "softdrop/sweep_store.hpp"
+
+namespace softdrop::python {
+namespace {
+
+PyObject* g_store_error = nullptr;
+
+const double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A table built column by column: add a row's cells by name, in the same order every row.
+class Columns {
+ public:
+  explicit Columns(std::vector<std::string> names) : names_(std::move(names)) {
+    for (const std::string& n : names_) columns_[n] = py::list();
+  }
+  py::list& operator[](const std::string& name) { return columns_.at(name); }
+  py::dict dict() const {
+    py::dict d;
+    for (const std::string& n : names_) d[n.c_str()] = columns_.at(n);
+    return d;
+  }
+
+ private:
+  std::vector<std::string> names_;
+  std::map<std::string, py::list> columns_;
+};
+
+py::object or_none(bool present, py::object value) { return present ? value : py::none(); }
+
+// Anything the store throws while reading is the store's: StoreError, its message naming the file.
+template <class Read>
+auto in_store(Read&& read) {
+  try {
+    return read();
+  } catch (const std::runtime_error& e) {
+    PyErr_SetString(g_store_error, e.what());
+    throw py::error_already_set();
+  }
+}
+
+py::dict history_tables(History& h, bool arrangements) {
+  Columns runs({"id", "created", "updated", "version", "status", "seed", "lambda", "grains", "width", "height",
+                "periodic", "generations", "evaluations", "best_t", "best_generation", "params"});
+  Columns gens({"run_id", "generation", "kind", "accepted_candidate", "best_t", "touched", "seconds", "finished",
+                "state"});
+  Columns cands({"run_id", "generation", "candidate", "moved_grain", "moved", "outcome", "reason", "tortuosity",
+                 "steps", "touched", "seconds"});
+  Columns grains({"run_id", "generation", "grain", "x", "y", "r", "touched"});
+  Columns paths({"run_id", "generation", "point", "x", "y"});
+  for (const RunRecord& r : h.runs()) {
+    runs["id"].append(r.id), runs["created"].append(r.created), runs["updated"].append(r.updated);
+    runs["version"].append(r.version), runs["status"].append(r.status), runs["seed"].append(r.seed);
+    runs["lambda"].append(r.lambda), runs["grains"].append(r.grains), runs["width"].append(r.width);
+    runs["height"].append(r.height), runs["periodic"].append(r.periodic), runs["generations"].append(r.generations);
+    runs["evaluations"].append(r.evaluations), runs["best_t"].append(r.best_t);
+    runs["best_generation"].append(r.best_generation), runs["params"].append(r.params);
+    for (const GenerationRecord& g : h.generations(r.id)) {
+      gens["run_id"].append(r.id), gens["generation"].append(g.generation), gens["kind"].append(g.kind);
+      gens["accepted_candidate"].append(or_none(g.accepted >= 0, py::int_(g.accepted)));
+      gens["best_t"].append(g.best_t), gens["touched"].append(g.touched), gens["seconds"].append(g.seconds);
+      gens["finished"].append(g.finished), gens["state"].append(g.state);
+      for (const CandidateRecord& c : g.candidates) {
+        cands["run_id"].append(r.id), cands["generation"].append(g.generation), cands["candidate"].append(c.index);
+        cands["moved_grain"].append(or_none(c.moved_grain >= 0, py::int_(c.moved_grain)));
+        cands["moved"].append(c.moved), cands["outcome"].append(c.outcome), cands["reason"].append(c.reason);
+        cands["tortuosity"].append(c.outcome == "passed" ? c.tortuosity : kNaN);
+        cands["steps"].append(c.steps), cands["touched"].append(c.touched), cands["seconds"].append(c.seconds);
+      }
+      // The stored arrangements: generation 0's and each one a generation kept.
+      if (!arrangements || (g.generation != 0 && g.accepted < 0)) continue;
+      const Configuration c = h.configuration(r.id, g.generation);
+      std::vector<bool> touched(c.medium.grains.size(), false);
+      for (const std::int32_t i : c.eval.touched) touched.at(static_cast<std::size_t>(i)) = true;
+      for (std::size_t i = 0; i < c.medium.grains.size(); ++i) {
+        const Grain& gr = c.medium.grains[i];
+        grains["run_id"].append(r.id), grains["generation"].append(g.generation), grains["grain"].append(i);
+        grains["x"].append(gr.x), grains["y"].append(gr.y), grains["r"].append(gr.r);
+        grains["touched"].append(static_cast<bool>(touched[i]));
+      }
+      for (std::size_t i = 0; i < c.eval.path_x.size(); ++i) {
+        paths["run_id"].append(r.id), paths["generation"].append(g.generation), paths["point"].append(i);
+        paths["x"].append(c.eval.path_x[i]), paths["y"].append(c.eval.path_y[i]);
+      }
+    }
+  }
+  py::dict out;
+  out["runs"] = runs.dict(), out["generations"] = gens.dict(), out["candidates"] = cands.dict();
+  out["grains"] = grains.dict(), out["paths"] = paths.dict();
+  return out;
+}
+
+py::dict sweep_tables(SweepStore& store, std::int64_t only) {
+  Columns sweeps({"id", "created", "updated", "version", "status", "params", "units", "done"});
+  Columns media({"sweep_id", "porosity_index", "medium_index", "target_porosity", "porosity", "grains",
+                 "medium_seed", "droplets", "passed", "stuck", "timeout", "diverged", "mean_t", "standard_error",
+                 "stuck_fraction", "seconds"});
+  Columns droplets({"sweep_id", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity",
+                    "steps"});
+  Columns points({"sweep_id", "target_phi", "phi", "media", "droplets", "passed", "mean_t", "standard_error",
+                  "stuck_fraction"});
+  const std::vector<SweepRecord> all = only > 0 ? std::vector<SweepRecord>{store.sweep(only)} : store.sweeps();
+  for (const SweepRecord& s : all) {
+    sweeps["id"].append(s.id), sweeps["created"].append(s.created), sweeps["updated"].append(s.updated);
+    sweeps["version"].append(s.version), sweeps["status"].append(s.status), sweeps["params"].append(s.params);
+    sweeps["units"].append(s.units), sweeps["done"].append(s.done);
+    const std::vector<SweepMedium> stored = store.media(s.id);
+    for (const SweepMedium& m : stored) {
+      media["sweep_id"].append(s.id), media["porosity_index"].append(m.unit.porosity);
+      media["medium_index"].append(m.unit.medium), media["target_porosity"].append(m.target_porosity);
+      media["porosity"].append(m.porosity), media["grains"].append(m.grains), media["medium_seed"].append(m.medium_seed);
+      media["droplets"].append(m.droplets.size()), media["passed"].append(m.passed), media["stuck"].append(m.stuck);
+      media["timeout"].append(m.timeout), media["diverged"].append(m.diverged);
+      media["mean_t"].append(m.passed ? m.mean_t : kNaN);
+      media["standard_error"].append(m.passed > 1 ? m.standard_error : kNaN);
+      media["stuck_fraction"].append(m.stuck_fraction), media["seconds"].append(m.seconds);
+      for (const SweepDroplet& d : m.droplets) {
+        droplets["sweep_id"].append(s.id), droplets["porosity_index"].append(m.unit.porosity);
+        droplets["medium_index"].append(m.unit.medium), droplets["droplet"].append(d.droplet);
+        droplets["start_x"].append(d.start_x), droplets["outcome"].append(to_string(d.outcome));
+        droplets["tortuosity"].append(d.outcome == Outcome::passed ? d.tortuosity : kNaN);
+        droplets["steps"].append(d.steps);
+      }
+    }
+    for (const SweepPoint& p : sweep_points(stored)) {  // as `softdrop sweep-report` aggregates them
+      points["sweep_id"].append(s.id), points["target_phi"].append(p.target_porosity), points["phi"].append(p.porosity);
+      points["media"].append(p.media), points["droplets"].append(p.droplets), points["passed"].append(p.passed);
+      points["mean_t"].append(p.passed ? p.mean_t : kNaN);
+      points["standard_error"].append(p.passed > 1 ? p.standard_error : kNaN);
+      points["stuck_fraction"].append(p.stuck_fraction);
+    }
+  }
+  py::dict out;
+  out["sweeps"] = sweeps.dict(), out["media"] = media.dict(), out["droplets"] = droplets.dict();
+  out["points"] = points.dict();
+  return out;
+}
+
+py::array_t<double> xy_array(const std::vector<double>& x, const std::vector<double>& y) {
+  py::array_t<double> a({static_cast<py::ssize_t>(x.size()), py::ssize_t{2}});
+  auto v = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < x.size(); ++i) v(static_cast<py::ssize_t>(i), 0) = x[i], v(static_cast<py::ssize_t>(i), 1) = y[i];
+  return a;
+}
+
+}  // namespace
+
+PyObject* store_error() { return g_store_error; }
+
+void bind_stores(py::module_& m) {
+  // A file the store refuses (missing, foreign, damaged), wherever it is opened: the store's one
+  // line, naming the file.
+  static py::exception<DatabaseError> error = py::register_exception<DatabaseError>(m, "StoreError", PyExc_RuntimeError);
+  g_store_error = error.ptr();
+
+  m.def(
+      "_read_history",
+      [](const std::string& db, bool arrangements) {
+        return in_store([&] {
+          auto h = open_history(db, OpenMode::read_only);
+          return history_tables(*h, arrangements);
+        });
+      },
+      py::arg("db"), py::arg("arrangements"));
+  m.def(
+      "_read_sweep",
+      [](const std::string& db, std::int64_t sweep) {
+        return in_store([&] {
+          auto store = open_sweep_store(db, OpenMode::read_only);
+          return sweep_tables(*store, sweep);
+        });
+      },
+      py::arg("db"), py::arg("sweep"));
+  m.def(
+      "_arrangement",
+      [](const std::string& db, std::int64_t run, std::int64_t generation) {
+        return in_store([&] {
+          auto h = open_history(db, OpenMode::read_only);
+          const Configuration c = h->configuration(run, generation);
+          py::dict d;
+          d["medium"] = c.medium;
+          d["generation"] = c.generation;
+          d["tortuosity"] = c.eval.tortuosity;
+          d["touched"] = c.eval.touched;
+          d["path"] = xy_array(c.eval.path_x, c.eval.path_y);
+          return d;
+        });
+      },
+      py::arg("db"), py::arg("run"), py::arg("generation"));
+}
+
+}  // namespace softdrop::python

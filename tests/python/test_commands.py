@@ -1,0 +1,221 @@
+"""optimize and sweep from Python against the program: the same options write the same records;
+the callback stops a search that then resumes exactly; readers give the program's tables."""
+import json
+import os
+import signal
+import subprocess
+import sys
+import threading
+import time
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import softdrop
+
+CLI = os.environ["SOFTDROP_CLI"]
+
+# A small search scene (seconds) and a small sweep.
+SEARCH = dict(grains=16, width=160, height=120, medium_seed=2, stuck_window=0.1, stuck_distance=1, lambda_=2,
+              quiet=True)
+SEARCH_ARGS = ["--grains", "16", "--width", "160", "--height", "120", "--medium-seed", "2", "--stuck-window", "0.1",
+               "--stuck-distance", "1", "--lambda", "2", "--quiet"]
+SWEEP = dict(porosities=[0.8, 0.9], media=2, droplets=4, width=200, height=200, quiet=True)
+SWEEP_ARGS = ["--porosities", "0.8,0.9", "--media", "2", "--droplets", "4", "--width", "200", "--height", "200",
+              "--quiet"]
+# Columns that hold wall times and dates, which differ between two runs of the same search.
+CLOCKS = {"created", "updated", "finished", "seconds"}
+
+
+def cli(*args):
+    return subprocess.run([CLI, *args], capture_output=True, text=True, check=True).stdout
+
+
+def without_clocks(frame):
+    return frame.drop(columns=[c for c in frame.columns if c in CLOCKS])
+
+
+def assert_same_history(a, b):
+    for name in ("generations", "candidates", "grains", "paths"):
+        pd.testing.assert_frame_equal(without_clocks(a[name]), without_clocks(b[name]), check_exact=True, obj=name)
+    for column in ("generations", "evaluations", "best_t", "best_generation", "status"):
+        assert a["runs"][column].tolist() == b["runs"][column].tolist(), column
+
+
+def test_optimize_writes_the_programs_history(tmp_path):
+    ours, theirs = tmp_path / "ours.db", tmp_path / "theirs.db"
+    summary = softdrop.optimize(ours, generations=8, strategy="es", relocate_every=3, **SEARCH)
+    cli("optimize", "--db", str(theirs), "--generations", "8", "--strategy", "es", "--relocate-every", "3", *SEARCH_ARGS)
+    assert summary.termination == "generations" and summary.last_generation == 8
+    a, b = softdrop.read_history(ours), softdrop.read_history(theirs)
+    assert_same_history(a, b)
+    assert summary.best_tortuosity == b["runs"].loc[0, "best_t"]
+    pd.testing.assert_frame_equal(a["params"], b["params"])
+    assert a["params"].loc[0, "strategy"] == "es" and a["params"].loc[0, "relocate-every"] == 3
+
+
+def test_a_search_stopped_by_the_callback_resumes_as_if_never_stopped(tmp_path):
+    events = []
+
+    def stop_at_4(event):
+        events.append(event)
+        return event["generation"] < 4
+
+    stopped, whole = tmp_path / "stopped.db", tmp_path / "whole.db"
+    first = softdrop.optimize(stopped, callback=stop_at_4, generations=10, **SEARCH)
+    assert first.termination == "callback" and first.last_generation == 4
+    assert [e["generation"] for e in events] == [1, 2, 3, 4]
+    assert events[-1]["best_t"] == first.best_tortuosity and events[-1]["target_generations"] == 10
+    assert softdrop.read_history(stopped)["runs"].loc[0, "status"] == "interrupted"
+    second = softdrop.optimize(stopped, resume=1, quiet=True)  # goes on to the run's own target
+    assert second.termination == "generations" and second.last_generation == 10
+    softdrop.optimize(whole, generations=10, **SEARCH)
+    assert_same_history(softdrop.read_history(stopped), softdrop.read_history(whole))
+
+
+def test_an_exception_in_the_callback_stops_the_search_and_is_raised(tmp_path):
+    db = tmp_path / "s.db"
+
+    def fails(event):
+        if event["generation"] == 2:
+            raise KeyError("from the callback")
+
+    with pytest.raises(KeyError, match="from the callback"):
+        softdrop.optimize(db, callback=fails, generations=6, **SEARCH)
+    runs = softdrop.read_history(db)["runs"]
+    assert runs.loc[0, "generations"] == 2 and runs.loc[0, "status"] == "interrupted"
+    assert softdrop.optimize(db, resume=1, quiet=True).last_generation == 6
+
+
+def test_sweep_writes_the_programs_store(tmp_path):
+    ours, theirs = tmp_path / "ours.db", tmp_path / "theirs.db"
+    seen = []
+    summary = softdrop.sweep(ours, callback=seen.append, threads=2, **SWEEP)
+    cli("sweep", "--db", str(theirs), "--threads", "1", *SWEEP_ARGS)
+    assert summary.status == "complete" and summary.media_stored == summary.media == 4
+    assert summary.droplets_this_session == 16
+    assert sorted((e["porosity_index"], e["medium_index"]) for e in seen) == [(0, 0), (0, 1), (1, 0), (1, 1)]
+    assert [e["media_done"] for e in seen] == [1, 2, 3, 4]
+    a, b = softdrop.read_sweep(ours), softdrop.read_sweep(theirs)
+    for name in ("media", "droplets", "points"):
+        pd.testing.assert_frame_equal(without_clocks(a[name]), without_clocks(b[name]), check_exact=True, obj=name)
+    # The points are sweep-report's.
+    rows = json.loads(cli("sweep-report", "--db", str(theirs), "--format", "json"))
+    assert a["points"]["mean_t"].tolist() == [r["mean_t"] for r in rows]
+    assert a["points"]["phi"].tolist() == [r["phi"] for r in rows]
+
+
+def test_a_sweep_stopped_by_the_callback_goes_on_where_it_stopped(tmp_path):
+    db = tmp_path / "s.db"
+    options = dict(SWEEP, media=8, droplets=8)  # 16 media: more than are in flight at once
+    first = softdrop.sweep(db, callback=lambda e: False, threads=1, **options)
+    assert first.status == "interrupted" and 1 <= first.media_stored < 16
+    second = softdrop.sweep(db, threads=1, **options)
+    assert second.status == "complete" and second.media_this_session == 16 - first.media_stored
+    whole = tmp_path / "whole.db"
+    softdrop.sweep(whole, **options)
+    a, b = softdrop.read_sweep(db), softdrop.read_sweep(whole)
+    for name in ("media", "droplets"):
+        pd.testing.assert_frame_equal(without_clocks(a[name]), without_clocks(b[name]), check_exact=True)
+
+
+def test_tables_have_the_databases_columns_and_types(tmp_path):
+    db = tmp_path / "s.db"
+    softdrop.optimize(db, generations=4, **SEARCH)
+    h = softdrop.read_history(db)
+    assert list(h["grains"].columns) == ["run_id", "generation", "grain", "x", "y", "r", "touched"]
+    assert list(h["paths"].columns) == ["run_id", "generation", "point", "x", "y"]
+    assert h["grains"].dtypes["touched"] == bool and h["grains"].dtypes["x"] == np.float64
+    kept = h["generations"].dropna(subset=["accepted_candidate"])["generation"].tolist()  # with generation 0
+    assert kept[0] == 0 and len(kept) > 1
+    assert sorted(h["grains"]["generation"].unique().tolist()) == kept
+    assert (h["grains"].groupby("generation").size() == 16).all()
+    best = softdrop.best_arrangement(db, run=1)
+    last = h["grains"][h["grains"].generation == best.generation]
+    assert np.array_equal(last[["x", "y", "r"]].to_numpy(), best.medium.grains)
+    assert sorted(last.loc[last.touched, "grain"].tolist()) == list(best.touched)
+    assert h["params"].loc[0, "run_id"] == 1 and h["params"].loc[0, "grains"] == 16
+    assert softdrop.read_history(db, arrangements=False)["grains"].empty
+    softdrop.sweep(tmp_path / "w.db", **SWEEP)
+    w = softdrop.read_sweep(tmp_path / "w.db")
+    assert list(w["droplets"].columns) == ["sweep_id", "porosity_index", "medium_index", "droplet", "start_x", "outcome",
+                                           "tortuosity", "steps"]
+    assert w["droplets"].dtypes["steps"] == np.int64 and w["droplets"].dtypes["tortuosity"] == np.float64
+    passed = w["droplets"]["outcome"] == "passed"
+    assert w["droplets"].loc[~passed, "tortuosity"].isna().all() and (w["droplets"].loc[passed, "tortuosity"] >= 1).all()
+
+
+@pytest.mark.parametrize("call, says", [
+    (lambda db: softdrop.optimize(db, generatons=3), "unknown option '--generatons' (did you mean --generations?)"),
+    (lambda db: softdrop.optimize(db, lambda_=-3), "lambda = -3: must be in [1, 4096]"),
+    (lambda db: softdrop.optimize(db, strategy="genetic"), "genetic"),
+    (lambda db: softdrop.sweep(db, porosities=[0.5, 1.5]), "1.5"),
+    (lambda db: softdrop.optimize(db, callback=3), "callback: must be callable"),
+])
+def test_bad_options_raise_value_error_with_the_programs_line(tmp_path, call, says):
+    db = tmp_path / "s.db"
+    with pytest.raises(ValueError) as error:
+        call(db)
+    assert says in str(error.value) and "\n" not in str(error.value)
+    assert not db.exists()  # nothing written
+
+
+@pytest.mark.parametrize("call", [
+    lambda db: softdrop.optimize(db, generations=2, **SEARCH),
+    lambda db: softdrop.sweep(db, **SWEEP),
+    lambda db: softdrop.read_sweep(db),
+])
+def test_a_foreign_database_raises_store_error_and_is_left_alone(tmp_path, call):
+    db = tmp_path / "notes.db"
+    db.write_bytes(b"SQLite format 3\0" + b"\0" * 84 + b"x" * 300)
+    before = db.read_bytes()
+    with pytest.raises(softdrop.StoreError) as error:
+        call(db)
+    assert str(db) in str(error.value)
+    assert db.read_bytes() == before
+
+
+def test_simulate_many_lets_other_python_threads_run():
+    medium = softdrop.Medium.generate(width=300, height=300)
+    ticks = []
+    done = threading.Event()
+
+    def count():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.005)
+
+    counter = threading.Thread(target=count)
+    counter.start()
+    t0 = time.perf_counter()
+    softdrop.simulate_many(medium, 16, seed=5, threads=1)
+    t1 = time.perf_counter()
+    done.set()
+    counter.join()
+    during = [t for t in ticks if t0 < t < t1]
+    # With the GIL held the counter could not run at all until simulate_many returned.
+    assert t1 - t0 > 0.1 and len(during) >= 5
+
+
+def test_ctrl_c_stops_a_search_which_then_resumes(tmp_path):
+    db = tmp_path / "s.db"
+    script = tmp_path / "search.py"
+    script.write_text(
+        "import sys, softdrop\n"
+        "def tell(e):\n"
+        "    if e['generation'] == 1: print('started', flush=True)\n"
+        "try:\n"
+        f"    softdrop.optimize(sys.argv[1], callback=tell, generations=10**6, **{SEARCH!r})\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n")
+    child = subprocess.Popen([sys.executable, str(script), str(db)], stdout=subprocess.PIPE, text=True)
+    assert child.stdout.readline().strip() == "started"
+    time.sleep(0.3)
+    child.send_signal(signal.SIGINT)
+    out, _ = child.communicate(timeout=60)
+    assert "interrupted" in out and child.returncode == 0
+    runs = softdrop.read_history(db, arrangements=False)["runs"]
+    assert runs.loc[0, "status"] == "interrupted"
+    stopped_at = runs.loc[0, "generations"]
+    assert softdrop.optimize(db, resume=1, generations=stopped_at + 2, quiet=True).last_generation == stopped_at + 2
