@@ -12,6 +12,8 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "cli/common_options.hpp"
+#include "softdrop/area_trace.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/grain_file.hpp"
@@ -22,6 +24,7 @@
 
 namespace py = pybind11;
 using namespace softdrop;
+namespace cli = softdrop::cli;
 using softdrop::python::bind_commands;
 using softdrop::python::bind_stores;
 
@@ -209,25 +212,44 @@ PYBIND11_MODULE(_core, m) {
 
   m.def(
       "_simulate",
-      [](const Medium& medium, double x0, const DropletParams& params, const RunOptions& run, bool path) {
+      [](const Medium& medium, double x0, const DropletParams& params, const RunOptions& run, bool path,
+         int trace_interval) {
         check(params, run);
+        if (!(x0 >= 0 && x0 <= medium.width)) throw std::invalid_argument("x0 = " + std::to_string(x0) + ": must be in [0, width]");
+        if (trace_interval < 0) throw std::invalid_argument("trace_interval = " + std::to_string(trace_interval) + ": must be >= 1");
         RunOptions options = run;
         if (path && options.path_interval == 0) options.path_interval = 100;
         bool interrupted = false;
         RunSummary s;
+        AreaTrace trace;
         {
           py::gil_scoped_release release;
-          Simulation sim(params, medium);
-          if (!(x0 >= 0 && x0 <= medium.width)) throw std::invalid_argument("x0 = " + std::to_string(x0) + ": must be in [0, width]");
           try {
-            s = sim.run(x0, interruptible(options, &interrupted));
+            if (trace_interval > 0) {  // as `softdrop simulate --trace`: the run, then its replay recording the area
+              trace = trace_area(params, medium, x0, interruptible(options, &interrupted), trace_interval);
+              s = trace.run;
+            } else {
+              s = Simulation(params, medium).run(x0, interruptible(options, &interrupted));
+            }
           } catch (const RunCancelled&) {
           }
         }
         if (interrupted) throw py::error_already_set();
-        return summary_dict(s, path);
+        py::dict d = summary_dict(s, path);
+        if (trace_interval > 0) {
+          py::array_t<double> rows({static_cast<py::ssize_t>(trace.t.size()), py::ssize_t{3}});
+          auto v = rows.mutable_unchecked<2>();
+          for (std::size_t i = 0; i < trace.t.size(); ++i) {
+            const auto k = static_cast<py::ssize_t>(i);
+            v(k, 0) = trace.t[i], v(k, 1) = trace.area[i], v(k, 2) = trace.area[i] / trace.s0;  // NaN: never entered
+          }
+          d["trace"] = rows;
+          d["enter"] = trace.enter, d["leave"] = trace.leave, d["s0"] = trace.s0;
+          d["inside_min_area_ratio"] = trace.min_ratio, d["inside_max_area_ratio"] = trace.max_ratio;
+        }
+        return d;
       },
-      py::arg("medium"), py::arg("x0"), py::arg("params"), py::arg("run"), py::arg("path"));
+      py::arg("medium"), py::arg("x0"), py::arg("params"), py::arg("run"), py::arg("path"), py::arg("trace_interval"));
 
   m.def(
       "_simulate_many",
@@ -235,6 +257,7 @@ PYBIND11_MODULE(_core, m) {
          const RunOptions& run) {
         check(params, run);
         if (droplets < 1 || droplets > 10'000'000) throw std::invalid_argument("n = " + std::to_string(droplets) + ": must be in [1, 1e7]");
+        cli::check_threads(threads);  // the program's rule and message
         BatchOptions batch;
         batch.droplets = droplets, batch.seed = seed, batch.threads = threads;
         std::vector<RunSummary> runs;

@@ -21,7 +21,8 @@ __all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "s
 
 class Result(dict):
     """One droplet's run: outcome, reason, tortuosity (NaN unless passed), steps, start_x,
-    touched (grain indices), min_area_ratio, max_penetration, and path (t, x, y rows) if asked."""
+    touched (grain indices), min_area_ratio, max_penetration, and path and trace if asked (see
+    simulate). Keys read as attributes too: run.tortuosity."""
 
     def __getattr__(self, name):
         try:
@@ -30,11 +31,19 @@ class Result(dict):
             raise AttributeError(name) from e
 
 
-def simulate(medium, x0=None, params=None, run=None, path=False):
+def simulate(medium, x0=None, params=None, run=None, path=False, trace=False, trace_interval=100):
     """Pushes one droplet from x = x0 (default: the middle of the box) above the medium to an
-    outcome. Releases the GIL while it runs; Ctrl-C raises KeyboardInterrupt."""
+    outcome. path=True adds `path`, rows of t, x, y (every run.path_interval steps, 100 if unset).
+    trace=True adds the area trace as `softdrop simulate --trace` records it: `trace`, rows of t,
+    area, area_ratio (S / S0, every trace_interval steps), with `enter`, `leave` (times the droplet
+    reached and left the medium, NaN: never), `s0`, and `inside_min_area_ratio`,
+    `inside_max_area_ratio` (over every step inside the medium). Releases the GIL while it runs;
+    Ctrl-C raises KeyboardInterrupt."""
     x0 = 0.5 * medium.width if x0 is None else float(x0)
-    return Result(_core._simulate(medium, x0, params or DropletParams(), run or RunOptions(), bool(path)))
+    interval = int(trace_interval) if trace else 0
+    if trace and interval < 1:
+        raise ValueError(f"trace_interval = {interval}: must be >= 1")
+    return Result(_core._simulate(medium, x0, params or DropletParams(), run or RunOptions(), bool(path), interval))
 
 
 def simulate_many(medium, n, seed=1, threads=0, params=None, run=None):
@@ -68,6 +77,8 @@ def _command_line(command, db, options):
         if value is True:
             args.append(flag)
         elif isinstance(value, (list, tuple)) or getattr(value, "ndim", 0) > 0:
+            if len(value) == 0:
+                raise ValueError(f"{name}: an empty list")
             args += [flag, ",".join(_number(v) for v in value)]
         else:
             args += [flag, _number(value) if isinstance(value, numbers.Number) else str(value)]

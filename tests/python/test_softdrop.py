@@ -32,6 +32,24 @@ def test_one_droplet_has_the_programs_bits():
     assert medium.porosity() == theirs["medium"]["porosity"]
 
 
+def test_the_area_trace_is_the_programs(tmp_path):
+    medium = softdrop.Medium.generate(width=200, height=200)
+    run = softdrop.simulate(medium, x0=100, trace=True, trace_interval=50)
+    csv = tmp_path / "trace.csv"
+    cli("simulate", "--width", "200", "--height", "200", "--x0", "100", "--trace", str(csv), "--trace-interval", "50",
+        "--quiet")
+    theirs = pd.read_csv(csv, float_precision="round_trip")
+    assert run.trace.shape == (len(theirs), 3)
+    assert run.trace[:, 0].tolist() == theirs["t"].tolist() and run.trace[:, 1].tolist() == theirs["area"].tolist()
+    assert np.allclose(run.trace[:, 2], theirs["area_ratio"], rtol=1e-15, equal_nan=True)
+    inside = theirs["phase"] == "inside"
+    assert (theirs.loc[inside, "t"] >= run.enter).all() and run.s0 > 0
+    assert run.inside_min_area_ratio <= theirs.loc[inside, "area_ratio"].min()
+    assert run.outcome == softdrop.simulate(medium, x0=100).outcome  # the trace is of the same run
+    with pytest.raises(ValueError, match="trace_interval = 0"):
+        softdrop.simulate(medium, trace=True, trace_interval=0)
+
+
 def test_many_droplets_are_the_programs_rows(tmp_path):
     medium = softdrop.Medium.generate(width=200, height=200)
     frame = softdrop.simulate_many(medium, 12, seed=3, threads=2)
@@ -75,6 +93,9 @@ def test_media_as_arrays_files_and_images(tmp_path):
      "masses"),
     (lambda: softdrop.simulate(softdrop.Medium.generate(width=100, height=100), x0=-5), "x0 = "),
     (lambda: softdrop.simulate_many(softdrop.Medium.generate(width=100, height=100), 0), "n = 0"),
+    (lambda: softdrop.simulate_many(softdrop.Medium.generate(width=100, height=100), 3, threads=-5),
+     "threads = -5: must be in [0, "),
+    (lambda: softdrop.sweep("never.db", porosities=[]), "porosities: an empty list"),
 ])
 def test_bad_input_raises_value_error_naming_it(call, says):
     with pytest.raises(ValueError) as error:
