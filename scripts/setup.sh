@@ -9,6 +9,7 @@ PKGS=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libcairo2-dev libgif-dev fonts-dejavu-core libtinyxml2-dev ffmpeg libtbb-dev
   pybind11-dev python3-dev python3-numpy python3-pandas python3-pytest python3-matplotlib
+  libopenmpi-dev openmpi-bin
 )
 missing=()
 for p in "${PKGS[@]}"; do

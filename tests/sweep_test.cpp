@@ -8,6 +8,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +109,39 @@ TEST(Sweep, UnitsRunAcrossThreadsEqualUnitsRunOneByOne) {
   // An error in the store's callback stops the run and reaches the caller.
   EXPECT_THROW(run_sweep_units(o, units, 2, [](SweepMedium&&) { throw std::runtime_error("disk full"); }),
                std::runtime_error);
+}
+
+TEST(Sweep, ARecordSentAsBytesArrivesBitForBit) {
+  SweepMedium m = run_sweep_unit(tiny(), {1, 0}, 1);
+  m.seconds = 0.1 + 0.2;  // not a short decimal
+  m.droplets.push_back({7, std::nextafter(3.0, 4.0), Outcome::diverged, 0.0, -1});
+  const std::string bytes = encode_sweep_medium(m);
+  const SweepMedium back = decode_sweep_medium(bytes);
+  EXPECT_EQ(back.unit, m.unit);
+  EXPECT_EQ(std::memcmp(&back.porosity, &m.porosity, sizeof m.porosity), 0);
+  EXPECT_EQ(back.grains, m.grains);
+  EXPECT_EQ(back.medium_seed, m.medium_seed);
+  EXPECT_EQ(back.passed, m.passed);
+  EXPECT_EQ(back.stuck, m.stuck);
+  EXPECT_EQ(back.mean_t, m.mean_t);
+  EXPECT_EQ(back.standard_error, m.standard_error);
+  EXPECT_EQ(back.seconds, m.seconds);
+  ASSERT_EQ(back.droplets.size(), m.droplets.size());
+  for (std::size_t i = 0; i < m.droplets.size(); ++i) {
+    EXPECT_EQ(back.droplets[i].droplet, m.droplets[i].droplet);
+    EXPECT_EQ(back.droplets[i].start_x, m.droplets[i].start_x);
+    EXPECT_EQ(back.droplets[i].outcome, m.droplets[i].outcome);
+    EXPECT_EQ(back.droplets[i].tortuosity, m.droplets[i].tortuosity);
+    EXPECT_EQ(back.droplets[i].steps, m.droplets[i].steps);
+  }
+  EXPECT_EQ(encode_sweep_medium(back), bytes);
+  // Anything but a whole record is refused.
+  EXPECT_THROW(decode_sweep_medium(bytes.substr(0, bytes.size() - 1)), std::invalid_argument);
+  EXPECT_THROW(decode_sweep_medium(bytes + "x"), std::invalid_argument);
+  EXPECT_THROW(decode_sweep_medium(""), std::invalid_argument);
+  std::string bad_outcome = bytes;
+  bad_outcome[bytes.size() - 8 - 8 - 4] = 9;  // the last droplet's outcome
+  EXPECT_THROW(decode_sweep_medium(bad_outcome), std::invalid_argument);
 }
 
 TEST(Sweep, PointsPoolTheDropletsOfAPorosity) {

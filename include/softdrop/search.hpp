@@ -215,73 +215,13 @@ struct DriveOptions {
   /// completes the generation, while the workers go on (tests slow it down here to check that no
   /// worker sees a generation half-completed). Empty: nothing.
   std::function<void()> before_completion;
-  /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: 8 on 1
-  /// and 2 threads (16 on 1 thread at λ >= 2 with AVX-512 and the sequential order, 4 at λ = 1
-  /// with SSE2 alone: default_lanes() in speculative_drive.cpp has the measurements); more
-  /// threads keep as many candidates in flight as
-  /// 2 threads do, with fewer lanes each (at least 1). With the red-black constraint order, 0
-  /// means 1 with SSE2 alone (there the lanes only hide the sequential constraint's chain, which
-  /// red-black does not have) and with AVX at λ = 1 on several threads (the last table). More lanes
-  /// evaluate faster but run further ahead, so more speculative work is dropped when a generation
-  /// accepts, and each candidate steps slower, which delays the decisions the others wait for.
-  /// Evaluations/s by lanes, bench_scenes (60 or 120 generations) and `optimize --lambda 4
-  /// --generations 40`:
-  ///
-  ///   | search           | 3     | 4     | 6     | 8     | 12   |
-  ///   | λ = 1, 1 thread  | 58.0  | 64.1  | 66.0  | 63.6  | 57.8 |
-  ///   | λ = 1, 2 threads | 105.2 | 109.4 | 106.9 | 99.3  | 83.8 |
-  ///   | λ = 2, 1 thread  | 30.3  | 34.1  | 39.4  | 41.7  | 38.9 |
-  ///   | λ = 2, 2 threads | 57.5  | 63.9  | 69.1  | 73.5  | 63.2 |
-  ///   | λ = 4, 1 thread  |       |       | 91.2  | 96.4  | 93.3 |
-  ///   | λ = 4, 2 threads |       |       | 156   | 149   | 139  |
-  ///
-  /// With AVX-512 (8 rings to a register; 3 repeats for λ = 1, 2 for λ = 2):
-  ///
-  ///   | search           | 4     | 6     | 8     | 12    | 16   |
-  ///   | λ = 1, 1 thread  | 61.7  | 65.9  | 72.8  | 66.4  | 64.9 |
-  ///   | λ = 1, 2 threads | 103.5 | 110.1 | 108.1 | 90.0  | 84.2 |
-  ///   | λ = 2, 1 thread  | 33.8  |       | 43.5  | 42.3  | 45.8 |
-  ///   | λ = 2, 2 threads | 64.7  |       | 75.0  | 70.6  | 61.8 |
-  ///
-  /// With AVX-512 and the lanes stepped as one block (run_interleaved's lane-by-lane stages; 3
-  /// repeats; red-black: other histories, so compare within its rows):
-  ///
-  ///   | search                    | 1     | 4     | 6     | 8     | 12    | 16   |
-  ///   | λ = 1, 1 thread           |       | 70.7  | 85.1  | 91.6  | 82.3  | 83.3 |
-  ///   | λ = 1, 2 threads          |       | 120.0 | 125.9 | 132.3 | 110.4 | 106.1 |
-  ///   | λ = 2, 1 thread           |       | 38.5  | 47.7  | 56.8  | 55.4  | 61.2 |
-  ///   | λ = 2, 2 threads          |       | 70.5  | 83.8  | 97.6  | 88.9  | 82.4 |
-  ///   | λ = 1 red-black, 1 thread | 61.4  | 72.3  |       | 78.8  | 64.3  |      |
-  ///   | λ = 1 red-black, 2 threads| 114.9 | 116.4 |       | 118.1 | 83.2  |      |
-  ///   | λ = 2 red-black, 1 thread | 69.1  | 82.3  |       | 103.1 | 83.7  |      |
-  ///   | λ = 2 red-black, 2 threads| 129.5 | 146.6 |       | 163.8 | 130.2 |      |
-  ///
-  /// With AVX (bench_scenes --width 4, blocks of two registers to a group of eight; 2 repeats; one
-  /// lane on one thread does not speculate):
-  ///
-  ///   | search                    | 1     | 4     | 6     | 8     | 12    |
-  ///   | λ = 1, 1 thread           | 29.0  | 61.5  | 72.9  | 77.1  | 61.7  |
-  ///   | λ = 1, 2 threads          | 52.8  | 104.2 | 114.7 | 110.8 | 91.6  |
-  ///   | λ = 2, 1 thread           | 13.7  | 34.0  | 40.5  | 48.6  | 43.0  |
-  ///   | λ = 2, 2 threads          | 25.5  | 63.6  | 70.7  | 67.2  | 69.5  |
-  ///   | λ = 1 red-black, 1 thread | 55.3  | 51.0  | 53.6  | 43.1  | 43.1  |
-  ///   | λ = 1 red-black, 2 threads| 65.5  | 87.4  | 66.7  | 66.9  | 51.0  |
-  ///   | λ = 2 red-black, 1 thread | 59.9  | 57.0  | 59.5  | 71.6  | 55.7  |
-  ///   | λ = 2 red-black, 2 threads| 101.7 | 108.2 | 96.3  | 97.9  | 85.7  |
-  ///
-  /// On a processor with AVX2 and no AVX-512 (a Zen 3, "AMD EPYC (family 25, model 1)"), where the
-  /// step takes that AVX code; mean of 2 runs each, the scenes in turn. The emulation above had
-  /// red-black best with one lane; on the real processor 8 lanes are, except at λ = 1 on 2 threads:
-  ///
-  ///   | search                    | 1     | 4     | 6     | 8     | 12    |
-  ///   | λ = 1, 1 thread           | 17.1  | 31.0  | 38.7  | 44.3  | 33.1  |
-  ///   | λ = 1, 2 threads          | 30.6  | 53.4  | 58.3  | 58.0  | 45.3  |
-  ///   | λ = 2, 1 thread           | 8.4   | 17.4  | 22.7  | 25.8  | 20.7  |
-  ///   | λ = 2, 2 threads          | 15.4  | 31.5  | 38.8  | 41.2  | 33.3  |
-  ///   | λ = 1 red-black, 1 thread | 22.2  | 20.3  | 24.6  | 28.8  | 19.5  |
-  ///   | λ = 1 red-black, 2 threads| 44.6  | 36.2  | 38.9  | 38.3  | 27.6  |
-  ///   | λ = 2 red-black, 1 thread | 24.5  | 23.4  | 32.0  | 34.1  | 27.7  |
-  ///   | λ = 2 red-black, 2 threads| 49.4  | 44.1  | 49.5  | 53.3  | 41.8  |
+  /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: chosen
+  /// for the processor, the threads, λ and the constraint order by default_lanes() (in
+  /// speculative_drive.cpp; its measurements are in bench/README.md, "Lanes of a search"). More
+  /// threads keep as many candidates in flight as 2 threads do, with fewer lanes each (at least
+  /// 1). More lanes evaluate faster but run further ahead, so more speculative work is dropped
+  /// when a generation accepts, and each candidate steps slower, which delays the decisions the
+  /// others wait for. A matter of speed only: the history does not depend on it.
   int lanes = 0;
 
   /// False, with the reason naming the option, for lanes outside [0, 64].

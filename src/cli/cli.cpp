@@ -3,9 +3,12 @@
 #include <exception>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "cli/config_file.hpp"
+#include "cli/mpi_job.hpp"
 #include "cli/output.hpp"
 #include "cli/suggest.hpp"
 #include "softdrop/medium.hpp"
@@ -108,19 +111,45 @@ std::string Cli::parse_error_line(const CLI::ParseError& error, int argc, const 
 
 int main(int argc, char** argv) {
   remove_temp_files_on_signals();
+  // Under mpirun (or srun) this process is one rank of a job. A build without MPI started as one
+  // of several ranks says so; started alone it is the plain program.
+  std::optional<Job> job;
+  if (launched_by_mpi() && (built_with_mpi() || launched_ranks() > 1)) {
+    try {
+      job.emplace(&argc, &argv);
+    } catch (const std::exception& e) {
+      std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
+      return 1;
+    }
+  }
+  const bool speaks = !job || job->rank() == 0;  // the other ranks leave the messages to rank 0
   Cli cli;
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return cli.app.exit(e);  // --help, --version
-    std::cerr << "softdrop: error: " << cli.parse_error_line(e, argc, argv) << '\n';
+    if (e.get_exit_code() == 0) return speaks ? cli.app.exit(e) : 0;  // --help, --version
+    if (speaks) std::cerr << "softdrop: error: " << cli.parse_error_line(e, argc, argv) << '\n';
+    return 2;
+  }
+  if (job && job->size() > 1 && !cli.app.got_subcommand("sweep")) {
+    if (speaks)
+      std::cerr << "softdrop: error: only sweep runs across MPI ranks; run "
+                << cli.app.get_subcommands().front()->get_name() << " without mpirun\n";
     return 2;
   }
   try {
     return cli.run();
   } catch (const std::exception& e) {
-    std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
-    return 1;
+    if (!job || job->size() == 1) {
+      std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
+      return 1;
+    }
+    // The ranks check the same options and fail alike before they exchange anything; an error
+    // after that (rank 0's store, say) must not leave the others waiting.
+    const bool everywhere = dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
+    if (speaks || !everywhere) std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
+    if (everywhere) return 1;
+    job->abort(1);
   }
 }
 

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/mpi_sweep.hpp"
 #include "cli/options_diff.hpp"
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
@@ -181,6 +182,12 @@ std::pair<int, int> check_sweep(SweepArgs& a, const CLI::App& cmd) {
 
 int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
   const auto [shard, shards] = check_sweep(a, cmd);
+  const Job* job = current_job();
+  const bool on_ranks = job && job->size() > 1;
+  if (on_ranks && job->rank() != 0) {  // rank 0 has the store and says what to run
+    work_on_sweep_units(*job, a.sweep, a.threads);
+    return 0;
+  }
 
   auto store = open_sweep_store(a.db, OpenMode::create);
   const std::string params = sweep_params_to_json(a.sweep);
@@ -206,37 +213,43 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
   long droplets_done = 0;
   std::size_t units_done = 0, units_elsewhere = 0;
   std::mutex store_lock;  // on_done runs on this thread, skip on the workers
-  run_sweep_units(
-      a.sweep, todo, a.threads,
-      [&](SweepMedium&& m) {
-        std::lock_guard lock(store_lock);
-        if (!store->add(id, m)) ++units_elsewhere;  // stored meanwhile by another process
-        ++units_done;
-        droplets_done += static_cast<long>(m.droplets.size());
-        const auto now = std::chrono::steady_clock::now();
-        if (!a.quiet && (now - last > std::chrono::seconds(tty ? 1 : 10) || units_done == todo.size())) {
-          last = now;
-          const double s = std::chrono::duration<double>(now - t0).count();
-          const double eta = s / static_cast<double>(units_done) * static_cast<double>(todo.size() - units_done);
-          std::cerr << (tty ? "\r" : "") << "sweep: " << units_done << "/" << todo.size() << " media, "
-                    << fmt(static_cast<double>(droplets_done) / s, 3) << " droplets/s, phi "
-                    << fmt(m.target_porosity, 3) << " <T> " << fmt(m.mean_t, 5) << ", ETA " << fmt(eta, 3) << " s"
-                    << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
-        }
-        if (host && host->on_progress &&
-            !host->on_progress({{"sweep", id}, {"porosity_index", m.unit.porosity}, {"medium_index", m.unit.medium},
-                                {"target_porosity", m.target_porosity}, {"passed", m.passed},
-                                {"mean_t", m.passed ? nlohmann::json(m.mean_t) : nlohmann::json()},
-                                {"media_done", units_done}, {"media_to_do", todo.size()}}))
-          host_stop = true;
-      },
-      [&] { return stopping(); },
-      [&](const SweepUnit& u) {
-        std::lock_guard lock(store_lock);
-        if (!store->has_unit(id, u)) return false;
-        ++units_done, ++units_elsewhere;
-        return true;
-      });
+  double commit_seconds = 0;  // in store->add: what rank 0 of an MPI job spends on each medium
+  const std::function<void(SweepMedium&&)> commit = [&](SweepMedium&& m) {
+    std::lock_guard lock(store_lock);
+    const auto c0 = std::chrono::steady_clock::now();
+    if (!store->add(id, m)) ++units_elsewhere;  // stored meanwhile by another process
+    commit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
+    ++units_done;
+    droplets_done += static_cast<long>(m.droplets.size());
+    const auto now = std::chrono::steady_clock::now();
+    if (!a.quiet && (now - last > std::chrono::seconds(tty ? 1 : 10) || units_done == todo.size())) {
+      last = now;
+      const double s = std::chrono::duration<double>(now - t0).count();
+      const double eta = s / static_cast<double>(units_done) * static_cast<double>(todo.size() - units_done);
+      std::cerr << (tty ? "\r" : "") << "sweep: " << units_done << "/" << todo.size() << " media, "
+                << fmt(static_cast<double>(droplets_done) / s, 3) << " droplets/s, phi "
+                << fmt(m.target_porosity, 3) << " <T> " << fmt(m.mean_t, 5) << ", ETA " << fmt(eta, 3) << " s"
+                << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
+    }
+    if (host && host->on_progress &&
+        !host->on_progress({{"sweep", id}, {"porosity_index", m.unit.porosity}, {"medium_index", m.unit.medium},
+                            {"target_porosity", m.target_porosity}, {"passed", m.passed},
+                            {"mean_t", m.passed ? nlohmann::json(m.mean_t) : nlohmann::json()},
+                            {"media_done", units_done}, {"media_to_do", todo.size()}}))
+      host_stop = true;
+  };
+  const std::function<bool()> stop_requested = [&] { return stopping(); };
+  const std::function<bool(const SweepUnit&)> stored = [&](const SweepUnit& u) {
+    std::lock_guard lock(store_lock);
+    if (!store->has_unit(id, u)) return false;
+    ++units_done, ++units_elsewhere;
+    return true;
+  };
+  RanksReport ranks;
+  if (on_ranks)
+    ranks = run_sweep_units_on_ranks(*job, a.sweep, todo, a.threads, commit, stop_requested, stored);
+  else
+    run_sweep_units(a.sweep, todo, a.threads, commit, stop_requested, stored);
   const SweepRecord rec = store->sweep(id);
   const std::string status = rec.done == rec.units ? "complete" : stopping() ? "interrupted" : "running";
   store->set_status(id, status);
@@ -245,15 +258,22 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     host->summary = {{"version", kVersion}, {"db", a.db}, {"sweep", id}, {"status", status}, {"media", rec.units},
                      {"media_stored", rec.done}, {"media_this_session", units_done - units_elsewhere},
                      {"media_by_another_process", units_elsewhere}, {"droplets_this_session", droplets_done},
-                     {"wall_seconds", seconds}};
+                     {"wall_seconds", seconds}, {"commit_seconds", commit_seconds}};
     return 0;
   }
   points_table(sweep_points(store->media(id))).print(std::cout, a.format);
   if (!a.quiet) {
     std::cerr << "sweep " << id << ": " << rec.done << " of " << rec.units << " media stored; this session "
               << units_done - units_elsewhere << " media, " << droplets_done << " droplets in " << fmt(seconds, 4) << " s"
-              << (units_elsewhere ? ", " + std::to_string(units_elsewhere) + " media stored by another process" : "")
-              << "\n";
+              << (units_elsewhere ? ", " + std::to_string(units_elsewhere) + " media stored by another process" : "");
+    const auto stored_here = static_cast<double>(units_done - units_elsewhere);
+    for (std::size_t r = 0; r < ranks.ran.size(); ++r)
+      std::cerr << (r == 0 ? "; by rank: " : ", ") << ranks.ran[r];
+    if (stored_here > 0) std::cerr << "; storing took " << fmt(1e3 * commit_seconds / stored_here, 3) << " ms a medium";
+    if (ranks.ran.size() > 1 && stored_here > ranks.ran[0])  // the record's decoding, the answers to the ranks, storing
+      std::cerr << ", serving the other ranks "
+                << fmt(1e3 * ranks.serve_seconds / (stored_here - ranks.ran[0]), 3) << " ms a medium of theirs";
+    std::cerr << "\n";
   }
   return signals->exit_code();
 }

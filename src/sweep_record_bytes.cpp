@@ -1,0 +1,86 @@
+// A sweep unit's record as bytes: fixed-size fields copied as they are in memory, then the
+// droplets. Only for processes of one job, so no byte-order or version handling.
+#include <cstdint>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+
+#include "softdrop/sweep.hpp"
+
+namespace softdrop {
+namespace {
+
+class Writer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    out.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  std::string out;
+};
+
+class Reader {
+ public:
+  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
+  template <class T>
+  T get() {
+    static_assert(std::is_trivially_copyable_v<T>);
+    if (bytes_.size() - at_ < sizeof(T)) throw std::invalid_argument("sweep record: truncated");
+    T v;
+    std::memcpy(&v, bytes_.data() + at_, sizeof v);
+    at_ += sizeof v;
+    return v;
+  }
+  bool at_end() const { return at_ == bytes_.size(); }
+
+ private:
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+constexpr std::uint32_t kMagic = 0x53445752;  // "SDWR"
+
+}  // namespace
+
+std::string encode_sweep_medium(const SweepMedium& m) {
+  Writer w;
+  w.put(kMagic);
+  w.put(m.unit.porosity), w.put(m.unit.medium);
+  w.put(m.target_porosity), w.put(m.porosity), w.put(m.grains), w.put(m.medium_seed);
+  w.put(m.passed), w.put(m.stuck), w.put(m.timeout), w.put(m.diverged);
+  w.put(m.mean_t), w.put(m.standard_error), w.put(m.stuck_fraction), w.put(m.seconds);
+  w.put(static_cast<std::uint64_t>(m.droplets.size()));
+  for (const SweepDroplet& d : m.droplets) {
+    w.put(d.droplet), w.put(d.start_x), w.put(static_cast<std::int32_t>(d.outcome)), w.put(d.tortuosity);
+    w.put(d.steps);
+  }
+  return w.out;
+}
+
+SweepMedium decode_sweep_medium(const std::string& bytes) {
+  Reader r(bytes);
+  if (r.get<std::uint32_t>() != kMagic) throw std::invalid_argument("sweep record: not one");
+  SweepMedium m;
+  m.unit.porosity = r.get<int>(), m.unit.medium = r.get<int>();
+  m.target_porosity = r.get<double>(), m.porosity = r.get<double>(), m.grains = r.get<int>();
+  m.medium_seed = r.get<std::uint64_t>();
+  m.passed = r.get<int>(), m.stuck = r.get<int>(), m.timeout = r.get<int>(), m.diverged = r.get<int>();
+  m.mean_t = r.get<double>(), m.standard_error = r.get<double>(), m.stuck_fraction = r.get<double>();
+  m.seconds = r.get<double>();
+  const auto n = r.get<std::uint64_t>();
+  if (n > bytes.size()) throw std::invalid_argument("sweep record: truncated");
+  m.droplets.resize(n);
+  for (SweepDroplet& d : m.droplets) {
+    d.droplet = r.get<int>(), d.start_x = r.get<double>();
+    const auto outcome = r.get<std::int32_t>();
+    if (outcome < 0 || outcome > static_cast<std::int32_t>(Outcome::diverged)) throw std::invalid_argument("sweep record: bad outcome");
+    d.outcome = static_cast<Outcome>(outcome);
+    d.tortuosity = r.get<double>(), d.steps = r.get<std::int64_t>();
+  }
+  if (!r.at_end()) throw std::invalid_argument("sweep record: trailing bytes");
+  return m;
+}
+
+}  // namespace softdrop
