@@ -27,6 +27,7 @@ const char* to_string(MoveKind kind) {
     case MoveKind::all: return "all";
     case MoveKind::single: return "single";
     case MoveKind::relocate: return "relocate";
+    case MoveKind::migrate: return "migrate";
   }
   return "?";
 }
@@ -36,7 +37,8 @@ MoveKind parse_move_kind(const std::string& name) {
   if (name == "all") return MoveKind::all;
   if (name == "single") return MoveKind::single;
   if (name == "relocate") return MoveKind::relocate;
-  throw std::invalid_argument("move kind '" + name + "': expected initial, all, single or relocate");
+  if (name == "migrate") return MoveKind::migrate;
+  throw std::invalid_argument("move kind '" + name + "': expected initial, all, single, relocate or migrate");
 }
 
 const char* to_string(Termination termination) {
@@ -218,6 +220,31 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
   g.best_t = best_.eval.tortuosity;
   g.touched = static_cast<int>(best_.eval.touched.size());
   g.seconds = seconds;
+  g.state = strategy_->state();
+  return g;
+}
+
+Generation Search::immigrate(const Configuration& immigrant) {
+  Generation g;
+  g.number = last_ + 1;
+  g.kind = MoveKind::migrate;
+  Candidate c;
+  c.kind = MoveKind::migrate;
+  c.medium = immigrant.medium;
+  c.eval = immigrant.eval;
+  const Medium& own = strategy_->current().medium;
+  for (std::size_t i = 0; i < c.medium.grains.size(); ++i)
+    if (i >= own.grains.size() || !(c.medium.grains[i] == own.grains[i])) ++c.moved;
+  const bool better = immigrant.eval.outcome == Outcome::passed && immigrant.eval.tortuosity > best_.eval.tortuosity;
+  if (better) {
+    g.accepted = 0;
+    best_ = Configuration{g.number, immigrant.medium, immigrant.eval};
+    strategy_ = make_strategy(options_, best_, strategy_->state());
+  }
+  g.candidates.push_back(std::move(c));
+  last_ = g.number;
+  g.best_t = best_.eval.tortuosity;
+  g.touched = static_cast<int>(best_.eval.touched.size());
   g.state = strategy_->state();
   return g;
 }

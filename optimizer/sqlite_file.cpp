@@ -33,12 +33,14 @@ CREATE TABLE IF NOT EXISTS runs (
   generations     INTEGER NOT NULL,
   evaluations     INTEGER NOT NULL,
   best_t          REAL NOT NULL,
-  best_generation INTEGER NOT NULL
+  best_generation INTEGER NOT NULL,
+  island          INTEGER,
+  archipelago     INTEGER
 );
 CREATE TABLE IF NOT EXISTS generations (
   run_id             INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
   generation         INTEGER NOT NULL,
-  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single', 'relocate')),
+  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate')),
   accepted_candidate INTEGER,
   best_t             REAL NOT NULL,
   touched            INTEGER NOT NULL,
@@ -132,17 +134,19 @@ CREATE TABLE IF NOT EXISTS sweep_droplets (
 // Version 3 stores a search strategy's state with each generation (NULL: none, as before).
 constexpr const char* kSchemaV3 = "ALTER TABLE generations ADD COLUMN state TEXT";
 
-// Version 4 lets a generation's kind be 'relocate'. Earlier files have the narrower CHECK, which
-// no stored row can break when widened: it is rewritten in place by SQLite's documented procedure
-// for constraint changes that leave the stored rows valid (the table's SQL in sqlite_master, and
-// schema_version bumped so that every connection rereads it), in the caller's transaction.
+// Version 4 lets a generation's kind be 'relocate', version 5 'migrate'. Earlier files have a
+// narrower CHECK, which no stored row can break when widened: it is rewritten in place by SQLite's
+// documented procedure for constraint changes that leave the stored rows valid (the table's SQL in
+// sqlite_master, and schema_version bumped so that every connection rereads it), in the caller's
+// transaction.
 void widen_generation_kinds(SQLite::Database& db) {
-  const std::string before = "CHECK (kind IN ('initial', 'all', 'single'))";
-  const std::string after = "CHECK (kind IN ('initial', 'all', 'single', 'relocate'))";
+  const std::string open = "CHECK (kind IN (", after = "CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate'))";
   std::string sql = db.execAndGet("SELECT sql FROM sqlite_master WHERE type = 'table' AND name = 'generations'").getString();
-  const auto at = sql.find(before);
-  if (at == std::string::npos) return;  // made at version 4, or widened already
-  sql.replace(at, before.size(), after);
+  const auto at = sql.find(open);
+  const auto end = at == std::string::npos ? at : sql.find("))", at);
+  if (end == std::string::npos) return;
+  if (sql.compare(at, end + 2 - at, after) == 0) return;  // made at version 5, or widened already
+  sql.replace(at, end + 2 - at, after);
   const int schema_version = db.execAndGet("PRAGMA schema_version").getInt();
   db.exec("PRAGMA writable_schema = ON");
   SQLite::Statement update(db, "UPDATE sqlite_master SET sql = ? WHERE type = 'table' AND name = 'generations'");
@@ -150,6 +154,15 @@ void widen_generation_kinds(SQLite::Database& db) {
   update.exec();
   db.exec("PRAGMA schema_version = " + std::to_string(schema_version + 1));
   db.exec("PRAGMA writable_schema = OFF");
+}
+
+// Version 5 also gives each run its island (NULL: not one of islands) and the id of its
+// archipelago's first run.
+void add_island_columns(SQLite::Database& db) {
+  for (const char* column : {"island", "archipelago"})
+    if (db.execAndGet(std::string("SELECT count(*) FROM pragma_table_info('runs') WHERE name = '") + column + "'")
+            .getInt() == 0)
+      db.exec(std::string("ALTER TABLE runs ADD COLUMN ") + column + " INTEGER");
 }
 
 // The tables of the current schema; those starting "sweep" came with version 2.
@@ -374,7 +387,10 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     if (version < 3 && db->execAndGet("SELECT count(*) FROM pragma_table_info('generations') WHERE name = 'state'")
                                .getInt() == 0)
       db->exec(kSchemaV3);
-    if (version < 4) widen_generation_kinds(*db);  // migration 3 -> 4: relocation moves
+    if (version < 5) {  // migrations 3 -> 4 -> 5: relocation moves, islands
+      widen_generation_kinds(*db);
+      add_island_columns(*db);
+    }
     if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
     t.commit();
     return db;

@@ -50,27 +50,19 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   void append(std::int64_t run, const Generation& g, const Configuration& best) override {
     guarded([&] {
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
-      SQLite::Statement last(db_, "SELECT generations FROM runs WHERE id = ?");
-      last.bind(1, run);
-      if (!last.executeStep()) throw std::runtime_error("run " + std::to_string(run) + ": no such run");
-      const std::int64_t stored = detail::as_int64(last.getColumn(0));
-      // A statement left mid-result keeps a read snapshot open past COMMIT, and that snapshot
-      // stops every automatic checkpoint: the WAL file would grow without bound.
-      last.reset();
-      if (g.number != stored + 1)
-        throw std::runtime_error("run " + std::to_string(run) + ": generation " + std::to_string(g.number) +
-                                 " does not follow the stored generation " + std::to_string(stored) +
-                                 " (is another process writing this run?)");
-      write_generation(run, g);
-      SQLite::Statement u(db_, std::string("UPDATE runs SET generations = ?, evaluations = evaluations + ?, "
-                                           "best_t = ?, best_generation = ?, status = 'running', updated = ") +
-                                   kNow + " WHERE id = ?");
-      u.bind(1, static_cast<std::int64_t>(g.number));
-      u.bind(2, static_cast<std::int64_t>(g.candidates.size()));
-      u.bind(3, best.eval.tortuosity);
-      u.bind(4, static_cast<std::int64_t>(best.generation));
-      u.bind(5, run);
-      u.exec();
+      append_in_transaction(run, g, best);
+      t.commit();
+      return 0;
+    });
+  }
+
+  void append_together(const std::vector<std::int64_t>& runs, const std::vector<Generation>& gs,
+                       const std::vector<Configuration>& bests) override {
+    if (runs.size() != gs.size() || runs.size() != bests.size())
+      throw std::logic_error("History::append_together: runs, generations and bests differ in number");
+    guarded([&] {
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
+      for (std::size_t i = 0; i < runs.size(); ++i) append_in_transaction(runs[i], gs[i], bests[i]);
       t.commit();
       return 0;
     });
@@ -79,6 +71,17 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   void set_status(std::int64_t run, const std::string& status) override {
     guarded([&] {
       detail::set_row_status(db_, "runs", run, status, "run");
+      return 0;
+    });
+  }
+
+  void set_island(std::int64_t run, int island, std::int64_t archipelago) override {
+    guarded([&] {
+      SQLite::Statement q(db_, "UPDATE runs SET island = ?, archipelago = ? WHERE id = ?");
+      q.bind(1, island);
+      q.bind(2, archipelago);
+      q.bind(3, run);
+      if (q.exec() != 1) throw std::runtime_error("no run " + std::to_string(run));
       return 0;
     });
   }
@@ -97,7 +100,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   std::vector<RunRecord> runs() override {
     return guarded([&] {
       std::vector<RunRecord> out;
-      SQLite::Statement q(db_, std::string(kRunColumns) + " ORDER BY id");
+      SQLite::Statement q(db_, run_columns() + " ORDER BY id");
       while (q.executeStep()) out.push_back(read_run(q));
       return out;
     });
@@ -105,7 +108,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
 
   RunRecord run(std::int64_t id) override {
     return guarded([&] {
-      SQLite::Statement q(db_, std::string(kRunColumns) + " WHERE id = ?");
+      SQLite::Statement q(db_, run_columns() + " WHERE id = ?");
       q.bind(1, id);
       if (!q.executeStep()) throw std::runtime_error("--run " + std::to_string(id) + ": no such run in '" + path_ + "'");
       return read_run(q);
@@ -275,9 +278,12 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   }
 
  private:
-  static constexpr const char* kRunColumns =
-      "SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, periodic, "
-      "generations, evaluations, best_t, best_generation FROM runs";
+  // A file before version 5, opened for reading, has no island columns.
+  std::string run_columns() {
+    return std::string("SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, "
+                       "periodic, generations, evaluations, best_t, best_generation, ") +
+           (schema_version() >= 5 ? "island, archipelago" : "NULL, NULL") + " FROM runs";
+  }
 
   // A version-2 file opened for reading is read as it is (no state column).
   int schema_version() { return db_.execAndGet("PRAGMA user_version").getInt(); }
@@ -300,7 +306,35 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     r.evaluations = detail::as_int64(q.getColumn(13));
     r.best_t = detail::as_real(q.getColumn(14));
     r.best_generation = detail::as_int64(q.getColumn(15));
+    if (!q.getColumn(16).isNull()) r.island = detail::as_int(q.getColumn(16));
+    if (!q.getColumn(17).isNull()) r.archipelago = detail::as_int64(q.getColumn(17));
     return r;
+  }
+
+  // Inside a transaction: generation g of `run`, which must follow the stored one, and the run's
+  // row. A migration's candidate was evaluated by another island: it counts no evaluation.
+  void append_in_transaction(std::int64_t run, const Generation& g, const Configuration& best) {
+    SQLite::Statement last(db_, "SELECT generations FROM runs WHERE id = ?");
+    last.bind(1, run);
+    if (!last.executeStep()) throw std::runtime_error("run " + std::to_string(run) + ": no such run");
+    const std::int64_t stored = detail::as_int64(last.getColumn(0));
+    // A statement left mid-result keeps a read snapshot open past COMMIT, and that snapshot
+    // stops every automatic checkpoint: the WAL file would grow without bound.
+    last.reset();
+    if (g.number != stored + 1)
+      throw std::runtime_error("run " + std::to_string(run) + ": generation " + std::to_string(g.number) +
+                               " does not follow the stored generation " + std::to_string(stored) +
+                               " (is another process writing this run?)");
+    write_generation(run, g);
+    SQLite::Statement u(db_, std::string("UPDATE runs SET generations = ?, evaluations = evaluations + ?, "
+                                         "best_t = ?, best_generation = ?, status = 'running', updated = ") +
+                                 kNow + " WHERE id = ?");
+    u.bind(1, static_cast<std::int64_t>(g.number));
+    u.bind(2, g.kind == MoveKind::migrate ? std::int64_t{0} : static_cast<std::int64_t>(g.candidates.size()));
+    u.bind(3, best.eval.tortuosity);
+    u.bind(4, static_cast<std::int64_t>(best.generation));
+    u.bind(5, run);
+    u.exec();
   }
 
   // Inside a transaction: the generation, its candidates and, if it kept one, that candidate's

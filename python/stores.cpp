@@ -53,7 +53,8 @@ auto in_store(Read&& read) {
 
 py::dict history_tables(History& h, bool arrangements) {
   Columns runs({"id", "created", "updated", "version", "status", "seed", "lambda", "grains", "width", "height",
-                "periodic", "generations", "evaluations", "best_t", "best_generation", "params"});
+                "periodic", "generations", "evaluations", "best_t", "best_generation", "island", "archipelago",
+                "params"});
   Columns gens({"run_id", "generation", "kind", "accepted_candidate", "best_t", "touched", "seconds", "finished",
                 "state"});
   Columns cands({"run_id", "generation", "candidate", "moved_grain", "moved", "outcome", "reason", "tortuosity",
@@ -67,6 +68,8 @@ py::dict history_tables(History& h, bool arrangements) {
     runs["height"].append(r.height), runs["periodic"].append(r.periodic), runs["generations"].append(r.generations);
     runs["evaluations"].append(r.evaluations), runs["best_t"].append(r.best_t);
     runs["best_generation"].append(r.best_generation), runs["params"].append(r.params);
+    runs["island"].append(or_none(r.island >= 0, py::int_(r.island)));
+    runs["archipelago"].append(or_none(r.archipelago > 0, py::int_(r.archipelago)));
     for (const GenerationRecord& g : h.generations(r.id)) {
       gens["run_id"].append(r.id), gens["generation"].append(g.generation), gens["kind"].append(g.kind);
       gens["accepted_candidate"].append(or_none(g.accepted >= 0, py::int_(g.accepted)));

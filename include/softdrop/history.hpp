@@ -16,8 +16,9 @@ namespace softdrop {
 
 /// The schema version this build writes (PRAGMA user_version). Files with a higher version are
 /// refused; files with a lower one are read as they are and migrated when opened for writing
-/// (1 -> 2 adds the sweeps, 2 -> 3 the strategies' state of each generation).
-constexpr int kHistorySchemaVersion = 4;
+/// (1 -> 2 adds the sweeps, 2 -> 3 the strategies' state of each generation, 3 -> 4 relocation
+/// moves, 4 -> 5 islands).
+constexpr int kHistorySchemaVersion = 5;
 /// PRAGMA application_id of a softdrop database: "SDRP".
 constexpr std::int32_t kHistoryApplicationId = 0x53445250;
 
@@ -37,6 +38,8 @@ struct RunRecord {
   std::int64_t evaluations = 0;  ///< droplets pushed so far
   double best_t = 0;
   std::int64_t best_generation = 0;
+  int island = -1;                ///< the run's island (islands.hpp); -1: not one of islands
+  std::int64_t archipelago = 0;   ///< id of its archipelago's first run (island 0); 0: none
 };
 
 /// A candidate's row.
@@ -77,8 +80,14 @@ class History {
   /// candidate: grains, touched set, path) is stored. `best` is the best after it.
   /// Throws if the generation is not the next one (e.g. another process writes the same run).
   virtual void append(std::int64_t run, const Generation& g, const Configuration& best) = 0;
+  /// Appends generation gs[i] of runs[i] for every i in one transaction: the islands' migration,
+  /// which a kill leaves made by all of them or by none.
+  virtual void append_together(const std::vector<std::int64_t>& runs, const std::vector<Generation>& gs,
+                               const std::vector<Configuration>& bests) = 0;
   /// Sets a run's status (running, finished, interrupted).
   virtual void set_status(std::int64_t run, const std::string& status) = 0;
+  /// Makes a run island `island` of the archipelago whose first run is `archipelago`.
+  virtual void set_island(std::int64_t run, int island, std::int64_t archipelago) = 0;
   /// Sets one key of a run's stored parameters (a JSON value, e.g. "target-generations" = "500").
   virtual void set_param(std::int64_t run, const std::string& key, const std::string& json_value) = 0;
 

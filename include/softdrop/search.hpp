@@ -29,10 +29,12 @@ enum class MoveKind {
   initial,  ///< generation 0: the starting arrangement itself
   all,      ///< every grain jumps by a small random step
   single,   ///< one grain, chosen among those the parent's droplet touched, jumps
-  relocate  ///< one grain the parent's droplet did not touch is put next to the droplet's path
+  relocate, ///< one grain the parent's droplet did not touch is put next to the droplet's path
+  migrate   ///< islands: another island's best arrangement, kept if it beats this island's best
 };
 const char* to_string(MoveKind kind);
-/// Parses "initial" / "all" / "single" / "relocate"; throws std::invalid_argument naming the value.
+/// Parses "initial" / "all" / "single" / "relocate" / "migrate"; throws std::invalid_argument naming
+/// the value.
 MoveKind parse_move_kind(const std::string& name);
 
 /// How a search chooses its candidates and what it keeps (see strategy.hpp).
@@ -176,6 +178,11 @@ class Search {
   /// in index order): the strategy keeps one or none, and the best is updated. next() and the
   /// pipelined drive both end here.
   Generation complete(std::vector<Candidate> candidates, double seconds);
+  /// Generation last_generation() + 1 as a migration (islands.hpp): its one candidate is
+  /// `immigrant` (an arrangement another island evaluated with the same options), kept, as best
+  /// and as the arrangement the strategy moves on from (its state otherwise unchanged), if its T
+  /// beats this search's best.
+  Generation immigrate(const Configuration& immigrant);
 
   const Configuration& best() const { return best_; }
   const Strategy& strategy() const { return *strategy_; }

@@ -135,7 +135,8 @@ def read_history(db, arrangements=True):
 
     tables = _core._read_history(str(db), bool(arrangements))
     frames = {name: pd.DataFrame(columns) for name, columns in tables.items()}
-    for name, column in (("generations", "accepted_candidate"), ("candidates", "moved_grain")):
+    for name, column in (("generations", "accepted_candidate"), ("candidates", "moved_grain"), ("runs", "island"),
+                         ("runs", "archipelago")):
         frames[name][column] = frames[name][column].astype("Int64")  # missing: <NA>
     frames["grains"]["touched"] = frames["grains"]["touched"].astype(bool)
     params = pd.json_normalize([json.loads(p) for p in frames["runs"]["params"]])

@@ -28,8 +28,11 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
       ->capture_default_str()
       ->check(CLI::IsMember({"table", "csv", "json"}));
   s->footer(
-      "Columns. Runs: evaluations = droplets pushed so far (generation 0's included); best_generation = where "
-      "the best T was found. Generations: kind = all (every grain moved), single (one touched grain) or relocate (one untouched grain put next to the path); "
+      "Columns. Runs: island = I of R for island I of the islands whose first run is R (optimize --islands; "
+      "empty otherwise); evaluations = droplets pushed so far (generation 0's included); best_generation = where "
+      "the best T was found. Generations: kind = all (every grain moved), single (one touched grain), relocate "
+      "(one untouched grain put next to the path) or migrate (another island's best, accepted if it beat this "
+      "island's); "
       "accepted = 1 if the strategy kept a candidate; candidate_t = the best T among the generation's passing "
       "candidates (empty if none passed); outcomes = each candidate's outcome, in order; best_t = the best T "
       "after it; touched = grains the best arrangement's droplet touched; seconds = wall time; state = the "
@@ -71,12 +74,14 @@ int run_history(const HistoryArgs& a) {
   auto history = open_history(a.db, OpenMode::read_only);
   Table t;
   if (a.run == 0) {
-    t.header = {"run", "created", "status", "strategy", "grains", "generations", "evaluations", "best_t",
+    t.header = {"run", "created", "status", "strategy", "island", "grains", "generations", "evaluations", "best_t",
                 "best_generation", "lambda", "seed", "version"};
     for (const RunRecord& r : history->runs()) {
       const auto params = nlohmann::json::parse(r.params, nullptr, false);
       const std::string strategy = params.is_object() ? params.value("strategy", "paper") : "?";
-      t.rows.push_back({r.id, r.created, r.status, strategy, r.grains, r.generations, r.evaluations, r.best_t,
+      const nlohmann::json island = r.island >= 0 ? nlohmann::json(std::to_string(r.island) + " of " + std::to_string(r.archipelago))
+                                                  : nlohmann::json();
+      t.rows.push_back({r.id, r.created, r.status, strategy, island, r.grains, r.generations, r.evaluations, r.best_t,
                         r.best_generation, r.lambda, r.seed, r.version});
     }
   } else if (a.params) {

@@ -81,6 +81,17 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_option("--half-life", a.search.strategy.half_life, "anneal: generations in which the temperature halves")
       ->capture_default_str()
       ->each([&a](const std::string&) { a.strategy_options.emplace_back("--half-life", StrategyKind::anneal); });
+  g->add_option("--islands", a.islands.islands,
+                "Island model: this many searches with seeds of their own, run side by side, each a run of the "
+                "history; every --migrate-every generations each takes another's best (1: one search)")
+      ->capture_default_str();
+  g->add_option("--migrate-every", a.islands.migrate_every, "Islands: generations between migrations")
+      ->capture_default_str();
+  g->add_option_function<std::string>(
+       "--migration", [&a](const std::string& v) { a.islands.migration = parse_migration(v); },
+       "Islands: ring (island i takes island i-1's best) or broadcast (every island takes the best of all)")
+      ->check(CLI::IsMember({"ring", "broadcast"}))
+      ->default_str(to_string(a.islands.migration));
   g->add_option("--max-redraws", a.search.max_redraws,
                 "Redraws of a jump refused by the spacing rule before the grain stays put")
       ->capture_default_str();
@@ -114,8 +125,6 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   return s;
 }
 
-namespace {
-
 // The command line's view of the run: search options plus how the starting medium was made.
 nlohmann::json params_of(const OptimizeArgs& a) {
   nlohmann::json j = nlohmann::json::parse(search_params_to_json(a.search));
@@ -131,6 +140,11 @@ nlohmann::json params_of(const OptimizeArgs& a) {
   j["r-sigma"] = m.r_sigma;
   j["walls"] = a.medium.walls;
   j["medium-seed"] = m.seed;
+  if (a.islands.islands > 1) {  // (plain runs keep the parameters they always had)
+    j["islands"] = a.islands.islands;
+    j["migrate-every"] = a.islands.migrate_every;
+    j["migration"] = to_string(a.islands.migration);
+  }
   return j;
 }
 
@@ -147,6 +161,8 @@ std::string contradictions(const nlohmann::json& given, const nlohmann::json& st
   }
   return out;
 }
+
+namespace {
 
 // Progress on stderr: at most once a second on a terminal, every 10 s otherwise.
 class SearchProgress {
@@ -179,6 +195,8 @@ class SearchProgress {
   std::int64_t generations_ = 0, evaluations_ = 0, accepted_ = 0;
 };
 
+}  // namespace
+
 // Generation 0 of a new run: the loaded medium, or random media until the droplet passes. A medium
 // that cannot be generated at all (e.g. too many grains for the box) is an error, not a retry.
 Generation start(const OptimizeArgs& a, Configuration* best) {
@@ -200,7 +218,24 @@ Generation start(const OptimizeArgs& a, Configuration* best) {
                            ": no starting medium let the droplet pass (" + last_reason + ")");
 }
 
-}  // namespace
+
+Search resumed_search(History& history, const RunRecord& rec, const SearchOptions& options) {
+  // The strategy moves on from the last kept arrangement; the best may be an earlier one.
+  Configuration current = history.configuration(rec.id, -1);
+  Configuration best = rec.best_generation == current.generation ? current : history.configuration(rec.id, rec.best_generation);
+  // Both must come out the same with this build, or the history would fork.
+  for (Configuration* c : {&current, &best}) {
+    const Evaluation check = evaluate(c->medium, options);
+    if (check.outcome != Outcome::passed || check.tortuosity != c->eval.tortuosity || check.touched != c->eval.touched)
+      throw std::runtime_error("resume " + std::to_string(rec.id) + ": this build gives T = " + fmt(check.tortuosity) +
+                               " for the stored arrangement of generation " + std::to_string(c->generation) +
+                               ", the run stored " + fmt(c->eval.tortuosity) +
+                               " (built with other numerics? resuming would not continue the same history)");
+    c->eval = check;
+  }
+  return Search(options, std::move(best), std::move(current), history.strategy_state(rec.id, rec.generations),
+                rec.generations);
+}
 
 void check_optimize(OptimizeArgs& a) {
   if (a.generations < 0 || a.generations > 1'000'000'000)
@@ -220,6 +255,7 @@ void check_optimize(OptimizeArgs& a) {
         throw std::invalid_argument(option.substr(2) + ": an option of --strategy " + to_string(kind) +
                                     ", not used by --strategy " + to_string(a.search.strategy.kind));
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
+  if (std::string why; !a.islands.IsValid(&why)) throw std::invalid_argument(why);
   if (a.resume == 0) {  // a resumed run takes its options from the history
     // (0 grains would mean "fill to a porosity" to the medium generator, which optimize does not offer)
     if (a.medium.file.empty() && a.medium.options.grains < 1)
@@ -232,6 +268,8 @@ void check_optimize(OptimizeArgs& a) {
 
 int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   check_optimize(a);
+  // (a plain run resumed with --islands is refused below, as any contradicting option is)
+  if (a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1) return run_islands(a, cmd, host);
   const nlohmann::json given = params_of(a);
 
   std::unique_ptr<History> history;
@@ -285,22 +323,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     }
     if (target_given && stored_target != a.generations)
       history->set_param(run, "target-generations", std::to_string(a.generations));
-    // The strategy moves on from the last kept arrangement; the best may be an earlier one.
-    Configuration current = history->configuration(run, -1);
-    Configuration best = rec.best_generation == current.generation ? current
-                                                                     : history->configuration(run, rec.best_generation);
-    // Both must come out the same with this build, or the history would fork.
-    for (Configuration* c : {&current, &best}) {
-      const Evaluation check = evaluate(c->medium, a.search);
-      if (check.outcome != Outcome::passed || check.tortuosity != c->eval.tortuosity || check.touched != c->eval.touched)
-        throw std::runtime_error("resume " + std::to_string(run) + ": this build gives T = " + fmt(check.tortuosity) +
-                                 " for the stored arrangement of generation " + std::to_string(c->generation) +
-                                 ", the run stored " + fmt(c->eval.tortuosity) +
-                                 " (built with other numerics? resuming would not continue the same history)");
-      c->eval = check;
-    }
-    search = std::make_unique<Search>(a.search, std::move(best), std::move(current),
-                                      history->strategy_state(run, rec.generations), rec.generations);
+    search = std::make_unique<Search>(resumed_search(*history, rec, a.search));
     if (!a.quiet)
       std::cerr << "optimize: resuming run " << run << " of " << a.db << " at generation " << rec.generations
                 << " (best T " << fmt(rec.best_t, 8) << ")\n";

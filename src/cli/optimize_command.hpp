@@ -10,6 +10,10 @@
 
 #include "cli/common_options.hpp"
 #include "cli/host.hpp"
+#include <nlohmann/json.hpp>
+
+#include "softdrop/history.hpp"
+#include "softdrop/islands.hpp"
 #include "softdrop/search.hpp"
 
 namespace softdrop::cli {
@@ -24,6 +28,7 @@ struct OptimizeArgs {
   int lanes = 0;                   ///< candidates each thread steps together (DriveOptions::lanes)
   int start_attempts = 100;        ///< random starting media tried until the droplet passes
   SearchOptions search;
+  IslandOptions islands;           ///< islands > 1: the island model (islands.hpp)
   MediumArgs medium;
   bool quiet = false;
   bool verbose = false;            ///< also print how the speculation went
@@ -36,6 +41,23 @@ struct OptimizeArgs {
 };
 
 CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args);
+
+/// The run's parameters as the command line gives them (search options and how the starting
+/// medium was made), stored with the run.
+nlohmann::json params_of(const OptimizeArgs& args);
+/// Options given on the command line (or in a config file) that differ from the stored run's
+/// parameters, as "--key value (stored value)" items; "" when none does.
+std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& command);
+/// Generation 0 of a new run: the loaded medium, or random media until the droplet passes.
+Generation start(const OptimizeArgs& args, Configuration* best);
+/// A stored run as a search that continues it, after checking that this build evaluates its
+/// current and best arrangements as stored (throws std::runtime_error naming the run if not).
+Search resumed_search(History& history, const RunRecord& run, const SearchOptions& options);
+
+/// Whether --resume names a run that is one of islands.
+bool resumes_islands(const OptimizeArgs& args);
+/// optimize with --islands K > 1, or resuming one of islands (islands_command.cpp).
+int run_islands(OptimizeArgs& args, const CLI::App& command, Host* host);
 
 /// Checks the options without running; throws std::invalid_argument naming the bad parameter.
 void check_optimize(OptimizeArgs& args);

@@ -88,6 +88,20 @@ def test_an_exception_in_the_callback_stops_the_search_and_is_raised(tmp_path):
     assert softdrop.optimize(db, resume=1, quiet=True).last_generation == 6
 
 
+def test_islands_from_python_are_runs_with_their_island(tmp_path):
+    db = tmp_path / "islands.db"
+    events = []
+    summary = softdrop.optimize(db, callback=events.append, islands=3, migrate_every=3, generations=7, **SEARCH)
+    assert [i["island"] for i in summary.islands] == [0, 1, 2] and summary.last_generation == 7
+    runs = softdrop.read_history(db, arrangements=False)["runs"]
+    assert runs["island"].tolist() == [0, 1, 2] and runs["archipelago"].tolist() == [1, 1, 1]
+    assert runs.dtypes["island"] == "Int64"
+    assert sorted({(e["island"], e["generation"]) for e in events}) == [(i, g) for i in range(3) for g in range(1, 8)]
+    assert {e["kind"] for e in events if e["generation"] in (3, 6)} == {"migrate"}
+    softdrop.optimize(tmp_path / "plain.db", generations=1, **SEARCH)
+    assert softdrop.read_history(tmp_path / "plain.db")["runs"]["island"].isna().all()
+
+
 def test_sweep_writes_the_programs_store(tmp_path):
     ours, theirs = tmp_path / "ours.db", tmp_path / "theirs.db"
     seen = []

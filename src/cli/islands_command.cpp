@@ -1,0 +1,215 @@
+// `softdrop optimize --islands K`: K searches of one archipelago, each a run of the history
+// (runs.island, runs.archipelago = the first run's id); `--resume` of any of them continues all.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/optimize_command.hpp"
+#include "cli/output.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/params_json.hpp"
+#include "softdrop/porosity.hpp"
+#include "softdrop/version.hpp"
+
+namespace softdrop::cli {
+namespace {
+
+// The islands' runs of the archipelago that `run` belongs to, by island; checks they are whole.
+std::vector<RunRecord> archipelago_of(History& history, const RunRecord& run, const std::string& db) {
+  std::vector<RunRecord> members;
+  for (const RunRecord& r : history.runs())
+    if (r.archipelago == run.archipelago) members.push_back(r);
+  std::sort(members.begin(), members.end(), [](const RunRecord& x, const RunRecord& y) { return x.island < y.island; });
+  const nlohmann::json params = nlohmann::json::parse(members.front().params);
+  const int islands = params.value("islands", 0);
+  bool whole = static_cast<int>(members.size()) == islands;
+  for (std::size_t i = 0; whole && i < members.size(); ++i) whole = members[i].island == static_cast<int>(i);
+  if (!whole)
+    throw std::runtime_error("--db '" + db + "': the islands of run " + std::to_string(run.archipelago) + " are " +
+                             std::to_string(members.size()) + " runs, not its " + std::to_string(islands) +
+                             " islands (cut short while it was being made?): start it again");
+  return members;
+}
+
+// Progress on stderr: at most once a second on a terminal, every 10 s otherwise.
+class IslandsProgress {
+ public:
+  IslandsProgress(std::int64_t target, bool quiet) : target_(target), quiet_(quiet), tty_(::isatty(2) != 0) {}
+  void update(const std::vector<Search>& islands, std::int64_t evaluations, bool force) {
+    if (quiet_) return;
+    const auto now = clock::now();
+    if (!force && now - last_ < (tty_ ? std::chrono::seconds(1) : std::chrono::seconds(10))) return;
+    last_ = now;
+    std::int64_t lowest = islands[0].last_generation();
+    std::size_t top = 0;
+    for (std::size_t i = 0; i < islands.size(); ++i) {
+      lowest = std::min(lowest, islands[i].last_generation());
+      if (islands[i].best().eval.tortuosity > islands[top].best().eval.tortuosity) top = i;
+    }
+    const double s = std::chrono::duration<double>(now - t0_).count();
+    std::ostringstream line;
+    line << "optimize: " << islands.size() << " islands at generation " << lowest << "/" << target_ << "  best T "
+         << fmt(islands[top].best().eval.tortuosity, 8) << " (island " << top << ")  "
+         << fmt(s > 0 ? static_cast<double>(evaluations) / s : 0.0, 3) << " eval/s";
+    std::cerr << (tty_ ? "\r" : "") << line.str() << (tty_ && !force ? "\033[K" : "\n") << std::flush;
+  }
+
+ private:
+  using clock = std::chrono::steady_clock;
+  std::int64_t target_;
+  bool quiet_, tty_;
+  clock::time_point t0_ = clock::now(), last_ = t0_;
+};
+
+}  // namespace
+
+bool resumes_islands(const OptimizeArgs& a) {
+  if (a.resume <= 0 || !std::filesystem::exists(a.db)) return false;
+  auto history = open_history(a.db, OpenMode::read_only);
+  for (const RunRecord& r : history->runs())
+    if (r.id == a.resume) return r.archipelago != 0;
+  return false;  // the single-run path says the run is missing
+}
+
+int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
+  nlohmann::json given = params_of(a);
+  given["islands"] = a.islands.islands;  // (given or not: only those given are compared on resume)
+  given["migrate-every"] = a.islands.migrate_every;
+  given["migration"] = to_string(a.islands.migration);
+  std::unique_ptr<History> history;
+  std::vector<std::int64_t> runs;
+  std::vector<Search> islands;
+  std::int64_t initial_evaluations = 0;
+  if (a.resume > 0) {
+    history = open_history(a.db, OpenMode::create);
+    const std::vector<RunRecord> members = archipelago_of(*history, history->run(a.resume), a.db);
+    nlohmann::json stored = nlohmann::json::parse(members.front().params);
+    try {
+      a.search = search_params_from_json(members.front().params);
+      a.islands.islands = stored.at("islands").get<int>();
+      a.islands.migrate_every = stored.at("migrate-every").get<int>();
+      a.islands.migration = parse_migration(stored.at("migration").get<std::string>());
+    } catch (const std::exception& e) {
+      throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(members.front().id) + ": " + e.what());
+    }
+    const nlohmann::json read_back = nlohmann::json::parse(search_params_to_json(a.search));
+    for (const auto& [key, value] : read_back.items())
+      if (!stored.contains(key)) stored[key] = value;
+    stored.erase("island");
+    if (const std::string bad = contradictions(given, stored, cmd); !bad.empty())
+      throw std::invalid_argument("resume " + std::to_string(a.resume) + ": the command line contradicts the stored run: " + bad);
+    const bool target_given = cmd.get_option("--generations")->count() > 0;
+    if (!target_given && stored.contains("target-generations")) a.generations = stored["target-generations"].get<std::int64_t>();
+    for (const RunRecord& r : members) {
+      history->check_run(r.id);
+      if (target_given) history->set_param(r.id, "target-generations", std::to_string(a.generations));
+      runs.push_back(r.id);
+      islands.push_back(resumed_search(*history, r, island_search_options(a.search, r.island)));
+    }
+    if (!a.quiet)
+      std::cerr << "optimize: resuming the " << runs.size() << " islands of run " << runs.front() << " in " << a.db << "\n";
+  } else {
+    check_database(a.db);
+    if (!std::filesystem::exists(a.db)) check_output_path("--db", a.db);
+    Configuration best;
+    const Generation g0 = start(a, &best);  // every island starts from it (its evaluation takes no seed)
+    initial_evaluations = static_cast<std::int64_t>(g0.candidates.size());
+    history = open_history(a.db, OpenMode::create);
+    nlohmann::json params = given;
+    params["target-generations"] = a.generations;
+    for (int i = 0; i < a.islands.islands; ++i) {
+      params["island"] = i;
+      const SearchOptions options = island_search_options(a.search, i);
+      const std::int64_t id = history->create_run(params.dump(), options, g0, best);
+      history->set_island(id, i, runs.empty() ? id : runs.front());
+      runs.push_back(id);
+      islands.emplace_back(options, best, 0);
+    }
+    if (!a.quiet)
+      std::cerr << "optimize: " << runs.size() << " islands, runs " << runs.front() << " to " << runs.back() << " in "
+                << a.db << ": " << best.medium.grains.size() << " grains, porosity "
+                << fmt(exact_porosity(best.medium), 6) << ", T0 = " << fmt(best.eval.tortuosity, 8) << "\n";
+  }
+
+  std::optional<StopOnSignal> stop;  // a host handles the signals itself
+  if (!host) stop.emplace("\nsoftdrop: stopping after the generations in flight (Ctrl-C again to drop them)\n");
+  IslandsProgress progress(a.generations, a.quiet);
+  std::int64_t evaluations = 0;
+  DriveOptions drive;
+  drive.generations = a.generations;
+  drive.time_limit = a.time_limit;
+  drive.stop = stop ? stop->flag() : nullptr;
+  drive.threads = a.threads;
+  drive.speculate = !a.no_speculation;
+  drive.lanes = a.lanes;
+  auto tell_host = [&](int island, const Generation& g, const Configuration& best) {
+    if (!host || !host->on_progress) return true;
+    return host->on_progress({{"run", runs[static_cast<std::size_t>(island)]}, {"island", island},
+                              {"generation", g.number}, {"kind", to_string(g.kind)},
+                              {"accepted_candidate", g.accepted >= 0 ? nlohmann::json(g.accepted) : nlohmann::json()},
+                              {"candidates", g.candidates.size()}, {"seconds", g.seconds},
+                              {"best_t", best.eval.tortuosity}, {"best_generation", best.generation},
+                              {"target_generations", a.generations}});
+  };
+  IslandCallbacks callbacks;
+  callbacks.generation = [&](int island, const Generation& g, const Configuration& best) {
+    history->append(runs[static_cast<std::size_t>(island)], g, best);
+    evaluations += static_cast<std::int64_t>(g.candidates.size());
+    progress.update(islands, evaluations, false);
+    return tell_host(island, g, best);
+  };
+  callbacks.migration = [&](const std::vector<Generation>& gs, const std::vector<Search>& now) {
+    std::vector<Configuration> bests;
+    for (const Search& s : now) bests.push_back(s.best());
+    history->append_together(runs, gs, bests);
+    bool go_on = true;
+    for (std::size_t i = 0; i < gs.size(); ++i) go_on = tell_host(static_cast<int>(i), gs[i], bests[i]) && go_on;
+    return go_on;
+  };
+  const SearchSummary summary = drive_islands(islands, a.islands, drive, callbacks);
+  progress.update(islands, evaluations, true);
+  nlohmann::json per_island = nlohmann::json::array();
+  std::size_t top = 0;
+  for (std::size_t i = 0; i < islands.size(); ++i) {
+    const Search& s = islands[i];
+    history->set_status(runs[i], s.last_generation() >= a.generations ? "finished" : "interrupted");
+    if (s.best().eval.tortuosity > islands[top].best().eval.tortuosity) top = i;
+    per_island.push_back({{"island", i}, {"run", runs[i]}, {"last_generation", s.last_generation()},
+                          {"best_tortuosity", s.best().eval.tortuosity}, {"best_generation", s.best().generation}});
+  }
+  nlohmann::json j{{"version", kVersion}, {"db", a.db}, {"run", runs.front()}, {"strategy", to_string(a.search.strategy.kind)},
+                   {"islands", per_island}, {"migrate_every", a.islands.migrate_every},
+                   {"migration", to_string(a.islands.migration)}, {"termination", to_string(summary.termination)},
+                   {"message", summary.message}, {"last_generation", summary.last_generation},
+                   {"generations_run", summary.generations_run}, {"evaluations", summary.evaluations + initial_evaluations},
+                   {"accepted", summary.accepted}, {"best_tortuosity", summary.best_t}, {"best_island", top},
+                   {"best_run", runs[top]}, {"wall_seconds", summary.seconds},
+                   {"evaluations_per_second", summary.evaluations_per_second()}};
+  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  if (host) {
+    host->summary = j;
+    return 0;
+  }
+  if (a.format == "json") {
+    std::cout << j.dump(2) << '\n';
+  } else {
+    std::cout << "runs         " << runs.front() << " to " << runs.back() << " in " << a.db << " (" << runs.size()
+              << " islands, " << to_string(a.islands.migration) << " migration every " << a.islands.migrate_every
+              << " generations)\n"
+              << "stopped      " << summary.message << "\n"
+              << "best T       " << fmt(summary.best_t, 10) << " (island " << top << ", run " << runs[top]
+              << ", generation " << islands[top].best().generation << ")\n"
+              << "this session " << summary.generations_run << " generations, " << summary.accepted << " accepted, "
+              << summary.evaluations + initial_evaluations << " evaluations, "
+              << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
+  }
+  return summary.termination == Termination::interrupted && stop ? stop->exit_code() : 0;
+}
+
+}  // namespace softdrop::cli
