@@ -144,7 +144,9 @@ SearchSummary drive_islands(std::vector<Search>& islands, const IslandOptions& i
     std::vector<Generation> gs;
     for (int i = 0; i < k; ++i) gs.push_back(islands[static_cast<std::size_t>(i)].immigrate(*in[static_cast<std::size_t>(i)]));
     for (const Generation& g : gs) s.accepted += g.accepted >= 0 ? 1 : 0, ++s.generations_run;
-    if (callbacks.migration && !callbacks.migration(gs, islands)) {
+    bests.clear();
+    for (const Search& i : islands) bests.push_back(i.best());
+    if (callbacks.migration && !callbacks.migration(gs, bests)) {
       s.termination = Termination::callback;
       s.message = "stopped by a callback after the migration of generation " + std::to_string(next);
       break;

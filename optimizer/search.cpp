@@ -187,6 +187,7 @@ Search::Search(const SearchOptions& options, Configuration best, Configuration c
 
 Search::~Search() = default;
 Search::Search(Search&&) noexcept = default;
+Search& Search::operator=(Search&&) noexcept = default;
 
 Generation Search::next(int threads, int lanes) {
   const auto t0 = std::chrono::steady_clock::now();

@@ -6,39 +6,13 @@
 #include <string>
 #include <type_traits>
 
+#include "byte_codec.hpp"
 #include "softdrop/sweep.hpp"
 
 namespace softdrop {
 namespace {
 
-class Writer {
- public:
-  template <class T>
-  void put(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    out.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  std::string out;
-};
-
-class Reader {
- public:
-  explicit Reader(const std::string& bytes) : bytes_(bytes) {}
-  template <class T>
-  T get() {
-    static_assert(std::is_trivially_copyable_v<T>);
-    if (bytes_.size() - at_ < sizeof(T)) throw std::invalid_argument("sweep record: truncated");
-    T v;
-    std::memcpy(&v, bytes_.data() + at_, sizeof v);
-    at_ += sizeof v;
-    return v;
-  }
-  bool at_end() const { return at_ == bytes_.size(); }
-
- private:
-  const std::string& bytes_;
-  std::size_t at_ = 0;
-};
+using Writer = detail::ByteWriter;
 
 constexpr std::uint32_t kMagic = 0x53445752;  // "SDWR"
 
@@ -60,8 +34,8 @@ std::string encode_sweep_medium(const SweepMedium& m) {
 }
 
 SweepMedium decode_sweep_medium(const std::string& bytes) {
-  Reader r(bytes);
-  if (r.get<std::uint32_t>() != kMagic) throw std::invalid_argument("sweep record: not one");
+  detail::ByteReader r(bytes, "sweep record");
+  if (r.get<std::uint32_t>() != kMagic) r.fail("not one");
   SweepMedium m;
   m.unit.porosity = r.get<int>(), m.unit.medium = r.get<int>();
   m.target_porosity = r.get<double>(), m.porosity = r.get<double>(), m.grains = r.get<int>();
@@ -70,16 +44,16 @@ SweepMedium decode_sweep_medium(const std::string& bytes) {
   m.mean_t = r.get<double>(), m.standard_error = r.get<double>(), m.stuck_fraction = r.get<double>();
   m.seconds = r.get<double>();
   const auto n = r.get<std::uint64_t>();
-  if (n > bytes.size()) throw std::invalid_argument("sweep record: truncated");
+  if (n > bytes.size()) r.fail("truncated");
   m.droplets.resize(n);
   for (SweepDroplet& d : m.droplets) {
     d.droplet = r.get<int>(), d.start_x = r.get<double>();
     const auto outcome = r.get<std::int32_t>();
-    if (outcome < 0 || outcome > static_cast<std::int32_t>(Outcome::diverged)) throw std::invalid_argument("sweep record: bad outcome");
+    if (outcome < 0 || outcome > static_cast<std::int32_t>(Outcome::diverged)) r.fail("bad outcome");
     d.outcome = static_cast<Outcome>(outcome);
     d.tortuosity = r.get<double>(), d.steps = r.get<std::int64_t>();
   }
-  if (!r.at_end()) throw std::invalid_argument("sweep record: trailing bytes");
+  if (!r.at_end()) r.fail("trailing bytes");
   return m;
 }
 

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # `mpirun -n P softdrop sweep` against one process: the same store cell for cell at P = 3 and 4
 # (oversubscribed on a small machine), a rank killed mid-sweep and the command run again (nothing
-# lost, nothing done twice), one error line for bad options, other commands refused across ranks,
-# and the same binary without mpirun as the plain program.
+# lost, nothing done twice). `mpirun -n 3 softdrop optimize --islands 3` against the islands on
+# threads, and killed and resumed against uninterrupted. One error line for bad options, other
+# commands refused across ranks, and the same binary without mpirun as the plain program.
 #   bash tests/mpi_test.sh SOFTDROP_BINARY
 set -euo pipefail
 bin=$(realpath "$1")
@@ -56,13 +57,50 @@ grep -q "this session $((24 - before)) media" again.err || { cat again.err; fail
 [[ "$(cells killed.db)" == "$(cells whole.db)" ]] || fail "killed and run again differs from uninterrupted"
 echo "ok: a rank killed after $before media, the command run again did the other $((24 - before))"
 
+# Islands: the same history on threads and on ranks; a rank killed, then resumed.
+scene=(--grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 --stuck-distance 1 --lambda 2 --quiet)
+history() {
+  sqlite3 "$1" "SELECT id, island, archipelago, status, params, seed, generations, evaluations, best_t, best_generation FROM runs ORDER BY id;
+    SELECT run_id, generation, kind, accepted_candidate, best_t, touched, state FROM generations ORDER BY 1, 2;
+    SELECT run_id, generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched FROM candidates ORDER BY 1, 2, 3;
+    SELECT * FROM grains ORDER BY 1, 2, 3; SELECT * FROM paths ORDER BY 1, 2, 3;"
+}
+islands=(--islands 3 --migrate-every 5 --generations 16 --strategy lahc)
+"$bin" optimize --db isl-threads.db "${scene[@]}" "${islands[@]}" > /dev/null
+run 3 "$bin" optimize --db isl-ranks.db "${scene[@]}" "${islands[@]}" --threads 1 > /dev/null
+[[ "$(history isl-threads.db)" == "$(history isl-ranks.db)" ]] || fail "islands on 3 ranks differ from islands on threads"
+long_islands=(--islands 3 --migrate-every 5 --generations 80 --strategy lahc)
+"$bin" optimize --db isl-whole.db "${scene[@]}" "${long_islands[@]}" > /dev/null
+run 3 "$bin" optimize --db isl-killed.db "${scene[@]}" "${long_islands[@]}" --threads 1 > /dev/null 2>&1 &
+job=$!
+for _ in $(seq 600); do
+  g=$(sqlite3 isl-killed.db "SELECT coalesce(min(generations), 0) FROM runs" 2>/dev/null || echo 0)
+  ((g >= 10)) && break
+  sleep 0.05
+done
+victim=""
+for p in $(pgrep -f "optimize --db isl-killed.db" || true); do
+  if tr '\0' '\n' < "/proc/$p/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=1"; then victim=$p; fi
+done
+[[ -n "$victim" ]] || fail "islands: rank 1 not found"
+kill -9 "$victim"
+wait "$job" && fail "the islands went on after a rank was killed" || true
+at=$(sqlite3 isl-killed.db "SELECT min(generations) FROM runs")
+((at >= 10 && at < 80)) || fail "islands: killed at generation $at, expected 10 to 79"
+run 3 "$bin" optimize --db isl-killed.db --resume 1 --threads 1 --quiet > /dev/null
+[[ "$(history isl-killed.db)" == "$(history isl-whole.db)" ]] || fail "islands killed at generation $at and resumed differ"
+echo "ok: islands on 3 ranks equal islands on threads; killed at generation $at and resumed, equal too"
+if run 2 "$bin" optimize --db plain.db "${scene[@]}" --generations 2 > /dev/null 2> plain.err; then fail "a plain search ran on 2 ranks"; fi
+grep -q "only with --islands" plain.err || { cat plain.err; fail "a plain search on 2 ranks: no refusal"; }
+[[ ! -e plain.db ]] || fail "a plain search on 2 ranks left a file"
+
 # Bad options: one line, from rank 0, and every rank exits.
 if run 3 "$bin" sweep --db bad.db --porosities 0.5,1.5 > /dev/null 2> bad.err; then fail "bad porosity accepted"; fi
 [[ $(grep -c "^softdrop: error: porosities = 1.5" bad.err) == 1 ]] || { cat bad.err; fail "not one error line"; }
 [[ ! -e bad.db ]] || fail "bad options left a file"
 # Other commands are not spread over ranks.
 if run 2 "$bin" simulate --droplets 2 > /dev/null 2> simulate.err; then fail "simulate ran on 2 ranks"; fi
-[[ $(grep -c "only sweep runs across MPI ranks" simulate.err) == 1 ]] || { cat simulate.err; fail "simulate: no refusal"; }
+[[ $(grep -c "only sweep and optimize --islands run across MPI ranks" simulate.err) == 1 ]] || { cat simulate.err; fail "simulate: no refusal"; }
 echo "ok: bad options and other commands refused with one line"
 
 # One rank, and no mpirun at all: the plain program.

@@ -47,9 +47,9 @@ struct IslandCallbacks {
   /// After each island's ordinary generation, one call at a time, on the thread that runs the
   /// island. False stops every island after the generation it has in flight.
   std::function<bool(int island, const Generation&, const Configuration& best)> generation;
-  /// After a migration, with every island's migration generation (gs[i] is island i's), on the
-  /// calling thread. False stops.
-  std::function<bool(const std::vector<Generation>& gs, const std::vector<Search>& islands)> migration;
+  /// After a migration, with every island's migration generation and best after it (gs[i] and
+  /// bests[i] are island i's), on the calling thread. False stops.
+  std::function<bool(const std::vector<Generation>& gs, const std::vector<Configuration>& bests)> migration;
 };
 
 /// Runs every island up to generation options.generations. The islands run their generations on

@@ -169,6 +169,7 @@ class Search {
          std::int64_t last_generation);
   ~Search();
   Search(Search&&) noexcept;
+  Search& operator=(Search&&) noexcept;
 
   /// Runs generation last_generation() + 1, its candidates on up to `threads` threads (0: all
   /// cores), `lanes` stepped together on each (0: the default), and updates the best. The result

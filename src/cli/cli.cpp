@@ -131,9 +131,9 @@ int main(int argc, char** argv) {
     if (speaks) std::cerr << "softdrop: error: " << cli.parse_error_line(e, argc, argv) << '\n';
     return 2;
   }
-  if (job && job->size() > 1 && !cli.app.got_subcommand("sweep")) {
+  if (job && job->size() > 1 && !cli.app.got_subcommand("sweep") && !cli.app.got_subcommand("optimize")) {
     if (speaks)
-      std::cerr << "softdrop: error: only sweep runs across MPI ranks; run "
+      std::cerr << "softdrop: error: only sweep and optimize --islands run across MPI ranks; run "
                 << cli.app.get_subcommands().front()->get_name() << " without mpirun\n";
     return 2;
   }
@@ -144,11 +144,10 @@ int main(int argc, char** argv) {
       std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
       return 1;
     }
-    // The ranks check the same options and fail alike before they exchange anything; an error
-    // after that (rank 0's store, say) must not leave the others waiting.
+    // The other ranks may be waiting for this one: the job ends. A bad option fails on every
+    // rank alike, and rank 0 alone says so.
     const bool everywhere = dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
     if (speaks || !everywhere) std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
-    if (everywhere) return 1;
     job->abort(1);
   }
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/mpi_islands.hpp"
 #include "cli/optimize_command.hpp"
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
@@ -37,25 +38,30 @@ std::vector<RunRecord> archipelago_of(History& history, const RunRecord& run, co
   return members;
 }
 
+// The island with the highest best T (the lowest-numbered among equals).
+std::size_t best_island(const std::vector<Configuration>& bests) {
+  std::size_t top = 0;
+  for (std::size_t i = 1; i < bests.size(); ++i)
+    if (bests[i].eval.tortuosity > bests[top].eval.tortuosity) top = i;
+  return top;
+}
+
 // Progress on stderr: at most once a second on a terminal, every 10 s otherwise.
 class IslandsProgress {
  public:
   IslandsProgress(std::int64_t target, bool quiet) : target_(target), quiet_(quiet), tty_(::isatty(2) != 0) {}
-  void update(const std::vector<Search>& islands, std::int64_t evaluations, bool force) {
+  void update(const std::vector<std::int64_t>& last, const std::vector<Configuration>& bests,
+              std::int64_t evaluations, bool force) {
     if (quiet_) return;
     const auto now = clock::now();
     if (!force && now - last_ < (tty_ ? std::chrono::seconds(1) : std::chrono::seconds(10))) return;
     last_ = now;
-    std::int64_t lowest = islands[0].last_generation();
-    std::size_t top = 0;
-    for (std::size_t i = 0; i < islands.size(); ++i) {
-      lowest = std::min(lowest, islands[i].last_generation());
-      if (islands[i].best().eval.tortuosity > islands[top].best().eval.tortuosity) top = i;
-    }
+    const std::int64_t lowest = *std::min_element(last.begin(), last.end());
+    const std::size_t top = best_island(bests);
     const double s = std::chrono::duration<double>(now - t0_).count();
     std::ostringstream line;
-    line << "optimize: " << islands.size() << " islands at generation " << lowest << "/" << target_ << "  best T "
-         << fmt(islands[top].best().eval.tortuosity, 8) << " (island " << top << ")  "
+    line << "optimize: " << last.size() << " islands at generation " << lowest << "/" << target_ << "  best T "
+         << fmt(bests[top].eval.tortuosity, 8) << " (island " << top << ")  "
          << fmt(s > 0 ? static_cast<double>(evaluations) / s : 0.0, 3) << " eval/s";
     std::cerr << (tty_ ? "\r" : "") << line.str() << (tty_ && !force ? "\033[K" : "\n") << std::flush;
   }
@@ -157,31 +163,38 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
                               {"best_t", best.eval.tortuosity}, {"best_generation", best.generation},
                               {"target_generations", a.generations}});
   };
+  // Each island's last generation and best, as it reports them (the callbacks are called one at
+  // a time; the islands themselves may be running on other threads, or other ranks).
+  std::vector<std::int64_t> last;
+  std::vector<Configuration> best_of;
+  for (const Search& s : islands) last.push_back(s.last_generation()), best_of.push_back(s.best());
   IslandCallbacks callbacks;
   callbacks.generation = [&](int island, const Generation& g, const Configuration& best) {
-    history->append(runs[static_cast<std::size_t>(island)], g, best);
+    const auto i = static_cast<std::size_t>(island);
+    history->append(runs[i], g, best);
+    last[i] = g.number;
+    if (best.generation != best_of[i].generation) best_of[i] = best;
     evaluations += static_cast<std::int64_t>(g.candidates.size());
-    progress.update(islands, evaluations, false);
+    progress.update(last, best_of, evaluations, false);
     return tell_host(island, g, best);
   };
-  callbacks.migration = [&](const std::vector<Generation>& gs, const std::vector<Search>& now) {
-    std::vector<Configuration> bests;
-    for (const Search& s : now) bests.push_back(s.best());
+  callbacks.migration = [&](const std::vector<Generation>& gs, const std::vector<Configuration>& bests) {
     history->append_together(runs, gs, bests);
+    for (std::size_t i = 0; i < gs.size(); ++i) last[i] = gs[i].number, best_of[i] = bests[i];
     bool go_on = true;
     for (std::size_t i = 0; i < gs.size(); ++i) go_on = tell_host(static_cast<int>(i), gs[i], bests[i]) && go_on;
     return go_on;
   };
-  const SearchSummary summary = drive_islands(islands, a.islands, drive, callbacks);
-  progress.update(islands, evaluations, true);
+  const Job* job = current_job();
+  const SearchSummary summary = job && job->size() > 1 ? drive_islands_on_ranks(*job, islands, a.islands, drive, callbacks)
+                                                        : drive_islands(islands, a.islands, drive, callbacks);
+  progress.update(last, best_of, evaluations, true);
   nlohmann::json per_island = nlohmann::json::array();
-  std::size_t top = 0;
-  for (std::size_t i = 0; i < islands.size(); ++i) {
-    const Search& s = islands[i];
-    history->set_status(runs[i], s.last_generation() >= a.generations ? "finished" : "interrupted");
-    if (s.best().eval.tortuosity > islands[top].best().eval.tortuosity) top = i;
-    per_island.push_back({{"island", i}, {"run", runs[i]}, {"last_generation", s.last_generation()},
-                          {"best_tortuosity", s.best().eval.tortuosity}, {"best_generation", s.best().generation}});
+  const std::size_t top = best_island(best_of);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    history->set_status(runs[i], last[i] >= a.generations ? "finished" : "interrupted");
+    per_island.push_back({{"island", i}, {"run", runs[i]}, {"last_generation", last[i]},
+                          {"best_tortuosity", best_of[i].eval.tortuosity}, {"best_generation", best_of[i].generation}});
   }
   nlohmann::json j{{"version", kVersion}, {"db", a.db}, {"run", runs.front()}, {"strategy", to_string(a.search.strategy.kind)},
                    {"islands", per_island}, {"migrate_every", a.islands.migrate_every},
@@ -204,7 +217,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
               << " generations)\n"
               << "stopped      " << summary.message << "\n"
               << "best T       " << fmt(summary.best_t, 10) << " (island " << top << ", run " << runs[top]
-              << ", generation " << islands[top].best().generation << ")\n"
+              << ", generation " << best_of[top].generation << ")\n"
               << "this session " << summary.generations_run << " generations, " << summary.accepted << " accepted, "
               << summary.evaluations + initial_evaluations << " evaluations, "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";

@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/mpi_islands.hpp"
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/history.hpp"
@@ -268,6 +269,14 @@ void check_optimize(OptimizeArgs& a) {
 
 int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   check_optimize(a);
+  if (const Job* job = current_job(); job && job->size() > 1) {  // under mpirun: islands only
+    if (job->rank() != 0) {  // rank 0 has the history and gives this rank its islands
+      work_on_islands(*job, a.threads, a.lanes, !a.no_speculation);
+      return 0;
+    }
+    if (!(a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1))
+      throw std::runtime_error("optimize runs across MPI ranks only with --islands K (K > 1), or resuming islands");
+  }
   // (a plain run resumed with --islands is refused below, as any contradicting option is)
   if (a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1) return run_islands(a, cmd, host);
   const nlohmann::json given = params_of(a);
