@@ -4,6 +4,7 @@
 
 #include <SQLiteCpp/SQLiteCpp.h>
 
+#include <bit>
 #include <chrono>
 #include <random>
 #include <thread>
@@ -22,6 +23,9 @@ using test::dump;
 using test::fresh;
 using test::kScene;
 using test::run;
+
+// A double's exact bits, as text.
+std::string bits(double v) { return std::to_string(std::bit_cast<std::uint64_t>(v)); }
 
 // Every island's stored rows, runs 1 .. k.
 std::string islands_dump(const std::string& db, int k, std::int64_t upto = -1) {
@@ -74,6 +78,53 @@ TEST(Islands, AnImmigrantIsKeptOnlyIfItBeatsTheIslandsBest) {
   const Generation refused = better.immigrate(own);
   EXPECT_EQ(refused.accepted, -1);
   EXPECT_EQ(better.best().medium, incoming.medium);
+}
+
+TEST(Islands, DrivenOnTwoThreadsTheyMakeWhatOneThreadMakes) {
+  const SearchOptions o = test::small_search_options(2);
+  const IslandOptions io{2, 3, Migration::broadcast};
+  auto islands_of = [&] {
+    std::vector<Search> v;
+    for (int i = 0; i < io.islands; ++i) v.emplace_back(island_search_options(o, i), test::small_search_start(o), 0);
+    return v;
+  };
+  auto trace = [](std::string* out) {
+    IslandCallbacks cb;
+    cb.generation = [out](int i, const Generation& g, const Configuration& best) {
+      *out += std::to_string(i) + ":" + std::to_string(g.number) + ":" + std::to_string(g.accepted) + ":" +
+              bits(best.eval.tortuosity) + "\n";
+      return true;
+    };
+    cb.migration = [out](const std::vector<Generation>& gs, const std::vector<Configuration>& bests) {
+      for (std::size_t i = 0; i < gs.size(); ++i)
+        *out += "m" + std::to_string(i) + ":" + std::to_string(gs[i].accepted) + ":" + bits(bests[i].eval.tortuosity) + "\n";
+      return true;
+    };
+    return cb;
+  };
+  DriveOptions d;
+  d.generations = 8;
+  std::vector<Search> one = islands_of(), two = islands_of();
+  std::string a, b;
+  d.threads = 1;
+  const SearchSummary sa = drive_islands(one, io, d, trace(&a));
+  d.threads = 2;
+  const SearchSummary sb = drive_islands(two, io, d, trace(&b));
+  // The order of the islands' reports may differ; what each island reported may not.
+  auto sorted = [](std::string s) {
+    std::vector<std::string> lines;
+    for (std::size_t at = 0, end; (end = s.find('\n', at)) != std::string::npos; at = end + 1) lines.push_back(s.substr(at, end - at));
+    std::stable_sort(lines.begin(), lines.end(), [](const std::string& x, const std::string& y) { return x[0] < y[0]; });
+    std::string joined;
+    for (const std::string& l : lines) joined += l + "\n";
+    return joined;
+  };
+  EXPECT_EQ(sorted(a), sorted(b));
+  EXPECT_EQ(sa.termination, Termination::generations);
+  EXPECT_EQ(sa.last_generation, 8);
+  EXPECT_EQ(sa.best_t, sb.best_t);
+  EXPECT_EQ(sa.evaluations, 2 * 6 * 2);  // generations 3 and 6 are migrations
+  for (int i = 0; i < 2; ++i) EXPECT_EQ(one[i].best().medium, two[i].best().medium);
 }
 
 TEST(Islands, TheSameHistoryOnAnyThreadCountWithAndWithoutSpeculation) {
