@@ -23,6 +23,22 @@ cells() {
     SELECT * FROM sweep_droplets ORDER BY 1, 2, 3, 4;"
 }
 
+# Once `sql` on `db` gives at least `least`, SIGKILL to rank 1 of the job whose command line has
+# `pattern`.
+kill_rank_1() {
+  local db=$1 sql=$2 least=$3 pattern=$4 n victim=""
+  for _ in $(seq 600); do
+    n=$(sqlite3 "$db" "$sql" 2>/dev/null || echo 0)
+    ((n >= least)) && break
+    sleep 0.05
+  done
+  for p in $(pgrep -f "$pattern" || true); do
+    if tr '\0' '\n' < "/proc/$p/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=1"; then victim=$p; fi
+  done
+  [[ -n "$victim" ]] || fail "rank 1 of '$pattern' not found"
+  kill -9 "$victim"
+}
+
 small=(--porosities 0.7,0.8,0.9 --media 4 --droplets 8 --width 200 --height 200 --threads 1 --quiet)
 "$bin" sweep --db one.db "${small[@]}" > one.txt
 for p in 3 4; do
@@ -37,17 +53,7 @@ echo "ok: 3 and 4 ranks store what one process stores"
 long=(--porosities 0.7,0.8,0.9 --media 8 --droplets 48 --width 200 --height 200 --threads 1)
 run 3 "$bin" sweep --db killed.db "${long[@]}" > /dev/null 2> killed.err &
 job=$!
-for _ in $(seq 600); do
-  n=$(sqlite3 killed.db "SELECT count(*) FROM sweep_media" 2>/dev/null || echo 0)
-  ((n >= 2)) && break
-  sleep 0.05
-done
-victim=""
-for p in $(pgrep -f "sweep --db killed.db" || true); do
-  if tr '\0' '\n' < "/proc/$p/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=1"; then victim=$p; fi
-done
-[[ -n "$victim" ]] || fail "rank 1 not found"
-kill -9 "$victim"
+kill_rank_1 killed.db "SELECT count(*) FROM sweep_media" 2 "sweep --db killed.db"
 wait "$job" && fail "the job went on after a rank was killed" || true
 before=$(sqlite3 killed.db "SELECT count(*) FROM sweep_media")
 ((before >= 2 && before < 24)) || fail "after the kill: $before media stored, expected 2 to 23"
@@ -73,17 +79,7 @@ long_islands=(--islands 3 --migrate-every 5 --generations 80 --strategy lahc)
 "$bin" optimize --db isl-whole.db "${scene[@]}" "${long_islands[@]}" > /dev/null
 run 3 "$bin" optimize --db isl-killed.db "${scene[@]}" "${long_islands[@]}" --threads 1 > /dev/null 2>&1 &
 job=$!
-for _ in $(seq 600); do
-  g=$(sqlite3 isl-killed.db "SELECT coalesce(min(generations), 0) FROM runs" 2>/dev/null || echo 0)
-  ((g >= 10)) && break
-  sleep 0.05
-done
-victim=""
-for p in $(pgrep -f "optimize --db isl-killed.db" || true); do
-  if tr '\0' '\n' < "/proc/$p/environ" 2>/dev/null | grep -qx "OMPI_COMM_WORLD_RANK=1"; then victim=$p; fi
-done
-[[ -n "$victim" ]] || fail "islands: rank 1 not found"
-kill -9 "$victim"
+kill_rank_1 isl-killed.db "SELECT coalesce(min(generations), 0) FROM runs" 10 "optimize --db isl-killed.db"
 wait "$job" && fail "the islands went on after a rank was killed" || true
 at=$(sqlite3 isl-killed.db "SELECT min(generations) FROM runs")
 ((at >= 10 && at < 80)) || fail "islands: killed at generation $at, expected 10 to 79"

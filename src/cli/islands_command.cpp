@@ -204,14 +204,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
                    {"accepted", summary.accepted}, {"best_tortuosity", summary.best_t}, {"best_island", top},
                    {"best_run", runs[top]}, {"wall_seconds", summary.seconds},
                    {"evaluations_per_second", summary.evaluations_per_second()}};
-  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
-  if (host) {
-    host->summary = j;
-    return 0;
-  }
-  if (a.format == "json") {
-    std::cout << j.dump(2) << '\n';
-  } else {
+  if (!deliver_summary(a, j, host)) {
     std::cout << "runs         " << runs.front() << " to " << runs.back() << " in " << a.db << " (" << runs.size()
               << " islands, " << to_string(a.islands.migration) << " migration every " << a.islands.migrate_every
               << " generations)\n"

@@ -220,6 +220,17 @@ Generation start(const OptimizeArgs& a, Configuration* best) {
 }
 
 
+bool deliver_summary(const OptimizeArgs& a, const nlohmann::json& j, Host* host) {
+  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  if (host) {
+    host->summary = j;
+    return true;
+  }
+  if (a.format != "json") return false;
+  std::cout << j.dump(2) << '\n';
+  return true;
+}
+
 Search resumed_search(History& history, const RunRecord& rec, const SearchOptions& options) {
   // The strategy moves on from the last kept arrangement; the best may be an earlier one.
   Configuration current = history.configuration(rec.id, -1);
@@ -402,14 +413,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
                       {"predictions", summary.speculation.predictions},
                       {"mispredictions", summary.speculation.mispredictions},
                       {"predictions_ahead", summary.speculation.predictions_ahead}};
-  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
-  if (host) {
-    host->summary = j;
-    return 0;
-  }
-  if (a.format == "json") {
-    std::cout << j.dump(2) << '\n';
-  } else {
+  if (!deliver_summary(a, j, host)) {
     std::cout << "run          " << run << " in " << a.db << "\n"
               << "stopped      " << summary.message << "\n"
               << "best T       " << fmt(best.eval.tortuosity, 10) << " (generation " << best.generation << ", "
@@ -431,7 +435,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
                   << sp.mispredictions << " overturned)\n";
     }
   }
-  return summary.termination == Termination::interrupted ? stop->exit_code() : 0;
+  return summary.termination == Termination::interrupted && stop ? stop->exit_code() : 0;
 }
 
 }  // namespace softdrop::cli

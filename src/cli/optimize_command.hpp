@@ -59,6 +59,10 @@ bool resumes_islands(const OptimizeArgs& args);
 /// optimize with --islands K > 1, or resuming one of islands (islands_command.cpp).
 int run_islands(OptimizeArgs& args, const CLI::App& command, Host* host);
 
+/// The summary `j` written to --json's file, handed to a host, or printed with --format json;
+/// false when it is still to be printed as a table.
+bool deliver_summary(const OptimizeArgs& args, const nlohmann::json& j, Host* host);
+
 /// Checks the options without running; throws std::invalid_argument naming the bad parameter.
 void check_optimize(OptimizeArgs& args);
 /// Runs it; `command` is the parsed subcommand (to tell which options were given). With a host
