@@ -20,13 +20,13 @@ class ByteWriter {
     out.append(reinterpret_cast<const char*>(&v), sizeof v);
   }
   void put_string(const std::string& s) {
-    put(static_cast<std::uint64_t>(s.size()));
+    put<std::uint64_t>(s.size());
     out += s;
   }
   template <class T>
   void put_vector(const std::vector<T>& v) {
     static_assert(std::is_trivially_copyable_v<T>);
-    put(static_cast<std::uint64_t>(v.size()));
+    put<std::uint64_t>(v.size());
     out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
   }
   std::string out;

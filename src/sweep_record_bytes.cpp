@@ -25,7 +25,7 @@ std::string encode_sweep_medium(const SweepMedium& m) {
   w.put(m.target_porosity), w.put(m.porosity), w.put(m.grains), w.put(m.medium_seed);
   w.put(m.passed), w.put(m.stuck), w.put(m.timeout), w.put(m.diverged);
   w.put(m.mean_t), w.put(m.standard_error), w.put(m.stuck_fraction), w.put(m.seconds);
-  w.put(static_cast<std::uint64_t>(m.droplets.size()));
+  w.put<std::uint64_t>(m.droplets.size());
   for (const SweepDroplet& d : m.droplets) {
     w.put(d.droplet), w.put(d.start_x), w.put(static_cast<std::int32_t>(d.outcome)), w.put(d.tortuosity);
     w.put(d.steps);

@@ -7,6 +7,7 @@
 #include <bit>
 #include <chrono>
 #include <random>
+#include <sstream>
 #include <thread>
 
 #include "search_cli.hpp"
@@ -91,13 +92,16 @@ TEST(Islands, DrivenOnTwoThreadsTheyMakeWhatOneThreadMakes) {
   auto trace = [](std::string* out) {
     IslandCallbacks cb;
     cb.generation = [out](int i, const Generation& g, const Configuration& best) {
-      *out += std::to_string(i) + ":" + std::to_string(g.number) + ":" + std::to_string(g.accepted) + ":" +
-              bits(best.eval.tortuosity) + "\n";
+      std::ostringstream line;
+      line << i << ':' << g.number << ':' << g.accepted << ':' << bits(best.eval.tortuosity) << '\n';
+      *out += line.str();
       return true;
     };
     cb.migration = [out](const std::vector<Generation>& gs, const std::vector<Configuration>& bests) {
+      std::ostringstream lines;
       for (std::size_t i = 0; i < gs.size(); ++i)
-        *out += "m" + std::to_string(i) + ":" + std::to_string(gs[i].accepted) + ":" + bits(bests[i].eval.tortuosity) + "\n";
+        lines << 'm' << i << ':' << gs[i].accepted << ':' << bits(bests[i].eval.tortuosity) << '\n';
+      *out += lines.str();
       return true;
     };
     return cb;
@@ -115,9 +119,9 @@ TEST(Islands, DrivenOnTwoThreadsTheyMakeWhatOneThreadMakes) {
     std::vector<std::string> lines;
     for (std::size_t at = 0, end; (end = s.find('\n', at)) != std::string::npos; at = end + 1) lines.push_back(s.substr(at, end - at));
     std::stable_sort(lines.begin(), lines.end(), [](const std::string& x, const std::string& y) { return x[0] < y[0]; });
-    std::string joined;
-    for (const std::string& l : lines) joined += l + "\n";
-    return joined;
+    std::ostringstream joined;
+    for (const std::string& l : lines) joined << l << '\n';
+    return joined.str();
   };
   EXPECT_EQ(sorted(a), sorted(b));
   EXPECT_EQ(sa.termination, Termination::generations);

@@ -60,7 +60,7 @@ MoveKind get_kind(ByteReader& r) {
   return static_cast<MoveKind>(k);
 }
 void put(ByteWriter& w, const Generation& g) {
-  w.put(g.number), w.put(static_cast<std::int32_t>(g.kind)), w.put(static_cast<std::uint64_t>(g.candidates.size()));
+  w.put(g.number), w.put(static_cast<std::int32_t>(g.kind)), w.put<std::uint64_t>(g.candidates.size());
   for (const Candidate& c : g.candidates) {
     w.put(c.index), w.put(static_cast<std::int32_t>(c.kind)), w.put(c.moved_grain), w.put(c.moved);
     put(w, c.medium), put(w, c.eval);
@@ -92,7 +92,7 @@ struct Record {
 };
 std::string encode(const std::vector<Record>& records) {
   ByteWriter w;
-  w.put(static_cast<std::uint64_t>(records.size()));
+  w.put<std::uint64_t>(records.size());
   for (const Record& rec : records) w.put(rec.island), put(w, rec.generation), put(w, rec.best);
   return w.out;
 }
