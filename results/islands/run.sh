@@ -32,7 +32,7 @@ if [[ $EVALUATIONS != report ]]; then
       if [[ $setup == one ]]; then
         generations=$(( (EVALUATIONS + LAMBDA - 1) / LAMBDA )); extra=""
       else
-        per=$(( EVALUATIONS / K / LAMBDA )); generations=$(( per + per / (M - 1) )); extra="--islands $K --migrate-every $M"
+        per=$(( (EVALUATIONS / K + LAMBDA - 1) / LAMBDA )); generations=$(( per + per / (M - 1) )); extra="--islands $K --migrate-every $M"
       fi
       echo "islands: $setup, seed $seed: $EVALUATIONS evaluations" >&2
       if [[ -f $db ]]; then
