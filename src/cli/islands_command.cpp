@@ -147,21 +147,12 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   if (!host) stop.emplace("\nsoftdrop: stopping after the generations in flight (Ctrl-C again to drop them)\n");
   IslandsProgress progress(a.generations, a.quiet);
   std::int64_t evaluations = 0;
-  DriveOptions drive;
-  drive.generations = a.generations;
-  drive.time_limit = a.time_limit;
-  drive.stop = stop ? stop->flag() : nullptr;
-  drive.threads = a.threads;
-  drive.speculate = !a.no_speculation;
-  drive.lanes = a.lanes;
+  const DriveOptions drive = drive_options_of(a, stop ? stop->flag() : nullptr);
   auto tell_host = [&](int island, const Generation& g, const Configuration& best) {
     if (!host || !host->on_progress) return true;
-    return host->on_progress({{"run", runs[static_cast<std::size_t>(island)]}, {"island", island},
-                              {"generation", g.number}, {"kind", to_string(g.kind)},
-                              {"accepted_candidate", g.accepted >= 0 ? nlohmann::json(g.accepted) : nlohmann::json()},
-                              {"candidates", g.candidates.size()}, {"seconds", g.seconds},
-                              {"best_t", best.eval.tortuosity}, {"best_generation", best.generation},
-                              {"target_generations", a.generations}});
+    nlohmann::json event = generation_event(runs[static_cast<std::size_t>(island)], g, best, a.generations);
+    event["island"] = island;
+    return host->on_progress(event);
   };
   // Each island's last generation and best, as it reports them (the callbacks are called one at
   // a time; the islands themselves may be running on other threads, or other ranks).

@@ -220,6 +220,24 @@ Generation start(const OptimizeArgs& a, Configuration* best) {
 }
 
 
+DriveOptions drive_options_of(const OptimizeArgs& a, const std::atomic<bool>* stop) {
+  DriveOptions d;
+  d.generations = a.generations;
+  d.time_limit = a.time_limit;
+  d.stop = stop;
+  d.threads = a.threads;
+  d.speculate = !a.no_speculation;
+  d.lanes = a.lanes;
+  return d;
+}
+
+nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target) {
+  return {{"run", run}, {"generation", g.number}, {"kind", to_string(g.kind)},
+          {"accepted_candidate", g.accepted >= 0 ? nlohmann::json(g.accepted) : nlohmann::json()},
+          {"candidates", g.candidates.size()}, {"seconds", g.seconds}, {"best_t", best.eval.tortuosity},
+          {"best_generation", best.generation}, {"target_generations", target}};
+}
+
 bool deliver_summary(const OptimizeArgs& a, const nlohmann::json& j, Host* host) {
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (host) {
@@ -280,16 +298,17 @@ void check_optimize(OptimizeArgs& a) {
 
 int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   check_optimize(a);
-  if (const Job* job = current_job(); job && job->size() > 1) {  // under mpirun: islands only
-    if (job->rank() != 0) {  // rank 0 has the history and gives this rank its islands
-      work_on_islands(*job, a.threads, a.lanes, !a.no_speculation);
-      return 0;
-    }
-    if (!(a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1))
-      throw std::runtime_error("optimize runs across MPI ranks only with --islands K (K > 1), or resuming islands");
+  const Job* job = current_job();
+  const bool on_ranks = job && job->size() > 1;  // under mpirun: islands only
+  if (on_ranks && job->rank() != 0) {  // rank 0 has the history and gives this rank its islands
+    work_on_islands(*job, a.threads, a.lanes, !a.no_speculation);
+    return 0;
   }
   // (a plain run resumed with --islands is refused below, as any contradicting option is)
-  if (a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1) return run_islands(a, cmd, host);
+  const bool islands = a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1;
+  if (on_ranks && !islands)
+    throw std::runtime_error("optimize runs across MPI ranks only with --islands K (K > 1), or resuming islands");
+  if (islands) return run_islands(a, cmd, host);
   const nlohmann::json given = params_of(a);
 
   std::unique_ptr<History> history;
@@ -369,22 +388,13 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   std::optional<StopOnSignal> stop;  // a host handles the signals itself
   if (!host) stop.emplace("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
   SearchProgress progress(run, search->last_generation(), a.generations, a.quiet);
-  DriveOptions drive_options;
-  drive_options.generations = a.generations;
-  drive_options.time_limit = a.time_limit;
-  drive_options.stop = stop ? stop->flag() : nullptr;
-  drive_options.threads = a.threads;
-  drive_options.speculate = !a.no_speculation;
-  drive_options.lanes = a.lanes;
-  const SearchSummary summary = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
-    history->append(run, g, best);
-    progress.update(g, best, g.number == a.generations);
-    if (!host || !host->on_progress) return true;
-    return host->on_progress({{"run", run}, {"generation", g.number}, {"kind", to_string(g.kind)},
-                              {"accepted_candidate", g.accepted >= 0 ? nlohmann::json(g.accepted) : nlohmann::json()},
-                              {"candidates", g.candidates.size()}, {"seconds", g.seconds}, {"best_t", best.eval.tortuosity},
-                              {"best_generation", best.generation}, {"target_generations", a.generations}});
-  });
+  const SearchSummary summary = drive(*search, drive_options_of(a, stop ? stop->flag() : nullptr),
+                                     [&](const Generation& g, const Configuration& best) {
+                                       history->append(run, g, best);
+                                       progress.update(g, best, g.number == a.generations);
+                                       if (!host || !host->on_progress) return true;
+                                       return host->on_progress(generation_event(run, g, best, a.generations));
+                                     });
   history->set_status(run, summary.termination == Termination::generations ? "finished" : "interrupted");
 
   const Configuration& best = search->best();

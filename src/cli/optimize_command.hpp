@@ -3,6 +3,7 @@
 // SQLite history; `--resume RUN` continues a stored run exactly.
 
 #include <CLI/CLI.hpp>
+#include <atomic>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -58,6 +59,12 @@ Search resumed_search(History& history, const RunRecord& run, const SearchOption
 bool resumes_islands(const OptimizeArgs& args);
 /// optimize with --islands K > 1, or resuming one of islands (islands_command.cpp).
 int run_islands(OptimizeArgs& args, const CLI::App& command, Host* host);
+
+/// When the drive stops, from the command line; `stop` is the signal flag (nullptr: none).
+DriveOptions drive_options_of(const OptimizeArgs& args, const std::atomic<bool>* stop);
+/// What a host hears after each generation of run `run` (see Host): its number, kind, kept
+/// candidate, candidates, seconds, the best T and its generation, and the target generation.
+nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target);
 
 /// The summary `j` written to --json's file, handed to a host, or printed with --format json;
 /// false when it is still to be printed as a table.
