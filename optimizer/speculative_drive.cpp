@@ -56,9 +56,7 @@ class Pipeline {
       : search_(search), upto_(last_allowed), lanes_(lanes), before_completion_(std::move(before_completion)) {
     const int lambda = search.options().lambda;
     // Far enough ahead that a slow (stuck) candidate does not leave the lanes empty: four times the
-    // generations in flight. bench_scenes search-l2 with 8 lanes, evaluations/s by depth over the
-    // generations in flight: 1 thread 41.7 at 2, 42.3 from 3 to 8; 2 threads 61.4 at 1, 67.2 at
-    // 1.5, 73.2 to 73.5 from 2 to 4.
+    // generations in flight (bench/README.md, "Lanes of a search").
     depth_ = std::max<std::int64_t>(2, 4 * workers * lanes / lambda);
     completed_ = search.last_generation();
     base_ = std::make_shared<const Configuration>(search.best());
@@ -315,32 +313,14 @@ class Pipeline {
   std::vector<std::thread> threads_;
 };
 
-// Lanes per thread when DriveOptions::lanes is 0. With AVX-512 or AVX, run_interleaved steps the
-// lanes as one block laid out lane by lane (every stage but the contacts as vector code across
-// candidates); 8 lanes did best on 1 and 2 threads (the tables at DriveOptions::lanes; with AVX,
-// bench_scenes --width 4, λ = 1 / 2 on 1 thread: 4 lanes 61.5 / 34.0, 8 lanes 77.1 / 48.6
-// evaluations/s). The red-black order gains from blocks with AVX-512 (search-l2-red-black-1thread
-// / search-l2-red-black: 1 lane 69 / 130 evaluations/s, 4 lanes 82 / 147, 8 lanes 103 / 164) and
-// with AVX, except at λ = 1 on several threads, where one candidate per thread throws the least
-// speculative work away. Measured on a Zen 3 with AVX2 (bench_scenes search-*-red-black --lanes,
-// evaluations/s, 1 lane against 8, 4 to 6 runs each; the last table at DriveOptions::lanes):
-// λ = 1, 1 thread 21-25 against 27-34; λ = 2, 1 thread 24-27 against 34-35; λ = 2, 2 threads
-// 47-52 against 53-64; λ = 1, 2 threads 40-53 against 37-46 (1 lane faster in 7 of 8). Emulated
-// on a Zen 5 with --width 4 it had looked the other way at λ = 1 on 1 thread (55.3 with 1 lane,
-// 43.1 with 8). With SSE2, one red-black candidate per thread. With SSE2 alone lanes only
-// hide the latency of the sequential constraint's chain (the chains of several rings side by side):
-// 8 lanes, 4 at lambda = 1. With more threads the pipeline would run that many
-// lanes each, ever further ahead: most of that work is thrown away (a generation accepts once in 5
-// to 15 on the benchmark searches), and the lanes slow each candidate down, which delays the
-// decisions the rest waits for. So more threads keep the candidates in flight of 2 threads, spread
-// over fewer lanes each. That is an extrapolation: this 2-core machine cannot measure more threads.
-//
-// One thread with AVX-512, the sequential order and λ >= 2 takes 16 lanes (two registers' chains
-// side by side; bench_scenes, evaluations/s with 8 / 16 lanes: search-l2-1thread 62.1 / 70.4,
-// search-l2-long-1thread 75.4 / 87.7, though 2.8 times the work is dropped; λ = 1 99.9 / 88.4;
-// `optimize --lambda 4 --generations 40` 134-138 / 133; with AVX 65.1 / 68.6 over 400 generations
-// but 51.6 / 51.1 over 60, and red-black 90.1 / 83.2: 8 kept there). On 2 threads 8 stays best
-// (λ = 2: 104.6 / 91.4; over 400 generations 148.0 / 149.3).
+// Lanes per thread when DriveOptions::lanes is 0: 8 on 1 and 2 threads; 16 on one thread with
+// AVX-512, the sequential order and lambda >= 2; 4 at lambda = 1 with SSE2 alone (there lanes only
+// hide the latency of the sequential constraint's chain). With the red-black order, 1 with SSE2
+// alone and with AVX at lambda = 1 on several threads (one candidate per thread throws the least
+// speculative work away). More threads keep the candidates in flight of 2 threads, spread over
+// fewer lanes each: more lanes run further ahead, so more speculative work is dropped, and slow
+// each candidate, which delays the decisions the rest waits for. The measurements behind each
+// choice: bench/README.md, "Lanes of a search".
 int default_lanes(int lambda, int workers, ConstraintOrder order) {
   const VectorWidth width = constraint_vector_width();
   if (order == ConstraintOrder::red_black &&

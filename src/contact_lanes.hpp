@@ -1,10 +1,9 @@
 #pragma once
 // The contact limit's common cases eight masses at a time (internal), with AVX-512 or AVX,
 // whichever constraint_vector_width() says: call it only where that is at least VectorWidth::avx.
-// In bench_scenes sweep-long, of the masses' steps, 71 % end free in their anchor's ball and 27 %
-// in the ball of an anchor that holds one disc (touching it or not); 2 % needed the full test of
-// their cell (out of their balls, or pushed) before the contact grid had a halo, 0.4 % with it,
-// and 0.04 % have anchors of several discs. The first two go eight at a time here, at wrapped
+// Most masses' steps end free in their anchor's ball, or in the ball of an anchor that holds one
+// disc (touching it or not); few need the full test of their cell or have anchors of several
+// discs (the shares: bench/README.md, "Constants of the step"). The first two go eight at a time here, at wrapped
 // positions too, each lane doing the operations of Simulation's scalar code, in its order, so
 // every mass gets the same bits; the rest stay with the scalar code. For the masses inside their
 // anchor's one disc the kernel also computes the next collisions' force (the positions and

@@ -242,8 +242,7 @@ SOFTDROP_AVX512 int constrain_disjoint_octs(double* x, double* y, int count, dou
 
 // Springs (x[2k], x[2k + 1]) for k < count: one half-pass of the red-black order. They share no
 // mass, so their order does not matter; eight at a time with AVX-512, then four with AVX, then two
-// (a de-interleaved, aligned layout that keeps every load forwardable from the previous store was
-// tried: no faster; so were masked loads and stores for the last springs, and slower).
+// (the layouts tried instead: bench/README.md, "Constants of the step").
 int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, double dmax) {
   int changed = 0, k = 0;
   const int width = vector_width();

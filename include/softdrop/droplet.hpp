@@ -33,8 +33,8 @@ struct DropletParams {
   int constraint_iterations = 4;  ///< Gauss-Seidel passes of the Provot constraint per step
   /// Order of the springs within a pass. Sequential (ring order) is the reference; red-black does
   /// the even springs, then the odd ones: the springs of a half-pass share no mass, so they run
-  /// independently (about 2.6x faster steps for one droplet), with different rounding and so
-  /// different numbers.
+  /// independently (faster steps for one droplet: bench/README.md), with different rounding and
+  /// so different numbers.
   ConstraintOrder constraint_order = ConstraintOrder::sequential;
   /// Contact inverse dynamics: a mass deeper than this inside a grain is moved back to this depth
   /// and loses its inward normal velocity (length; as a fraction of the smallest grain radius it

@@ -1,0 +1,296 @@
+// The force stages of a droplet's step: gravity, springs, gas pressure, collisions with the
+// grains and internal viscosity (Simulation::compute_forces runs them in this order).
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "contact_lanes.hpp"
+#include "simd_dispatch.hpp"
+#include "softdrop/simulation.hpp"
+#include "step_helpers.hpp"
+
+namespace softdrop {
+
+using step_detail::same_bits;
+using step_detail::within_walls;
+using step_detail::wrap_periodic;
+
+void Simulation::accumulate_gravity() {
+  const double w = params_.mass * params_.gravity;
+  std::fill(state_.fx.begin(), state_.fx.end(), 0.0);
+  std::fill(state_.fy.begin(), state_.fy.end(), w);
+}
+
+namespace {
+// Force of spring (i, j) on i along the spring (> 0 pulls i towards j), and its components.
+struct SpringInput {
+  double ks, kd, inv_dt, d0;
+};
+inline void spring_force(const SpringInput& k, double xi, double yi, double xj, double yj,
+                         double pxi, double pyi, double pxj, double pyj, double* sx, double* sy,
+                         bool* zero) {
+  const double dx = xj - xi, dy = yj - yi;
+  const double d = std::sqrt(dx * dx + dy * dy);
+  *zero = d == 0;
+  if (*zero) return;
+  const double ux = dx / d, uy = dy / d;
+  // Relative velocity of j with respect to i, projected on the spring.
+  const double dvx = ((xj - pxj) - (xi - pxi)) * k.inv_dt;
+  const double dvy = ((yj - pyj) - (yi - pyi)) * k.inv_dt;
+  const double f = k.ks * (d - k.d0) + k.kd * (dvx * ux + dvy * uy);
+  *sx = f * ux;
+  *sy = f * uy;
+}
+
+#if defined(SOFTDROP_AVX_DISPATCH)
+// Springs (i, i+1) four at a time while i + 4 < n: the SSE2 loop of accumulate_springs() with
+// four lanes, the same operations on each. Returns the first spring not done.
+SOFTDROP_AVX int spring_forces_avx(const SpringInput& in, const double* x, const double* y,
+                                   const double* px, const double* py, int n, double* plus_x,
+                                   double* plus_y, double* minus_x, double* minus_y) {
+  const __m256d ks = _mm256_set1_pd(in.ks), kd = _mm256_set1_pd(in.kd),
+                inv_dt = _mm256_set1_pd(in.inv_dt);
+  const __m256d d0 = _mm256_set1_pd(in.d0), zero = _mm256_setzero_pd(),
+                minus_zero = _mm256_set1_pd(-0.0);
+  int i = 0;
+  for (; i + 4 < n; i += 4) {
+    const __m256d xi = _mm256_loadu_pd(x + i), xj = _mm256_loadu_pd(x + i + 1);
+    const __m256d yi = _mm256_loadu_pd(y + i), yj = _mm256_loadu_pd(y + i + 1);
+    const __m256d pxi = _mm256_loadu_pd(px + i), pxj = _mm256_loadu_pd(px + i + 1);
+    const __m256d pyi = _mm256_loadu_pd(py + i), pyj = _mm256_loadu_pd(py + i + 1);
+    const __m256d dx = _mm256_sub_pd(xj, xi), dy = _mm256_sub_pd(yj, yi);
+    const __m256d d = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)));
+    const __m256d ux = _mm256_div_pd(dx, d), uy = _mm256_div_pd(dy, d);
+    const __m256d dvx =
+        _mm256_mul_pd(_mm256_sub_pd(_mm256_sub_pd(xj, pxj), _mm256_sub_pd(xi, pxi)), inv_dt);
+    const __m256d dvy =
+        _mm256_mul_pd(_mm256_sub_pd(_mm256_sub_pd(yj, pyj), _mm256_sub_pd(yi, pyi)), inv_dt);
+    const __m256d f = _mm256_add_pd(
+        _mm256_mul_pd(ks, _mm256_sub_pd(d, d0)),
+        _mm256_mul_pd(kd, _mm256_add_pd(_mm256_mul_pd(dvx, ux), _mm256_mul_pd(dvy, uy))));
+    const __m256d sx = _mm256_mul_pd(f, ux), sy = _mm256_mul_pd(f, uy);
+    const __m256d has_length = _mm256_cmp_pd(d, zero, _CMP_NEQ_UQ);  // as _mm_cmpneq_pd (NaN: true)
+    const __m256d no_length = _mm256_andnot_pd(has_length, minus_zero);
+    _mm256_storeu_pd(plus_x + i, _mm256_or_pd(_mm256_and_pd(has_length, sx), no_length));
+    _mm256_storeu_pd(plus_y + i, _mm256_or_pd(_mm256_and_pd(has_length, sy), no_length));
+    _mm256_storeu_pd(minus_x + i, _mm256_and_pd(has_length, sx));
+    _mm256_storeu_pd(minus_y + i, _mm256_and_pd(has_length, sy));
+  }
+  return i;
+}
+#endif
+}  // namespace
+
+void Simulation::accumulate_springs() {
+  // Two passes: the force of every spring (independent, four at a time with AVX, two with SSE2,
+  // as constraint_vector_width() allows), then each mass
+  // gathers its two springs in the order of the scalar loop "for each spring i: f[i] += s,
+  // f[i+1] -= s" (mass m >= 1: (f - s[m-1]) + s[m]; mass 0: (f + s[0]) - s[n-1]), so the sums
+  // have the same bits.
+  const int n = state_.size();
+  const SpringInput in{params_.ks, params_.kd, 1.0 / params_.dt, rest_length_};
+  const std::size_t un = static_cast<std::size_t>(n);
+  if (spring_force_.size() != 4 * un) spring_force_.assign(4 * un, 0.0);
+  double* plus_x = spring_force_.data();  // added to the first end; -0 if the spring has no length
+  double* plus_y = plus_x + un;
+  double* minus_x = plus_y + un;  // subtracted from the second end; +0 then
+  double* minus_y = minus_x + un;
+  double* fx = state_.fx.data();
+  double* fy = state_.fy.data();
+  const double *x = state_.x.data(), *y = state_.y.data();
+  const double *px = state_.px.data(), *py = state_.py.data();
+  int i = 0;
+#if defined(SOFTDROP_AVX_DISPATCH)
+  if (constraint_vector_width() >= VectorWidth::avx)
+    i = spring_forces_avx(in, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+#endif
+#if defined(__SSE2__)
+  if (constraint_vector_width() != VectorWidth::scalar) {
+    const __m128d ks = _mm_set1_pd(in.ks), kd = _mm_set1_pd(in.kd), inv_dt = _mm_set1_pd(in.inv_dt);
+    const __m128d d0 = _mm_set1_pd(in.d0), zero = _mm_setzero_pd(), minus_zero = _mm_set1_pd(-0.0);
+    for (; i + 2 < n; i += 2) {  // springs (i, i+1) and (i+1, i+2), both inside the arrays
+      const __m128d xi = _mm_loadu_pd(x + i), xj = _mm_loadu_pd(x + i + 1);
+      const __m128d yi = _mm_loadu_pd(y + i), yj = _mm_loadu_pd(y + i + 1);
+      const __m128d pxi = _mm_loadu_pd(px + i), pxj = _mm_loadu_pd(px + i + 1);
+      const __m128d pyi = _mm_loadu_pd(py + i), pyj = _mm_loadu_pd(py + i + 1);
+      const __m128d dx = _mm_sub_pd(xj, xi), dy = _mm_sub_pd(yj, yi);
+      const __m128d d = _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)));
+      const __m128d ux = _mm_div_pd(dx, d), uy = _mm_div_pd(dy, d);
+      const __m128d dvx = _mm_mul_pd(_mm_sub_pd(_mm_sub_pd(xj, pxj), _mm_sub_pd(xi, pxi)), inv_dt);
+      const __m128d dvy = _mm_mul_pd(_mm_sub_pd(_mm_sub_pd(yj, pyj), _mm_sub_pd(yi, pyi)), inv_dt);
+      const __m128d f =
+          _mm_add_pd(_mm_mul_pd(ks, _mm_sub_pd(d, d0)),
+                     _mm_mul_pd(kd, _mm_add_pd(_mm_mul_pd(dvx, ux), _mm_mul_pd(dvy, uy))));
+      const __m128d sx = _mm_mul_pd(f, ux), sy = _mm_mul_pd(f, uy);
+      const __m128d has_length = _mm_cmpneq_pd(d, zero);
+      _mm_storeu_pd(plus_x + i,
+                    _mm_or_pd(_mm_and_pd(has_length, sx), _mm_andnot_pd(has_length, minus_zero)));
+      _mm_storeu_pd(plus_y + i,
+                    _mm_or_pd(_mm_and_pd(has_length, sy), _mm_andnot_pd(has_length, minus_zero)));
+      _mm_storeu_pd(minus_x + i, _mm_and_pd(has_length, sx));
+      _mm_storeu_pd(minus_y + i, _mm_and_pd(has_length, sy));
+    }
+  }
+#endif
+  for (; i < n; ++i) {
+    const int j = i + 1 == n ? 0 : i + 1;
+    double sx = 0, sy = 0;
+    bool zero = false;
+    spring_force(in, x[i], y[i], x[j], y[j], px[i], py[i], px[j], py[j], &sx, &sy, &zero);
+    // Adding -0 and subtracting +0 leave every double (-0 included) as it is.
+    plus_x[i] = zero ? -0.0 : sx;
+    plus_y[i] = zero ? -0.0 : sy;
+    minus_x[i] = zero ? 0.0 : sx;
+    minus_y[i] = zero ? 0.0 : sy;
+  }
+  fx[0] = (fx[0] + plus_x[0]) - minus_x[n - 1];
+  fy[0] = (fy[0] + plus_y[0]) - minus_y[n - 1];
+  for (int m = 1; m < n; ++m) {
+    fx[m] = (fx[m] - minus_x[m - 1]) + plus_x[m];
+    fy[m] = (fy[m] - minus_y[m - 1]) + plus_y[m];
+  }
+}
+
+void Simulation::accumulate_pressure() {
+  area_ = ring_area(state_);
+  const int n = state_.size();
+  // P l_e along the outward normal (dy, -dx) / l_e of a counter-clockwise edge, half to each end.
+  // Each mass gathers its two edges in the order of the loop "for each edge i: f[i] += e,
+  // f[i+1] += e": mass m >= 1 adds e[m-1] then e[m]; mass 0 adds e[0] then e[n-1].
+  const double half_p = 0.5 * params_.nrt / area_, minus_half_p = -half_p;
+  double* fx = state_.fx.data();
+  double* fy = state_.fy.data();
+  const double *x = state_.x.data(), *y = state_.y.data();
+  const double ex_last = half_p * (y[0] - y[n - 1]), ey_last = minus_half_p * (x[0] - x[n - 1]);
+  const double ex_first = half_p * (y[1] - y[0]), ey_first = minus_half_p * (x[1] - x[0]);
+  for (int m = 1; m + 1 < n; ++m) {
+    fx[m] = (fx[m] + half_p * (y[m] - y[m - 1])) + half_p * (y[m + 1] - y[m]);
+    fy[m] = (fy[m] + minus_half_p * (x[m] - x[m - 1])) + minus_half_p * (x[m + 1] - x[m]);
+  }
+  fx[n - 1] = (fx[n - 1] + half_p * (y[n - 1] - y[n - 2])) + ex_last;
+  fy[n - 1] = (fy[n - 1] + minus_half_p * (x[n - 1] - x[n - 2])) + ey_last;
+  fx[0] = (fx[0] + ex_first) + ex_last;
+  fy[0] = (fy[0] + ey_first) + ey_last;
+}
+
+void Simulation::accumulate_collisions() {
+  accumulate_collisions(state_.fx.data(), state_.fy.data(), 1);
+}
+
+void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride,
+                                       bool recorded_added) {
+  const int n = state_.size();
+  const double kc = params_.kc, cc = params_.cc, inv_dt = 1.0 / params_.dt;
+  const double W = medium_.width;
+  const bool periodic = medium_.periodic;
+  double deepest = 0;
+  // The arrays as locals: the touched set's byte stores may alias anything, and would otherwise
+  // make the compiler reload every vector's data pointer after each of them.
+  const double *xs = state_.x.data(), *ys = state_.y.data(), *pxs = state_.px.data(),
+               *pys = state_.py.data();
+  const double *cxs = contact_x_.data(), *cys = contact_y_.data();
+  const std::int32_t* counts = contact_count_.data();
+  const GrainGrid::Disc* const contacts = contacts_.data();
+  const double *first_x = contact_disc_x_.data(), *first_y = contact_disc_y_.data(),
+               *first_r = contact_disc_r_.data();
+  const std::int32_t* first_grain = contact_disc_grain_.data();
+  const std::size_t capacity = contact_capacity_;
+  std::uint8_t* const touched = touched_.data();
+  // Mass i's contacts, for any mass but one recorded free within the walls.
+  const auto collide_mass = [&](int i) {
+    const double x = xs[i], y = ys[i];
+    const bool recorded = same_bits(x, cxs[i]) && same_bits(y, cys[i]);
+    const double vx = (x - pxs[i]) * inv_dt, vy = (y - pys[i]) * inv_dt;
+    const double xw = periodic ? wrap_periodic(x, W) : x;
+    // Penalty spring from the surface point plus damping of the normal velocity; never pulls.
+    const auto collide = [&](double gx, double gy, double r, std::int32_t grain) {
+      const double dx = xw - gx, dy = y - gy;
+      const double d2 = dx * dx + dy * dy;
+      if (d2 >= r * r) return;
+      const double d = std::sqrt(d2);
+      const double nx = d > 0 ? dx / d : 0.0, ny = d > 0 ? dy / d : 1.0, depth = r - d;
+      const double f = std::max(0.0, kc * depth - cc * (vx * nx + vy * ny));
+      fx[i * stride] += f * nx;
+      fy[i * stride] += f * ny;
+      touched[static_cast<std::size_t>(grain)] = 1;
+      deepest = std::max(deepest, depth);
+    };
+    // The same discs in the same order as the grid's, less those the mass is not inside (the
+    // record; one disc is kept apart, the lanes' records of one included).
+    if (recorded && (counts[i] == 1 || counts[i] == lanes::kOneDiscWithForce)) {
+      collide(first_x[i], first_y[i], first_r[i], first_grain[i]);
+    } else {
+      const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
+      const auto range =
+          recorded ? GrainGrid::DiscRange{record, record + counts[i]} : grid_.discs_near(xw, y);
+      for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g)
+        collide(g->x, g->y, g->r, g->grain);
+    }
+    if (!periodic) {  // solid side walls
+      if (x < 0) fx[i * stride] += std::max(0.0, -kc * x - cc * vx);
+      if (x > W) fx[i * stride] -= std::max(0.0, kc * (x - W) + cc * vx);
+    }
+  };
+  if (records_current_) {
+    // The contact limit left the forces of the masses inside one disc (-0 for the others, which
+    // changes no double), their grains and their largest depth, at these very positions and
+    // velocities: every mass gets its force with no test, and those it did not cover are listed.
+    records_current_ = false;
+    const double *force_x = contact_fx_.data(), *force_y = contact_fy_.data();
+    if (!recorded_added) {
+      for (int i = 0; i < n; ++i) {
+        fx[i * stride] += force_x[i];
+        fy[i * stride] += force_y[i];
+      }
+    }
+    const std::int32_t* touch = contact_touch_.data();
+    for (int i = 0; i < n; ++i) touched[static_cast<std::size_t>(touch[i])] = 1;
+    deepest = contact_deepest_;  // the maximum does not depend on the order of the masses
+    for (const std::int32_t i : contact_todo_) collide_mass(i);
+  } else {
+    for (int i = 0; i < n; ++i) {
+      // Most masses touch nothing: recorded inside no disc, and within the walls.
+      const double x = xs[i], y = ys[i];
+      if (same_bits(x, cxs[i]) && same_bits(y, cys[i]) && counts[i] == 0 &&
+          within_walls(x, periodic, W))
+        continue;
+      collide_mass(i);
+    }
+  }
+  last_penetration_ = deepest;
+}
+
+void Simulation::accumulate_viscosity() {
+  // Rigid motion of the ring from its linear and angular momentum; the viscous force acts on the
+  // rest, so it sums to zero force and zero torque.
+  const int n = state_.size();
+  const double inv_dt = 1.0 / params_.dt;
+  const double *x = state_.x.data(), *y = state_.y.data(), *px = state_.px.data(),
+               *py = state_.py.data();
+  double cx = 0, cy = 0, vx = 0, vy = 0;
+  for (int i = 0; i < n; ++i) {
+    cx += x[i];
+    cy += y[i];
+    vx += x[i] - px[i];
+    vy += y[i] - py[i];
+  }
+  cx /= n;
+  cy /= n;
+  vx *= inv_dt / n;
+  vy *= inv_dt / n;
+  double ang = 0, inertia = 0;
+  for (int i = 0; i < n; ++i) {
+    const double rx = x[i] - cx, ry = y[i] - cy;
+    ang += rx * ((y[i] - py[i]) * inv_dt - vy) - ry * ((x[i] - px[i]) * inv_dt - vx);
+    inertia += rx * rx + ry * ry;
+  }
+  const double omega = inertia > 0 ? ang / inertia : 0.0;
+  const double c = params_.mass * params_.viscosity;
+  for (int i = 0; i < n; ++i) {
+    const double rx = x[i] - cx, ry = y[i] - cy;
+    state_.fx[i] -= c * ((x[i] - px[i]) * inv_dt - (vx - omega * ry));
+    state_.fy[i] -= c * ((y[i] - py[i]) * inv_dt - (vy + omega * rx));
+  }
+}
+
+}  // namespace softdrop

@@ -1,0 +1,190 @@
+// run_interleaved: several droplets' runs stepped together on one thread, as lane-by-lane blocks
+// (lane_block_step.hpp) or ring by ring, with droplets handed between threads (lane_exchange.hpp).
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "lane_block_step.hpp"
+#include "lane_exchange.hpp"
+#include "lane_layout.hpp"
+#include "run_stepper.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop {
+
+LaneExchange::LaneExchange() : impl_(std::make_unique<Impl>()) {}
+LaneExchange::~LaneExchange() = default;
+std::int64_t LaneExchange::handovers() const { return impl_->handovers.load(); }
+
+namespace {
+// Simulation::centre_of_mass of sims[0..count): four droplets' ordered sums side by side where
+// they have the same number of masses (each sum's additions in its own order, so the same bits),
+// so that the processor overlaps their chains of dependent additions instead of waiting out each.
+void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy) {
+  int t = 0;
+  for (; t + 4 <= count; t += 4) {
+    const DropletState* s[4] = {&sims[t]->state(), &sims[t + 1]->state(), &sims[t + 2]->state(),
+                                &sims[t + 3]->state()};
+    const int n = s[0]->size();
+    if (s[1]->size() != n || s[2]->size() != n || s[3]->size() != n) {
+      for (int k = 0; k < 4; ++k) sims[t + k]->centre_of_mass(cx + t + k, cy + t + k);
+      continue;
+    }
+    double x0 = 0, x1 = 0, x2 = 0, x3 = 0, y0 = 0, y1 = 0, y2 = 0, y3 = 0;
+    for (int i = 0; i < n; ++i) {
+      x0 += s[0]->x[i], x1 += s[1]->x[i], x2 += s[2]->x[i], x3 += s[3]->x[i];
+      y0 += s[0]->y[i], y1 += s[1]->y[i], y2 += s[2]->y[i], y3 += s[3]->y[i];
+    }
+    const double sums_x[4] = {x0, x1, x2, x3}, sums_y[4] = {y0, y1, y2, y3};
+    for (int k = 0; k < 4; ++k) cx[t + k] = sums_x[k] / n, cy[t + k] = sums_y[k] / n;
+  }
+  for (; t < count; ++t) sims[t]->centre_of_mass(cx + t, cy + t);
+}
+}  // namespace
+
+int interleaved_lanes() {
+  // Blocks of three groups of eight with AVX or AVX-512 (bench/README.md, "Constants of the step").
+  return constraint_vector_width() >= VectorWidth::avx ? lanes::kMaxLanes
+                                                       : interleaved_ring_capacity();
+}
+
+void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
+                     const std::function<void(std::int64_t id, RunSummary&&)>& done,
+                     const std::function<void(std::int64_t id)>& cancelled,
+                     LaneExchange* exchange) {
+  if (lanes < 1 || lanes > 64)
+    throw std::invalid_argument("lanes = " + std::to_string(lanes) + ": must be in [1, 64]");
+  std::vector<Lane> slots(static_cast<std::size_t>(lanes));
+  std::vector<DropletState*> rings;
+  std::vector<int> corrections;
+  std::vector<Simulation*> block, alone, stepped;
+  std::vector<double> cx(static_cast<std::size_t>(lanes)), cy(cx.size());
+  std::vector<char> valid(cx.size());
+  const VectorWidth width = constraint_vector_width();
+  const bool lane_wise = width >= VectorWidth::avx;
+  LaneExchangeSeat seat(exchange, lanes);
+  int busy = 0;
+  auto idle_lane = [&]() -> Lane& {
+    for (Lane& l : slots)
+      if (!l.run) return l;
+    throw std::logic_error("run_interleaved: no idle lane");
+  };
+  // Fills idle lanes; may wait only while every lane is idle, and then a refusal means "no more".
+  auto fill = [&](bool may_wait) {
+    for (Lane& l : slots) {
+      if (l.run) continue;
+      if (!next(&l.job, may_wait && busy == 0)) return;
+      l.job.sim->place_above(l.job.x0);
+      l.run.emplace(l.job.sim, *l.job.options);
+      ++busy;
+    }
+  };
+  for (;;) {
+    fill(false);
+    if (busy < lanes && seat.offer_waiting() && seat.take(idle_lane(), busy)) ++busy;
+    if (busy == 0) {
+      if (seat.take_or_withdraw(idle_lane())) {
+        ++busy;
+      } else {
+        fill(true);
+        if (busy == 0) {
+          if (!seat.wait_for_offer(idle_lane())) return;
+          ++busy;
+        }
+      }
+    }
+    seat.publish(busy);
+    if (seat.should_give(busy)) {
+      for (auto l = slots.rbegin(); l != slots.rend(); ++l)
+        if (l->run) {
+          if (seat.give(*l, busy)) --busy;
+          break;
+        }
+    }
+    // One step of every busy lane. With AVX-512 or AVX, the droplets with the first one's
+    // parameters go lane by lane up to the contact limit (LaneBlockStep) if there are at least
+    // fewest(); the others, and all with SSE2 alone:
+    // forces and integration each, the sequential constraints of the rings that share the first
+    // one's constraint parameters together. Then the contact limits.
+    block.clear();
+    alone.clear();
+    for (Lane& l : slots) {
+      if (!l.run) continue;
+      Simulation* sim = l.run->simulation();
+      if (lane_wise &&
+          (block.empty() || LaneBlockStep::compatible(block.front()->params(), sim->params())))
+        block.push_back(sim);
+      else
+        alone.push_back(sim);
+    }
+    if (block.size() < LaneBlockStep::fewest(width)) {
+      alone.insert(alone.end(), block.begin(), block.end());
+      block.clear();
+    }
+    rings.clear();
+    const Simulation* first = nullptr;
+    for (Simulation* sim : alone) {
+      if (sim->before_constraint()) {
+        if (!first) first = sim;
+        const DropletParams &a = first->params(), &b = sim->params();
+        if (a.masses == b.masses && a.radius == b.radius && a.max_strain == b.max_strain &&
+            a.constraint_iterations == b.constraint_iterations) {
+          rings.push_back(&sim->mutable_state());
+          continue;
+        }
+      }
+      sim->apply_constraint();
+    }
+    if (!rings.empty()) {
+      corrections.resize(rings.size());
+      apply_length_constraint_interleaved(
+          rings.data(), static_cast<int>(rings.size()), first->rest_length(),
+          first->params().max_strain, first->params().constraint_iterations, corrections.data());
+    }
+    // Blocks of nearly equal size: 25 droplets go as 13 and 12, not 24 and 1.
+    const std::size_t blocks = (block.size() + lanes::kMaxLanes - 1) / lanes::kMaxLanes;
+    for (std::size_t b = 0, begin = 0; b < blocks; ++b) {
+      const std::size_t end = block.size() * (b + 1) / blocks;
+      LaneBlockStep::step(block.data() + begin, static_cast<int>(end - begin));
+      begin = end;
+    }
+    // The contact limits, then every lane's centre of mass at once, then each run's book-keeping.
+    stepped.clear();
+    for (Lane& l : slots) {
+      if (!l.run) continue;
+      valid[stepped.size()] = l.run->simulation()->after_constraint();
+      stepped.push_back(l.run->simulation());
+    }
+    centres_of_mass(stepped.data(), static_cast<int>(stepped.size()), cx.data(), cy.data());
+    std::size_t t = 0;
+    for (Lane& l : slots) {
+      if (!l.run) continue;
+      const bool ok = valid[t] != 0;
+      const double x = cx[t], y = cy[t];
+      ++t;
+      if (cancelled) {
+        try {
+          l.run->after_step(ok, x, y);
+        } catch (const RunCancelled&) {
+          l.run.reset();
+          --busy;
+          cancelled(l.job.id);
+          continue;
+        }
+      } else {
+        l.run->after_step(ok, x, y);
+      }
+      if (l.run->finished()) {
+        RunSummary summary = l.run->take();
+        l.run.reset();
+        --busy;
+        done(l.job.id, std::move(summary));
+      }
+    }
+  }
+}
+
+}  // namespace softdrop

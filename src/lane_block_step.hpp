@@ -1,0 +1,39 @@
+#pragma once
+// LaneBlockStep: droplets of one set of parameters stepped together, a droplet per vector lane.
+#include <cstddef>
+
+#include "softdrop/droplet.hpp"
+#include "softdrop/simulation.hpp"
+#include "step_helpers.hpp"
+
+namespace softdrop {
+
+// Droplets of one set of parameters, stepped together on a copy of their positions laid out lane
+// by lane (lane_layout.hpp), eight to a group (an AVX-512 register or two AVX ones): forces,
+// integration and constraint (either order) as vector code across droplets, where the one-ring
+// forms are chains of dependent sums and square roots; the collisions (a grid look-up per mass)
+// droplet by droplet on that copy, the contact limit and the run's book-keeping on each droplet's
+// own state afterwards. Each lane does the one-ring stages' operations in their order, so every
+// droplet gets the bits step() gives it. Its forces stay in the copy: state().fx, fy are not
+// updated.
+struct LaneBlockStep {
+  // Whether droplets of parameters a and b can share a block: the same constants for every stage
+  // that runs across lanes (the collisions and the contact limit run droplet by droplet).
+  static bool compatible(const DropletParams& a, const DropletParams& b) {
+    return a.masses == b.masses && a.constraint_iterations == b.constraint_iterations &&
+           a.constraint_order == b.constraint_order && step_detail::same_bits(a.mass, b.mass) &&
+           step_detail::same_bits(a.radius, b.radius) &&
+           step_detail::same_bits(a.max_strain, b.max_strain) &&
+           step_detail::same_bits(a.nrt, b.nrt) && step_detail::same_bits(a.ks, b.ks) &&
+           step_detail::same_bits(a.kd, b.kd) && step_detail::same_bits(a.gravity, b.gravity) &&
+           step_detail::same_bits(a.dt, b.dt) && step_detail::same_bits(a.viscosity, b.viscosity);
+  }
+  // The fewest droplets worth a block with `width`; fewer step faster one by one. AVX-512: 3; AVX,
+  // whose groups of eight are two registers each: 6 (bench/README.md, "Constants of the step").
+  static std::size_t fewest(VectorWidth width) { return width == VectorWidth::avx512 ? 3 : 6; }
+  // before_constraint() and apply_constraint() (all of step() but the contact limit) for
+  // sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0].
+  static void step(Simulation* const* sims, int count);
+};
+
+}  // namespace softdrop

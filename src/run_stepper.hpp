@@ -1,0 +1,165 @@
+#pragma once
+// RunStepper: one droplet's run between its steps (path, recordings, exit tests), shared by the
+// one-droplet loop (Simulation::run_from_current) and the interleaved scheduler.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "softdrop/simulation.hpp"
+#include "step_helpers.hpp"
+
+namespace softdrop {
+
+// One droplet's run between its steps: the path, the recordings and the exit tests. A driver
+// steps the simulation and calls after_step(); run_from_current drives one droplet,
+// run_interleaved several.
+class RunStepper {
+ public:
+  RunStepper(Simulation* sim, const RunOptions& options) : sim_(sim), o_(options) {
+    std::string why;
+    if (!options.IsValid(&why)) throw std::invalid_argument(why);
+    dt_ = sim->params_.dt;
+    H_ = sim->medium_.height;
+    sim->centre_of_mass(&cx_, &cy_);
+    s_.start_x = cx_;
+    s_.start_y = cy_;
+    sim->area_ = ring_area(sim->state_);
+    window_ = std::max<std::int64_t>(1, std::llround(options.stuck_window / dt_));
+    rest_window_ = options.rest_window > 0
+                       ? std::max<std::int64_t>(1, std::llround(options.rest_window / dt_))
+                       : 0;
+    for (double t : options.snapshot_times) snapshot_steps_.push_back(std::llround(t / dt_));
+    std::sort(snapshot_steps_.begin(), snapshot_steps_.end());
+    record(0);
+    entered_ = cy_ < H_;
+    checkpoint_y_ = cy_;
+  }
+
+  bool finished() const { return finished_; }
+  Simulation* simulation() const { return sim_; }
+
+  /// Book-keeping of the step just taken (ok: the step's own validity test); may end the run.
+  void after_step(bool ok) {
+    double cx, cy;
+    sim_->centre_of_mass(&cx, &cy);
+    after_step(ok, cx, cy);
+  }
+  /// after_step(ok), given the centre of mass the step left (cx, cy), as centre_of_mass() gives it.
+  void after_step(bool ok, double cx, double cy) {
+    const std::int64_t k = ++k_;
+    const double pcx = cx_, pcy = cy_;
+    cx_ = cx;
+    cy_ = cy;
+    if (!ok || !std::isfinite(cx_) || !std::isfinite(cy_)) {
+      std::ostringstream r;
+      r << "ring became invalid at step " << k << " (area " << sim_->area_ << ")";
+      return finish(Outcome::diverged, r.str(), k);
+    }
+    s_.min_area_ratio = std::min(s_.min_area_ratio, sim_->area_ / sim_->area0_);
+    s_.max_penetration = std::max(s_.max_penetration, sim_->last_penetration_);
+    // Path length inside the medium, with the crossings of y = H and y = 0 interpolated.
+    if (!entered_ && cy_ < H_) {
+      entered_ = true;
+      const double f = (pcy - H_) / (pcy - cy_);
+      s_.path_length += step_detail::distance(pcx + f * (cx_ - pcx), H_, cx_, cy_);
+    } else if (entered_) {
+      if (cy_ < 0) {
+        const double f = pcy / (pcy - cy_);
+        s_.path_length += step_detail::distance(pcx, pcy, pcx + f * (cx_ - pcx), 0);
+      } else {
+        s_.path_length += step_detail::distance(pcx, pcy, cx_, cy_);
+      }
+    }
+    record(k);
+    if (cy_ < 0) {
+      s_.tortuosity = s_.path_length / H_;
+      return finish(Outcome::passed, "centre of mass left the medium at y = 0", k);
+    }
+    if (k % o_.check_interval == 0) {
+      if (o_.cancelled && o_.cancelled()) throw RunCancelled{};
+      if (ring_self_intersects(sim_->state_))
+        return finish(Outcome::diverged, "ring self-intersects at step " + std::to_string(k), k);
+      if (sim_->any_grain_inside_ring()) {
+        s_.grain_inside_ring = true;
+        return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k),
+                      k);
+      }
+    }
+    if (k % window_ == 0) {
+      if (checkpoint_y_ - cy_ < o_.stuck_distance) {
+        std::ostringstream r;
+        r << "centre of mass moved down " << checkpoint_y_ - cy_ << " < " << o_.stuck_distance
+          << " in the last " << o_.stuck_window << " time units, at y = " << cy_;
+        return finish(Outcome::stuck, r.str(), k);
+      }
+      checkpoint_y_ = cy_;
+    }
+    if (rest_window_ > 0) {
+      // The centre's travel in any direction: a droplet bouncing off a grain travels far while
+      // making no net progress, and is not at rest.
+      rest_travel_ += step_detail::distance(pcx, pcy, cx_, cy_);
+      if (k % rest_window_ == 0) {
+        if (rest_travel_ < o_.rest_distance) {
+          std::ostringstream r;
+          r << "at rest: centre of mass travelled " << rest_travel_ << " < " << o_.rest_distance
+            << " in the last " << o_.rest_window << " time units, at y = " << cy_;
+          return finish(Outcome::stuck, r.str(), k);
+        }
+        rest_travel_ = 0;
+      }
+    }
+    if (k == o_.max_steps)
+      finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent",
+             k);
+  }
+
+  RunSummary take() { return std::move(s_); }
+
+ private:
+  void record(std::int64_t k) {
+    const double t = static_cast<double>(k) * dt_;
+    if (o_.path_interval > 0 && k % o_.path_interval == 0) {
+      s_.path_t.push_back(t);
+      s_.path_x.push_back(cx_);
+      s_.path_y.push_back(cy_);
+    }
+    if (o_.area_interval > 0 && k % o_.area_interval == 0) {
+      s_.area_t.push_back(t);
+      s_.area.push_back(ring_area(sim_->state_));
+    }
+    while (next_snapshot_ < snapshot_steps_.size() && snapshot_steps_[next_snapshot_] <= k) {
+      s_.snapshots.push_back({t, sim_->state_.x, sim_->state_.y});
+      ++next_snapshot_;
+    }
+  }
+  void finish(Outcome o, std::string reason, std::int64_t k) {
+    finished_ = true;
+    s_.outcome = o;
+    s_.reason = std::move(reason);
+    s_.steps = k;
+    for (std::size_t g = 0; g + 1 < sim_->touched_.size(); ++g)
+      if (sim_->touched_[g]) s_.touched.push_back(static_cast<std::int32_t>(g));
+    if (o_.path_interval > 0 &&
+        (s_.path_t.empty() || s_.path_t.back() != static_cast<double>(k) * dt_)) {
+      s_.path_t.push_back(static_cast<double>(k) * dt_);
+      s_.path_x.push_back(cx_);
+      s_.path_y.push_back(cy_);
+    }
+  }
+
+  Simulation* sim_;
+  const RunOptions& o_;
+  RunSummary s_;
+  double dt_ = 0, H_ = 0, cx_ = 0, cy_ = 0, checkpoint_y_ = 0, rest_travel_ = 0;
+  std::int64_t window_ = 1, rest_window_ = 0, k_ = 0;
+  std::vector<std::int64_t> snapshot_steps_;
+  std::size_t next_snapshot_ = 0;
+  bool entered_ = false, finished_ = false;
+};
+
+}  // namespace softdrop
