@@ -1,5 +1,5 @@
 // Scene benchmarks: whole runs, timed over repeats (minimum and median), written as CSV with the
-// machine and compiler. Issue 6 measures its targets with these.
+// machine and compiler.
 //
 //   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--lanes N] [--width W]
 //                            [--out FILE.csv]
@@ -11,11 +11,13 @@
 // default lanes stepped together (24 with AVX-512 or AVX, 6 with SSE2) on 1 thread, and on all
 // threads);
 // sweep and sweep-long (16 and 64 droplets through each of 4 media, on 1 thread and on all; the
-// paper's sweep has 200 per medium); search-l1 and search-l2 (the default search at lambda 1 and 2, on 1 thread and on all threads
+// paper's sweep has 200 per medium); search-l1 and search-l2 (the paper's search at lambda 1 and 2, on 1 thread and on all threads
 // with speculation, as `optimize` runs it: 120 and 60 generations); search-l2-long (the same at
 // lambda 2 over 400 generations, where the acceptances thin out and the end of the run weighs less);
 // search-*-red-black (the same searches with the red-black constraint order: other histories, so
-// compare their steps per second). --lanes sets the search scenes' lanes (0: the default). --width
+// compare their steps per second); search-es-l8 and search-es-l8-long (the program's default
+// search: es, lambda 8, a relocation every third generation; 15 and 200 generations, the latter
+// the main job of scripts/run.sh). --lanes sets the search scenes' lanes (0: the default). --width
 // uses at most that vector width (8: AVX-512, 4: AVX, 2: SSE2, 1: scalar), to time what a
 // processor without AVX-512 runs. The last column, dropped_steps_per_kept, is a speculating
 // search's cost: the steps its dropped evaluations had taken, over the steps counted (the kept
@@ -133,10 +135,14 @@ Work sweep(int threads, int per_medium) {
 // The default search: 120 evaluations (120 / lambda generations), or `generations` of them.
 int search_lanes = 0;  // --lanes: DriveOptions::lanes of the search scenes (0: its default)
 
-Work search(int lambda, int threads, int generations = 0, ConstraintOrder order = ConstraintOrder::sequential) {
+// `es`: the program's default strategy (es with a relocation every third generation) instead of
+// the paper's.
+Work search(int lambda, int threads, int generations = 0, ConstraintOrder order = ConstraintOrder::sequential,
+            bool es = false) {
   SearchOptions o;
   o.lambda = lambda;
   o.droplet.constraint_order = order;
+  if (es) o.strategy.kind = StrategyKind::es, o.relocate_every = 3;
   MediumOptions mo;
   mo.kind = MediumKind::non_overlapping;
   mo.grains = 60;
@@ -263,6 +269,10 @@ int main(int argc, char** argv) {
       {"search-l2-red-black", [&] { return search(2, threads, 0, ConstraintOrder::red_black); }},
       {"search-l2-long-red-black-1thread", [] { return search(2, 1, 400, ConstraintOrder::red_black); }},
       {"search-l2-long-red-black", [&] { return search(2, threads, 400, ConstraintOrder::red_black); }},
+      {"search-es-l8-1thread", [] { return search(8, 1, 0, ConstraintOrder::sequential, true); }},
+      {"search-es-l8", [&] { return search(8, threads, 0, ConstraintOrder::sequential, true); }},
+      {"search-es-l8-long-1thread", [] { return search(8, 1, 200, ConstraintOrder::sequential, true); }},
+      {"search-es-l8-long", [&] { return search(8, threads, 200, ConstraintOrder::sequential, true); }},
   };
   std::ostringstream csv;
   csv << "# machine: " << machine() << "\n# compiler: GCC " << __VERSION__ << ", "

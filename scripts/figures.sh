@@ -16,5 +16,5 @@ $S render animation --medium examples/pore.json --x0 100 --speed 0.005 --size 24
 $S render paths --porosity 0.85 --droplets 300 --seed 1 --size 600 --path-colour "#101010" -o $out/paths.png
 # A 1000-generation search (lambda 2), its best arrangement and its best-T curve.
 rm -f build/figures.db build/figures.db-wal build/figures.db-shm
-$S optimize --db build/figures.db --generations 1000 --lambda 2 --quiet
+$S optimize --db build/figures.db --generations 1000 --lambda 2 --strategy paper --relocate-every 0 --quiet
 $S render search --db build/figures.db --run 1 --size 600 -o $out/search.png --curve $out/search_curve.png

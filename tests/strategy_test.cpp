@@ -184,7 +184,9 @@ TEST(StrategyCli, BadNamesUnusedOptionsAndContradictionsGetOneLine) {
   };
   for (const Case& c : {Case{"--strategy tabu", "--strategy: tabu not in {paper,es,lahc,anneal}"},
                         Case{"--strategy lahc --temperature 0.1", "temperature: an option of --strategy anneal"},
-                        Case{"--target-success 0.3", "target-success: an option of --strategy es, not used by --strategy paper"},
+                        Case{"--temperature 0.3", "temperature: an option of --strategy anneal, not used by --strategy es"},
+                        Case{"--strategy paper --target-success 0.3",
+                             "target-success: an option of --strategy es, not used by --strategy paper"},
                         Case{"--strategy es --history-length 9", "history-length: an option of --strategy lahc"},
                         Case{"--strategy es --target-success 1.5", "target-success = 1.5: must be in (0, 1)"}}) {
     SCOPED_TRACE(c.args);
@@ -204,12 +206,18 @@ TEST(StrategyCli, BadNamesUnusedOptionsAndContradictionsGetOneLine) {
   EXPECT_EQ(dump(db, 1), before);
   // A run stored before strategies existed is the paper's, and --strategy paper agrees with it.
   const std::string old = fresh("strategy_old.db");
-  ASSERT_EQ(run("optimize --db " + old + kScene + " --generations 2").code, 0);
+  ASSERT_EQ(run("optimize --db " + old + kScene + " --generations 2 --strategy paper --lambda 1 --relocate-every 0").code,
+            0);
   {
     SQLite::Database w(old, SQLite::OPEN_READWRITE);
-    w.exec("UPDATE runs SET params = json_remove(params, '$.strategy', '$.target-success', '$.history-length')");
+    w.exec("UPDATE runs SET params = json_remove(params, '$.strategy', '$.target-success', '$.history-length', '$.relocate-every')");
   }
   EXPECT_EQ(run("optimize --db " + old + " --resume 1 --generations 4 --quiet --strategy paper").code, 0);
+  // Without --strategy too: the program's defaults (es, lambda 8, relocation) do not apply to it.
+  EXPECT_EQ(run("optimize --db " + old + " --resume 1 --generations 6 --quiet").code, 0);
+  SQLite::Database r(old, SQLite::OPEN_READONLY);
+  EXPECT_EQ(r.execAndGet("SELECT count(*) FROM candidates WHERE run_id = 1").getInt(), 7);  // one a generation
+  EXPECT_EQ(r.execAndGet("SELECT count(*) FROM generations WHERE run_id = 1 AND kind = 'relocate'").getInt(), 0);
 }
 
 }  // namespace
