@@ -4,7 +4,7 @@
     PYTHONPATH=build/python python3 examples/python/droplets.py
 
 Generates a medium, pushes one droplet and draws its path, then 200 droplets from random starts
-as a pandas DataFrame, then runs a 50-generation search and plots its curve from the history. The
+as a pandas DataFrame, then runs a 30-generation search and plots its curve from the history. The
 pictures need matplotlib (python3-matplotlib); without it the numbers are printed only.
 """
 import os
@@ -22,8 +22,8 @@ frame = softdrop.simulate_many(medium, 200, seed=3)
 print(frame.groupby("outcome").size())
 print("mean T of the passed droplets:", frame.loc[frame.outcome == "passed", "tortuosity"].mean())
 
-# A 50-generation search, written to an SQLite history as `softdrop optimize` writes it, with a
-# line every 10 generations from the callback; then its history read back as DataFrames.
+# A 30-generation search on the defaults (8 candidates a generation), written to an SQLite history
+# as `softdrop optimize` writes it, with a line every 10 generations from the callback; then its history read back as DataFrames.
 db = os.path.join(tempfile.mkdtemp(), "search.db")
 
 
@@ -33,7 +33,7 @@ def report(event):
     return True  # False would stop the search here (resume it with softdrop.optimize(db, resume=run))
 
 
-summary = softdrop.optimize(db, generations=50, lambda_=2, callback=report, quiet=True)
+summary = softdrop.optimize(db, generations=30, callback=report, quiet=True)
 history = softdrop.read_history(db)
 curve = history["generations"]
 print("search: best T", summary["best_tortuosity"], "after", summary["evaluations"], "evaluations")

@@ -4,7 +4,7 @@
 # running the script again resumes every search to the budget given, so a long comparison can be
 # run in parts. Writes curves.csv (problem, strategy, seed, generation, evaluations, seconds,
 # best_t), summary.csv (per problem and strategy: the median, least and largest best T over the
-# seeds after 750, 3 000, 8 000 and 20 000 evaluations, for the seeds that got that far) and
+# seeds after 750, 3 000, 5 000, 8 000 and 20 000 evaluations, for the seeds that got that far) and
 # curves.png (every search's best T against evaluations).
 #   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
 #   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal es+r3"
@@ -59,8 +59,18 @@ for problem in $PROBLEMS; do
   done
 done
 
+# A search whose database is not here (the databases are not committed) keeps its rows of the
+# committed curves.csv; a database here replaces its search's rows.
+have=$(cd "$OUT/db" && for db in *.db; do [[ -f $db ]] && echo "${db%.db}"; done | tr '\n' ' ')
+kept=$(mktemp)
+trap 'rm -f "$kept"' EXIT
+[[ -f $OUT/curves.csv ]] && awk -F, -v have="$have" '
+  BEGIN { n = split(have, names, " "); for (i = 1; i <= n; i++) here[names[i]] = 1 }
+  NR > 1 && !(($1 "-" $2 "-" $3) in here)' "$OUT/curves.csv" > "$kept"
 echo "problem,strategy,seed,generation,evaluations,seconds,best_t" > "$OUT/curves.csv"
+cat "$kept" >> "$OUT/curves.csv"
 for db in "$OUT"/db/*.db; do
+  [[ -f $db ]] || continue
   name=$(basename "$db" .db); IFS=- read -r problem strategy seed <<< "$name"
   sqlite3 -csv "$db" "SELECT '$problem', '$strategy', $seed, g.generation,
                              1 + g.generation * (SELECT lambda FROM runs WHERE id = 1),
@@ -74,7 +84,7 @@ sqlite3 :memory: <<SQL > "$OUT/summary.csv"
 .mode csv
 .import $OUT/curves.csv curves
 .headers on
-WITH checkpoints(e) AS (VALUES (750), (3000), (8000), (20000)),
+WITH checkpoints(e) AS (VALUES (750), (3000), (5000), (8000), (20000)),
 reached AS (SELECT problem, strategy, seed, max(CAST(evaluations AS INTEGER)) AS last FROM curves
             GROUP BY problem, strategy, seed),
 at AS (  -- best T of each search once it had spent e evaluations
@@ -91,4 +101,4 @@ FROM ranked GROUP BY problem, strategy, e ORDER BY problem, e, median_best_t DES
 SQL
 cat "$OUT/summary.csv"
 # shellcheck disable=SC2046
-$S render curves $(for db in "$OUT"/db/default-*.db; do echo --db "$db"; done) --size 900 -o "$OUT/curves.png"
+/usr/bin/python3 "$OUT/plot.py" "$OUT/curves.csv" "$OUT/curves.png"

@@ -1,0 +1,80 @@
+"""Draws curves.png from curves.csv: for every problem (a column) the median best T over seeds
+against evaluations (top row) and against wall seconds (bottom row), one line a strategy, with the
+band from the least to the largest seed.
+Where some seeds' searches went further than the others, each goes on as a thin line of its own.
+A strategy NAME+rN (with relocation) is drawn solid, NAME alone dashed, in NAME's colour.
+
+    python3 results/search/plot.py results/search/curves.csv results/search/curves.png
+"""
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+
+COLOURS = {"paper": "#4d4d4d", "es": "#d62728", "lahc": "#1f77b4", "anneal": "#2ca02c"}
+PROBLEMS = ["default", "dense", "large", "fine"]
+
+
+def band(runs, column, grid):
+    """Median, least and largest best T over the runs at each x of grid (NaN where none reached x)."""
+    values = np.full((len(runs), grid.size), np.nan)
+    for k, run in enumerate(runs):
+        x = run[column].to_numpy()
+        t = run["best_t"].to_numpy()
+        at = np.searchsorted(x, grid, side="right") - 1  # the last generation at or before x
+        ok = (at >= 0) & (grid <= x[-1])
+        values[k, ok] = t[at[ok]]
+    reached = ~np.all(np.isnan(values), axis=0)
+    out = np.full((3, grid.size), np.nan)
+    out[0, reached] = np.nanmedian(values[:, reached], axis=0)
+    out[1, reached] = np.nanmin(values[:, reached], axis=0)
+    out[2, reached] = np.nanmax(values[:, reached], axis=0)
+    return out
+
+
+def main(csv, png):
+    curves = pd.read_csv(csv, float_precision="round_trip")
+    problems = [p for p in PROBLEMS if p in set(curves.problem)]
+    problems += sorted(set(curves.problem) - set(problems))
+    fig, axes = plt.subplots(2, len(problems), figsize=(4.2 * len(problems), 7.5), squeeze=False)
+    for col, problem in enumerate(problems):
+        of_problem = curves[curves.problem == problem]
+        for strategy in sorted(set(of_problem.strategy)):
+            runs = [r.sort_values("generation") for _, r in of_problem[of_problem.strategy == strategy].groupby("seed")]
+            base = strategy.split("+")[0]
+            style = dict(color=COLOURS.get(base, "#9467bd"), linestyle="-" if "+r" in strategy else "--")
+            for row, column in enumerate(["evaluations", "seconds"]):
+                top = max(r[column].iloc[-1] for r in runs)
+                grid = np.linspace(0, top, 400)
+                median, least, largest = band(runs, column, grid)
+                ax = axes[row][col]
+                # The median only where every seed counts; a search that went further goes on alone.
+                common = grid <= min(r[column].iloc[-1] for r in runs)
+                ax.plot(grid[common], median[common], label=f"{strategy} ({len(runs)})", linewidth=1.4, **style)
+                ax.fill_between(grid[common], least[common], largest[common], color=style["color"], alpha=0.08,
+                                linewidth=0)
+                for r in runs:
+                    beyond = r[r[column] >= grid[common][-1]]
+                    if len(beyond) > 1:
+                        ax.step(beyond[column], beyond["best_t"], where="post", linewidth=0.7, **style)
+        for row, column in enumerate(["evaluations", "wall seconds"]):
+            ax = axes[row][col]
+            ax.set_xlabel(column)
+            ax.set_ylabel("best T (median, band: least to largest seed)")
+            ax.set_title(problem)
+            ax.axhline(2.42, color="#999999", linewidth=0.8, linestyle=":")
+            ax.grid(alpha=0.3)
+        axes[0][col].legend(fontsize=7, loc="lower right", title="strategy (seeds)", title_fontsize=7)
+    fig.suptitle("Best T found against cost, per problem (dotted: the paper's 2.42)")
+    fig.tight_layout()
+    fig.savefig(png, dpi=90)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 3:
+        sys.exit("usage: plot.py CURVES_CSV OUTPUT_PNG")
+    main(sys.argv[1], sys.argv[2])
