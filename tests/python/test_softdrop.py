@@ -150,7 +150,7 @@ def test_the_example_runs(tmp_path):
     env = dict(os.environ, PATH=os.path.dirname(CLI) + os.pathsep + os.environ.get("PATH", ""))
     done = subprocess.run([sys.executable, example], cwd=tmp_path, env=env, capture_output=True, text=True)
     assert done.returncode == 0, done.stderr
-    assert "search: best T" in done.stdout and "generation 50: best T" in done.stdout
+    assert "search: best T" in done.stdout and "generation 30: best T" in done.stdout
     for picture in ("droplet_path.png", "search_curve.png"):  # matplotlib is among the test packages
         assert (tmp_path / picture).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
