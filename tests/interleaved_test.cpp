@@ -12,7 +12,7 @@
 #include <thread>
 #include <tuple>
 
-#include "../src/lane_layout.hpp"
+#include "lane_layout.hpp"
 #include "fixtures.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/simulation.hpp"
