@@ -1,9 +1,11 @@
 #include "cli/cli.hpp"
 
+#include <chrono>
 #include <exception>
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <thread>
 #include <stdexcept>
 #include <vector>
 
@@ -148,6 +150,9 @@ int main(int argc, char** argv) {
     // rank alike, and rank 0 alone says so.
     const bool everywhere = dynamic_cast<const std::invalid_argument*>(&e) != nullptr;
     if (speaks || !everywhere) std::cerr << "softdrop: error: " << one_line(e.what()) << '\n';
+    // The others give rank 0 time to say it and end the job: an abort from another rank first
+    // could kill rank 0 before its line is out.
+    if (!speaks && everywhere) std::this_thread::sleep_for(std::chrono::seconds(5));
     job->abort(1);
   }
 }
