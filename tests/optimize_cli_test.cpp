@@ -294,6 +294,9 @@ TEST(Optimize, HistoryListsCandidatesAndTheStoredOptions) {
   // The program's default strategy is the measured best: es with a relocation every third generation.
   EXPECT_NE(p.out.find("\nstrategy,es\n"), std::string::npos) << p.out;
   EXPECT_NE(p.out.find("\nrelocate-every,3\n"), std::string::npos) << p.out;
+  // ... and ends a candidate at rest without waiting for the stuck test (results/stuck_test/).
+  EXPECT_NE(p.out.find("\nrest-window,0.05\n"), std::string::npos) << p.out;
+  EXPECT_NE(p.out.find("\nrest-distance,0.1\n"), std::string::npos) << p.out;
   for (const std::string bad : {"--candidates", "--params"}) {
     const Result e = run("history --db " + db + " " + bad);
     EXPECT_EQ(e.code, 1);
