@@ -32,23 +32,8 @@ void set_legacy(const std::string& key, T& value) {
 // The lists of stored options: key (= CLI long option name) and field.
 template <class Droplet, class F>
 void visit_droplet(Droplet& d, F&& f) {
-  f("masses", d.masses);
-  f("mass", d.mass);
-  f("radius", d.radius);
-  f("nrt", d.nrt);
-  f("ks", d.ks);
-  f("kd", d.kd);
-  f("kc", d.kc);
-  f("cc", d.cc);
-  f("gravity", d.gravity);
-  f("dt", d.dt);
-  f("max-strain", d.max_strain);
-  f("constraint-iterations", d.constraint_iterations);
-  f("constraint-order", d.constraint_order);
-  f("max-depth", d.max_depth);
-  f("viscosity", d.viscosity);
+  visit_droplet_fields([&](const char* key, FieldUse, auto& value) { f(key, value); }, d);
 }
-
 template <class Run, class F>
 void visit_exit(Run& r, F&& f) {
   f("max-steps", r.max_steps);

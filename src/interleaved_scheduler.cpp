@@ -129,9 +129,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     for (Simulation* sim : alone) {
       if (sim->before_constraint()) {
         if (!first) first = sim;
-        const DropletParams &a = first->params(), &b = sim->params();
-        if (a.masses == b.masses && a.radius == b.radius && a.max_strain == b.max_strain &&
-            a.constraint_iterations == b.constraint_iterations) {
+        if (same_fields(first->params(), sim->params(), FieldUse::constraint)) {
           rings.push_back(&sim->mutable_state());
           continue;
         }

@@ -4,7 +4,6 @@
 
 #include "softdrop/droplet.hpp"
 #include "softdrop/simulation.hpp"
-#include "step_helpers.hpp"
 
 namespace softdrop {
 
@@ -20,13 +19,7 @@ struct LaneBlockStep {
   // Whether droplets of parameters a and b can share a block: the same constants for every stage
   // that runs across lanes (the collisions and the contact limit run droplet by droplet).
   static bool compatible(const DropletParams& a, const DropletParams& b) {
-    return a.masses == b.masses && a.constraint_iterations == b.constraint_iterations &&
-           a.constraint_order == b.constraint_order && step_detail::same_bits(a.mass, b.mass) &&
-           step_detail::same_bits(a.radius, b.radius) &&
-           step_detail::same_bits(a.max_strain, b.max_strain) &&
-           step_detail::same_bits(a.nrt, b.nrt) && step_detail::same_bits(a.ks, b.ks) &&
-           step_detail::same_bits(a.kd, b.kd) && step_detail::same_bits(a.gravity, b.gravity) &&
-           step_detail::same_bits(a.dt, b.dt) && step_detail::same_bits(a.viscosity, b.viscosity);
+    return same_fields(a, b, FieldUse::lanes);
   }
   // The fewest droplets worth a block with `width`; fewer step faster one by one. AVX-512: 3; AVX,
   // whose groups of eight are two registers each: 6 (bench/README.md, "Constants of the step").

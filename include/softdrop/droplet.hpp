@@ -3,7 +3,10 @@
 /// The soft-body droplet: parameters (what the user sets), creation data (topology and rest state
 /// derived once) and runtime state (flat arrays advanced by the simulation).
 
+#include <bit>
+#include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace softdrop {
@@ -53,6 +56,55 @@ struct DropletParams {
 
   bool IsValid(std::string* why) const;
 };
+
+/// Which stages read a DropletParams field, and so which droplets can be stepped together:
+/// - constraint: the length constraint (ring size, rest length, strain limit, passes); rings
+///   constrained side by side must agree on these;
+/// - lanes: the other stages that run across the droplets of a lane block (forces, integration,
+///   the constraint's order); droplets sharing a block must agree on these and the constraint's;
+/// - contacts: read droplet by droplet (collisions and the contact limit).
+enum class FieldUse { constraint, lanes, contacts };
+
+/// The one list of DropletParams's fields: calls f(key, use, p.field...) for each field, in
+/// declaration order, with that field of every p given (one struct to read or write it, two to
+/// compare them). `key` is the field's command-line option and its key in stored parameters.
+/// A new field goes here, and stored parameters, the lane block's checks and the option list
+/// follow.
+template <class F, class... Params>
+void visit_droplet_fields(F&& f, Params&... p) {
+  f("masses", FieldUse::constraint, p.masses...);
+  f("mass", FieldUse::lanes, p.mass...);
+  f("radius", FieldUse::constraint, p.radius...);
+  f("nrt", FieldUse::lanes, p.nrt...);
+  f("ks", FieldUse::lanes, p.ks...);
+  f("kd", FieldUse::lanes, p.kd...);
+  f("kc", FieldUse::contacts, p.kc...);
+  f("cc", FieldUse::contacts, p.cc...);
+  f("gravity", FieldUse::lanes, p.gravity...);
+  f("dt", FieldUse::lanes, p.dt...);
+  f("max-strain", FieldUse::constraint, p.max_strain...);
+  f("constraint-iterations", FieldUse::constraint, p.constraint_iterations...);
+  f("constraint-order", FieldUse::lanes, p.constraint_order...);
+  f("max-depth", FieldUse::contacts, p.max_depth...);
+  f("viscosity", FieldUse::lanes, p.viscosity...);
+}
+
+/// Whether a and b agree, to the bit, on every field whose use is `use` or one of the uses listed
+/// before it in FieldUse (constraint: the constraint's fields; lanes: those and the lanes'; contacts:
+/// every field).
+inline bool same_fields(const DropletParams& a, const DropletParams& b, FieldUse use) {
+  bool same = true;
+  visit_droplet_fields(
+      [&](const char*, FieldUse u, const auto& x, const auto& y) {
+        if (static_cast<int>(u) > static_cast<int>(use)) return;
+        if constexpr (std::is_floating_point_v<std::decay_t<decltype(x)>>)
+          same = same && std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
+        else
+          same = same && x == y;
+      },
+      a, b);
+  return same;
+}
 
 /// Runtime state of one droplet: structure of arrays, index i is mass i, ring order i -> i+1 is
 /// counter-clockwise. Position Verlet keeps the previous positions; velocity is (x - px) / dt.
