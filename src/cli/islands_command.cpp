@@ -11,9 +11,8 @@
 #include <stdexcept>
 
 #include "cli/mpi_islands.hpp"
-#include "cli/optimize_command.hpp"
+#include "cli/islands_command.hpp"
 #include "cli/output.hpp"
-#include "softdrop/grain_file.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/version.hpp"

@@ -5,44 +5,24 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <cstring>
 #include <filesystem>
+#include <cstring>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/islands_command.hpp"
 #include "cli/mpi_islands.hpp"
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/history.hpp"
 #include "softdrop/porosity.hpp"
-#include "softdrop/random.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
-
-OptimizeArgs::OptimizeArgs() {
-  // The default search scene: a 300 x 300 periodic box of 60 non-overlapping grains (phi ~ 0.735).
-  medium.options.kind = MediumKind::non_overlapping;
-  medium.options.grains = 60;
-  medium.options.width = 300;
-  medium.options.height = 300;
-  // The measured best of the strategies (results/search/README.md): the evolution strategy with a
-  // relocation every third generation and a generation of 8, enough candidates for every thread
-  // and lane. The library's SearchOptions{} stays the paper's algorithm, and a stored run without
-  // these keys reads as that.
-  search.strategy.kind = StrategyKind::es;
-  search.relocate_every = 3;
-  search.lambda = 8;
-  // A candidate whose droplet comes to rest is stuck at once instead of at the stuck test's second
-  // window: about a third of the steps, and no verdict changed in 5 500 droplets
-  // (results/stuck_test/); a passed candidate's T does not depend on it.
-  search.run.rest_window = 0.05;
-  search.run.rest_distance = 0.1;
-}
 
 CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   CLI::App* s = app.add_subcommand(
@@ -139,41 +119,6 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
 }
 
 // The command line's view of the run: search options plus how the starting medium was made.
-nlohmann::json params_of(const OptimizeArgs& a) {
-  nlohmann::json j = nlohmann::json::parse(search_params_to_json(a.search));
-  const MediumOptions& m = a.medium.options;
-  j["medium"] = a.medium.file;
-  j["grains"] = m.grains;
-  j["width"] = m.width;
-  j["height"] = m.height;
-  j["r-min"] = m.r_min;
-  j["r-max"] = m.r_max;
-  j["radius-distribution"] = a.medium.radii;
-  j["r-median"] = m.r_median;
-  j["r-sigma"] = m.r_sigma;
-  j["walls"] = a.medium.walls;
-  j["medium-seed"] = m.seed;
-  if (a.islands.islands > 1) {  // (plain runs keep the parameters they always had)
-    j["islands"] = a.islands.islands;
-    j["migrate-every"] = a.islands.migrate_every;
-    j["migration"] = to_string(a.islands.migration);
-  }
-  return j;
-}
-
-// Options given on the command line (or in a config file) that differ from the stored run.
-std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& cmd) {
-  std::string out;
-  for (const auto& [key, value] : given.items()) {
-    const CLI::Option* opt = cmd.get_option_no_throw("--" + key);
-    if (!opt || opt->count() == 0) continue;
-    const bool differs = !stored.contains(key) || stored.at(key) != value;
-    if (differs)
-      out += (out.empty() ? "" : ", ") + std::string("--") + key + " " + value.dump() + " (stored " +
-             (stored.contains(key) ? stored.at(key).dump() : std::string("nothing")) + ")";
-  }
-  return out;
-}
 
 namespace {
 
@@ -209,75 +154,6 @@ class SearchProgress {
 };
 
 }  // namespace
-
-// Generation 0 of a new run: the loaded medium, or random media until the droplet passes. A medium
-// that cannot be generated at all (e.g. too many grains for the box) is an error, not a retry.
-Generation start(const OptimizeArgs& a, Configuration* best) {
-  if (!a.medium.file.empty()) return initial_generation(load_medium(a.medium.file), a.search, best);
-  std::string last_reason;
-  for (int attempt = 0; attempt < a.start_attempts; ++attempt) {
-    MediumOptions m = a.medium.options;
-    if (attempt > 0) m.seed = derive_seed(a.medium.options.seed, static_cast<std::uint64_t>(attempt));
-    const Medium medium = generate_medium(m);
-    try {
-      return initial_generation(medium, a.search, best);
-    } catch (const std::runtime_error& e) {  // the droplet did not pass: try another medium
-      last_reason = e.what();
-      if (!a.quiet)
-        std::cerr << "optimize: starting medium " << attempt + 1 << ": " << last_reason << "; trying another\n";
-    }
-  }
-  throw std::runtime_error("start-attempts = " + std::to_string(a.start_attempts) +
-                           ": no starting medium let the droplet pass (" + last_reason + ")");
-}
-
-
-DriveOptions drive_options_of(const OptimizeArgs& a, const std::atomic<bool>* stop) {
-  DriveOptions d;
-  d.generations = a.generations;
-  d.time_limit = a.time_limit;
-  d.stop = stop;
-  d.threads = a.threads;
-  d.speculate = !a.no_speculation;
-  d.lanes = a.lanes;
-  return d;
-}
-
-nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target) {
-  return {{"run", run}, {"generation", g.number}, {"kind", to_string(g.kind)},
-          {"accepted_candidate", g.accepted >= 0 ? nlohmann::json(g.accepted) : nlohmann::json()},
-          {"candidates", g.candidates.size()}, {"seconds", g.seconds}, {"best_t", best.eval.tortuosity},
-          {"best_generation", best.generation}, {"target_generations", target}};
-}
-
-bool deliver_summary(const OptimizeArgs& a, const nlohmann::json& j, Host* host) {
-  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
-  if (host) {
-    host->summary = j;
-    return true;
-  }
-  if (a.format != "json") return false;
-  std::cout << j.dump(2) << '\n';
-  return true;
-}
-
-Search resumed_search(History& history, const RunRecord& rec, const SearchOptions& options) {
-  // The strategy moves on from the last kept arrangement; the best may be an earlier one.
-  Configuration current = history.configuration(rec.id, -1);
-  Configuration best = rec.best_generation == current.generation ? current : history.configuration(rec.id, rec.best_generation);
-  // Both must come out the same with this build, or the history would fork.
-  for (Configuration* c : {&current, &best}) {
-    const Evaluation check = evaluate(c->medium, options);
-    if (check.outcome != Outcome::passed || check.tortuosity != c->eval.tortuosity || check.touched != c->eval.touched)
-      throw std::runtime_error("resume " + std::to_string(rec.id) + ": this build gives T = " + fmt(check.tortuosity) +
-                               " for the stored arrangement of generation " + std::to_string(c->generation) +
-                               ", the run stored " + fmt(c->eval.tortuosity) +
-                               " (built with other numerics? resuming would not continue the same history)");
-    c->eval = check;
-  }
-  return Search(options, std::move(best), std::move(current), history.strategy_state(rec.id, rec.generations),
-                rec.generations);
-}
 
 void check_optimize(OptimizeArgs& a) {
   if (a.generations < 0 || a.generations > 1'000'000'000)

@@ -3,72 +3,13 @@
 // SQLite history; `--resume RUN` continues a stored run exactly.
 
 #include <CLI/CLI.hpp>
-#include <atomic>
-#include <cstdint>
-#include <string>
-#include <utility>
-#include <vector>
 
-#include "cli/common_options.hpp"
 #include "cli/host.hpp"
-#include <nlohmann/json.hpp>
-
-#include "softdrop/history.hpp"
-#include "softdrop/islands.hpp"
-#include "softdrop/search.hpp"
+#include "cli/search_setup.hpp"
 
 namespace softdrop::cli {
 
-struct OptimizeArgs {
-  std::string db = "softdrop.db";
-  std::int64_t resume = 0;         ///< run id to continue (0: start a new run)
-  std::int64_t generations = 200;  ///< run up to this generation number
-  double time_limit = 0;           ///< wall seconds, 0: none
-  int threads = 0;
-  bool no_speculation = false;     ///< evaluate one generation at a time
-  int lanes = 0;                   ///< candidates each thread steps together (DriveOptions::lanes)
-  int start_attempts = 100;        ///< random starting media tried until the droplet passes
-  SearchOptions search;
-  IslandOptions islands;           ///< islands > 1: the island model (islands.hpp)
-  MediumArgs medium;
-  bool quiet = false;
-  bool verbose = false;            ///< also print how the speculation went
-  std::string format = "table";
-  std::string json_file;
-  /// Options of one strategy given on the command line, with the strategy that uses each.
-  std::vector<std::pair<std::string, StrategyKind>> strategy_options;
-
-  OptimizeArgs();
-};
-
 CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& args);
-
-/// The run's parameters as the command line gives them (search options and how the starting
-/// medium was made), stored with the run.
-nlohmann::json params_of(const OptimizeArgs& args);
-/// Options given on the command line (or in a config file) that differ from the stored run's
-/// parameters, as "--key value (stored value)" items; "" when none does.
-std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& command);
-/// Generation 0 of a new run: the loaded medium, or random media until the droplet passes.
-Generation start(const OptimizeArgs& args, Configuration* best);
-/// A stored run as a search that continues it, after checking that this build evaluates its
-/// current and best arrangements as stored (throws std::runtime_error naming the run if not).
-Search resumed_search(History& history, const RunRecord& run, const SearchOptions& options);
-
-/// Whether --resume names a run that is one of islands.
-bool resumes_islands(const OptimizeArgs& args);
-/// optimize with --islands K > 1, or resuming one of islands (islands_command.cpp).
-int run_islands(OptimizeArgs& args, const CLI::App& command, Host* host);
-
-/// When the drive stops, from the command line; `stop` is the signal flag (nullptr: none).
-DriveOptions drive_options_of(const OptimizeArgs& args, const std::atomic<bool>* stop);
-/// What a host hears after each generation of run `run` (see Host): its number, kind, kept
-/// candidate, candidates, seconds, the best T and its generation, and the target generation.
-nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target);
-
-/// The summary `j` written to --json's file, handed to a host, or printed with --format json;
-/// false when it is still to be printed as a table.
-bool deliver_summary(const OptimizeArgs& args, const nlohmann::json& j, Host* host);
 
 /// Checks the options without running; throws std::invalid_argument naming the bad parameter.
 void check_optimize(OptimizeArgs& args);

@@ -1,0 +1,17 @@
+#pragma once
+// `softdrop optimize --islands K`: K searches side by side, each a run of the history, with
+// migrations between them (on threads, or across MPI ranks).
+
+#include <CLI/CLI.hpp>
+
+#include "cli/host.hpp"
+#include "cli/search_setup.hpp"
+
+namespace softdrop::cli {
+
+/// Whether --resume names a run that is one of islands.
+bool resumes_islands(const OptimizeArgs& args);
+/// optimize with --islands K > 1, or resuming one of islands (islands_command.cpp).
+int run_islands(OptimizeArgs& args, const CLI::App& command, Host* host);
+
+}  // namespace softdrop::cli
