@@ -19,6 +19,9 @@
 
 namespace softdrop::cli {
 
+/// The options of `softdrop optimize`. The constructor sets the program's defaults where they differ
+/// from the library's: the default scene and the measured best strategy (es, lambda 8, relocation,
+/// the rest test); SearchOptions{} itself stays the paper's algorithm.
 struct OptimizeArgs {
   std::string db = "softdrop.db";
   std::int64_t resume = 0;         ///< run id to continue (0: start a new run)
