@@ -142,7 +142,12 @@ Work search(int lambda, int threads, int generations = 0, ConstraintOrder order 
   SearchOptions o;
   o.lambda = lambda;
   o.droplet.constraint_order = order;
-  if (es) o.strategy.kind = StrategyKind::es, o.relocate_every = 3, o.run.rest_window = 0.05, o.run.rest_distance = 0.1;
+  if (es) {  // as `softdrop optimize` sets its defaults (OptimizeArgs)
+    o.strategy.kind = StrategyKind::es;
+    o.relocate_every = 3;
+    o.run.rest_window = 0.05;
+    o.run.rest_distance = 0.1;
+  }
   MediumOptions mo;
   mo.kind = MediumKind::non_overlapping;
   mo.grains = 60;

@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <filesystem>
 #include <cstring>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -117,8 +117,6 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
               "Also print how the speculation went: threads, lanes, evaluations dropped (JSON always has it)");
   return s;
 }
-
-// The command line's view of the run: search options plus how the starting medium was made.
 
 namespace {
 

@@ -34,6 +34,7 @@ OptimizeArgs::OptimizeArgs() {
   search.run.rest_distance = 0.1;
 }
 
+// The command line's view of the run: search options plus how the starting medium was made.
 nlohmann::json params_of(const OptimizeArgs& a) {
   nlohmann::json j = nlohmann::json::parse(search_params_to_json(a.search));
   const MediumOptions& m = a.medium.options;
