@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "bench_media.hpp"
-#include "lane_layout.hpp"
+#include "sim/lane_layout.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -156,7 +156,7 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
       static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
   softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
-// The stages a batch steps lane by lane (run_interleaved with AVX-512 or AVX, src/lane_layout.hpp)
+// The stages a batch steps lane by lane (run_interleaved with AVX-512 or AVX, src/sim/lane_layout.hpp)
 // on K rings in contact, 8 to a group, at vector width W (8: AVX-512, 4: AVX): gravity, springs
 // and pressure; viscosity; the copies in and out of the lane-by-lane layout a step makes (x, y,
 // px, py in; x, y out). Time per iteration covers all K rings; seconds/ring is the time per ring.

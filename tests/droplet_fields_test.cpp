@@ -7,7 +7,7 @@
 #include <string>
 #include <type_traits>
 
-#include "lane_block_step.hpp"
+#include "sim/lane_block_step.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/search.hpp"

@@ -11,7 +11,7 @@ for f in bin/softdrop include/softdrop/simulation.hpp include/softdrop/version.h
   [[ -e $prefix/$f ]] || { echo "install_test: $f was not installed"; exit 1; }
 done
 "$cxx" -std=c++20 -O2 "$src/examples/library/push_droplet.cpp" -I "$prefix/include" -L "$prefix/lib" \
-  -lsoftdrop_sim -ltbb -lgmp -lmpfr -o "$prefix/push_droplet"
+  -lsoftdrop_sim -lsoftdrop_media -lsoftdrop_util -ltbb -lgmp -lmpfr -o "$prefix/push_droplet"
 mine=$("$prefix/push_droplet" 250 | sed -n 's/^tortuosity //p')
 theirs=$("$prefix/bin/softdrop" simulate --x0 250 --format json | sed -n 's/^ *"tortuosity": \([^,]*\),*$/\1/p')
 echo "library: T = $mine; softdrop simulate: T = $theirs"

@@ -12,7 +12,7 @@
 #include <thread>
 #include <tuple>
 
-#include "lane_layout.hpp"
+#include "sim/lane_layout.hpp"
 #include "fixtures.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/simulation.hpp"

@@ -1,4 +1,4 @@
-// The search: moves keep the spacing rule, generations are deterministic at any thread count,
+// The search: generations are deterministic at any thread count and through the speculating drive,
 // the best never gets worse and is only replaced by a strictly better passing candidate.
 #include <gtest/gtest.h>
 
@@ -13,11 +13,6 @@
 
 namespace softdrop {
 namespace {
-
-double periodic_dx(double a, double b, double w) {
-  double d = b - a;
-  return d - w * std::round(d / w);
-}
 
 // The reference history: generations 1..n one at a time on one thread.
 struct Reference {
@@ -66,74 +61,6 @@ void expect_same_history(const Reference& a, const Driven& b) {
     }
   }
   EXPECT_EQ(b.best.medium, a.best.medium);
-}
-
-TEST(Mutation, AllGrainMoveKeepsSpacingRadiiAndStepBound) {
-  const SearchOptions o = test::small_search_options();
-  const Configuration parent = test::small_search_start(o);
-  for (int k = 0; k < 20; ++k) {
-    const Candidate c = make_candidate(parent, 1, k, o);
-    ASSERT_EQ(c.kind, MoveKind::all);
-    ASSERT_EQ(c.medium.grains.size(), parent.medium.grains.size());
-    EXPECT_FALSE(find_spacing_violation(c.medium, o.gap).has_value());
-    int moved = 0;
-    for (std::size_t i = 0; i < c.medium.grains.size(); ++i) {
-      const Grain& a = parent.medium.grains[i];
-      const Grain& b = c.medium.grains[i];
-      EXPECT_EQ(a.r, b.r);
-      EXPECT_GE(b.x, 0);
-      EXPECT_LT(b.x, c.medium.width);
-      const double dx = periodic_dx(a.x, b.x, c.medium.width), dy = b.y - a.y;
-      EXPECT_LE(std::hypot(dx, dy), o.step * (1 + 1e-12));
-      moved += (a.x != b.x || a.y != b.y);
-    }
-    EXPECT_EQ(moved, c.moved);
-    EXPECT_GT(c.moved, 0);
-  }
-}
-
-TEST(Mutation, IsDeterministicPerGenerationAndIndex) {
-  const SearchOptions o = test::small_search_options();
-  const Configuration parent = test::small_search_start(o);
-  EXPECT_EQ(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 3, 1, o).medium);
-  EXPECT_NE(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 3, 2, o).medium);
-  EXPECT_NE(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 4, 1, o).medium);
-  SearchOptions other = o;
-  other.seed = o.seed + 1;
-  EXPECT_NE(make_candidate(parent, 3, 1, o).medium, make_candidate(parent, 3, 1, other).medium);
-}
-
-TEST(Mutation, SingleMoveMovesOneTouchedGrain) {
-  SearchOptions o = test::small_search_options();
-  const Configuration parent = test::small_search_start(o);
-  ASSERT_FALSE(parent.eval.touched.empty());
-  EXPECT_EQ(move_kind(10, o), MoveKind::single);
-  EXPECT_EQ(move_kind(11, o), MoveKind::all);
-  for (int k = 0; k < 10; ++k) {
-    const Candidate c = make_candidate(parent, 10, k, o);
-    ASSERT_EQ(c.kind, MoveKind::single);
-    EXPECT_TRUE(std::binary_search(parent.eval.touched.begin(), parent.eval.touched.end(), c.moved_grain));
-    int changed = 0;
-    for (std::size_t i = 0; i < c.medium.grains.size(); ++i)
-      if (!(c.medium.grains[i] == parent.medium.grains[i])) {
-        ++changed;
-        EXPECT_EQ(static_cast<int>(i), c.moved_grain);
-      }
-    EXPECT_EQ(changed, c.moved);
-    EXPECT_FALSE(find_spacing_violation(c.medium, o.gap).has_value());
-  }
-  o.single_every = 0;
-  EXPECT_EQ(move_kind(10, o), MoveKind::all);
-}
-
-TEST(Mutation, RefusedJumpsLeaveTheGrainInPlace) {
-  // A grain that exactly fills a walled box: every jump would leave the box, so all are refused.
-  SearchOptions o = test::small_search_options();
-  Configuration parent;
-  parent.medium = Medium{24, 24, false, {{12, 12, 12}}};
-  const Candidate c = make_candidate(parent, 1, 0, o);
-  EXPECT_EQ(c.moved, 0);
-  EXPECT_EQ(c.medium, parent.medium);
 }
 
 TEST(Search, BestNeverDropsAndOnlyStrictImprovementsOfPassingCandidatesAreKept) {
@@ -468,77 +395,6 @@ TEST(Search, RefusesAStartTheDropletCannotPassOrThatBreaksTheRule) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("does not pass"), std::string::npos) << e.what();
   }
-}
-
-TEST(SearchOptions, IsValidNamesTheBadParameter) {
-  std::string why;
-  auto bad = [&](auto change, const char* name) {
-    SearchOptions o;
-    change(o);
-    EXPECT_FALSE(o.IsValid(&why)) << name;
-    EXPECT_NE(why.find(name), std::string::npos) << why;
-  };
-  bad([](SearchOptions& o) { o.lambda = 0; }, "lambda");
-  bad([](SearchOptions& o) { o.step = -1; }, "step");
-  bad([](SearchOptions& o) { o.single_step = NAN; }, "single-step");
-  bad([](SearchOptions& o) { o.single_every = -2; }, "single-every");
-  bad([](SearchOptions& o) { o.gap = -0.1; }, "gap");
-  bad([](SearchOptions& o) { o.droplet.dt = 0; }, "dt");
-  EXPECT_TRUE(SearchOptions().IsValid(&why)) << why;
-}
-
-TEST(SearchParams, RoundTripBitForBitAndNameMissingKeys) {
-  SearchOptions o;
-  o.seed = 0xFFFFFFFFFFFFFFF1ULL;
-  o.lambda = 3;
-  o.step = 0.1 + 0.2;
-  o.droplet.dt = 1.2345678901234567e-5;
-  o.droplet.nrt = 6.02214076e8;
-  o.run.max_steps = 123456789;
-  const SearchOptions back = search_params_from_json(search_params_to_json(o));
-  EXPECT_EQ(back.seed, o.seed);
-  EXPECT_EQ(back.lambda, 3);
-  EXPECT_EQ(back.step, o.step);
-  EXPECT_EQ(back.droplet.dt, o.droplet.dt);
-  EXPECT_EQ(back.droplet.nrt, o.droplet.nrt);
-  EXPECT_EQ(back.run.max_steps, o.run.max_steps);
-  EXPECT_EQ(search_params_to_json(back), search_params_to_json(o));
-  try {
-    search_params_from_json(R"({"seed": 1})");
-    FAIL();
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("'lambda' missing"), std::string::npos) << e.what();
-  }
-  std::string j = search_params_to_json(o);
-  j.replace(j.find("\"lambda\":3"), 10, "\"lambda\":3.5");
-  EXPECT_THROW(search_params_from_json(j), std::runtime_error);
-  // The constraint order travels as its name; files written before it existed mean sequential.
-  o.droplet.constraint_order = ConstraintOrder::red_black;
-  std::string k = search_params_to_json(o);
-  EXPECT_NE(k.find("\"constraint-order\":\"red-black\""), std::string::npos);
-  EXPECT_EQ(search_params_from_json(k).droplet.constraint_order, ConstraintOrder::red_black);
-  std::string old = k;
-  old.erase(old.find("\"constraint-order\":\"red-black\","), std::string("\"constraint-order\":\"red-black\",").size());
-  EXPECT_EQ(search_params_from_json(old).droplet.constraint_order, ConstraintOrder::sequential);
-  k.replace(k.find("red-black"), 9, "shuffled!");
-  EXPECT_THROW(search_params_from_json(k), std::runtime_error);
-}
-
-TEST(SearchParams, RunsStoredBeforeTheRestTestReadAsRunsWithoutIt) {
-  SearchOptions o;
-  o.run.rest_window = 0.05;
-  o.run.rest_distance = 0.25;
-  const std::string j = search_params_to_json(o);
-  EXPECT_EQ(search_params_from_json(j).run.rest_window, 0.05);
-  EXPECT_EQ(search_params_from_json(j).run.rest_distance, 0.25);
-  auto without = [](std::string text, const std::string& key) {
-    const auto at = text.find("\"" + key + "\":");
-    const auto end = text.find(',', at);
-    return text.erase(at, end - at + 1);
-  };
-  const SearchOptions old = search_params_from_json(without(without(j, "rest-window"), "rest-distance"));
-  EXPECT_EQ(old.run.rest_window, 0.0);  // whatever today's default, a stored run keeps its own test
-  EXPECT_EQ(old.run.rest_distance, 0.0);
 }
 
 }  // namespace

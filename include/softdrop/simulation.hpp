@@ -193,7 +193,7 @@ class Simulation {
   /// contacts_: a record of one disc (contact_count_ 1) is this alone, and for a mass whose anchor
   /// holds one disc it is that disc (the test that set the anchor found it, and the tests in the
   /// ball find no other), so that the contact limit loads eight masses' at once
-  /// (src/contact_lanes.hpp). Otherwise it holds anything.
+  /// (src/sim/contact_lanes.hpp). Otherwise it holds anything.
   std::vector<double> contact_disc_x_, contact_disc_y_, contact_disc_r_;
   std::vector<std::int32_t> contact_disc_grain_;
   /// What the contact limit leaves the next collisions, by mass: for a record of count

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <toml++/toml.h>
 
-#include "validation.hpp"
+#include "util/validation.hpp"
 
 namespace softdrop::cli {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 #include <utility>
 
-#include "byte_codec.hpp"
+#include "util/byte_codec.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/strategy.hpp"
 

@@ -1,7 +1,7 @@
 #include "cli/output.hpp"
 
-#include "temp_files.hpp"
-#include "validation.hpp"
+#include "util/temp_files.hpp"
+#include "util/validation.hpp"
 
 #include "softdrop/grain_file.hpp"
 #include "softdrop/render.hpp"

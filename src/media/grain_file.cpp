@@ -1,6 +1,6 @@
 #include "softdrop/grain_file.hpp"
-#include "temp_files.hpp"
-#include "validation.hpp"
+#include "util/temp_files.hpp"
+#include "util/validation.hpp"
 
 #include <unistd.h>
 

@@ -12,7 +12,7 @@
 
 #include "run_stepper.hpp"
 #include "step_helpers.hpp"
-#include "validation.hpp"
+#include "util/validation.hpp"
 
 namespace softdrop {
 

@@ -6,7 +6,7 @@
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
 #include "softdrop/spacing.hpp"
-#include "validation.hpp"
+#include "util/validation.hpp"
 
 namespace softdrop {
 using detail::fail;

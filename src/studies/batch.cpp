@@ -11,7 +11,7 @@
 #include <thread>
 
 #include "softdrop/random.hpp"
-#include "worker_threads.hpp"
+#include "util/worker_threads.hpp"
 
 namespace softdrop {
 

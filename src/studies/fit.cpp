@@ -10,7 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "validation.hpp"
+#include "util/validation.hpp"
 
 namespace softdrop {
 using detail::num;

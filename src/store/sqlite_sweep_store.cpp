@@ -118,20 +118,12 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
   }
 
   std::vector<SweepRecord> sweeps() override {
-    return guarded([&] {
-      std::vector<SweepRecord> out;
-      SQLite::Statement q(db_, std::string(kColumns) + " GROUP BY s.id ORDER BY s.id");
-      while (q.executeStep()) out.push_back(read(q));
-      return out;
-    });
+    return guarded([&] { return detail::read_rows(db_, std::string(kColumns) + " GROUP BY s.id ORDER BY s.id", read); });
   }
 
   SweepRecord sweep(std::int64_t id) override {
     return guarded([&] {
-      SQLite::Statement q(db_, std::string(kColumns) + " WHERE s.id = ? GROUP BY s.id");
-      q.bind(1, id);
-      if (!q.executeStep()) throw std::runtime_error("--sweep " + std::to_string(id) + ": no such sweep in '" + path_ + "'");
-      return read(q);
+      return detail::read_row(db_, std::string(kColumns) + " WHERE s.id = ? GROUP BY s.id", id, "sweep", path_, read);
     });
   }
 
@@ -193,12 +185,7 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
 
   static SweepRecord read(SQLite::Statement& q) {
     SweepRecord r;
-    r.id = detail::as_int64(q.getColumn(0));
-    r.created = detail::as_text(q.getColumn(1));
-    r.updated = detail::as_text(q.getColumn(2));
-    r.version = detail::as_text(q.getColumn(3));
-    r.status = detail::as_text(q.getColumn(4));
-    r.params = detail::as_text(q.getColumn(5));
+    detail::read_row_head(q, &r);
     r.units = detail::as_int64(q.getColumn(6));
     r.done = detail::as_int64(q.getColumn(7));
     return r;

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "softdrop/history.hpp"
 
@@ -38,6 +39,40 @@ double as_real(const SQLite::Column& c);         ///< INTEGER or REAL
 std::int64_t as_int64(const SQLite::Column& c);  ///< INTEGER
 int as_int(const SQLite::Column& c);             ///< INTEGER that fits an int
 std::string as_text(const SQLite::Column& c);    ///< TEXT
+
+/// The columns every run and every sweep row begins with, columns 0 to 5 of `q` in this order: id,
+/// created, updated, version, status, params; read into the record's fields of the same names.
+template <class Record>
+void read_row_head(SQLite::Statement& q, Record* r) {
+  r->id = as_int64(q.getColumn(0));
+  r->created = as_text(q.getColumn(1));
+  r->updated = as_text(q.getColumn(2));
+  r->version = as_text(q.getColumn(3));
+  r->status = as_text(q.getColumn(4));
+  r->params = as_text(q.getColumn(5));
+}
+
+/// Every row `select` gives, each made a record by read(q).
+template <class Read>
+auto read_rows(SQLite::Database& db, const std::string& select, Read read) {
+  std::vector<decltype(read(std::declval<SQLite::Statement&>()))> out;
+  SQLite::Statement q(db, select);
+  while (q.executeStep()) out.push_back(read(q));
+  return out;
+}
+
+/// The row `select` (whose one parameter is the id) gives for `id`, made a record by read(q).
+/// Without one, throws naming the option and the file: "--run 7: no such run in 'a.db'" for
+/// `what` = "run".
+template <class Read>
+auto read_row(SQLite::Database& db, const std::string& select, std::int64_t id, const std::string& what,
+              const std::string& path, Read read) {
+  SQLite::Statement q(db, select);
+  q.bind(1, id);
+  if (!q.executeStep())
+    throw std::runtime_error("--" + what + " " + std::to_string(id) + ": no such " + what + " in '" + path + "'");
+  return read(q);
+}
 
 /// Runs f, turning its errors (SQLite's, and damaged contents found while reading) into one line
 /// naming the file.

@@ -98,21 +98,11 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   }
 
   std::vector<RunRecord> runs() override {
-    return guarded([&] {
-      std::vector<RunRecord> out;
-      SQLite::Statement q(db_, run_columns() + " ORDER BY id");
-      while (q.executeStep()) out.push_back(read_run(q));
-      return out;
-    });
+    return guarded([&] { return detail::read_rows(db_, run_columns() + " ORDER BY id", read_run); });
   }
 
   RunRecord run(std::int64_t id) override {
-    return guarded([&] {
-      SQLite::Statement q(db_, run_columns() + " WHERE id = ?");
-      q.bind(1, id);
-      if (!q.executeStep()) throw std::runtime_error("--run " + std::to_string(id) + ": no such run in '" + path_ + "'");
-      return read_run(q);
-    });
+    return guarded([&] { return detail::read_row(db_, run_columns() + " WHERE id = ?", id, "run", path_, read_run); });
   }
 
   std::vector<GenerationRecord> generations(std::int64_t run_id) override {
@@ -290,12 +280,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
 
   static RunRecord read_run(SQLite::Statement& q) {
     RunRecord r;
-    r.id = detail::as_int64(q.getColumn(0));
-    r.created = detail::as_text(q.getColumn(1));
-    r.updated = detail::as_text(q.getColumn(2));
-    r.version = detail::as_text(q.getColumn(3));
-    r.status = detail::as_text(q.getColumn(4));
-    r.params = detail::as_text(q.getColumn(5));
+    detail::read_row_head(q, &r);
     r.seed = static_cast<std::uint64_t>(detail::as_int64(q.getColumn(6)));
     r.lambda = detail::as_int(q.getColumn(7));
     r.grains = detail::as_int64(q.getColumn(8));

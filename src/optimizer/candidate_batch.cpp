@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "evaluation.hpp"
-#include "worker_threads.hpp"
+#include "util/worker_threads.hpp"
 
 namespace softdrop::detail {
 

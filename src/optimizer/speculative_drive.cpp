@@ -19,8 +19,8 @@
 #include "evaluation.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/strategy.hpp"
-#include "validation.hpp"
-#include "worker_threads.hpp"
+#include "util/validation.hpp"
+#include "util/worker_threads.hpp"
 
 namespace softdrop {
 using detail::as_evaluation;

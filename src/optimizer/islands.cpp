@@ -8,8 +8,8 @@
 #include <thread>
 
 #include "softdrop/random.hpp"
-#include "validation.hpp"
-#include "worker_threads.hpp"
+#include "util/validation.hpp"
+#include "util/worker_threads.hpp"
 
 namespace softdrop {
 

@@ -1,5 +1,5 @@
 #include "animation_sinks.hpp"
-#include "temp_files.hpp"
+#include "util/temp_files.hpp"
 
 #include <fcntl.h>
 #include <gif_lib.h>

@@ -6,7 +6,7 @@
 #include <string>
 #include <type_traits>
 
-#include "byte_codec.hpp"
+#include "util/byte_codec.hpp"
 #include "softdrop/sweep.hpp"
 
 namespace softdrop {

@@ -13,7 +13,7 @@
 #include "evaluation.hpp"
 #include "softdrop/spacing.hpp"
 #include "softdrop/strategy.hpp"
-#include "validation.hpp"
+#include "util/validation.hpp"
 
 namespace softdrop {
 using detail::as_evaluation;

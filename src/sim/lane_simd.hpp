@@ -3,7 +3,7 @@
 // `avx512` (one register) and `avx` (two, as low and high halves). Each namespace has the same
 // names: V (eight doubles), M (which lanes), C (eight counters), their operations, a few on eight
 // int32 lanes in memory (equal_lanes, store_minus_ones, select_lanes), Limits and constrain8 (one
-// spring on each lane of eight). src/lane_kernels.inc and src/contact_kernels.inc are written
+// spring on each lane of eight). src/sim/lane_kernels.inc and src/sim/contact_kernels.inc are written
 // against these names and compiled once for each. Every operation gives each lane the bits the
 // scalar one gives, so both instruction sets, and the one-ring code, agree to the bit. Call these
 // only where constraint_vector_width() has the instruction set.

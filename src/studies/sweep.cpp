@@ -14,8 +14,8 @@
 #include "softdrop/batch.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
-#include "validation.hpp"
-#include "worker_threads.hpp"
+#include "util/validation.hpp"
+#include "util/worker_threads.hpp"
 
 namespace softdrop {
 using detail::fail;
