@@ -125,15 +125,16 @@ TEST(Droplet, InternalForcesSumToZero) {
 }
 
 TEST(Droplet, SpringForcesHaveTheSameBitsAtEveryVectorWidth) {
-  // The springs go four at a time with AVX and two with SSE2; each lane must do the scalar
-  // operations. Their forces are too small beside the pressure and the constraint for a rounding
-  // difference to reach the positions (the golden hashes cannot see it), so they are compared
-  // here directly, for rings whose size leaves every kind of remainder, with a zero-length spring
+  // The springs go eight at a time with AVX or AVX-512 (the last eight overlapping the ones before)
+  // from 9 masses on; each lane must do the scalar operations. Their forces are too small beside
+  // the pressure and the constraint for a rounding difference to reach the positions (the golden
+  // hashes cannot see it), so they are compared here directly, for rings too small for a group,
+  // of exactly one, two and three groups and every overlap between, with a zero-length spring
   // (two masses on one point) among them.
   DropletParams p;
   p.gravity = 0;
   const Medium empty = test::empty_medium();
-  for (int masses = 8; masses <= 13; ++masses) {
+  for (int masses = 8; masses <= 26; ++masses) {
     p.masses = masses;
     Simulation sim(p, empty);
     sim.place(250, 250);

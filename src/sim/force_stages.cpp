@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "contact_lanes.hpp"
+#include "lane_layout.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/simulation.hpp"
 #include "step_helpers.hpp"
@@ -42,48 +43,11 @@ inline void spring_force(const SpringInput& k, double xi, double yi, double xj, 
   *sy = f * uy;
 }
 
-#if defined(SOFTDROP_AVX_DISPATCH)
-// Springs (i, i+1) four at a time while i + 4 < n: the SSE2 loop of accumulate_springs() with
-// four lanes, the same operations on each. Returns the first spring not done.
-SOFTDROP_AVX int spring_forces_avx(const SpringInput& in, const double* x, const double* y,
-                                   const double* px, const double* py, int n, double* plus_x,
-                                   double* plus_y, double* minus_x, double* minus_y) {
-  const __m256d ks = _mm256_set1_pd(in.ks), kd = _mm256_set1_pd(in.kd),
-                inv_dt = _mm256_set1_pd(in.inv_dt);
-  const __m256d d0 = _mm256_set1_pd(in.d0), zero = _mm256_setzero_pd(),
-                minus_zero = _mm256_set1_pd(-0.0);
-  int i = 0;
-  for (; i + 4 < n; i += 4) {
-    const __m256d xi = _mm256_loadu_pd(x + i), xj = _mm256_loadu_pd(x + i + 1);
-    const __m256d yi = _mm256_loadu_pd(y + i), yj = _mm256_loadu_pd(y + i + 1);
-    const __m256d pxi = _mm256_loadu_pd(px + i), pxj = _mm256_loadu_pd(px + i + 1);
-    const __m256d pyi = _mm256_loadu_pd(py + i), pyj = _mm256_loadu_pd(py + i + 1);
-    const __m256d dx = _mm256_sub_pd(xj, xi), dy = _mm256_sub_pd(yj, yi);
-    const __m256d d = _mm256_sqrt_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)));
-    const __m256d ux = _mm256_div_pd(dx, d), uy = _mm256_div_pd(dy, d);
-    const __m256d dvx =
-        _mm256_mul_pd(_mm256_sub_pd(_mm256_sub_pd(xj, pxj), _mm256_sub_pd(xi, pxi)), inv_dt);
-    const __m256d dvy =
-        _mm256_mul_pd(_mm256_sub_pd(_mm256_sub_pd(yj, pyj), _mm256_sub_pd(yi, pyi)), inv_dt);
-    const __m256d f = _mm256_add_pd(
-        _mm256_mul_pd(ks, _mm256_sub_pd(d, d0)),
-        _mm256_mul_pd(kd, _mm256_add_pd(_mm256_mul_pd(dvx, ux), _mm256_mul_pd(dvy, uy))));
-    const __m256d sx = _mm256_mul_pd(f, ux), sy = _mm256_mul_pd(f, uy);
-    const __m256d has_length = _mm256_cmp_pd(d, zero, _CMP_NEQ_UQ);  // as _mm_cmpneq_pd (NaN: true)
-    const __m256d no_length = _mm256_andnot_pd(has_length, minus_zero);
-    _mm256_storeu_pd(plus_x + i, _mm256_or_pd(_mm256_and_pd(has_length, sx), no_length));
-    _mm256_storeu_pd(plus_y + i, _mm256_or_pd(_mm256_and_pd(has_length, sy), no_length));
-    _mm256_storeu_pd(minus_x + i, _mm256_and_pd(has_length, sx));
-    _mm256_storeu_pd(minus_y + i, _mm256_and_pd(has_length, sy));
-  }
-  return i;
-}
-#endif
 }  // namespace
 
 void Simulation::accumulate_springs() {
-  // Two passes: the force of every spring (independent, four at a time with AVX, two with SSE2,
-  // as constraint_vector_width() allows), then each mass
+  // Two passes: the force of every spring (independent; eight at a time with AVX or AVX-512, the
+  // kernel the lane-by-lane step uses, where constraint_vector_width() allows), then each mass
   // gathers its two springs in the order of the scalar loop "for each spring i: f[i] += s,
   // f[i+1] -= s" (mass m >= 1: (f - s[m-1]) + s[m]; mass 0: (f + s[0]) - s[n-1]), so the sums
   // have the same bits.
@@ -101,35 +65,14 @@ void Simulation::accumulate_springs() {
   const double *px = state_.px.data(), *py = state_.py.data();
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
-  if (constraint_vector_width() >= VectorWidth::avx)
-    i = spring_forces_avx(in, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
-#endif
-#if defined(__SSE2__)
-  if (constraint_vector_width() != VectorWidth::scalar) {
-    const __m128d ks = _mm_set1_pd(in.ks), kd = _mm_set1_pd(in.kd), inv_dt = _mm_set1_pd(in.inv_dt);
-    const __m128d d0 = _mm_set1_pd(in.d0), zero = _mm_setzero_pd(), minus_zero = _mm_set1_pd(-0.0);
-    for (; i + 2 < n; i += 2) {  // springs (i, i+1) and (i+1, i+2), both inside the arrays
-      const __m128d xi = _mm_loadu_pd(x + i), xj = _mm_loadu_pd(x + i + 1);
-      const __m128d yi = _mm_loadu_pd(y + i), yj = _mm_loadu_pd(y + i + 1);
-      const __m128d pxi = _mm_loadu_pd(px + i), pxj = _mm_loadu_pd(px + i + 1);
-      const __m128d pyi = _mm_loadu_pd(py + i), pyj = _mm_loadu_pd(py + i + 1);
-      const __m128d dx = _mm_sub_pd(xj, xi), dy = _mm_sub_pd(yj, yi);
-      const __m128d d = _mm_sqrt_pd(_mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy)));
-      const __m128d ux = _mm_div_pd(dx, d), uy = _mm_div_pd(dy, d);
-      const __m128d dvx = _mm_mul_pd(_mm_sub_pd(_mm_sub_pd(xj, pxj), _mm_sub_pd(xi, pxi)), inv_dt);
-      const __m128d dvy = _mm_mul_pd(_mm_sub_pd(_mm_sub_pd(yj, pyj), _mm_sub_pd(yi, pyi)), inv_dt);
-      const __m128d f =
-          _mm_add_pd(_mm_mul_pd(ks, _mm_sub_pd(d, d0)),
-                     _mm_mul_pd(kd, _mm_add_pd(_mm_mul_pd(dvx, ux), _mm_mul_pd(dvy, uy))));
-      const __m128d sx = _mm_mul_pd(f, ux), sy = _mm_mul_pd(f, uy);
-      const __m128d has_length = _mm_cmpneq_pd(d, zero);
-      _mm_storeu_pd(plus_x + i,
-                    _mm_or_pd(_mm_and_pd(has_length, sx), _mm_andnot_pd(has_length, minus_zero)));
-      _mm_storeu_pd(plus_y + i,
-                    _mm_or_pd(_mm_and_pd(has_length, sy), _mm_andnot_pd(has_length, minus_zero)));
-      _mm_storeu_pd(minus_x + i, _mm_and_pd(has_length, sx));
-      _mm_storeu_pd(minus_y + i, _mm_and_pd(has_length, sy));
-    }
+  if (constraint_vector_width() >= VectorWidth::avx && n >= 9) {
+    lanes::StepConstants k;  // the spring stage's constants, as `in` has them
+    k.ks = in.ks;
+    k.kd = in.kd;
+    k.inv_dt = in.inv_dt;
+    k.rest_length = in.d0;
+    lanes::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+    i = n - 1;
   }
 #endif
   for (; i < n; ++i) {

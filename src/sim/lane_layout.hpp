@@ -64,6 +64,12 @@ StepConstants step_constants(const DropletParams& p);
 /// FX, FY from X, Y, PX, PY and area[t] to ring t's area.
 void forces_before_contacts(const StepConstants& k, const double* X, const double* Y, const double* PX,
                             const double* PY, double* FX, double* FY, double* area, int n, int registers);
+/// The spring forces of one ring (not lane by lane: its springs are the lanes), eight at a time, for
+/// Simulation::accumulate_springs: springs (i, i + 1), i from 0 to n - 2, into plus_x[i], plus_y[i]
+/// (added to the first end; -0 for a spring of no length) and minus_x[i], minus_y[i] (subtracted
+/// from the second; +0 then). The closing spring (n - 1, 0) is left to the caller. Needs n >= 9.
+void ring_spring_forces(const StepConstants& k, const double* x, const double* y, const double* px, const double* py,
+                        int n, double* plus_x, double* plus_y, double* minus_x, double* minus_y);
 /// Simulation::accumulate_viscosity on every lane (adds to FX, FY).
 void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY,
                double* FX, double* FY, int n, int registers);

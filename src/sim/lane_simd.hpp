@@ -2,8 +2,9 @@
 // Eight lanes of doubles in the two instruction sets that have a lane-by-lane step (internal):
 // `avx512` (one register) and `avx` (two, as low and high halves). Each namespace has the same
 // names: V (eight doubles), M (which lanes), C (eight counters), their operations, a few on eight
-// int32 lanes in memory (equal_lanes, store_minus_ones, select_lanes), Limits and constrain8 (one
-// spring on each lane of eight). src/sim/lane_kernels.inc and src/sim/contact_kernels.inc are written
+// int32 lanes in memory (equal_lanes, store_minus_ones, select_lanes), and Limits and
+// constrain_springs (one spring on each lane, spring_kernel.inc). `sse2` and `avx4` have the
+// operations of that kernel on two and four lanes, for the one-ring constraints. src/sim/lane_kernels.inc and src/sim/contact_kernels.inc are written
 // against these names and compiled once for each. Every operation gives each lane the bits the
 // scalar one gives, so both instruction sets, and the one-ring code, agree to the bit. Call these
 // only where constraint_vector_width() has the instruction set.
@@ -19,45 +20,78 @@ namespace softdrop::lanes {
 /// Which of the two the dispatchers call: avx512 if the width in use has it, else avx.
 inline bool avx512_in_use() { return constraint_vector_width() == VectorWidth::avx512; }
 
-namespace avx {
+// Two and four lanes, for the one-ring constraints (length_constraint.cpp, interleaved_constraint.cpp):
+// only the operations spring_kernel.inc needs.
+namespace sse2 {
+using V = __m128d;
+using M = __m128d;  // all bits set in a lane that is in
+inline V set1(double d) { return _mm_set1_pd(d); }
+inline V zero() { return _mm_setzero_pd(); }
+inline V add(V a, V b) { return _mm_add_pd(a, b); }
+inline V sub(V a, V b) { return _mm_sub_pd(a, b); }
+inline V mul(V a, V b) { return _mm_mul_pd(a, b); }
+inline V div(V a, V b) { return _mm_div_pd(a, b); }
+inline V sqrt(V a) { return _mm_sqrt_pd(a); }
+/// Lanes where `a P b`, P one of the _CMP_ predicates the kernels use (SSE2 has one compare each).
+template <int P>
+inline M compare(V a, V b) {
+  if constexpr (P == _CMP_LE_OS) return _mm_cmple_pd(a, b);
+  else if constexpr (P == _CMP_GE_OS) return _mm_cmpge_pd(a, b);
+  else if constexpr (P == _CMP_GT_OS) return _mm_cmpgt_pd(a, b);
+  else {
+    static_assert(P == _CMP_NEQ_UQ, "no SSE2 compare for this predicate");
+    return _mm_cmpneq_pd(a, b);
+  }
+}
+inline M both(M a, M b) { return _mm_and_pd(a, b); }
+/// a and not b.
+inline M but_not(M a, M b) { return _mm_andnot_pd(b, a); }
+inline bool any(M m) { return _mm_movemask_pd(m) != 0; }
+/// Lanes in m, as bits (bit b: lane b).
+inline unsigned bits(M m) { return static_cast<unsigned>(_mm_movemask_pd(m)); }
+/// m ? b : a, lane by lane.
+inline V blend(M m, V a, V b) { return _mm_or_pd(_mm_and_pd(m, b), _mm_andnot_pd(m, a)); }
+/// m ? a + b : a, lane by lane (a lane not in m adds -0, which leaves every double as it is).
+inline V add_where(M m, V a, V b) {
+  return _mm_add_pd(a, _mm_or_pd(_mm_and_pd(m, b), _mm_andnot_pd(m, _mm_set1_pd(-0.0))));
+}
+/// m ? a - b : a, lane by lane (a lane not in m subtracts +0).
+inline V sub_where(M m, V a, V b) { return _mm_sub_pd(a, _mm_and_pd(m, b)); }
+#define SOFTDROP_LANE_TARGET
+#include "spring_kernel.inc"
+#undef SOFTDROP_LANE_TARGET
+}  // namespace sse2
 
-// Four springs at once: constrain_two() with four lanes, the same operations on each. Returns the
-// lanes out of limits (all bits set), which it corrected.
-struct QuadLimits {
-  __m256d dmax, dmin, dmax2, dmin2;
-};
-SOFTDROP_AVX inline void set_quad_limits(QuadLimits* l, double lo, double hi) {
-  l->dmax = _mm256_set1_pd(hi);
-  l->dmin = _mm256_set1_pd(lo);
-  l->dmax2 = _mm256_set1_pd(hi * hi);
-  l->dmin2 = _mm256_set1_pd(lo * lo);
+namespace avx4 {
+using V = __m256d;
+using M = __m256d;  // all bits set in a lane that is in
+SOFTDROP_AVX inline V set1(double d) { return _mm256_set1_pd(d); }
+SOFTDROP_AVX inline V zero() { return _mm256_setzero_pd(); }
+SOFTDROP_AVX inline V add(V a, V b) { return _mm256_add_pd(a, b); }
+SOFTDROP_AVX inline V sub(V a, V b) { return _mm256_sub_pd(a, b); }
+SOFTDROP_AVX inline V mul(V a, V b) { return _mm256_mul_pd(a, b); }
+SOFTDROP_AVX inline V div(V a, V b) { return _mm256_div_pd(a, b); }
+SOFTDROP_AVX inline V sqrt(V a) { return _mm256_sqrt_pd(a); }
+template <int P>
+SOFTDROP_AVX inline M compare(V a, V b) {
+  return _mm256_cmp_pd(a, b, P);
 }
-SOFTDROP_AVX inline __m256d constrain_four_lanes(const QuadLimits& l, __m256d* xi, __m256d* yi, __m256d* xj,
-                                                 __m256d* yj) {
-  const __m256d dx = _mm256_sub_pd(*xj, *xi), dy = _mm256_sub_pd(*yj, *yi);
-  const __m256d d2 = _mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy));
-  // The SSE2 comparisons: cmple, cmpge, cmpgt are ordered; cmpneq is unordered (true for NaN).
-  const __m256d inside =
-      _mm256_and_pd(_mm256_cmp_pd(d2, l.dmax2, _CMP_LE_OS), _mm256_cmp_pd(d2, l.dmin2, _CMP_GE_OS));
-  const __m256d out = _mm256_andnot_pd(inside, _mm256_cmp_pd(d2, _mm256_setzero_pd(), _CMP_NEQ_UQ));
-  if (_mm256_movemask_pd(out) == 0) return out;
-  const __m256d d = _mm256_sqrt_pd(d2);
-  const __m256d longer = _mm256_cmp_pd(d2, l.dmax2, _CMP_GT_OS);
-  const __m256d target = _mm256_or_pd(_mm256_and_pd(longer, l.dmax), _mm256_andnot_pd(longer, l.dmin));
-  const __m256d c = _mm256_div_pd(_mm256_sub_pd(d, target), _mm256_add_pd(d, d));
-  const __m256d cx = _mm256_and_pd(out, _mm256_mul_pd(c, dx)), cy = _mm256_and_pd(out, _mm256_mul_pd(c, dy));
-  // Lanes in limits add -0 and subtract +0, which leave every double (-0 included) as it is.
-  const __m256d keep = _mm256_andnot_pd(out, _mm256_set1_pd(-0.0));
-  *xi = _mm256_add_pd(*xi, _mm256_or_pd(cx, keep));
-  *yi = _mm256_add_pd(*yi, _mm256_or_pd(cy, keep));
-  *xj = _mm256_sub_pd(*xj, cx);
-  *yj = _mm256_sub_pd(*yj, cy);
-  return out;
+SOFTDROP_AVX inline M both(M a, M b) { return _mm256_and_pd(a, b); }
+SOFTDROP_AVX inline M but_not(M a, M b) { return _mm256_andnot_pd(b, a); }
+SOFTDROP_AVX inline bool any(M m) { return _mm256_movemask_pd(m) != 0; }
+SOFTDROP_AVX inline unsigned bits(M m) { return static_cast<unsigned>(_mm256_movemask_pd(m)); }
+/// m ? b : a, as bits (see avx::select_bits for why not _mm256_blendv_pd).
+SOFTDROP_AVX inline V blend(M m, V a, V b) { return _mm256_or_pd(_mm256_and_pd(m, b), _mm256_andnot_pd(m, a)); }
+SOFTDROP_AVX inline V add_where(M m, V a, V b) {
+  return _mm256_add_pd(a, _mm256_or_pd(_mm256_and_pd(m, b), _mm256_andnot_pd(m, _mm256_set1_pd(-0.0))));
 }
-/// constrain_four_lanes() as bits (bit b: lane b).
-SOFTDROP_AVX inline int constrain_four(const QuadLimits& l, __m256d* xi, __m256d* yi, __m256d* xj, __m256d* yj) {
-  return _mm256_movemask_pd(constrain_four_lanes(l, xi, yi, xj, yj));
-}
+SOFTDROP_AVX inline V sub_where(M m, V a, V b) { return _mm256_sub_pd(a, _mm256_and_pd(m, b)); }
+#define SOFTDROP_LANE_TARGET SOFTDROP_AVX
+#include "spring_kernel.inc"
+#undef SOFTDROP_LANE_TARGET
+}  // namespace avx4
+
+namespace avx {
 
 struct V {
   __m256d lo, hi;  // lanes 0-3, 4-7
@@ -66,7 +100,6 @@ struct M {
   __m256d lo, hi;  // all bits set in a lane that is in
 };
 using C = V;  // counts as doubles (AVX has no 256-bit integer adds)
-using Limits = QuadLimits;
 
 SOFTDROP_AVX inline V load(const double* p) { return {_mm256_loadu_pd(p), _mm256_loadu_pd(p + 4)}; }
 SOFTDROP_AVX inline void store(double* p, V v) {
@@ -157,51 +190,29 @@ SOFTDROP_AVX inline bool add_counts(C c, int* counts) {
   for (int b = 0; b < 8; ++b) counts[b] += static_cast<int>(lanes[b]), any = any || lanes[b] != 0;
   return any;
 }
-SOFTDROP_AVX inline void set_limits(Limits* l, double lo, double hi) { set_quad_limits(l, lo, hi); }
-/// One spring on each of eight lanes, (xi, yi)-(xj, yj); returns the lanes it corrected.
-SOFTDROP_AVX inline M constrain8(const Limits& l, V* xi, V* yi, V* xj, V* yj) {
-  return {constrain_four_lanes(l, &xi->lo, &yi->lo, &xj->lo, &yj->lo),
-          constrain_four_lanes(l, &xi->hi, &yi->hi, &xj->hi, &yj->hi)};
+SOFTDROP_AVX inline M both(M a, M b) { return {_mm256_and_pd(a.lo, b.lo), _mm256_and_pd(a.hi, b.hi)}; }
+/// a and not b.
+SOFTDROP_AVX inline M but_not(M a, M b) { return {_mm256_andnot_pd(b.lo, a.lo), _mm256_andnot_pd(b.hi, a.hi)}; }
+SOFTDROP_AVX inline bool any(M m) { return bits(m) != 0; }
+/// m ? a + b : a, lane by lane (a lane not in m adds -0, which leaves every double as it is).
+SOFTDROP_AVX inline V add_where(M m, V a, V b) {
+  return {avx4::add_where(m.lo, a.lo, b.lo), avx4::add_where(m.hi, a.hi, b.hi)};
 }
+/// m ? a - b : a, lane by lane (a lane not in m subtracts +0).
+SOFTDROP_AVX inline V sub_where(M m, V a, V b) {
+  return {avx4::sub_where(m.lo, a.lo, b.lo), avx4::sub_where(m.hi, a.hi, b.hi)};
+}
+#define SOFTDROP_LANE_TARGET SOFTDROP_AVX
+#include "spring_kernel.inc"
+#undef SOFTDROP_LANE_TARGET
 
 }  // namespace avx
 
 namespace avx512 {
 
-// Eight springs at once: constrain_four() with eight lanes and AVX-512 masks, the same operations
-// on each lane; a lane in limits is left as it is (constrain_four() adds -0 and subtracts +0,
-// which change no double).
-struct OctLimits {
-  __m512d dmax, dmin, dmax2, dmin2;
-};
-SOFTDROP_AVX512 inline void set_oct_limits(OctLimits* l, double lo, double hi) {
-  l->dmax = _mm512_set1_pd(hi);
-  l->dmin = _mm512_set1_pd(lo);
-  l->dmax2 = _mm512_set1_pd(hi * hi);
-  l->dmin2 = _mm512_set1_pd(lo * lo);
-}
-SOFTDROP_AVX512 inline unsigned constrain_eight(const OctLimits& l, __m512d* xi, __m512d* yi, __m512d* xj,
-                                                __m512d* yj) {
-  const __m512d dx = _mm512_sub_pd(*xj, *xi), dy = _mm512_sub_pd(*yj, *yi);
-  const __m512d d2 = _mm512_add_pd(_mm512_mul_pd(dx, dx), _mm512_mul_pd(dy, dy));
-  const unsigned inside = _mm512_cmp_pd_mask(d2, l.dmax2, _CMP_LE_OS) & _mm512_cmp_pd_mask(d2, l.dmin2, _CMP_GE_OS);
-  const __mmask8 out = static_cast<__mmask8>(~inside & _mm512_cmp_pd_mask(d2, _mm512_setzero_pd(), _CMP_NEQ_UQ));
-  if (out == 0) return 0;
-  const __m512d d = _mm512_mask_sqrt_pd(d2, 0xFF, d2);  // all lanes (GCC 12's _mm512_sqrt_pd warns)
-  const __m512d target = _mm512_mask_blend_pd(_mm512_cmp_pd_mask(d2, l.dmax2, _CMP_GT_OS), l.dmin, l.dmax);
-  const __m512d c = _mm512_div_pd(_mm512_sub_pd(d, target), _mm512_add_pd(d, d));
-  const __m512d cx = _mm512_mul_pd(c, dx), cy = _mm512_mul_pd(c, dy);
-  *xi = _mm512_mask_add_pd(*xi, out, *xi, cx);
-  *yi = _mm512_mask_add_pd(*yi, out, *yi, cy);
-  *xj = _mm512_mask_sub_pd(*xj, out, *xj, cx);
-  *yj = _mm512_mask_sub_pd(*yj, out, *yj, cy);
-  return out;
-}
-
 using V = __m512d;
 using M = __mmask8;
 using C = __m512i;
-using Limits = OctLimits;
 
 SOFTDROP_AVX512 inline V load(const double* p) { return _mm512_loadu_pd(p); }
 SOFTDROP_AVX512 inline void store(double* p, V v) { _mm512_storeu_pd(p, v); }
@@ -262,10 +273,17 @@ SOFTDROP_AVX512 inline bool add_counts(C c, int* counts) {
   for (int b = 0; b < 8; ++b) counts[b] += static_cast<int>(lanes[b]), sum += lanes[b];
   return sum != 0;
 }
-SOFTDROP_AVX512 inline void set_limits(Limits* l, double lo, double hi) { set_oct_limits(l, lo, hi); }
-SOFTDROP_AVX512 inline M constrain8(const Limits& l, V* xi, V* yi, V* xj, V* yj) {
-  return static_cast<M>(constrain_eight(l, xi, yi, xj, yj));
-}
+SOFTDROP_AVX512 inline M both(M a, M b) { return static_cast<M>(a & b); }
+/// a and not b.
+SOFTDROP_AVX512 inline M but_not(M a, M b) { return static_cast<M>(a & ~b); }
+SOFTDROP_AVX512 inline bool any(M m) { return m != 0; }
+/// m ? a + b : a, lane by lane.
+SOFTDROP_AVX512 inline V add_where(M m, V a, V b) { return _mm512_mask_add_pd(a, m, a, b); }
+/// m ? a - b : a, lane by lane.
+SOFTDROP_AVX512 inline V sub_where(M m, V a, V b) { return _mm512_mask_sub_pd(a, m, a, b); }
+#define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
+#include "spring_kernel.inc"
+#undef SOFTDROP_LANE_TARGET
 
 }  // namespace avx512
 

@@ -111,6 +111,11 @@ void forces_before_contacts(const StepConstants& k, const double* X, const doubl
   if (avx512_in_use()) avx512::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
   else avx::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
 }
+void ring_spring_forces(const StepConstants& k, const double* x, const double* y, const double* px, const double* py,
+                        int n, double* plus_x, double* plus_y, double* minus_x, double* minus_y) {
+  if (avx512_in_use()) avx512::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+  else avx::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+}
 void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY,
                double* FX, double* FY, int n, int registers) {
   if (avx512_in_use()) avx512::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);

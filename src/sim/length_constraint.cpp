@@ -13,10 +13,6 @@
 namespace softdrop {
 using constraint_detail::constrain;
 using constraint_detail::constrain_ends;
-#if defined(__SSE2__)
-using constraint_detail::constrain_two;
-using constraint_detail::PairLimits;
-#endif
 namespace {
 
 // The vector width in use: the processor's widest, unless narrowed by
@@ -26,8 +22,6 @@ int machine_width() {
   __builtin_cpu_init();
   if (__builtin_cpu_supports("avx512f")) return 8;
   if (__builtin_cpu_supports("avx")) return 4;
-#endif
-#if defined(__SSE2__)
   return 2;
 #else
   return 1;
@@ -40,19 +34,14 @@ int vector_width() {
 }
 
 #if defined(SOFTDROP_AVX_DISPATCH)
-// Four and eight springs at once (lane_simd.hpp), shared with the lane-by-lane step.
-using lanes::avx::constrain_four;
-using lanes::avx::QuadLimits;
-using lanes::avx::set_quad_limits;
-using lanes::avx512::constrain_eight;
-using lanes::avx512::OctLimits;
-using lanes::avx512::set_oct_limits;
+// Two, four and eight springs at once: the kernel of lane_simd.hpp (spring_kernel.inc), shared
+// with the lane-by-lane step.
 
 // The red-black half-pass four springs at a time, from spring 0 while four remain; returns the
 // corrections and sets *done to the springs it did.
 SOFTDROP_AVX int constrain_disjoint_quads(double* x, double* y, int count, double dmin, double dmax, int* done) {
-  QuadLimits l;
-  set_quad_limits(&l, dmin, dmax);
+  lanes::avx4::Limits l;
+  lanes::avx4::set_limits(&l, dmin, dmax);
   int changed = 0, k = 0;
   for (; k + 4 <= count; k += 4) {
     double* px = x + 2 * k;
@@ -63,9 +52,9 @@ SOFTDROP_AVX int constrain_disjoint_quads(double* x, double* y, int count, doubl
     const __m256d ya = _mm256_loadu_pd(py), yb = _mm256_loadu_pd(py + 4);
     __m256d xi = _mm256_unpacklo_pd(xa, xb), xj = _mm256_unpackhi_pd(xa, xb);
     __m256d yi = _mm256_unpacklo_pd(ya, yb), yj = _mm256_unpackhi_pd(ya, yb);
-    const int moved = constrain_four(l, &xi, &yi, &xj, &yj);
+    const unsigned moved = lanes::avx4::bits(lanes::avx4::constrain_springs(l, &xi, &yi, &xj, &yj));
     if (moved == 0) continue;
-    changed += __builtin_popcount(static_cast<unsigned>(moved));
+    changed += __builtin_popcount(moved);
     _mm256_storeu_pd(px, _mm256_unpacklo_pd(xi, xj));
     _mm256_storeu_pd(px + 4, _mm256_unpackhi_pd(xi, xj));
     _mm256_storeu_pd(py, _mm256_unpacklo_pd(yi, yj));
@@ -80,8 +69,8 @@ SOFTDROP_AVX int constrain_disjoint_quads(double* x, double* y, int count, doubl
 
 // constrain_disjoint_quads() eight springs at a time.
 SOFTDROP_AVX512 int constrain_disjoint_octs(double* x, double* y, int count, double dmin, double dmax, int* done) {
-  OctLimits l;
-  set_oct_limits(&l, dmin, dmax);
+  lanes::avx512::Limits l;
+  lanes::avx512::set_limits(&l, dmin, dmax);
   const __m512i even = _mm512_set_epi64(14, 12, 10, 8, 6, 4, 2, 0), odd = _mm512_set_epi64(15, 13, 11, 9, 7, 5, 3, 1);
   const __m512i low = _mm512_set_epi64(11, 3, 10, 2, 9, 1, 8, 0), high = _mm512_set_epi64(15, 7, 14, 6, 13, 5, 12, 4);
   int changed = 0, k = 0;
@@ -94,7 +83,7 @@ SOFTDROP_AVX512 int constrain_disjoint_octs(double* x, double* y, int count, dou
     const __m512d ya = _mm512_loadu_pd(py), yb = _mm512_loadu_pd(py + 8);
     __m512d xi = _mm512_permutex2var_pd(xa, even, xb), xj = _mm512_permutex2var_pd(xa, odd, xb);
     __m512d yi = _mm512_permutex2var_pd(ya, even, yb), yj = _mm512_permutex2var_pd(ya, odd, yb);
-    const unsigned moved = constrain_eight(l, &xi, &yi, &xj, &yj);
+    const unsigned moved = lanes::avx512::constrain_springs(l, &xi, &yi, &xj, &yj);
     if (moved == 0) continue;
     changed += __builtin_popcount(moved);
     _mm512_storeu_pd(px, _mm512_permutex2var_pd(xi, low, xj));
@@ -120,9 +109,8 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
     changed += constrain_disjoint_quads(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &quads);
     k += quads;
   }
-#endif
-#if defined(__SSE2__)
-  const PairLimits l(dmin, dmax);
+  lanes::sse2::Limits l;
+  lanes::sse2::set_limits(&l, dmin, dmax);
   for (; width >= 2 && k + 2 <= count; k += 2) {
     double* px = x + 2 * k;
     double* py = y + 2 * k;
@@ -130,9 +118,9 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
     const __m128d ya = _mm_loadu_pd(py), yb = _mm_loadu_pd(py + 2);
     __m128d xi = _mm_unpacklo_pd(xa, xb), xj = _mm_unpackhi_pd(xa, xb);
     __m128d yi = _mm_unpacklo_pd(ya, yb), yj = _mm_unpackhi_pd(ya, yb);
-    const int moved = constrain_two(l, &xi, &yi, &xj, &yj);
+    const unsigned moved = lanes::sse2::bits(lanes::sse2::constrain_springs(l, &xi, &yi, &xj, &yj));
     if (moved == 0) continue;
-    changed += (moved & 1) + (moved >> 1);
+    changed += static_cast<int>((moved & 1) + (moved >> 1));
     _mm_storeu_pd(px, _mm_unpacklo_pd(xi, xj));
     _mm_storeu_pd(px + 2, _mm_unpackhi_pd(xi, xj));
     _mm_storeu_pd(py, _mm_unpacklo_pd(yi, yj));
