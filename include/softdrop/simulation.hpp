@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "softdrop/contact_cache.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/grain_grid.hpp"
 #include "softdrop/medium.hpp"
@@ -155,7 +156,7 @@ class Simulation {
   friend struct LaneBlockStep;
   bool any_grain_inside_ring() const;
   /// accumulate_collisions() adding mass i's force to fx[i * stride], fy[i * stride];
-  /// recorded_added: the caller has added the recorded forces (contact_fx_, contact_fy_) itself.
+  /// recorded_added: the caller has added the recorded forces (contact_.fx, contact_.fy) itself.
   void accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride, bool recorded_added = false);
 
   DropletParams params_;
@@ -168,49 +169,7 @@ class Simulation {
   /// Spring forces of the step, 4 x N: on the first end (-0 for a spring of zero length) and for
   /// the second end (+0 then), x and y. Apart so that the springs can go two at a time.
   std::vector<double> spring_force_;
-  /// The grains each mass is inside, as the contact limit found them at the end of the last step,
-  /// for the next step's collisions (positions do not move in between): contacts_ holds up to
-  /// contact_capacity_ discs per mass, contact_count_ how many, and contact_x_, contact_y_ the
-  /// position they were found at (NaN: no record). The collisions use them only for a mass still at
-  /// that position to the bit, so a state changed in between, a pushed mass, one inside more discs
-  /// than the capacity or a new placement is looked up again. A record of one disc is kept apart
-  /// (contact_disc_*_ below).
-  std::vector<GrainGrid::Disc> contacts_;
-  std::vector<std::int32_t> contact_count_;
-  std::vector<double> contact_x_, contact_y_;
-  std::size_t contact_capacity_ = 0;
-  /// Where each mass is known to reach no grain but its anchor's: within sqrt(clear_r2_) of the
-  /// (unwrapped) position (clear_x_, clear_y_) where the contact limit last tested it against its
-  /// cell, no disc of the medium can hold or push the mass, by a margin that covers rounding
-  /// (clearance_margin_), except the clear_count_ discs it was inside there (clear_discs_, up to
-  /// contact_capacity_ per mass, in the cell's order). The ball stays inside that cell and clear of
-  /// the periodic seam. The contact limit tests a mass still in its ball against those discs only;
-  /// -1 (or NaN) in clear_r2_: not known.
-  std::vector<double> clear_x_, clear_y_, clear_r2_;
-  std::vector<std::int32_t> clear_count_;
-  std::vector<GrainGrid::Disc> clear_discs_;
-  /// The first disc each mass was last found inside, by mass (x, y, r, grain), written with
-  /// contacts_: a record of one disc (contact_count_ 1) is this alone, and for a mass whose anchor
-  /// holds one disc it is that disc (the test that set the anchor found it, and the tests in the
-  /// ball find no other), so that the contact limit loads eight masses' at once
-  /// (src/sim/contact_lanes.hpp). Otherwise it holds anything.
-  std::vector<double> contact_disc_x_, contact_disc_y_, contact_disc_r_;
-  std::vector<std::int32_t> contact_disc_grain_;
-  /// What the contact limit leaves the next collisions, by mass: for a record of count
-  /// lanes::kOneDiscWithForce (written eight masses at a time, while the masses' arrays are in
-  /// cache) the collision's force against that disc, as accumulate_collisions() computes it, and
-  /// its grain; -0, -0 and the touched set's last entry (no grain) for the others.
-  std::vector<double> contact_fx_, contact_fy_;
-  std::vector<std::int32_t> contact_touch_;
-  /// The masses whose collisions the recorded forces do not cover (inside other records, pushed,
-  /// beyond a wall), in order, and the largest depth of those they do cover.
-  std::vector<std::int32_t> contact_todo_;
-  double contact_deepest_ = 0;
-  /// The contact limit's records describe state_ as it is: set by the contact limit, cleared by
-  /// the collisions that use them and by every other writer of state_ (as block_id_). Without it
-  /// the collisions test every mass's record against its position.
-  bool records_current_ = false;
-  double clearance_margin_ = 0;
+  ContactCache contact_;  ///< the contact limit's records, for the next step
   /// The lane-by-lane step that last left this state in its thread's block (its id, and the lane),
   /// so that the next one need not copy it in again; 0: none, or the state has changed since (every
   /// other writer of state_ clears it).
@@ -220,7 +179,7 @@ class Simulation {
   /// block and the contact records no longer describe it.
   void state_changed() {
     block_id_ = 0;
-    records_current_ = false;
+    contact_.current = false;
   }
 };
 

@@ -24,7 +24,7 @@ struct ContactRecords {
   /// The anchors: a mass within r2 of (x, y) can only touch or be pushed by the `count` discs.
   const double *clear_x = nullptr, *clear_y = nullptr, *clear_r2 = nullptr;
   const std::int32_t* clear_count = nullptr;
-  /// The disc of an anchor that holds one (Simulation::contact_disc_x_ and so on).
+  /// The disc of an anchor that holds one (Simulation::contact_.disc_x and so on).
   const double *disc_x = nullptr, *disc_y = nullptr, *disc_r = nullptr;
   /// The disc's grain, and the entry of the touched set that stands for none (the medium's count).
   const std::int32_t* disc_grain = nullptr;

@@ -20,39 +20,39 @@ void Simulation::apply_contact_limit() {
   const int n = state_.size();
   const double W = medium_.width, limit = params_.max_depth;
   const bool periodic = medium_.periodic;
-  const std::size_t capacity = contact_capacity_;
+  const std::size_t capacity = contact_.capacity;
   const auto first_contact = [this](int i, const GrainGrid::Disc& g) {
-    contact_disc_x_[i] = g.x;
-    contact_disc_y_[i] = g.y;
-    contact_disc_r_[i] = g.r;
-    contact_disc_grain_[i] = g.grain;
+    contact_.disc_x[i] = g.x;
+    contact_.disc_y[i] = g.y;
+    contact_.disc_r[i] = g.r;
+    contact_.disc_grain[i] = g.grain;
   };
   const std::int32_t no_grain = static_cast<std::int32_t>(medium_.grains.size());
-  records_current_ = false;
-  contact_todo_.clear();
+  contact_.current = false;
+  contact_.todo.clear();
   alignas(64) double deepest[8] = {};  // of the forces recorded, lane by lane
   // The next collisions of a mass tested here, not eight at a time: no recorded force, and a
   // full look at its record unless it is recorded free within the walls.
   const auto leave_to_collisions = [&](int i, double x, bool free) {
-    contact_fx_[i] = -0.0;
-    contact_fy_[i] = -0.0;
-    contact_touch_[i] = no_grain;
-    if (!(free && within_walls(x, periodic, W))) contact_todo_.push_back(i);
+    contact_.fx[i] = -0.0;
+    contact_.fy[i] = -0.0;
+    contact_.touch[i] = no_grain;
+    if (!(free && within_walls(x, periodic, W))) contact_.todo.push_back(i);
   };
   const auto limit_mass = [&](int i) {
     const double x = state_.x[i], y = state_.y[i];
     const std::size_t first = static_cast<std::size_t>(i) * capacity;
-    GrainGrid::Disc* inside = contacts_.data() + first;
+    GrainGrid::Disc* inside = contact_.discs.data() + first;
     // Within its ball only the anchor's discs can hold or push the mass, and each test of the
     // others below would say so: test those discs alone, in the cell's order.
-    const double ex = x - clear_x_[i], ey = y - clear_y_[i];
-    if (ex * ex + ey * ey < clear_r2_[i]) {
-      const int anchored = clear_count_[i];
+    const double ex = x - contact_.clear_x[i], ey = y - contact_.clear_y[i];
+    if (ex * ex + ey * ey < contact_.clear_r2[i]) {
+      const int anchored = contact_.clear_count[i];
       int count = 0;
       bool push = false;
       if (anchored > 0) {
         const double xw = periodic ? wrap_periodic(x, W) : x;
-        for (const GrainGrid::Disc *g = clear_discs_.data() + first, *end = g + anchored; g != end;
+        for (const GrainGrid::Disc *g = contact_.clear_discs.data() + first, *end = g + anchored; g != end;
              ++g) {
           const double dx = xw - g->x, dy = y - g->y, inner = g->r - limit;
           const double d2 = dx * dx + dy * dy;
@@ -67,9 +67,9 @@ void Simulation::apply_contact_limit() {
         }
       }
       if (!push) {
-        contact_count_[i] = count;
-        contact_x_[i] = x;
-        contact_y_[i] = y;
+        contact_.count[i] = count;
+        contact_.x[i] = x;
+        contact_.y[i] = y;
         leave_to_collisions(i, x, count == 0);
         return;
       }
@@ -109,22 +109,22 @@ void Simulation::apply_contact_limit() {
     // their collisions look them up again, and they get no anchor. (A NaN position that matches
     // the marker finds no discs either way.)
     const bool recorded = !pushed && static_cast<std::size_t>(count) <= capacity;
-    contact_count_[i] = recorded ? count : 0;
-    contact_x_[i] = recorded ? x : std::numeric_limits<double>::quiet_NaN();
-    contact_y_[i] = y;
+    contact_.count[i] = recorded ? count : 0;
+    contact_.x[i] = recorded ? x : std::numeric_limits<double>::quiet_NaN();
+    contact_.y[i] = y;
     leave_to_collisions(i, x, recorded && count == 0);
     // No disc outside the cell's list is nearer than the cell's edge plus the grid's halo; the ball
     // must not cross the periodic seam either, where the wrapped position jumps.
     double reach = std::min(gap, grid_.edge_distance(xw, y));
     if (periodic) reach = std::min(reach, std::min(xw, W - xw));
-    reach -= clearance_margin_;
+    reach -= contact_.clearance_margin;
     const bool anchored = recorded && reach > 0;
-    clear_r2_[i] = anchored ? reach * reach : -1.0;
-    clear_x_[i] = x;
-    clear_y_[i] = y;
-    clear_count_[i] = anchored ? count : 0;
+    contact_.clear_r2[i] = anchored ? reach * reach : -1.0;
+    contact_.clear_x[i] = x;
+    contact_.clear_y[i] = y;
+    contact_.clear_count[i] = anchored ? count : 0;
     if (anchored)
-      std::copy(inside, inside + count, clear_discs_.begin() + static_cast<std::ptrdiff_t>(first));
+      std::copy(inside, inside + count, contact_.clear_discs.begin() + static_cast<std::ptrdiff_t>(first));
   };
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
@@ -133,26 +133,26 @@ void Simulation::apply_contact_limit() {
     lanes::ContactRecords r;
     r.x = state_.x.data();
     r.y = state_.y.data();
-    r.clear_x = clear_x_.data();
-    r.clear_y = clear_y_.data();
-    r.clear_r2 = clear_r2_.data();
-    r.clear_count = clear_count_.data();
-    r.disc_x = contact_disc_x_.data();
-    r.disc_y = contact_disc_y_.data();
-    r.disc_r = contact_disc_r_.data();
-    r.contact_x = contact_x_.data();
-    r.contact_y = contact_y_.data();
-    r.contact_count = contact_count_.data();
-    r.disc_grain = contact_disc_grain_.data();
+    r.clear_x = contact_.clear_x.data();
+    r.clear_y = contact_.clear_y.data();
+    r.clear_r2 = contact_.clear_r2.data();
+    r.clear_count = contact_.clear_count.data();
+    r.disc_x = contact_.disc_x.data();
+    r.disc_y = contact_.disc_y.data();
+    r.disc_r = contact_.disc_r.data();
+    r.contact_x = contact_.x.data();
+    r.contact_y = contact_.y.data();
+    r.contact_count = contact_.count.data();
+    r.disc_grain = contact_.disc_grain.data();
     r.no_grain = no_grain;
     r.px = state_.px.data();
     r.py = state_.py.data();
     r.kc = params_.kc;
     r.cc = params_.cc;
     r.inv_dt = 1.0 / params_.dt;
-    r.force_x = contact_fx_.data();
-    r.force_y = contact_fy_.data();
-    r.touch = contact_touch_.data();
+    r.force_x = contact_.fx.data();
+    r.force_y = contact_.fy.data();
+    r.touch = contact_.touch.data();
     r.periodic = periodic;
     r.width = W;
     r.wrap_below = 0.999999 * W;
@@ -169,8 +169,8 @@ void Simulation::apply_contact_limit() {
 #endif
   for (; i < n; ++i) limit_mass(i);
   // The maximum does not depend on the order.
-  contact_deepest_ = *std::max_element(deepest, deepest + 8);
-  records_current_ = true;
+  contact_.deepest = *std::max_element(deepest, deepest + 8);
+  contact_.current = true;
 }
 
 }  // namespace softdrop

@@ -131,13 +131,13 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
   // make the compiler reload every vector's data pointer after each of them.
   const double *xs = state_.x.data(), *ys = state_.y.data(), *pxs = state_.px.data(),
                *pys = state_.py.data();
-  const double *cxs = contact_x_.data(), *cys = contact_y_.data();
-  const std::int32_t* counts = contact_count_.data();
-  const GrainGrid::Disc* const contacts = contacts_.data();
-  const double *first_x = contact_disc_x_.data(), *first_y = contact_disc_y_.data(),
-               *first_r = contact_disc_r_.data();
-  const std::int32_t* first_grain = contact_disc_grain_.data();
-  const std::size_t capacity = contact_capacity_;
+  const double *cxs = contact_.x.data(), *cys = contact_.y.data();
+  const std::int32_t* counts = contact_.count.data();
+  const GrainGrid::Disc* const contacts = contact_.discs.data();
+  const double *first_x = contact_.disc_x.data(), *first_y = contact_.disc_y.data(),
+               *first_r = contact_.disc_r.data();
+  const std::int32_t* first_grain = contact_.disc_grain.data();
+  const std::size_t capacity = contact_.capacity;
   std::uint8_t* const touched = touched_.data();
   // Mass i's contacts, for any mass but one recorded free within the walls.
   const auto collide_mass = [&](int i) {
@@ -174,22 +174,22 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
       if (x > W) fx[i * stride] -= std::max(0.0, kc * (x - W) + cc * vx);
     }
   };
-  if (records_current_) {
+  if (contact_.current) {
     // The contact limit left the forces of the masses inside one disc (-0 for the others, which
     // changes no double), their grains and their largest depth, at these very positions and
     // velocities: every mass gets its force with no test, and those it did not cover are listed.
-    records_current_ = false;
-    const double *force_x = contact_fx_.data(), *force_y = contact_fy_.data();
+    contact_.current = false;
+    const double *force_x = contact_.fx.data(), *force_y = contact_.fy.data();
     if (!recorded_added) {
       for (int i = 0; i < n; ++i) {
         fx[i * stride] += force_x[i];
         fy[i * stride] += force_y[i];
       }
     }
-    const std::int32_t* touch = contact_touch_.data();
+    const std::int32_t* touch = contact_.touch.data();
     for (int i = 0; i < n; ++i) touched[static_cast<std::size_t>(touch[i])] = 1;
-    deepest = contact_deepest_;  // the maximum does not depend on the order of the masses
-    for (const std::int32_t i : contact_todo_) collide_mass(i);
+    deepest = contact_.deepest;  // the maximum does not depend on the order of the masses
+    for (const std::int32_t i : contact_.todo) collide_mass(i);
   } else {
     for (int i = 0; i < n; ++i) {
       // Most masses touch nothing: recorded inside no disc, and within the walls.

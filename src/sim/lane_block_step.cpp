@@ -84,8 +84,8 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   const double* recorded[2][lanes::kMaxLanes];
   for (int t = 0; t < L; ++t) {
     const Simulation& sim = *sims[std::min(t, count - 1)];
-    recorded[0][t] = sim.records_current_ ? sim.contact_fx_.data() : no_force.data();
-    recorded[1][t] = sim.records_current_ ? sim.contact_fy_.data() : no_force.data();
+    recorded[0][t] = sim.contact_.current ? sim.contact_.fx.data() : no_force.data();
+    recorded[1][t] = sim.contact_.current ? sim.contact_.fy.data() : no_force.data();
   }
   lanes::add_in(recorded[0], FX, n, registers);
   lanes::add_in(recorded[1], FY, n, registers);
@@ -113,7 +113,7 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   for (int t = 0; t < count; ++t) {
     sims[t]->block_id_ = id;
     sims[t]->block_lane_ = t;
-    sims[t]->records_current_ = false;  // the step moved every mass
+    sims[t]->contact_.current = false;  // the step moved every mass
   }
   memory.last_id = id;
   memory.lanes = L;

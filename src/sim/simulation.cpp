@@ -78,13 +78,13 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
           "grain " + std::to_string(i) + " radius " + detail::num(medium.grains[i].r) +
           " is smaller than the droplet's longest edge " + detail::num(longest_edge) +
           ": use more masses, a smaller radius or larger grains");
-  touched_.assign(medium.grains.size() + 1, 0);  // the last entry: no grain (contact_touch_'s)
+  touched_.assign(medium.grains.size() + 1, 0);  // the last entry: no grain (contact_.touch's)
   double top = medium.height;
   for (const Grain& g : medium.grains) top = std::max(top, g.y + g.r);
   start_y_ = top + params.radius + 0.05 * params.radius;
   // Far above the rounding of any distance in the box (about 1e-15 of its size), far below any
   // distance that matters.
-  clearance_margin_ = 1e-9 * (medium.width + start_y_);
+  contact_.clearance_margin = 1e-9 * (medium.width + start_y_);
   place(0.5 * medium.width, start_y_);
 }
 
@@ -98,26 +98,8 @@ void Simulation::place(double cx, double cy) {
   spring_force_.assign(4 * state_.x.size(), 0.0);  // so that step() allocates nothing
   // A point is rarely inside more than a few discs; a mass inside more than this is looked up
   // again by the collisions. (A cell's full count could be thousands in a coarse grid.)
-  contact_capacity_ = std::min<std::size_t>(grid_.max_cell_entries(), 8);
-  contacts_.assign(state_.x.size() * contact_capacity_, GrainGrid::Disc{});
-  contact_count_.assign(state_.x.size(), 0);
-  contact_x_.assign(state_.x.size(),
-                    std::numeric_limits<double>::quiet_NaN());  // matches no position
-  contact_y_.assign(state_.y.size(), std::numeric_limits<double>::quiet_NaN());
-  clear_x_.assign(state_.x.size(), 0.0);
-  clear_y_.assign(state_.x.size(), 0.0);
-  clear_r2_.assign(state_.x.size(), -1.0);
-  clear_count_.assign(state_.x.size(), 0);
-  clear_discs_.assign(contacts_.size(), GrainGrid::Disc{});
-  for (std::vector<double>* v : {&contact_disc_x_, &contact_disc_y_, &contact_disc_r_})
-    v->assign(state_.x.size(), 0.0);
-  contact_disc_grain_.assign(state_.x.size(), 0);
-  contact_fx_.assign(state_.x.size(), -0.0);
-  contact_fy_.assign(state_.x.size(), -0.0);
-  contact_touch_.assign(state_.x.size(), static_cast<std::int32_t>(medium_.grains.size()));
-  contact_todo_.clear();
-  contact_todo_.reserve(state_.x.size());
-  contact_deepest_ = 0;
+  contact_.reset(state_.x.size(), std::min<std::size_t>(grid_.max_cell_entries(), 8),
+                 static_cast<std::int32_t>(medium_.grains.size()));
   area_ = ring_area(state_);
   last_penetration_ = 0;
 }
