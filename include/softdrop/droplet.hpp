@@ -138,8 +138,6 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
 void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
                                          double max_strain, int iterations, int* corrections);
 
-/// Rings apply_length_constraint_interleaved takes at once with the vector width in use.
-int interleaved_ring_capacity();
 
 /// Vector width of the step's vector code (the constraint and the spring forces): doubles per
 /// instruction. Every width gives the same bits, since each lane does the scalar operations in the

@@ -224,12 +224,8 @@ struct DriveOptions {
   /// worker sees a generation half-completed). Empty: nothing.
   std::function<void()> before_completion;
   /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: chosen
-  /// for the processor, the threads, λ and the constraint order by default_lanes() (in
-  /// speculative_drive.cpp; its measurements are in bench/README.md, "Lanes of a search"). More
-  /// threads keep as many candidates in flight as 2 threads do, with fewer lanes each (at least
-  /// 1). More lanes evaluate faster but run further ahead, so more speculative work is dropped
-  /// when a generation accepts, and each candidate steps slower, which delays the decisions the
-  /// others wait for. A matter of speed only: the history does not depend on it.
+  /// for the processor, the threads, λ and the constraint order by speculative_lanes()
+  /// (lane_policy.hpp). A matter of speed only: the history does not depend on it.
   int lanes = 0;
 
   /// False, with the reason naming the option, for lanes outside [0, 64].

@@ -13,6 +13,7 @@
 
 #include "softdrop/contact_cache.hpp"
 #include "softdrop/droplet.hpp"
+#include "softdrop/lane_policy.hpp"
 #include "softdrop/grain_grid.hpp"
 #include "softdrop/medium.hpp"
 
@@ -214,10 +215,6 @@ class LaneExchange {
   std::unique_ptr<Impl> impl_;
 };
 
-/// Droplets per thread that run_interleaved steps fastest together with the vector width in use:
-/// 24 with AVX-512 or AVX, which step them as lane-by-lane blocks of up to three groups of eight;
-/// otherwise interleaved_ring_capacity() (6 with SSE2). The default of BatchOptions::lanes.
-int interleaved_lanes();
 
 /// Runs droplets on this thread `lanes` at a time, stepped together. With AVX-512 or AVX, enough
 /// droplets of one set of parameters (3 with AVX-512, 6 with AVX) go as one block laid out lane by

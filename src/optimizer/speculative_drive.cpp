@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "evaluation.hpp"
+#include "softdrop/lane_policy.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/strategy.hpp"
 #include "util/validation.hpp"
@@ -313,25 +314,6 @@ class Pipeline {
   std::vector<std::thread> threads_;
 };
 
-// Lanes per thread when DriveOptions::lanes is 0: 8 on 1 and 2 threads; 16 on one thread with
-// AVX-512, the sequential order and lambda >= 2; 4 at lambda = 1 with SSE2 alone (there lanes only
-// hide the latency of the sequential constraint's chain). With the red-black order, 1 with SSE2
-// alone and with AVX at lambda = 1 on several threads (one candidate per thread throws the least
-// speculative work away). More threads keep the candidates in flight of 2 threads, spread over
-// fewer lanes each: more lanes run further ahead, so more speculative work is dropped, and slow
-// each candidate, which delays the decisions the rest waits for. The measurements behind each
-// choice: bench/README.md, "Lanes of a search".
-int default_lanes(int lambda, int workers, ConstraintOrder order) {
-  const VectorWidth width = constraint_vector_width();
-  if (order == ConstraintOrder::red_black &&
-      (width < VectorWidth::avx || (width == VectorWidth::avx && lambda == 1 && workers > 1)))
-    return 1;
-  if (workers == 1 && lambda >= 2 && width == VectorWidth::avx512 && order == ConstraintOrder::sequential)
-    return 16;
-  const int per_thread = width >= VectorWidth::avx ? 8 : std::min(8, 4 * lambda);
-  return std::max(1, std::min(per_thread, 2 * per_thread / workers));
-}
-
 }  // namespace
 
 bool DriveOptions::IsValid(std::string* why) const {
@@ -347,7 +329,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const int workers = detail::worker_threads(options.threads);
   const SearchOptions& so = search.options();
-  const int lanes = options.lanes > 0 ? options.lanes : default_lanes(so.lambda, workers, so.droplet.constraint_order);
+  const int lanes = options.lanes > 0 ? options.lanes : speculative_lanes(so.lambda, workers, so.droplet.constraint_order);
   std::unique_ptr<Pipeline> pipeline;
   // Speculation assumes the paper's rule (a generation that keeps nothing changes nothing); other
   // strategies evaluate one generation at a time, its candidates on every thread and lane.

@@ -8,6 +8,7 @@
 #include "lane_simd.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/droplet.hpp"
+#include "softdrop/lane_policy.hpp"
 #include "spring_correction.hpp"
 
 namespace softdrop {
@@ -92,11 +93,6 @@ void sequential_rings(DropletState* const* rings, int same, int* corrections, co
 }
 
 }  // namespace
-
-int interleaved_ring_capacity() {
-  const int width = static_cast<int>(constraint_vector_width());
-  return width >= 8 ? 24 : width >= 4 ? 12 : width >= 2 ? 6 : 1;
-}
 
 void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
                                          double max_strain, int iterations, int* corrections) {

@@ -45,12 +45,6 @@ void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy)
 }
 }  // namespace
 
-int interleaved_lanes() {
-  // Blocks of three groups of eight with AVX or AVX-512 (bench/README.md, "Constants of the step").
-  return constraint_vector_width() >= VectorWidth::avx ? lanes::kMaxLanes
-                                                       : interleaved_ring_capacity();
-}
-
 void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
                      const std::function<void(std::int64_t id, RunSummary&&)>& done,
                      const std::function<void(std::int64_t id)>& cancelled,
@@ -106,7 +100,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     }
     // One step of every busy lane. With AVX-512 or AVX, the droplets with the first one's
     // parameters go lane by lane up to the contact limit (LaneBlockStep) if there are at least
-    // fewest(); the others, and all with SSE2 alone:
+    // fewest_block_droplets(); the others, and all with SSE2 alone:
     // forces and integration each, the sequential constraints of the rings that share the first
     // one's constraint parameters together. Then the contact limits.
     block.clear();
@@ -120,7 +114,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       else
         alone.push_back(sim);
     }
-    if (block.size() < LaneBlockStep::fewest(width)) {
+    if (block.size() < fewest_block_droplets(width)) {
       alone.insert(alone.end(), block.begin(), block.end());
       block.clear();
     }

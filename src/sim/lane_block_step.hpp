@@ -21,9 +21,6 @@ struct LaneBlockStep {
   static bool compatible(const DropletParams& a, const DropletParams& b) {
     return same_fields(a, b, FieldUse::lanes);
   }
-  // The fewest droplets worth a block with `width`; fewer step faster one by one. AVX-512: 3; AVX,
-  // whose groups of eight are two registers each: 6 (bench/README.md, "Constants of the step").
-  static std::size_t fewest(VectorWidth width) { return width == VectorWidth::avx512 ? 3 : 6; }
   // before_constraint() and apply_constraint() (all of step() but the contact limit) for
   // sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0].
   static void step(Simulation* const* sims, int count);
