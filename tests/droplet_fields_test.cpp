@@ -7,6 +7,7 @@
 #include <string>
 #include <type_traits>
 
+#include "cli_run.hpp"
 #include "sim/lane_block_step.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/params_json.hpp"
@@ -19,9 +20,11 @@ namespace {
 std::map<std::string, FieldUse> uses() {
   std::map<std::string, FieldUse> out;
   DropletParams p;
-  visit_droplet_fields([&](const char* key, FieldUse use,
-                           const auto&) { EXPECT_TRUE(out.emplace(key, use).second) << key; },
-                       p);
+  visit_droplet_fields(
+      [&](const DropletField& field, const auto&) {
+        EXPECT_TRUE(out.emplace(field.key, field.use).second) << field.key;
+      },
+      p);
   return out;
 }
 
@@ -29,8 +32,8 @@ std::map<std::string, FieldUse> uses() {
 DropletParams changed(const DropletParams& p, const std::string& key) {
   DropletParams q = p;
   visit_droplet_fields(
-      [&](const char* k, FieldUse, auto& v) {
-        if (key != k) return;
+      [&](const DropletField& field, auto& v) {
+        if (key != field.key) return;
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_enum_v<T>)
           v = v == ConstraintOrder::sequential ? ConstraintOrder::red_black
@@ -84,6 +87,24 @@ TEST(DropletFields, StoredParametersHoldEveryFieldAndReadItBack) {
     EXPECT_TRUE(same_fields(back.droplet, o.droplet, FieldUse::contacts));
     EXPECT_FALSE(same_fields(back.droplet, DropletParams{}, FieldUse::contacts));
   }
+}
+
+TEST(DropletFields, EveryFieldIsACommandLineOptionWithItsHelp) {
+  for (const char* command : {"simulate", "sweep", "optimize"}) {
+    const test::Result r = test::run(std::string(command) + " --help");
+    ASSERT_EQ(r.code, 0) << command;
+    DropletParams p;
+    visit_droplet_fields(
+        [&](const DropletField& field, const auto&) {
+          EXPECT_NE(r.out.find(std::string("--") + field.key), std::string::npos) << command << " --" << field.key;
+          EXPECT_NE(r.out.find(field.help), std::string::npos) << command << " --" << field.key;
+        },
+        p);
+  }
+  // A value given on the command line reaches the droplet's checks, which name the option.
+  const test::Result bad = test::run("simulate --x0 250 --max-strain -1");
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.err.find("max-strain = -1"), std::string::npos) << bad.err;
 }
 
 }  // namespace

@@ -65,28 +65,41 @@ struct DropletParams {
 /// - contacts: read droplet by droplet (collisions and the contact limit).
 enum class FieldUse { constraint, lanes, contacts };
 
-/// The one list of DropletParams's fields: calls f(key, use, p.field...) for each field, in
+/// One field of DropletParams: `key` is its command-line option (--key) and its key in stored
+/// parameters, `use` the stages that read it, `help` its meaning and unit for --help.
+struct DropletField {
+  const char* key;
+  FieldUse use;
+  const char* help;
+};
+
+/// The one list of DropletParams's fields: calls f(field, p.field...) for each field, in
 /// declaration order, with that field of every p given (one struct to read or write it, two to
-/// compare them). `key` is the field's command-line option and its key in stored parameters.
-/// A new field goes here, and stored parameters, the lane block's checks and the option list
-/// follow.
+/// compare them). A new field goes here, and the command-line options, the stored parameters and
+/// the lane block's checks follow.
 template <class F, class... Params>
 void visit_droplet_fields(F&& f, Params&... p) {
-  f("masses", FieldUse::constraint, p.masses...);
-  f("mass", FieldUse::lanes, p.mass...);
-  f("radius", FieldUse::constraint, p.radius...);
-  f("nrt", FieldUse::lanes, p.nrt...);
-  f("ks", FieldUse::lanes, p.ks...);
-  f("kd", FieldUse::lanes, p.kd...);
-  f("kc", FieldUse::contacts, p.kc...);
-  f("cc", FieldUse::contacts, p.cc...);
-  f("gravity", FieldUse::lanes, p.gravity...);
-  f("dt", FieldUse::lanes, p.dt...);
-  f("max-strain", FieldUse::constraint, p.max_strain...);
-  f("constraint-iterations", FieldUse::constraint, p.constraint_iterations...);
-  f("constraint-order", FieldUse::lanes, p.constraint_order...);
-  f("max-depth", FieldUse::contacts, p.max_depth...);
-  f("viscosity", FieldUse::lanes, p.viscosity...);
+  using U = FieldUse;
+  f(DropletField{"masses", U::constraint, "N, masses on the ring"}, p.masses...);
+  f(DropletField{"mass", U::lanes, "m, mass of each point (mass units)"}, p.mass...);
+  f(DropletField{"radius", U::constraint, "R, inflated droplet radius (length units)"}, p.radius...);
+  f(DropletField{"nrt", U::lanes, "nRT of the ideal gas, P = nRT/V (force x length)"}, p.nrt...);
+  f(DropletField{"ks", U::lanes, "Spring stiffness k_s (force/length)"}, p.ks...);
+  f(DropletField{"kd", U::lanes, "Spring damping k_d (force x time/length)"}, p.kd...);
+  f(DropletField{"kc", U::contacts, "Collision penalty stiffness k_c (force/length)"}, p.kc...);
+  f(DropletField{"cc", U::contacts, "Collision normal damping (force x time/length)"}, p.cc...);
+  f(DropletField{"gravity", U::lanes, "g_y, gravity along y (length/time^2)"}, p.gravity...);
+  f(DropletField{"dt", U::lanes, "Time step (time units)"}, p.dt...);
+  f(DropletField{"max-strain", U::constraint, "Provot limit on |d - d0|/d0"}, p.max_strain...);
+  f(DropletField{"constraint-iterations", U::constraint, "Passes of the Provot constraint per step"},
+    p.constraint_iterations...);
+  f(DropletField{"constraint-order", U::lanes,
+                 "sequential (the reference) or red-black (independent half-passes: faster steps, other rounding)"},
+    p.constraint_order...);
+  f(DropletField{"max-depth", U::contacts, "Contact limit: deepest a mass may sit inside a grain (length units)"},
+    p.max_depth...);
+  f(DropletField{"viscosity", U::lanes, "Internal viscosity nu, damps motion relative to rigid motion (1/time)"},
+    p.viscosity...);
 }
 
 /// Whether a and b agree, to the bit, on every field whose use is `use` or one of the uses listed
@@ -95,8 +108,8 @@ void visit_droplet_fields(F&& f, Params&... p) {
 inline bool same_fields(const DropletParams& a, const DropletParams& b, FieldUse use) {
   bool same = true;
   visit_droplet_fields(
-      [&](const char*, FieldUse u, const auto& x, const auto& y) {
-        if (static_cast<int>(u) > static_cast<int>(use)) return;
+      [&](const DropletField& field, const auto& x, const auto& y) {
+        if (static_cast<int>(field.use) > static_cast<int>(use)) return;
         if constexpr (std::is_floating_point_v<std::decay_t<decltype(x)>>)
           same = same && std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
         else

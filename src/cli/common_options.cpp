@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdlib>
 #include <stdexcept>
+#include <string>
+#include <type_traits>
 
 namespace softdrop::cli {
 
@@ -44,29 +46,20 @@ CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_cou
 
 CLI::Option_group* add_droplet_options(CLI::App* s, DropletParams& d) {
   auto* g = s->add_option_group("Droplet", "physical parameters, paper's numerical units");
-  g->add_option("--masses", d.masses, "N, masses on the ring")->capture_default_str();
-  g->add_option("--mass", d.mass, "m, mass of each point (mass units)")->capture_default_str();
-  g->add_option("--radius", d.radius, "R, inflated droplet radius (length units)")->capture_default_str();
-  g->add_option("--nrt", d.nrt, "nRT of the ideal gas, P = nRT/V (force x length)")->capture_default_str();
-  g->add_option("--ks", d.ks, "Spring stiffness k_s (force/length)")->capture_default_str();
-  g->add_option("--kd", d.kd, "Spring damping k_d (force x time/length)")->capture_default_str();
-  g->add_option("--kc", d.kc, "Collision penalty stiffness k_c (force/length)")->capture_default_str();
-  g->add_option("--cc", d.cc, "Collision normal damping (force x time/length)")->capture_default_str();
-  g->add_option("--gravity", d.gravity, "g_y, gravity along y (length/time^2)")->capture_default_str();
-  g->add_option("--dt", d.dt, "Time step (time units)")->capture_default_str();
-  g->add_option("--max-strain", d.max_strain, "Provot limit on |d - d0|/d0")->capture_default_str();
-  g->add_option("--constraint-iterations", d.constraint_iterations, "Passes of the Provot constraint per step")
-      ->capture_default_str();
-  g->add_option_function<std::string>(
-       "--constraint-order", [&d](const std::string& v) { d.constraint_order = parse_constraint_order(v); },
-       "sequential (reference) or red-black (independent half-passes, ~2.6x faster steps, other rounding)")
-      ->check(CLI::IsMember({"sequential", "red-black"}))
-      ->default_str(to_string(d.constraint_order));
-  g->add_option("--max-depth", d.max_depth, "Contact limit: deepest a mass may sit inside a grain (length units)")
-      ->capture_default_str();
-  g->add_option("--viscosity", d.viscosity,
-                "Internal viscosity nu, damps motion relative to rigid motion (1/time)")
-      ->capture_default_str();
+  // One option per field of the one list (droplet.hpp), with its help.
+  visit_droplet_fields(
+      [&](const DropletField& field, auto& value) {
+        const std::string name = std::string("--") + field.key;
+        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, ConstraintOrder>) {
+          g->add_option_function<std::string>(
+               name, [&value](const std::string& v) { value = parse_constraint_order(v); }, field.help)
+              ->check(CLI::IsMember({"sequential", "red-black"}))
+              ->default_str(to_string(value));
+        } else {
+          g->add_option(name, value, field.help)->capture_default_str();
+        }
+      },
+      d);
   return g;
 }
 

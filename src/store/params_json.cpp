@@ -32,7 +32,7 @@ void set_legacy(const std::string& key, T& value) {
 // The lists of stored options: key (= CLI long option name) and field.
 template <class Droplet, class F>
 void visit_droplet(Droplet& d, F&& f) {
-  visit_droplet_fields([&](const char* key, FieldUse, auto& value) { f(key, value); }, d);
+  visit_droplet_fields([&](const DropletField& field, auto& value) { f(field.key, value); }, d);
 }
 template <class Run, class F>
 void visit_exit(Run& r, F&& f) {
