@@ -44,6 +44,16 @@ CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_cou
   return g;
 }
 
+CLI::Option_group* add_summary_options(CLI::App* s, std::string& format, std::string& json_file, bool& quiet) {
+  auto* o = s->add_option_group("Output");
+  o->add_option("--format", format, "Summary on stdout: table or json")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"table", "json"}));
+  o->add_option("--json", json_file, "Also write the JSON summary to this file");
+  o->add_flag("--quiet", quiet, "No progress on stderr");
+  return o;
+}
+
 CLI::Option_group* add_droplet_options(CLI::App* s, DropletParams& d) {
   auto* g = s->add_option_group("Droplet", "physical parameters, paper's numerical units");
   // One option per field of the one list (droplet.hpp), with its help.

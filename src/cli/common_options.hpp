@@ -26,6 +26,10 @@ struct MediumArgs {
 CLI::Option_group* add_medium_options(CLI::App* app, MediumArgs& a, bool fixed_count);
 /// Registers the droplet's physical parameters (--masses, --nrt, ...) in a "Droplet" group.
 CLI::Option_group* add_droplet_options(CLI::App* app, DropletParams& d);
+/// The "Output" group of a command that prints a summary: --format (table or json), --json FILE
+/// (the JSON summary written to a file too) and --quiet (no progress on stderr). The command adds
+/// its own outputs to the group it returns.
+CLI::Option_group* add_summary_options(CLI::App* app, std::string& format, std::string& json_file, bool& quiet);
 /// Registers --max-steps, --stuck-window, --stuck-distance in `group`.
 void add_exit_options(CLI::Option_group* group, RunOptions& r);
 

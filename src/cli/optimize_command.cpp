@@ -107,12 +107,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   add_medium_options(s, a.medium, true);
   add_droplet_options(s, a.search.droplet);
 
-  auto* o = s->add_option_group("Output");
-  o->add_option("--format", a.format, "Summary on stdout: table or json")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"table", "json"}));
-  o->add_option("--json", a.json_file, "Also write the JSON summary to this file");
-  o->add_flag("--quiet", a.quiet, "No progress on stderr");
+  auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
   o->add_flag("--verbose", a.verbose,
               "Also print how the speculation went: threads, lanes, evaluations dropped (JSON always has it)");
   return s;

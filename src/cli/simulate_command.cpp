@@ -33,12 +33,7 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
   r->add_option("--seed", a.batch.seed, "Seed of the random start positions")->capture_default_str()->check(seed_check());
   r->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
 
-  auto* o = s->add_option_group("Output");
-  o->add_option("--format", a.format, "Summary on stdout: table or json")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"table", "json"}));
-  o->add_option("--json", a.json_file, "Also write the JSON summary to this file");
-  o->add_flag("--quiet", a.quiet, "No progress on stderr");
+  auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
   o->add_option("--runs", a.runs_csv, "CSV, one row per droplet: start, outcome, T, steps, touched");
   o->add_option("--paths", a.paths_csv, "CSV of centre-of-mass paths (droplet,t,x,y)");
   o->add_option("--path-interval", a.run.path_interval, "Steps between path samples (default 100 with --paths)");

@@ -38,7 +38,10 @@ int vector_width() {
 // with the lane-by-lane step.
 
 // The red-black half-pass four springs at a time, from spring 0 while four remain; returns the
-// corrections and sets *done to the springs it did.
+// corrections and sets *done to the springs it did. The correction is the one kernel of every
+// width; this driver and the eight- and two-spring ones below differ only in how each width splits
+// interleaved pairs of ends into lanes (unpacks within 128-bit halves, two-source permutes), which
+// no common vector operation expresses.
 SOFTDROP_AVX int constrain_disjoint_quads(double* x, double* y, int count, double dmin, double dmax, int* done) {
   lanes::avx4::Limits l;
   lanes::avx4::set_limits(&l, dmin, dmax);

@@ -139,19 +139,29 @@ struct Reader {
   }
 };
 
+// Fields as flat JSON and back, keyed as visit(fields, f) names them.
+template <class Fields, class Visit>
+std::string fields_to_json(Fields& fields, Visit visit) {
+  nlohmann::json j = nlohmann::json::object();
+  visit(fields, [&](const char* key, const auto& value) { j[key] = value; });
+  return j.dump();
+}
+template <class Fields, class Visit>
+Fields fields_from_json(const std::string& text, Visit visit) {
+  const nlohmann::json j = parse_object(text);
+  Fields fields;
+  visit(fields, Reader{j});
+  return fields;
+}
+
 }  // namespace
 
 std::string search_params_to_json(const SearchOptions& options) {
-  nlohmann::json j = nlohmann::json::object();
-  visit_search(options, [&](const char* key, const auto& value) { j[key] = value; });
-  return j.dump();
+  return fields_to_json(options, [](auto& o, auto&& f) { visit_search(o, f); });
 }
 
 SearchOptions search_params_from_json(const std::string& text) {
-  const nlohmann::json j = parse_object(text);
-  SearchOptions o;
-  visit_search(o, Reader{j});
-  return o;
+  return fields_from_json<SearchOptions>(text, [](auto& o, auto&& f) { visit_search(o, f); });
 }
 
 std::vector<std::string> search_param_keys() {
@@ -175,15 +185,11 @@ std::vector<std::string> simulation_param_keys() {
 std::string sweep_params_to_json(const SweepOptions& options) {
   SweepFields s{options, to_string(options.medium.kind),
                 options.medium.radii == RadiusDistribution::uniform ? "uniform" : "lognormal", !options.medium.periodic};
-  nlohmann::json j = nlohmann::json::object();
-  visit_sweep(s, [&](const char* key, const auto& value) { j[key] = value; });
-  return j.dump();
+  return fields_to_json(s, [](auto& f, auto&& g) { visit_sweep(f, g); });
 }
 
 SweepOptions sweep_params_from_json(const std::string& text) {
-  const nlohmann::json j = parse_object(text);
-  SweepFields s;
-  visit_sweep(s, Reader{j});
+  SweepFields s = fields_from_json<SweepFields>(text, [](auto& f, auto&& g) { visit_sweep(f, g); });
   s.o.medium.kind = parse_medium_kind(s.kind);
   s.o.medium.radii = parse_radius_distribution(s.radii);
   s.o.medium.periodic = !s.walls;
