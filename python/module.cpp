@@ -6,10 +6,12 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "bindings.hpp"
 #include "cli/common_options.hpp"
@@ -122,6 +124,53 @@ py::dict summary_dict(const RunSummary& s, bool with_path) {
   return d;
 }
 
+// One attribute per field of the one list (droplet.hpp), named as its option with '_' for '-',
+// with its help as the docstring; the constraint order as its name ("sequential", "red-black").
+template <class Field>
+using Value = std::decay_t<Field>;
+void bind_droplet_fields(py::class_<DropletParams>& cls) {
+  DropletParams defaults;
+  visit_droplet_fields(
+      [&](const DropletField& field, const auto& proto) {
+        using T = Value<decltype(proto)>;
+        std::string name = field.key;
+        std::replace(name.begin(), name.end(), '-', '_');
+        const std::string key = field.key;
+        // The field `key` of p, for reading or writing.
+        auto with_field = [key](auto& p, const auto& use) {
+          visit_droplet_fields(
+              [&](const DropletField& f, auto& v) {
+                if constexpr (std::is_same_v<Value<decltype(v)>, T>)
+                  if (key == f.key) use(v);
+              },
+              p);
+        };
+        if constexpr (std::is_same_v<T, ConstraintOrder>) {
+          cls.def_property(
+              name.c_str(),
+              [with_field](const DropletParams& p) {
+                std::string out;
+                with_field(p, [&](const T& v) { out = to_string(v); });
+                return out;
+              },
+              [with_field](DropletParams& p, const std::string& v) {
+                with_field(p, [&](T& f) { f = parse_constraint_order(v); });
+              },
+              field.help);
+        } else {
+          cls.def_property(
+              name.c_str(),
+              [with_field](const DropletParams& p) {
+                T out{};
+                with_field(p, [&](const T& v) { out = v; });
+                return out;
+              },
+              [with_field](DropletParams& p, T v) { with_field(p, [&](T& f) { f = v; }); }, field.help);
+        }
+      },
+      defaults);
+}
+
 void check(const DropletParams& params, const RunOptions& run) {
   std::string why;
   if (!params.IsValid(&why) || !run.IsValid(&why)) throw std::invalid_argument(why);
@@ -133,22 +182,10 @@ PYBIND11_MODULE(_core, m) {
   m.doc() = "softdrop's compiled core; use the softdrop package";
   m.attr("__version__") = kVersion;
 
-  py::class_<DropletParams>(m, "DropletParams", "The droplet, in the paper's numerical units (see docs/model.md)")
-      .def(py::init(&from_keywords<DropletParams>))
-      .def_readwrite("masses", &DropletParams::masses)
-      .def_readwrite("mass", &DropletParams::mass)
-      .def_readwrite("radius", &DropletParams::radius)
-      .def_readwrite("nrt", &DropletParams::nrt)
-      .def_readwrite("ks", &DropletParams::ks)
-      .def_readwrite("kd", &DropletParams::kd)
-      .def_readwrite("kc", &DropletParams::kc)
-      .def_readwrite("cc", &DropletParams::cc)
-      .def_readwrite("gravity", &DropletParams::gravity)
-      .def_readwrite("dt", &DropletParams::dt)
-      .def_readwrite("max_strain", &DropletParams::max_strain)
-      .def_readwrite("constraint_iterations", &DropletParams::constraint_iterations)
-      .def_readwrite("max_depth", &DropletParams::max_depth)
-      .def_readwrite("viscosity", &DropletParams::viscosity);
+  py::class_<DropletParams> droplet(m, "DropletParams",
+                                    "The droplet, in the paper's numerical units (see docs/model.md)");
+  droplet.def(py::init(&from_keywords<DropletParams>));
+  bind_droplet_fields(droplet);
 
   py::class_<RunOptions>(m, "RunOptions", "When a run ends, and what it records")
       .def(py::init(&from_keywords<RunOptions>))

@@ -32,6 +32,26 @@ def test_one_droplet_has_the_programs_bits():
     assert medium.porosity() == theirs["medium"]["porosity"]
 
 
+def test_every_droplet_option_is_an_attribute_and_gives_the_programs_bits():
+    params = softdrop.DropletParams()
+    help_text = cli("simulate", "--help")
+    droplet_group = help_text[help_text.index("Droplet"):]
+    options = [w[2:] for w in droplet_group.split() if w.startswith("--")]
+    options = options[:options.index("max-steps")] if "max-steps" in options else options
+    assert "constraint-order" in options and "viscosity" in options
+    for option in options:
+        assert hasattr(params, option.replace("-", "_")), option
+    medium = softdrop.Medium.generate()
+    params = softdrop.DropletParams(constraint_order="red-black", radius=7.5)
+    run = softdrop.simulate(medium, x0=250, params=params)
+    theirs = json.loads(cli("simulate", "--x0", "250", "--constraint-order", "red-black", "--radius", "7.5",
+                            "--format", "json"))
+    assert run.tortuosity == theirs["run"]["tortuosity"]  # exactly
+    assert run.steps == theirs["run"]["steps"]
+    with pytest.raises(ValueError, match="constraint-order 'zigzag'"):
+        params.constraint_order = "zigzag"
+
+
 def test_the_area_trace_is_the_programs(tmp_path):
     medium = softdrop.Medium.generate(width=200, height=200)
     run = softdrop.simulate(medium, x0=100, trace=True, trace_interval=50)
