@@ -23,6 +23,7 @@ void ContactCache::reset(std::size_t masses, std::size_t disc_capacity, std::int
   todo.clear();
   todo.reserve(masses);
   deepest = 0;
+  current = false;
 }
 
 }  // namespace softdrop

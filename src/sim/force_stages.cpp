@@ -23,11 +23,9 @@ void Simulation::accumulate_gravity() {
 }
 
 namespace {
-// Force of spring (i, j) on i along the spring (> 0 pulls i towards j), and its components.
-struct SpringInput {
-  double ks, kd, inv_dt, d0;
-};
-inline void spring_force(const SpringInput& k, double xi, double yi, double xj, double yj,
+// Force of spring (i, j) on i along the spring (> 0 pulls i towards j), and its components, from
+// the spring constants of k (ks, kd, inv_dt, rest_length).
+inline void spring_force(const lanes::StepConstants& k, double xi, double yi, double xj, double yj,
                          double pxi, double pyi, double pxj, double pyj, double* sx, double* sy,
                          bool* zero) {
   const double dx = xj - xi, dy = yj - yi;
@@ -38,7 +36,7 @@ inline void spring_force(const SpringInput& k, double xi, double yi, double xj, 
   // Relative velocity of j with respect to i, projected on the spring.
   const double dvx = ((xj - pxj) - (xi - pxi)) * k.inv_dt;
   const double dvy = ((yj - pyj) - (yi - pyi)) * k.inv_dt;
-  const double f = k.ks * (d - k.d0) + k.kd * (dvx * ux + dvy * uy);
+  const double f = k.ks * (d - k.rest_length) + k.kd * (dvx * ux + dvy * uy);
   *sx = f * ux;
   *sy = f * uy;
 }
@@ -52,7 +50,11 @@ void Simulation::accumulate_springs() {
   // f[i+1] -= s" (mass m >= 1: (f - s[m-1]) + s[m]; mass 0: (f + s[0]) - s[n-1]), so the sums
   // have the same bits.
   const int n = state_.size();
-  const SpringInput in{params_.ks, params_.kd, 1.0 / params_.dt, rest_length_};
+  lanes::StepConstants in;  // the spring stage's constants (the others are the lane block's)
+  in.ks = params_.ks;
+  in.kd = params_.kd;
+  in.inv_dt = 1.0 / params_.dt;
+  in.rest_length = rest_length_;
   const std::size_t un = static_cast<std::size_t>(n);
   if (spring_force_.size() != 4 * un) spring_force_.assign(4 * un, 0.0);
   double* plus_x = spring_force_.data();  // added to the first end; -0 if the spring has no length
@@ -66,12 +68,7 @@ void Simulation::accumulate_springs() {
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
   if (constraint_vector_width() >= VectorWidth::avx && n >= 9) {
-    lanes::StepConstants k;  // the spring stage's constants, as `in` has them
-    k.ks = in.ks;
-    k.kd = in.kd;
-    k.inv_dt = in.inv_dt;
-    k.rest_length = in.d0;
-    lanes::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+    lanes::ring_spring_forces(in, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
     i = n - 1;
   }
 #endif

@@ -52,9 +52,7 @@ inline unsigned bits(M m) { return static_cast<unsigned>(_mm_movemask_pd(m)); }
 /// m ? b : a, lane by lane.
 inline V blend(M m, V a, V b) { return _mm_or_pd(_mm_and_pd(m, b), _mm_andnot_pd(m, a)); }
 /// m ? a + b : a, lane by lane (a lane not in m adds -0, which leaves every double as it is).
-inline V add_where(M m, V a, V b) {
-  return _mm_add_pd(a, _mm_or_pd(_mm_and_pd(m, b), _mm_andnot_pd(m, _mm_set1_pd(-0.0))));
-}
+inline V add_where(M m, V a, V b) { return _mm_add_pd(a, blend(m, _mm_set1_pd(-0.0), b)); }
 /// m ? a - b : a, lane by lane (a lane not in m subtracts +0).
 inline V sub_where(M m, V a, V b) { return _mm_sub_pd(a, _mm_and_pd(m, b)); }
 #define SOFTDROP_LANE_TARGET
@@ -80,11 +78,14 @@ SOFTDROP_AVX inline M both(M a, M b) { return _mm256_and_pd(a, b); }
 SOFTDROP_AVX inline M but_not(M a, M b) { return _mm256_andnot_pd(b, a); }
 SOFTDROP_AVX inline bool any(M m) { return _mm256_movemask_pd(m) != 0; }
 SOFTDROP_AVX inline unsigned bits(M m) { return static_cast<unsigned>(_mm256_movemask_pd(m)); }
-/// m ? b : a, as bits (see avx::select_bits for why not _mm256_blendv_pd).
+/// m ? b : a, lane by lane, as bits: (m & b) | (~m & a), which is vblendvpd's choice for the
+/// masks of compare() (each lane all ones or all zeros). Not _mm256_blendv_pd: GCC 12 turns it
+/// into a select on the lanes' sign, which AVX without AVX2 has no 256-bit integer test for, and
+/// does it one lane at a time through general registers and branches (in the contact kernel and
+/// the forces' spring loop, about 40 instructions a blend).
 SOFTDROP_AVX inline V blend(M m, V a, V b) { return _mm256_or_pd(_mm256_and_pd(m, b), _mm256_andnot_pd(m, a)); }
-SOFTDROP_AVX inline V add_where(M m, V a, V b) {
-  return _mm256_add_pd(a, _mm256_or_pd(_mm256_and_pd(m, b), _mm256_andnot_pd(m, _mm256_set1_pd(-0.0))));
-}
+/// m ? a + b : a, lane by lane (a lane not in m adds -0, which leaves every double as it is).
+SOFTDROP_AVX inline V add_where(M m, V a, V b) { return _mm256_add_pd(a, blend(m, _mm256_set1_pd(-0.0), b)); }
 SOFTDROP_AVX inline V sub_where(M m, V a, V b) { return _mm256_sub_pd(a, _mm256_and_pd(m, b)); }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX
 #include "spring_kernel.inc"
@@ -129,15 +130,8 @@ SOFTDROP_AVX inline M compare(V a, V b) {
 SOFTDROP_AVX inline unsigned bits(M m) {
   return static_cast<unsigned>(_mm256_movemask_pd(m.lo) | (_mm256_movemask_pd(m.hi) << 4));
 }
-/// m ? b : a, lane by lane, as bits: (m & b) | (~m & a), which is vblendvpd's choice for the
-/// masks of compare() (each lane all ones or all zeros). Not _mm256_blendv_pd: GCC 12 turns it
-/// into a select on the lanes' sign, which AVX without AVX2 has no 256-bit integer test for, and
-/// does it one lane at a time through general registers and branches (in the contact kernel and
-/// the forces' spring loop, about 40 instructions a blend).
-SOFTDROP_AVX inline __m256d select_bits(__m256d m, __m256d a, __m256d b) {
-  return _mm256_or_pd(_mm256_and_pd(m, b), _mm256_andnot_pd(m, a));
-}
-SOFTDROP_AVX inline V blend(M m, V a, V b) { return {select_bits(m.lo, a.lo, b.lo), select_bits(m.hi, a.hi, b.hi)}; }
+/// m ? b : a, lane by lane, as bits (avx4::blend on each half).
+SOFTDROP_AVX inline V blend(M m, V a, V b) { return {avx4::blend(m.lo, a.lo, b.lo), avx4::blend(m.hi, a.hi, b.hi)}; }
 /// m ? a : +0.
 SOFTDROP_AVX inline V keep_or_zero(M m, V a) { return {_mm256_and_pd(m.lo, a.lo), _mm256_and_pd(m.hi, a.hi)}; }
 /// Lanes b < 8 where p[b] == v, as bits (SSE2's integer compares: AVX has no 256-bit ones).
