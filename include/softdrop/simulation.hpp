@@ -16,6 +16,7 @@
 #include "softdrop/lane_policy.hpp"
 #include "softdrop/grain_grid.hpp"
 #include "softdrop/medium.hpp"
+#include "softdrop/step_stages.hpp"
 
 namespace softdrop {
 
@@ -95,12 +96,14 @@ class Simulation {
   void place(double cx, double cy);
   /// The usual start: centre x = cx, just above the medium (clear of the highest grain).
   void place_above(double cx);
-  /// Advances one time step: forces (gravity, springs, pressure, collisions), Verlet integration,
-  /// Provot constraint. Returns false if the state became invalid (NaN or area <= 0).
+  /// Advances one time step: every stage of kStepStages (step_stages.hpp), in order. Returns false
+  /// if the state became invalid (NaN or area <= 0).
   bool step();
-  /// Stage 1 of a step on its own: clears and accumulates all forces (gravity, springs, pressure,
-  /// collisions) into state().fx/fy without moving anything.
+  /// The force stages of a step on their own (gravity to viscosity): clears and accumulates all
+  /// forces into state().fx/fy without moving anything.
   void compute_forces();
+  /// One stage of a step (what step() runs for it).
+  void run_stage(StepStage stage);
 
   /// Places the droplet above the medium at x = cx and runs to an outcome.
   RunSummary run(double cx, const RunOptions& options);
@@ -126,8 +129,8 @@ class Simulation {
   /// FNV-1a hash of the bits of the runtime state: the determinism fingerprint.
   std::uint64_t state_hash() const;
 
-  /// The named stages of a step, in order (step() = the force stages, integrate, the constraint,
-  /// apply_contact_limit). Public so that benchmarks and tests can time and check each one.
+  /// The stages of a step, in the order of kStepStages (run_stage's code for each). Public so that
+  /// benchmarks and tests can time and check each one.
   void accumulate_gravity();     ///< clears the forces to the weight m g
   void accumulate_springs();     ///< damped springs along the ring
   void accumulate_pressure();    ///< P l_e on each edge's outward normal (updates area())
@@ -142,11 +145,10 @@ class Simulation {
   /// most) for the next collisions.
   void apply_contact_limit();
 
-  /// step() in two halves around the constraint, for drivers that constrain several rings
-  /// together (run_interleaved): before_constraint() computes the forces and integrates, and says
-  /// whether the constraint order is sequential; after_constraint() applies the contact limit and
-  /// returns step()'s validity test. before_constraint(), apply_constraint(), after_constraint()
-  /// is step().
+  /// step() in parts around the constraint, for drivers that constrain several rings together
+  /// (run_interleaved): before_constraint() runs the stages up to integrate, and says whether the
+  /// constraint order is sequential; after_constraint() runs the contact limit and returns step()'s
+  /// validity test. before_constraint(), apply_constraint(), after_constraint() is step().
   bool before_constraint();
   bool after_constraint();
   /// d0, the springs' rest length.
@@ -156,6 +158,8 @@ class Simulation {
   friend class RunStepper;
   friend struct LaneBlockStep;
   bool any_grain_inside_ring() const;
+  /// step()'s validity test: the area the pressure stage measured is finite and > 0.
+  bool valid_after_step() const;
   /// accumulate_collisions() adding mass i's force to fx[i * stride], fy[i * stride];
   /// recorded_added: the caller has added the recorded forces (contact_.fx, contact_.fy) itself.
   void accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride, bool recorded_added = false);

@@ -1,5 +1,5 @@
 // The force stages of a droplet's step: gravity, springs, gas pressure, collisions with the
-// grains and internal viscosity (Simulation::compute_forces runs them in this order).
+// grains and internal viscosity: the first five stages of kStepStages (step_stages.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

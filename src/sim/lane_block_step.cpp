@@ -74,37 +74,60 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   }
   const lanes::StepConstants k = lanes::step_constants(p);
   double area[lanes::kMaxLanes];
-  lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n,
-                                registers);
-  // The collisions: first the forces the contact limit recorded, for every lane whose droplet's
-  // records are current (-0, which changes no double, for the others), then each droplet's own.
   thread_local std::vector<double> no_force;
-  if (no_force.size() < static_cast<std::size_t>(n))
-    no_force.assign(static_cast<std::size_t>(n), -0.0);
-  const double* recorded[2][lanes::kMaxLanes];
-  for (int t = 0; t < L; ++t) {
-    const Simulation& sim = *sims[std::min(t, count - 1)];
-    recorded[0][t] = sim.contact_.current ? sim.contact_.fx.data() : no_force.data();
-    recorded[1][t] = sim.contact_.current ? sim.contact_.fy.data() : no_force.data();
-  }
-  lanes::add_in(recorded[0], FX, n, registers);
-  lanes::add_in(recorded[1], FY, n, registers);
-  for (int t = 0; t < count; ++t) {
-    sims[t]->area_ = area[t];
-    sims[t]->accumulate_collisions(FX + t, FY + t, L, /*recorded_added=*/true);
-  }
-  if (p.viscosity > 0)
-    lanes::viscosity(k, block[0], block[1], block[2], block[3], FX, FY, n, registers);
-  lanes::integrate(k.h2m, block[0], block[1], block[2], block[3], FX, FY, n, registers);
   const double dmax = (1 + p.max_strain) * first.rest_length_,
                dmin = (1 - p.max_strain) * first.rest_length_;
   int corrections[lanes::kMaxLanes];
-  if (p.constraint_order == ConstraintOrder::sequential)
-    lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations, dmin,
-                                dmax, corrections);
-  else
-    lanes::constrain_red_black(block[0], block[1], n, registers, p.constraint_iterations, dmin,
-                               dmax, corrections);
+  // The stages of kStepStages up to the constraint; the contact limit is each droplet's own
+  // (run_interleaved runs it after this).
+  auto run = [&](StepStage stage) {
+    switch (stage) {
+      case StepStage::gravity:  // with the springs and the pressure: one pass over the block
+        lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n,
+                                      registers);
+        return;
+      case StepStage::springs:
+      case StepStage::pressure:
+        return;  // in the gravity stage's pass
+      case StepStage::collisions: {
+        // First the forces the contact limit recorded, for every lane whose droplet's records
+        // are current (-0, which changes no double, for the others), then each droplet's own.
+        if (no_force.size() < static_cast<std::size_t>(n))
+          no_force.assign(static_cast<std::size_t>(n), -0.0);
+        const double* recorded[2][lanes::kMaxLanes];
+        for (int t = 0; t < L; ++t) {
+          const Simulation& sim = *sims[std::min(t, count - 1)];
+          recorded[0][t] = sim.contact_.current ? sim.contact_.fx.data() : no_force.data();
+          recorded[1][t] = sim.contact_.current ? sim.contact_.fy.data() : no_force.data();
+        }
+        lanes::add_in(recorded[0], FX, n, registers);
+        lanes::add_in(recorded[1], FY, n, registers);
+        for (int t = 0; t < count; ++t) {
+          sims[t]->area_ = area[t];
+          sims[t]->accumulate_collisions(FX + t, FY + t, L, /*recorded_added=*/true);
+        }
+        return;
+      }
+      case StepStage::viscosity:
+        if (p.viscosity > 0)
+          lanes::viscosity(k, block[0], block[1], block[2], block[3], FX, FY, n, registers);
+        return;
+      case StepStage::integrate:
+        lanes::integrate(k.h2m, block[0], block[1], block[2], block[3], FX, FY, n, registers);
+        return;
+      case StepStage::constraint:
+        if (p.constraint_order == ConstraintOrder::sequential)
+          lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations,
+                                      dmin, dmax, corrections);
+        else
+          lanes::constrain_red_black(block[0], block[1], n, registers, p.constraint_iterations,
+                                     dmin, dmax, corrections);
+        return;
+      case StepStage::contact_limit:
+        throw std::logic_error("LaneBlockStep: the contact limit is each droplet's own");
+    }
+  };
+  run_step_stages(run, StepStage::gravity, StepStage::constraint);
   // Verlet left the positions the step began with as the previous ones, so px, py are x, y as they
   // still are in each state: moved there as the copy out overwrites them, rather than copied back
   // from the block.

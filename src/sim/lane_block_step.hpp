@@ -21,8 +21,8 @@ struct LaneBlockStep {
   static bool compatible(const DropletParams& a, const DropletParams& b) {
     return same_fields(a, b, FieldUse::lanes);
   }
-  // before_constraint() and apply_constraint() (all of step() but the contact limit) for
-  // sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0].
+  // The stages of kStepStages from gravity to the constraint (all of step() but the contact
+  // limit) for sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0].
   static void step(Simulation* const* sims, int count);
 };
 

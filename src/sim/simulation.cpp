@@ -141,12 +141,53 @@ void Simulation::integrate() {
          state_.fy.data(), state_.size(), h2m);
 }
 
+const char* to_string(StepStage stage) {
+  switch (stage) {
+    case StepStage::gravity:
+      return "gravity";
+    case StepStage::springs:
+      return "springs";
+    case StepStage::pressure:
+      return "pressure";
+    case StepStage::collisions:
+      return "collisions";
+    case StepStage::viscosity:
+      return "viscosity";
+    case StepStage::integrate:
+      return "integrate";
+    case StepStage::constraint:
+      return "constraint";
+    case StepStage::contact_limit:
+      return "contact_limit";
+  }
+  return "?";
+}
+
+void Simulation::run_stage(StepStage stage) {
+  switch (stage) {
+    case StepStage::gravity:
+      return accumulate_gravity();
+    case StepStage::springs:
+      return accumulate_springs();
+    case StepStage::pressure:
+      return accumulate_pressure();
+    case StepStage::collisions:
+      return accumulate_collisions();
+    case StepStage::viscosity:
+      if (params_.viscosity > 0) accumulate_viscosity();
+      return;
+    case StepStage::integrate:
+      return integrate();
+    case StepStage::constraint:
+      return apply_constraint();
+    case StepStage::contact_limit:
+      return apply_contact_limit();
+  }
+}
+
 void Simulation::compute_forces() {
-  accumulate_gravity();
-  accumulate_springs();
-  accumulate_pressure();
-  accumulate_collisions();
-  if (params_.viscosity > 0) accumulate_viscosity();
+  run_step_stages([this](StepStage stage) { run_stage(stage); }, StepStage::gravity,
+                  StepStage::viscosity);
 }
 
 void Simulation::apply_constraint() {
@@ -156,9 +197,8 @@ void Simulation::apply_constraint() {
 }
 
 bool Simulation::step() {
-  before_constraint();
-  apply_constraint();
-  return after_constraint();
+  run_step_stages([this](StepStage stage) { run_stage(stage); });
+  return valid_after_step();
 }
 
 // ---- Checks and the run loop ------------------------------------------------------------------
@@ -198,15 +238,18 @@ RunSummary Simulation::run_from_current(const RunOptions& options) {
 }
 
 bool Simulation::before_constraint() {
-  compute_forces();
-  integrate();
+  run_step_stages([this](StepStage stage) { run_stage(stage); }, StepStage::gravity,
+                  StepStage::integrate);
   return params_.constraint_order == ConstraintOrder::sequential;
 }
 
 bool Simulation::after_constraint() {
-  apply_contact_limit();
-  return std::isfinite(area_) && area_ > 0;
+  run_step_stages([this](StepStage stage) { run_stage(stage); }, StepStage::contact_limit,
+                  StepStage::contact_limit);
+  return valid_after_step();
 }
+
+bool Simulation::valid_after_step() const { return std::isfinite(area_) && area_ > 0; }
 
 std::uint64_t Simulation::state_hash() const {
   std::uint64_t h = 1469598103934665603ULL;

@@ -1,0 +1,43 @@
+#pragma once
+/// \file step_stages.hpp
+/// The physics stages of one time step, in the order every stepper runs them: one droplet
+/// (Simulation::step), a block of droplets side by side in vector lanes, and several droplets
+/// stepped together on one thread (run_interleaved) all go through this one list, each with its
+/// own code for a stage (docs/code-layout.md names each stage's file). A run follows every step
+/// with its exit tests (passed, stuck, at rest, diverged, out of steps).
+
+#include <array>
+#include <cstdint>
+
+namespace softdrop {
+
+enum class StepStage : std::uint8_t {
+  gravity,        ///< the forces cleared to each mass's weight m g
+  springs,        ///< damped springs along the ring: k_s (d - d0) + k_d (relative velocity)
+  pressure,       ///< the gas, P = nRT / S, on each edge along its outward normal
+  collisions,     ///< penalty and damping against grains and walls; the touched grains
+  viscosity,      ///< internal viscosity relative to the rigid motion (only where ν > 0)
+  integrate,      ///< position Verlet
+  constraint,     ///< the Provot length constraint, in the droplet's constraint order
+  contact_limit,  ///< inverse dynamics: no mass deeper than max_depth inside a grain
+};
+
+/// Every stage of a step, in order.
+inline constexpr std::array<StepStage, 8> kStepStages{
+    StepStage::gravity,   StepStage::springs,   StepStage::pressure,   StepStage::collisions,
+    StepStage::viscosity, StepStage::integrate, StepStage::constraint, StepStage::contact_limit};
+
+/// The stage's name, as above ("gravity", ..., "contact_limit").
+const char* to_string(StepStage stage);
+
+/// Calls run(stage) for the stages from `first` to `last` of kStepStages, in their order. A
+/// stepper that runs a step in parts (the constraint of several rings together) calls it once
+/// for each part.
+template <class Run>
+constexpr void run_step_stages(Run&& run, StepStage first = StepStage::gravity,
+                               StepStage last = StepStage::contact_limit) {
+  for (StepStage stage : kStepStages)
+    if (stage >= first && stage <= last) run(stage);
+}
+
+}  // namespace softdrop
