@@ -6,7 +6,7 @@
 #  4. every fuzz target for FUZZ_SECONDS (default 60) on its committed corpus.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/build.sh ${CI:+-DSOFTDROP_WERROR=ON}
+bash scripts/build.sh -DSOFTDROP_TEST_HOOKS=ON ${CI:+-DSOFTDROP_WERROR=ON}
 (cd build && ctest --output-on-failure -j "$(nproc)" --timeout 900)
 bash scripts/sanitize.sh
 bash scripts/tsan.sh

@@ -219,10 +219,6 @@ struct DriveOptions {
   /// generation accepts after all).
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
-  /// Called by the speculating drive after it takes a generation's candidates and before it
-  /// completes the generation, while the workers go on (tests slow it down here to check that no
-  /// worker sees a generation half-completed). Empty: nothing.
-  std::function<void()> before_completion;
   /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: chosen
   /// for the processor, the threads, λ and the constraint order by speculative_lanes()
   /// (lane_policy.hpp). A matter of speed only: the history does not depend on it.

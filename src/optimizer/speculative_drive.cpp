@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "drive_test_seam.hpp"
 #include "evaluation.hpp"
 #include "softdrop/lane_policy.hpp"
 #include "softdrop/search.hpp"
@@ -53,8 +54,8 @@ namespace {
 // history is that of one generation at a time.
 class Pipeline {
  public:
-  Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed, std::function<void()> before_completion)
-      : search_(search), upto_(last_allowed), lanes_(lanes), before_completion_(std::move(before_completion)) {
+  Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
+      : search_(search), upto_(last_allowed), lanes_(lanes) {
     const int lambda = search.options().lambda;
     // Far enough ahead that a slow (stuck) candidate does not leave the lanes empty: four times the
     // generations in flight (bench/README.md, "Lanes of a search").
@@ -100,7 +101,9 @@ class Pipeline {
       candidates.push_back(std::move(it->second));
       done_.erase(it);
     }
+#if defined(SOFTDROP_TEST_HOOKS)
     if (before_completion_) before_completion_();
+#endif
     const Generation gen =
         search_.complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     completed_ = gen.number;
@@ -296,7 +299,9 @@ class Pipeline {
   Search& search_;
   const std::int64_t upto_;
   const int lanes_;
-  const std::function<void()> before_completion_;  // DriveOptions::before_completion
+#if defined(SOFTDROP_TEST_HOOKS)
+  const std::function<void()> before_completion_ = test_seam::before_completion();
+#endif
   std::int64_t depth_ = 1;
   std::mutex m_;
   std::condition_variable cv_;
@@ -315,6 +320,13 @@ class Pipeline {
 };
 
 }  // namespace
+
+#if defined(SOFTDROP_TEST_HOOKS)
+std::function<void()>& test_seam::before_completion() {
+  static std::function<void()> hook;
+  return hook;
+}
+#endif
 
 bool DriveOptions::IsValid(std::string* why) const {
   if (lanes < 0 || lanes > 64) return detail::fail(why, "lanes = " + std::to_string(lanes) + ": must be in [0, 64]");
@@ -335,7 +347,7 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   // strategies evaluate one generation at a time, its candidates on every thread and lane.
   if (options.speculate && search.strategy().speculative() && (workers > 1 || lanes > 1) &&
       search.last_generation() < options.generations)
-    pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations, options.before_completion);
+    pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);
   for (;;) {
     if (search.last_generation() >= options.generations) {
       s.termination = Termination::generations;
