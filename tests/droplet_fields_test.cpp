@@ -2,10 +2,13 @@
 // that the lane block and the stored parameters follow it.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "cli_run.hpp"
 #include "sim/lane_block_step.hpp"
@@ -105,6 +108,73 @@ TEST(DropletFields, EveryFieldIsACommandLineOptionWithItsHelp) {
   const test::Result bad = test::run("simulate --x0 250 --max-strain -1");
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.err.find("max-strain = -1"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace softdrop
+
+namespace softdrop {
+namespace {
+
+// Sets the field `key` of a copy of the defaults to v.
+DropletParams with_value(const std::string& key, double v) {
+  DropletParams q;
+  visit_droplet_fields(
+      [&](const DropletField& field, auto& x) {
+        using T = std::decay_t<decltype(x)>;
+        if constexpr (std::is_arithmetic_v<T>)
+          if (key == field.key) x = static_cast<T>(v);
+      },
+      q);
+  return q;
+}
+
+TEST(DropletFields, EveryFieldsRangeIsCheckedAndNamedInItsOwnWords) {
+  // Just outside each finite end of a field's range, and NaN and infinity for the doubles: refused
+  // with a message that names the field, its value and the range. Every field but the constraint
+  // order has a range, and the defaults are inside every one.
+  std::string why;
+  ASSERT_TRUE(DropletParams{}.IsValid(&why)) << why;
+  int checked = 0;
+  DropletParams defaults;
+  visit_droplet_fields(
+      [&](const DropletField& field, const auto& value) {
+        using T = std::decay_t<decltype(value)>;
+        if constexpr (std::is_arithmetic_v<T>) {
+          const FieldRange& r = field.range;
+          std::vector<double> bad;
+          const double step = std::is_integral_v<T> ? 1.0 : 0.0;
+          if (std::isfinite(r.lo))
+            bad.push_back(r.lo_included ? (step > 0 ? r.lo - step : std::nextafter(r.lo, -1e300)) : r.lo);
+          if (std::isfinite(r.hi))
+            bad.push_back(r.hi_included ? (step > 0 ? r.hi + step : std::nextafter(r.hi, 1e300)) : r.hi);
+          if (std::is_floating_point_v<T>) {
+            bad.push_back(std::nan(""));
+            bad.push_back(std::numeric_limits<double>::infinity());
+          }
+          for (double v : bad) {
+            std::string message;
+            EXPECT_FALSE(with_value(field.key, v).IsValid(&message)) << field.key << " = " << v;
+            EXPECT_EQ(message.rfind(std::string(field.key) + " = ", 0), 0u) << message;
+            EXPECT_NE(message.find(": must be "), std::string::npos) << message;
+          }
+          ++checked;
+        }
+      },
+      defaults);
+  EXPECT_EQ(checked, static_cast<int>(uses().size()) - 1);  // all but constraint-order
+  // The words of the three kinds of range, as users see them.
+  std::string message;
+  EXPECT_FALSE(with_value("dt", 0).IsValid(&message));
+  EXPECT_EQ(message, "dt = 0: must be in (0, 0.01]");
+  EXPECT_FALSE(with_value("masses", 7).IsValid(&message));
+  EXPECT_EQ(message, "masses = 7: must be in [8, 100000]");
+  EXPECT_FALSE(with_value("ks", -1).IsValid(&message));
+  EXPECT_EQ(message, "ks = -1: must be >= 0");
+  EXPECT_FALSE(with_value("mass", 0).IsValid(&message));
+  EXPECT_EQ(message, "mass = 0: must be > 0");
+  EXPECT_FALSE(with_value("gravity", std::nan("")).IsValid(&message));
+  EXPECT_EQ(message, "gravity = nan: must be finite");
 }
 
 }  // namespace

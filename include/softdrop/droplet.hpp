@@ -5,6 +5,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -65,12 +66,28 @@ struct DropletParams {
 /// - contacts: read droplet by droplet (collisions and the contact limit).
 enum class FieldUse { constraint, lanes, contacts };
 
+/// The values a numeric field accepts on its own: finite, from lo to hi, each end included or not
+/// (an infinite end: no bound). DropletParams::IsValid checks every field's range, then the limits
+/// that join fields (stability of the time step).
+struct FieldRange {
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  bool lo_included = true, hi_included = true;
+};
+/// Ranges by name: > lo, >= lo, and [lo, hi] with each end included or not.
+constexpr FieldRange above(double lo) { return {lo, std::numeric_limits<double>::infinity(), false, true}; }
+constexpr FieldRange at_least(double lo) { return {lo, std::numeric_limits<double>::infinity(), true, true}; }
+constexpr FieldRange between(double lo, bool lo_included, double hi, bool hi_included) {
+  return {lo, hi, lo_included, hi_included};
+}
+
 /// One field of DropletParams: `key` is its command-line option (--key) and its key in stored
-/// parameters, `use` the stages that read it, `help` its meaning and unit for --help.
+/// parameters, `use` the stages that read it, `help` its meaning and unit for --help, `range` the
+/// values it accepts (not read for constraint-order, a choice of two).
 struct DropletField {
   const char* key;
   FieldUse use;
   const char* help;
+  FieldRange range = {};
 };
 
 /// The one list of DropletParams's fields: calls f(field, p.field...) for each field, in
@@ -80,25 +97,31 @@ struct DropletField {
 template <class F, class... Params>
 void visit_droplet_fields(F&& f, Params&... p) {
   using U = FieldUse;
-  f(DropletField{"masses", U::constraint, "N, masses on the ring"}, p.masses...);
-  f(DropletField{"mass", U::lanes, "m, mass of each point (mass units)"}, p.mass...);
-  f(DropletField{"radius", U::constraint, "R, inflated droplet radius (length units)"}, p.radius...);
-  f(DropletField{"nrt", U::lanes, "nRT of the ideal gas, P = nRT/V (force x length)"}, p.nrt...);
-  f(DropletField{"ks", U::lanes, "Spring stiffness k_s (force/length)"}, p.ks...);
-  f(DropletField{"kd", U::lanes, "Spring damping k_d (force x time/length)"}, p.kd...);
-  f(DropletField{"kc", U::contacts, "Collision penalty stiffness k_c (force/length)"}, p.kc...);
-  f(DropletField{"cc", U::contacts, "Collision normal damping (force x time/length)"}, p.cc...);
-  f(DropletField{"gravity", U::lanes, "g_y, gravity along y (length/time^2)"}, p.gravity...);
-  f(DropletField{"dt", U::lanes, "Time step (time units)"}, p.dt...);
-  f(DropletField{"max-strain", U::constraint, "Provot limit on |d - d0|/d0"}, p.max_strain...);
-  f(DropletField{"constraint-iterations", U::constraint, "Passes of the Provot constraint per step"},
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  f(DropletField{"masses", U::constraint, "N, masses on the ring", between(8, true, 100000, true)}, p.masses...);
+  f(DropletField{"mass", U::lanes, "m, mass of each point (mass units)", above(0)}, p.mass...);
+  f(DropletField{"radius", U::constraint, "R, inflated droplet radius (length units)", above(0)}, p.radius...);
+  f(DropletField{"nrt", U::lanes, "nRT of the ideal gas, P = nRT/V (force x length)", above(0)}, p.nrt...);
+  f(DropletField{"ks", U::lanes, "Spring stiffness k_s (force/length)", at_least(0)}, p.ks...);
+  f(DropletField{"kd", U::lanes, "Spring damping k_d (force x time/length)", at_least(0)}, p.kd...);
+  f(DropletField{"kc", U::contacts, "Collision penalty stiffness k_c (force/length)", above(0)}, p.kc...);
+  f(DropletField{"cc", U::contacts, "Collision normal damping (force x time/length)", at_least(0)}, p.cc...);
+  f(DropletField{"gravity", U::lanes, "g_y, gravity along y (length/time^2)", between(-inf, true, inf, true)},
+    p.gravity...);
+  f(DropletField{"dt", U::lanes, "Time step (time units)", between(0, false, 1e-2, true)}, p.dt...);
+  f(DropletField{"max-strain", U::constraint, "Provot limit on |d - d0|/d0", between(0, false, 0.5, false)},
+    p.max_strain...);
+  f(DropletField{"constraint-iterations", U::constraint, "Passes of the Provot constraint per step",
+                 between(0, true, 100, true)},
     p.constraint_iterations...);
   f(DropletField{"constraint-order", U::lanes,
                  "sequential (the reference) or red-black (independent half-passes: faster steps, other rounding)"},
     p.constraint_order...);
-  f(DropletField{"max-depth", U::contacts, "Contact limit: deepest a mass may sit inside a grain (length units)"},
+  f(DropletField{"max-depth", U::contacts, "Contact limit: deepest a mass may sit inside a grain (length units)",
+                 above(0)},
     p.max_depth...);
-  f(DropletField{"viscosity", U::lanes, "Internal viscosity nu, damps motion relative to rigid motion (1/time)"},
+  f(DropletField{"viscosity", U::lanes, "Internal viscosity nu, damps motion relative to rigid motion (1/time)",
+                 at_least(0)},
     p.viscosity...);
 }
 

@@ -4,16 +4,13 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "util/validation.hpp"
 
 namespace softdrop {
 using detail::fail;
 using detail::num;
-namespace {
-bool positive(double v) { return std::isfinite(v) && v > 0; }
-}  // namespace
-
 double DropletParams::rest_length() const {
   return 2 * radius * std::sin(M_PI / masses) / (1 + max_strain);
 }
@@ -22,27 +19,44 @@ double DropletParams::inflated_area() const {
   return 0.5 * masses * radius * radius * std::sin(2 * M_PI / masses);
 }
 
+namespace {
+// "must be > 0", "must be in (0, 0.01]", "must be finite": the range in words, its bounds printed
+// as the field's type prints.
+template <class T>
+std::string range_words(const FieldRange& r) {
+  auto bound = [](double b) {
+    if constexpr (std::is_integral_v<T>) return std::to_string(static_cast<long long>(b));
+    else return num(b);
+  };
+  const bool has_lo = std::isfinite(r.lo), has_hi = std::isfinite(r.hi);
+  if (!has_lo && !has_hi) return "must be finite";
+  if (!has_hi) return std::string("must be ") + (r.lo_included ? ">= " : "> ") + bound(r.lo);
+  if (!has_lo) return std::string("must be ") + (r.hi_included ? "<= " : "< ") + bound(r.hi);
+  return std::string("must be in ") + (r.lo_included ? "[" : "(") + bound(r.lo) + ", " + bound(r.hi) +
+         (r.hi_included ? "]" : ")");
+}
+
+bool in_range(double v, const FieldRange& r) {
+  return std::isfinite(v) && (r.lo_included ? v >= r.lo : v > r.lo) &&
+         (r.hi_included ? v <= r.hi : v < r.hi);
+}
+}  // namespace
+
 bool DropletParams::IsValid(std::string* why) const {
-  if (masses < 8 || masses > 100000)
-    return fail(why, "masses = " + std::to_string(masses) + ": must be in [8, 100000]");
-  if (!positive(mass)) return fail(why, "mass = " + num(mass) + ": must be > 0");
-  if (!positive(radius)) return fail(why, "radius = " + num(radius) + ": must be > 0");
-  if (!positive(nrt)) return fail(why, "nrt = " + num(nrt) + ": must be > 0");
-  if (!std::isfinite(ks) || ks < 0) return fail(why, "ks = " + num(ks) + ": must be >= 0");
-  if (!std::isfinite(kd) || kd < 0) return fail(why, "kd = " + num(kd) + ": must be >= 0");
-  if (!positive(kc)) return fail(why, "kc = " + num(kc) + ": must be > 0");
-  if (!std::isfinite(cc) || cc < 0) return fail(why, "cc = " + num(cc) + ": must be >= 0");
-  if (!std::isfinite(gravity)) return fail(why, "gravity = " + num(gravity) + ": must be finite");
-  if (!positive(dt) || dt > 1e-2) return fail(why, "dt = " + num(dt) + ": must be in (0, 0.01]");
-  if (!std::isfinite(max_strain) || max_strain <= 0 || max_strain >= 0.5)
-    return fail(why, "max-strain = " + num(max_strain) + ": must be in (0, 0.5)");
-  if (constraint_iterations < 0 || constraint_iterations > 100)
-    return fail(why, "constraint-iterations = " + std::to_string(constraint_iterations) +
-                         ": must be in [0, 100]");
-  if (!std::isfinite(max_depth) || max_depth <= 0)
-    return fail(why, "max-depth = " + num(max_depth) + ": must be > 0");
-  if (!std::isfinite(viscosity) || viscosity < 0)
-    return fail(why, "viscosity = " + num(viscosity) + ": must be >= 0");
+  // Each field on its own, in the order of the field list; the first out of its range is named.
+  std::string first;
+  visit_droplet_fields(
+      [&](const DropletField& field, const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_arithmetic_v<T>) {
+          if (!first.empty() || in_range(static_cast<double>(v), field.range)) return;
+          const std::string value = std::is_integral_v<T> ? std::to_string(v) : num(static_cast<double>(v));
+          first = std::string(field.key) + " = " + value + ": " + range_words<T>(field.range);
+        }
+      },
+      *this);
+  if (!first.empty()) return fail(why, first);
+  // The limits that join fields.
   if (viscosity * dt > 0.5)  // names both, since either may be the one the user changed
     return fail(why, "viscosity = " + num(viscosity) + ", dt = " + num(dt) + ": viscosity * dt = " +
                          num(viscosity * dt) + " must be <= 0.5");
