@@ -6,6 +6,7 @@
 
 #include "contact_lanes.hpp"
 #include "lane_layout.hpp"
+#include "lane_scalar.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/simulation.hpp"
 #include "step_helpers.hpp"
@@ -202,35 +203,12 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
 
 void Simulation::accumulate_viscosity() {
   // Rigid motion of the ring from its linear and angular momentum; the viscous force acts on the
-  // rest, so it sums to zero force and zero torque.
-  const int n = state_.size();
-  const double inv_dt = 1.0 / params_.dt;
-  const double *x = state_.x.data(), *y = state_.y.data(), *px = state_.px.data(),
-               *py = state_.py.data();
-  double cx = 0, cy = 0, vx = 0, vy = 0;
-  for (int i = 0; i < n; ++i) {
-    cx += x[i];
-    cy += y[i];
-    vx += x[i] - px[i];
-    vy += y[i] - py[i];
-  }
-  cx /= n;
-  cy /= n;
-  vx *= inv_dt / n;
-  vy *= inv_dt / n;
-  double ang = 0, inertia = 0;
-  for (int i = 0; i < n; ++i) {
-    const double rx = x[i] - cx, ry = y[i] - cy;
-    ang += rx * ((y[i] - py[i]) * inv_dt - vy) - ry * ((x[i] - px[i]) * inv_dt - vx);
-    inertia += rx * rx + ry * ry;
-  }
-  const double omega = inertia > 0 ? ang / inertia : 0.0;
-  const double c = params_.mass * params_.viscosity;
-  for (int i = 0; i < n; ++i) {
-    const double rx = x[i] - cx, ry = y[i] - cy;
-    state_.fx[i] -= c * ((x[i] - px[i]) * inv_dt - (vx - omega * ry));
-    state_.fy[i] -= c * ((y[i] - py[i]) * inv_dt - (vy + omega * rx));
-  }
+  // rest, so it sums to zero force and zero torque (the lane block's kernel, at width 1).
+  lanes::StepConstants k;  // the viscosity's constants (the others are the lane block's)
+  k.inv_dt = 1.0 / params_.dt;
+  k.viscous = params_.mass * params_.viscosity;
+  lanes::scalar::viscosity_k<1>(k, state_.x.data(), state_.y.data(), state_.px.data(),
+                                state_.py.data(), state_.fx.data(), state_.fy.data(), state_.size());
 }
 
 }  // namespace softdrop

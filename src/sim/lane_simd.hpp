@@ -4,7 +4,8 @@
 // names: V (eight doubles), M (which lanes), C (eight counters), their operations, a few on eight
 // int32 lanes in memory (equal_lanes, store_minus_ones, select_lanes), and Limits and
 // constrain_springs (one spring on each lane, spring_kernel.inc). `sse2` and `avx4` have the
-// operations of that kernel on two and four lanes, for the one-ring constraints. src/sim/lane_kernels.inc and src/sim/contact_kernels.inc are written
+// operations of that kernel on two and four lanes, for the one-ring constraints; lane_scalar.hpp
+// has one lane. src/sim/stage_kernels.inc, lane_kernels.inc and contact_kernels.inc are written
 // against these names and compiled once for each. Every operation gives each lane the bits the
 // scalar one gives, so both instruction sets, and the one-ring code, agree to the bit. Call these
 // only where constraint_vector_width() has the instruction set.
@@ -94,6 +95,7 @@ SOFTDROP_AVX inline V sub_where(M m, V a, V b) { return _mm256_sub_pd(a, _mm256_
 
 namespace avx {
 
+constexpr int kWidth = 8;  // lanes of a V
 struct V {
   __m256d lo, hi;  // lanes 0-3, 4-7
 };
@@ -204,6 +206,7 @@ SOFTDROP_AVX inline V sub_where(M m, V a, V b) {
 
 namespace avx512 {
 
+constexpr int kWidth = 8;  // lanes of a V
 using V = __m512d;
 using M = __mmask8;
 using C = __m512i;

@@ -1,6 +1,7 @@
 // The stages of a step on rings laid out lane by lane (lane_layout.hpp), eight rings to a group,
-// for AVX-512 (a group is one register) and AVX (two): the kernels of lane_kernels.inc, compiled
-// once for each, and the copies between the rings and the layout (AVX 4 x 4 transposes, for both).
+// for AVX-512 (a group is one register) and AVX (two): the kernels of lane_kernels.inc (and of the
+// stage_kernels.inc it includes), compiled once for each, and the copies between the rings and the
+// layout (AVX 4 x 4 transposes, for both).
 
 #include <cstddef>
 #include <vector>

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lane_scalar.hpp"
 #include "run_stepper.hpp"
 #include "step_helpers.hpp"
 #include "util/validation.hpp"
@@ -117,28 +118,11 @@ void Simulation::centre_of_mass(double* cx, double* cy) const {
   *cy = sy / n;
 }
 
-namespace {
-// Position Verlet on six distinct arrays. __restrict parameters (GCC honours them on parameters)
-// let the loop be vectorised; each element gets the same operations, so the same bits.
-void verlet(double* __restrict x, double* __restrict y, double* __restrict px,
-            double* __restrict py, const double* __restrict fx, const double* __restrict fy, int n,
-            double h2m) {
-  for (int i = 0; i < n; ++i) {
-    const double nx = 2 * x[i] - px[i] + fx[i] * h2m;
-    const double ny = 2 * y[i] - py[i] + fy[i] * h2m;
-    px[i] = x[i];
-    py[i] = y[i];
-    x[i] = nx;
-    y[i] = ny;
-  }
-}
-}  // namespace
-
 void Simulation::integrate() {
   state_changed();
   const double h2m = params_.dt * params_.dt / params_.mass;
-  verlet(state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(), state_.fx.data(),
-         state_.fy.data(), state_.size(), h2m);
+  lanes::scalar::verlet_lanes(h2m, state_.x.data(), state_.y.data(), state_.px.data(),
+                              state_.py.data(), state_.fx.data(), state_.fy.data(), state_.size());
 }
 
 const char* to_string(StepStage stage) {
