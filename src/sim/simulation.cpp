@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -126,25 +127,11 @@ void Simulation::integrate() {
 }
 
 const char* to_string(StepStage stage) {
-  switch (stage) {
-    case StepStage::gravity:
-      return "gravity";
-    case StepStage::springs:
-      return "springs";
-    case StepStage::pressure:
-      return "pressure";
-    case StepStage::collisions:
-      return "collisions";
-    case StepStage::viscosity:
-      return "viscosity";
-    case StepStage::integrate:
-      return "integrate";
-    case StepStage::constraint:
-      return "constraint";
-    case StepStage::contact_limit:
-      return "contact_limit";
-  }
-  return "?";
+  static constexpr const char* kNames[] = {"gravity",   "springs",   "pressure",   "collisions",
+                                           "viscosity", "integrate", "constraint", "contact_limit"};
+  static_assert(std::size(kNames) == kStepStages.size());
+  const auto i = static_cast<std::size_t>(stage);
+  return i < std::size(kNames) ? kNames[i] : "?";
 }
 
 void Simulation::run_stage(StepStage stage) {
