@@ -160,6 +160,9 @@ class Simulation {
   bool any_grain_inside_ring() const;
   /// step()'s validity test: the area the pressure stage measured is finite and > 0.
   bool valid_after_step() const;
+  /// run_stage for a stage known at compile time (what step() runs, one call after another).
+  template <StepStage S>
+  void run_known_stage();
   /// accumulate_collisions() adding mass i's force to fx[i * stride], fy[i * stride];
   /// recorded_added: the caller has added the recorded forces (contact_.fx, contact_.fy) itself.
   void accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride, bool recorded_added = false);

@@ -7,7 +7,10 @@
 /// with its exit tests (passed, stuck, at rest, diverged, out of steps).
 
 #include <array>
+#include <cstddef>
 #include <cstdint>
+#include <type_traits>
+#include <utility>
 
 namespace softdrop {
 
@@ -30,14 +33,26 @@ inline constexpr std::array<StepStage, 8> kStepStages{
 /// The stage's name, as above ("gravity", ..., "contact_limit").
 const char* to_string(StepStage stage);
 
+namespace step_stages_detail {
+template <class Run, std::size_t... I>
+constexpr void run_in_order(Run& run, StepStage first, StepStage last, std::index_sequence<I...>) {
+  ((kStepStages[I] >= first && kStepStages[I] <= last
+        ? run(std::integral_constant<StepStage, kStepStages[I]>{})
+        : void()),
+   ...);
+}
+}  // namespace step_stages_detail
+
 /// Calls run(stage) for the stages from `first` to `last` of kStepStages, in their order. A
 /// stepper that runs a step in parts (the constraint of several rings together) calls it once
-/// for each part.
+/// for each part. Each stage comes as a std::integral_constant<StepStage, stage>, which converts
+/// to StepStage; a stepper may read it at compile time (decltype(stage)::value), so that a step
+/// is its stages' calls one after another, with no choice among them at run time.
 template <class Run>
 constexpr void run_step_stages(Run&& run, StepStage first = StepStage::gravity,
                                StepStage last = StepStage::contact_limit) {
-  for (StepStage stage : kStepStages)
-    if (stage >= first && stage <= last) run(stage);
+  step_stages_detail::run_in_order(run, first, last,
+                                   std::make_index_sequence<kStepStages.size()>{});
 }
 
 }  // namespace softdrop

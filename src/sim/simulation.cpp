@@ -134,30 +134,28 @@ const char* to_string(StepStage stage) {
   return i < std::size(kNames) ? kNames[i] : "?";
 }
 
+template <StepStage S>
+void Simulation::run_known_stage() {
+  if constexpr (S == StepStage::gravity) accumulate_gravity();
+  else if constexpr (S == StepStage::springs) accumulate_springs();
+  else if constexpr (S == StepStage::pressure) accumulate_pressure();
+  else if constexpr (S == StepStage::collisions) accumulate_collisions();
+  else if constexpr (S == StepStage::viscosity) {
+    if (params_.viscosity > 0) accumulate_viscosity();
+  } else if constexpr (S == StepStage::integrate) integrate();
+  else if constexpr (S == StepStage::constraint) apply_constraint();
+  else if constexpr (S == StepStage::contact_limit) apply_contact_limit();
+  else static_assert(S != S, "a stage without code");
+}
+
 void Simulation::run_stage(StepStage stage) {
-  switch (stage) {
-    case StepStage::gravity:
-      return accumulate_gravity();
-    case StepStage::springs:
-      return accumulate_springs();
-    case StepStage::pressure:
-      return accumulate_pressure();
-    case StepStage::collisions:
-      return accumulate_collisions();
-    case StepStage::viscosity:
-      if (params_.viscosity > 0) accumulate_viscosity();
-      return;
-    case StepStage::integrate:
-      return integrate();
-    case StepStage::constraint:
-      return apply_constraint();
-    case StepStage::contact_limit:
-      return apply_contact_limit();
-  }
+  run_step_stages([&](auto s) {
+    if (s == stage) run_known_stage<decltype(s)::value>();
+  });
 }
 
 void Simulation::compute_forces() {
-  run_step_stages([this](StepStage stage) { run_stage(stage); }, StepStage::gravity,
+  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::gravity,
                   StepStage::viscosity);
 }
 
@@ -168,7 +166,7 @@ void Simulation::apply_constraint() {
 }
 
 bool Simulation::step() {
-  run_step_stages([this](StepStage stage) { run_stage(stage); });
+  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); });
   return valid_after_step();
 }
 
@@ -209,14 +207,14 @@ RunSummary Simulation::run_from_current(const RunOptions& options) {
 }
 
 bool Simulation::before_constraint() {
-  run_step_stages([this](StepStage stage) { run_stage(stage); }, StepStage::gravity,
+  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::gravity,
                   StepStage::integrate);
   return params_.constraint_order == ConstraintOrder::sequential;
 }
 
 bool Simulation::after_constraint() {
-  run_step_stages([this](StepStage stage) { run_stage(stage); }, StepStage::contact_limit,
-                  StepStage::contact_limit);
+  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); },
+                  StepStage::contact_limit, StepStage::contact_limit);
   return valid_after_step();
 }
 
