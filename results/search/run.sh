@@ -9,7 +9,7 @@
 #   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
 #   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal es+r3"
 #        bash results/search/run.sh report   (no search: the tables and the plot from the databases)
-# A strategy NAME+rN is NAME with --relocate-every N.
+# A strategy NAME+rN is NAME with --relocate-every N; NAME alone has --relocate-every 0.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 S=${SOFTDROP:-./build/softdrop}
@@ -35,9 +35,9 @@ problem_options() {
 # others evaluate a whole generation at once, so they get enough candidates for every lane.
 lambda_of() { case ${1%%+*} in paper) echo 2 ;; *) echo 8 ;; esac; }
 strategy_options() {
-  local name=${1%%+*} relocate=""
-  [[ $1 == *+r* ]] && relocate="--relocate-every ${1##*+r}"
-  echo "--strategy $name $relocate"
+  local name=${1%%+*} relocate=0  # said outright: optimize relocates every third generation by default
+  [[ $1 == *+r* ]] && relocate=${1##*+r}
+  echo "--strategy $name --relocate-every $relocate"
 }
 
 for problem in $PROBLEMS; do
