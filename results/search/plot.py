@@ -16,7 +16,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 COLOURS = {"paper": "#4d4d4d", "es": "#d62728", "lahc": "#1f77b4", "anneal": "#2ca02c"}
-PROBLEMS = ["default", "dense", "large", "fine"]
+PROBLEMS = ["default", "dense", "large", "fine", "fine60"]
 
 
 def band(runs, column, grid):

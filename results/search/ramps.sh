@@ -11,14 +11,14 @@ S=${SOFTDROP:-./build/softdrop}
 OUT=results/search
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 echo "radius,angle_degrees,grains,outcome,tortuosity" > "$OUT/ramps.csv"
-for r in 8 12 16; do
+for r in 4 5 6 8 12 16; do
   for angle in 18 20 22 24 26 28 30; do
     # grains along the line from (W/2 - 10, H - r - 1) down at `angle`, centres 2r (1 + 0.13) + 0.01 apart
     awk -v r="$r" -v a="$angle" 'BEGIN {
       W = 300; H = 300; pi = atan2(0, -1); t = a * pi / 180; d = 2 * r * 1.13 + 0.01
       x = W / 2 - 10; y = H - r - 1; n = 0
       printf "x,y,r,width,height,periodic\n"
-      while (y > r && n < 60) { xx = x - W * int(x / W); printf "%.17g,%.17g,%g,%g,%g,true\n", xx, y, r, W, H; x += d * cos(t); y -= d * sin(t); n++ }
+      while (y > r && n < 200) { xx = x - W * int(x / W); printf "%.17g,%.17g,%g,%g,%g,true\n", xx, y, r, W, H; x += d * cos(t); y -= d * sin(t); n++ }
     }' > "$tmp/ramp.csv"
     grains=$(($(wc -l < "$tmp/ramp.csv") - 1))
     result=$($S simulate --medium "$tmp/ramp.csv" --x0 150 --format json)

@@ -28,6 +28,8 @@ problem_options() {
     large) echo "--grains 150 --width 500 --height 500" ;;             # phi ~ 0.72
     # grains of the droplet's radius: the ones it rolls along down shallow slopes (see README)
     fine) echo "--grains 100 --width 300 --height 300 --r-min 8 --r-max 8" ;;  # phi ~ 0.78
+    # as fine, with fewer grains in the way of a ramp
+    fine60) echo "--grains 60 --width 300 --height 300 --r-min 8 --r-max 8" ;;  # phi ~ 0.87
     *) echo "unknown problem '$1'" >&2; exit 2 ;;
   esac
 }
