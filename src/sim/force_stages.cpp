@@ -23,27 +23,6 @@ void Simulation::accumulate_gravity() {
   std::fill(state_.fy.begin(), state_.fy.end(), w);
 }
 
-namespace {
-// Force of spring (i, j) on i along the spring (> 0 pulls i towards j), and its components, from
-// the spring constants of k (ks, kd, inv_dt, rest_length).
-inline void spring_force(const lanes::StepConstants& k, double xi, double yi, double xj, double yj,
-                         double pxi, double pyi, double pxj, double pyj, double* sx, double* sy,
-                         bool* zero) {
-  const double dx = xj - xi, dy = yj - yi;
-  const double d = std::sqrt(dx * dx + dy * dy);
-  *zero = d == 0;
-  if (*zero) return;
-  const double ux = dx / d, uy = dy / d;
-  // Relative velocity of j with respect to i, projected on the spring.
-  const double dvx = ((xj - pxj) - (xi - pxi)) * k.inv_dt;
-  const double dvy = ((yj - pyj) - (yi - pyi)) * k.inv_dt;
-  const double f = k.ks * (d - k.rest_length) + k.kd * (dvx * ux + dvy * uy);
-  *sx = f * ux;
-  *sy = f * uy;
-}
-
-}  // namespace
-
 void Simulation::accumulate_springs() {
   // Two passes: the force of every spring (independent; eight at a time with AVX or AVX-512, the
   // kernel the lane-by-lane step uses, where constraint_vector_width() allows), then each mass
@@ -73,16 +52,16 @@ void Simulation::accumulate_springs() {
     i = n - 1;
   }
 #endif
+  // The rest (the closing spring, or every spring without AVX): the same kernel on one lane.
+  const lanes::scalar::SpringConstants springs = lanes::scalar::spring_constants(in);
   for (; i < n; ++i) {
     const int j = i + 1 == n ? 0 : i + 1;
-    double sx = 0, sy = 0;
-    bool zero = false;
-    spring_force(in, x[i], y[i], x[j], y[j], px[i], py[i], px[j], py[j], &sx, &sy, &zero);
-    // Adding -0 and subtracting +0 leave every double (-0 included) as it is.
-    plus_x[i] = zero ? -0.0 : sx;
-    plus_y[i] = zero ? -0.0 : sy;
-    minus_x[i] = zero ? 0.0 : sx;
-    minus_y[i] = zero ? 0.0 : sy;
+    const lanes::scalar::SpringForce s = lanes::scalar::spring_force(
+        springs, x[i], y[i], x[j], y[j], px[i], py[i], px[j], py[j]);
+    plus_x[i] = s.plus_x;
+    plus_y[i] = s.plus_y;
+    minus_x[i] = s.minus_x;
+    minus_y[i] = s.minus_y;
   }
   fx[0] = (fx[0] + plus_x[0]) - minus_x[n - 1];
   fy[0] = (fy[0] + plus_y[0]) - minus_y[n - 1];
