@@ -47,6 +47,7 @@ enum class RadiusDistribution {
 
 /// Parses "uniform" / "lognormal"; throws std::invalid_argument naming the value.
 RadiusDistribution parse_radius_distribution(const std::string& name);
+const char* to_string(RadiusDistribution radii);
 
 /// Creation data of a random medium.
 struct MediumOptions {

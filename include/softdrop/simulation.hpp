@@ -28,6 +28,8 @@ enum class Outcome {
   diverged   ///< NaN, inverted (area <= 0) or self-intersecting ring
 };
 const char* to_string(Outcome outcome);
+/// Parses the names to_string gives; throws std::invalid_argument naming the value.
+Outcome parse_outcome(const std::string& name);
 
 /// What to run and what to record.
 struct RunOptions {

@@ -6,6 +6,7 @@
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
 #include "softdrop/spacing.hpp"
+#include "util/enum_names.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {
@@ -34,21 +35,23 @@ bool Medium::IsValid(std::string* why) const {
   return true;
 }
 
+constexpr detail::EnumName<MediumKind> kMediumKinds[] = {{MediumKind::overlapping, "overlapping"},
+                                                         {MediumKind::non_overlapping, "non-overlapping"}};
+constexpr detail::EnumName<RadiusDistribution> kRadiusDistributions[] = {{RadiusDistribution::uniform, "uniform"},
+                                                                         {RadiusDistribution::lognormal, "lognormal"}};
+
 MediumKind parse_medium_kind(const std::string& name) {
-  if (name == "overlapping") return MediumKind::overlapping;
-  if (name == "non-overlapping" || name == "nonoverlapping") return MediumKind::non_overlapping;
-  throw std::invalid_argument("kind = '" + name + "': must be overlapping or non-overlapping");
+  if (name == "nonoverlapping") return MediumKind::non_overlapping;  // also taken, not offered
+  return detail::parse_name(kMediumKinds, name, "kind");
 }
 
 RadiusDistribution parse_radius_distribution(const std::string& name) {
-  if (name == "uniform") return RadiusDistribution::uniform;
-  if (name == "lognormal") return RadiusDistribution::lognormal;
-  throw std::invalid_argument("radius-distribution = '" + name + "': must be uniform or lognormal");
+  return detail::parse_name(kRadiusDistributions, name, "radius-distribution");
 }
 
-const char* to_string(MediumKind kind) {
-  return kind == MediumKind::overlapping ? "overlapping" : "non-overlapping";
-}
+const char* to_string(MediumKind kind) { return detail::name_of(kMediumKinds, kind); }
+
+const char* to_string(RadiusDistribution radii) { return detail::name_of(kRadiusDistributions, radii); }
 
 namespace {
 double mean_disc_area(const MediumOptions& o);

@@ -8,17 +8,18 @@
 #include <thread>
 
 #include "softdrop/random.hpp"
+#include "util/enum_names.hpp"
 #include "util/validation.hpp"
 #include "util/worker_threads.hpp"
 
 namespace softdrop {
 
-const char* to_string(Migration migration) { return migration == Migration::ring ? "ring" : "broadcast"; }
+constexpr detail::EnumName<Migration> kMigrations[] = {{Migration::ring, "ring"}, {Migration::broadcast, "broadcast"}};
+
+const char* to_string(Migration migration) { return detail::name_of(kMigrations, migration); }
 
 Migration parse_migration(const std::string& name) {
-  if (name == "ring") return Migration::ring;
-  if (name == "broadcast") return Migration::broadcast;
-  throw std::invalid_argument("migration '" + name + "': expected ring or broadcast");
+  return detail::parse_name(kMigrations, name, "migration");
 }
 
 bool IslandOptions::IsValid(std::string* why) const {

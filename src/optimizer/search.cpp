@@ -13,6 +13,7 @@
 #include "evaluation.hpp"
 #include "softdrop/spacing.hpp"
 #include "softdrop/strategy.hpp"
+#include "util/enum_names.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {
@@ -21,52 +22,30 @@ using detail::evaluation_run;
 using detail::fail;
 using detail::num;
 
-const char* to_string(MoveKind kind) {
-  switch (kind) {
-    case MoveKind::initial: return "initial";
-    case MoveKind::all: return "all";
-    case MoveKind::single: return "single";
-    case MoveKind::relocate: return "relocate";
-    case MoveKind::migrate: return "migrate";
-  }
-  return "?";
-}
+constexpr detail::EnumName<MoveKind> kMoveKinds[] = {{MoveKind::initial, "initial"},
+                                                     {MoveKind::all, "all"},
+                                                     {MoveKind::single, "single"},
+                                                     {MoveKind::relocate, "relocate"},
+                                                     {MoveKind::migrate, "migrate"}};
+constexpr detail::EnumName<Termination> kTerminations[] = {{Termination::generations, "generations"},
+                                                           {Termination::time_limit, "time-limit"},
+                                                           {Termination::interrupted, "interrupted"},
+                                                           {Termination::callback, "callback"}};
+constexpr detail::EnumName<StrategyKind> kStrategies[] = {
+    {StrategyKind::paper, "paper"}, {StrategyKind::es, "es"}, {StrategyKind::lahc, "lahc"}, {StrategyKind::anneal, "anneal"}};
+
+const char* to_string(MoveKind kind) { return detail::name_of(kMoveKinds, kind); }
 
 MoveKind parse_move_kind(const std::string& name) {
-  if (name == "initial") return MoveKind::initial;
-  if (name == "all") return MoveKind::all;
-  if (name == "single") return MoveKind::single;
-  if (name == "relocate") return MoveKind::relocate;
-  if (name == "migrate") return MoveKind::migrate;
-  throw std::invalid_argument("move kind '" + name + "': expected initial, all, single, relocate or migrate");
+  return detail::parse_name(kMoveKinds, name, "move kind");
 }
 
-const char* to_string(Termination termination) {
-  switch (termination) {
-    case Termination::generations: return "generations";
-    case Termination::time_limit: return "time-limit";
-    case Termination::interrupted: return "interrupted";
-    case Termination::callback: return "callback";
-  }
-  return "?";
-}
+const char* to_string(Termination termination) { return detail::name_of(kTerminations, termination); }
 
-const char* to_string(StrategyKind kind) {
-  switch (kind) {
-    case StrategyKind::paper: return "paper";
-    case StrategyKind::es: return "es";
-    case StrategyKind::lahc: return "lahc";
-    case StrategyKind::anneal: return "anneal";
-  }
-  return "?";
-}
+const char* to_string(StrategyKind kind) { return detail::name_of(kStrategies, kind); }
 
 StrategyKind parse_strategy(const std::string& name) {
-  if (name == "paper") return StrategyKind::paper;
-  if (name == "es") return StrategyKind::es;
-  if (name == "lahc") return StrategyKind::lahc;
-  if (name == "anneal") return StrategyKind::anneal;
-  throw std::invalid_argument("strategy = '" + name + "': must be paper, es, lahc or anneal");
+  return detail::parse_name(kStrategies, name, "strategy");
 }
 
 bool StrategyOptions::IsValid(std::string* why) const {

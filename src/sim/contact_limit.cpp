@@ -129,7 +129,8 @@ void Simulation::apply_contact_limit() {
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
   if (constraint_vector_width() >= VectorWidth::avx) {
-    // Eight masses at a time: most are in their balls, free or inside their anchor's one disc.
+    // Eight masses at a time: most are in their balls, free or inside their anchor's one disc. The
+    // vector code reads plain arrays (contact_lanes.hpp), so each field is set here, once.
     lanes::ContactRecords r;
     r.x = state_.x.data();
     r.y = state_.y.data();

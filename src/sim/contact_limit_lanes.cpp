@@ -1,5 +1,6 @@
 // The contact limit's common cases eight masses at a time (contact_lanes.hpp): contact_kernels.inc
-// compiled for AVX-512 and for AVX.
+// compiled for AVX-512 and for AVX. The two namespace blocks below, alike with those of
+// lane_stages.cpp, are how a kernel written once is compiled for each instruction set.
 
 #include <cstdint>
 

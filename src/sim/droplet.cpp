@@ -6,6 +6,7 @@
 #include <string>
 #include <type_traits>
 
+#include "util/enum_names.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {
@@ -84,14 +85,13 @@ void place_droplet(const DropletParams& params, double cx, double cy, DropletSta
   }
 }
 
+constexpr detail::EnumName<ConstraintOrder> kConstraintOrders[] = {{ConstraintOrder::sequential, "sequential"},
+                                                                   {ConstraintOrder::red_black, "red-black"}};
+
 ConstraintOrder parse_constraint_order(const std::string& name) {
-  if (name == "sequential") return ConstraintOrder::sequential;
-  if (name == "red-black") return ConstraintOrder::red_black;
-  throw std::invalid_argument("constraint-order '" + name + "': expected sequential or red-black");
+  return detail::parse_name(kConstraintOrders, name, "constraint-order");
 }
 
-const char* to_string(ConstraintOrder order) {
-  return order == ConstraintOrder::sequential ? "sequential" : "red-black";
-}
+const char* to_string(ConstraintOrder order) { return detail::name_of(kConstraintOrders, order); }
 
 }  // namespace softdrop

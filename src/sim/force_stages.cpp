@@ -74,23 +74,28 @@ void Simulation::accumulate_springs() {
 void Simulation::accumulate_pressure() {
   area_ = ring_area(state_);
   const int n = state_.size();
-  // P l_e along the outward normal (dy, -dx) / l_e of a counter-clockwise edge, half to each end.
-  // Each mass gathers its two edges in the order of the loop "for each edge i: f[i] += e,
-  // f[i+1] += e": mass m >= 1 adds e[m-1] then e[m]; mass 0 adds e[0] then e[n-1].
+  // Edge i's force (the kernel of stage_kernels.inc at width 1), half to each of its ends. Each
+  // mass gathers its two edges in the order of the loop "for each edge i: f[i] += e, f[i+1] += e":
+  // mass m >= 1 adds e[m-1] then e[m]; mass 0 adds e[0] then e[n-1]. (An inner edge is computed
+  // for each of its ends, which keeps the loop free of a carried value.)
   const double half_p = 0.5 * params_.nrt / area_, minus_half_p = -half_p;
   double* fx = state_.fx.data();
   double* fy = state_.fy.data();
   const double *x = state_.x.data(), *y = state_.y.data();
-  const double ex_last = half_p * (y[0] - y[n - 1]), ey_last = minus_half_p * (x[0] - x[n - 1]);
-  const double ex_first = half_p * (y[1] - y[0]), ey_first = minus_half_p * (x[1] - x[0]);
+  const auto edge = [&](int i, int j) {
+    return lanes::scalar::edge_pressure(half_p, minus_half_p, x[j] - x[i], y[j] - y[i]);
+  };
+  const lanes::scalar::EdgeForce first = edge(0, 1), last = edge(n - 1, 0);
   for (int m = 1; m + 1 < n; ++m) {
-    fx[m] = (fx[m] + half_p * (y[m] - y[m - 1])) + half_p * (y[m + 1] - y[m]);
-    fy[m] = (fy[m] + minus_half_p * (x[m] - x[m - 1])) + minus_half_p * (x[m + 1] - x[m]);
+    const lanes::scalar::EdgeForce before = edge(m - 1, m), after = edge(m, m + 1);
+    fx[m] = (fx[m] + before.x) + after.x;
+    fy[m] = (fy[m] + before.y) + after.y;
   }
-  fx[n - 1] = (fx[n - 1] + half_p * (y[n - 1] - y[n - 2])) + ex_last;
-  fy[n - 1] = (fy[n - 1] + minus_half_p * (x[n - 1] - x[n - 2])) + ey_last;
-  fx[0] = (fx[0] + ex_first) + ex_last;
-  fy[0] = (fy[0] + ey_first) + ey_last;
+  const lanes::scalar::EdgeForce before_last = edge(n - 2, n - 1);
+  fx[n - 1] = (fx[n - 1] + before_last.x) + last.x;
+  fy[n - 1] = (fy[n - 1] + before_last.y) + last.y;
+  fx[0] = (fx[0] + first.x) + last.x;
+  fy[0] = (fy[0] + first.y) + last.y;
 }
 
 void Simulation::accumulate_collisions() {

@@ -8,7 +8,8 @@
 // has one lane. src/sim/stage_kernels.inc, lane_kernels.inc and contact_kernels.inc are written
 // against these names and compiled once for each. Every operation gives each lane the bits the
 // scalar one gives, so both instruction sets, and the one-ring code, agree to the bit. Call these
-// only where constraint_vector_width() has the instruction set.
+// only where constraint_vector_width() has the instruction set. These wrappers of intrinsics are
+// the one place where code is written once per instruction set, so they are alike by design.
 
 #include <cstdint>
 

@@ -34,69 +34,63 @@ int vector_width() {
 }
 
 #if defined(SOFTDROP_AVX_DISPATCH)
-// Two, four and eight springs at once: the kernel of lane_simd.hpp (spring_kernel.inc), shared
-// with the lane-by-lane step.
-
-// The red-black half-pass four springs at a time, from spring 0 while four remain; returns the
-// corrections and sets *done to the springs it did. The correction is the one kernel of every
-// width; this driver and the eight- and two-spring ones below differ only in how each width splits
-// interleaved pairs of ends into lanes (unpacks within 128-bit halves, two-source permutes), which
-// no common vector operation expresses.
-SOFTDROP_AVX int constrain_disjoint_quads(double* x, double* y, int count, double dmin, double dmax, int* done) {
-  lanes::avx4::Limits l;
-  lanes::avx4::set_limits(&l, dmin, dmax);
-  int changed = 0, k = 0;
-  for (; k + 4 <= count; k += 4) {
-    double* px = x + 2 * k;
-    double* py = y + 2 * k;
-    // (x_i0 x_j0 | x_i1 x_j1), (x_i2 x_j2 | x_i3 x_j3): unpacking works within 128-bit halves, so
-    // the lanes hold springs (0, 2 | 1, 3), and unpacking back restores the layout.
-    const __m256d xa = _mm256_loadu_pd(px), xb = _mm256_loadu_pd(px + 4);
-    const __m256d ya = _mm256_loadu_pd(py), yb = _mm256_loadu_pd(py + 4);
-    __m256d xi = _mm256_unpacklo_pd(xa, xb), xj = _mm256_unpackhi_pd(xa, xb);
-    __m256d yi = _mm256_unpacklo_pd(ya, yb), yj = _mm256_unpackhi_pd(ya, yb);
-    const unsigned moved = lanes::avx4::bits(lanes::avx4::constrain_springs(l, &xi, &yi, &xj, &yj));
-    if (moved == 0) continue;
-    changed += __builtin_popcount(moved);
-    _mm256_storeu_pd(px, _mm256_unpacklo_pd(xi, xj));
-    _mm256_storeu_pd(px + 4, _mm256_unpackhi_pd(xi, xj));
-    _mm256_storeu_pd(py, _mm256_unpacklo_pd(yi, yj));
-    _mm256_storeu_pd(py + 4, _mm256_unpackhi_pd(yi, yj));
-  }
-  *done = k;
-  return changed;
+// The red-black half-pass two, four and eight springs at a time (disjoint_spring_passes.inc), the
+// correction being the kernel of lane_simd.hpp (spring_kernel.inc) shared with the lane-by-lane
+// step. Only the split of kWidth interleaved pairs of ends into two registers is per width.
+namespace two_lanes {
+using namespace lanes::sse2;
+constexpr int kWidth = 2;
+// (x_i0, x_j0), (x_i1, x_j1) -> (x_i0, x_i1), (x_j0, x_j1) and back.
+inline void load_ends(const double* p, V* i, V* j) {
+  const V a = _mm_loadu_pd(p), b = _mm_loadu_pd(p + 2);
+  *i = _mm_unpacklo_pd(a, b);
+  *j = _mm_unpackhi_pd(a, b);
 }
-#endif
-
-#if defined(SOFTDROP_AVX_DISPATCH)
-
-// constrain_disjoint_quads() eight springs at a time.
-SOFTDROP_AVX512 int constrain_disjoint_octs(double* x, double* y, int count, double dmin, double dmax, int* done) {
-  lanes::avx512::Limits l;
-  lanes::avx512::set_limits(&l, dmin, dmax);
-  const __m512i even = _mm512_set_epi64(14, 12, 10, 8, 6, 4, 2, 0), odd = _mm512_set_epi64(15, 13, 11, 9, 7, 5, 3, 1);
-  const __m512i low = _mm512_set_epi64(11, 3, 10, 2, 9, 1, 8, 0), high = _mm512_set_epi64(15, 7, 14, 6, 13, 5, 12, 4);
-  int changed = 0, k = 0;
-  for (; k + 8 <= count; k += 8) {
-    double* px = x + 2 * k;
-    double* py = y + 2 * k;
-    // Lane s holds spring k + s: the first ends are the even elements, the second ends the odd
-    // ones. (Two-source permutes rather than unpacks, whose GCC 12 intrinsics warn.)
-    const __m512d xa = _mm512_loadu_pd(px), xb = _mm512_loadu_pd(px + 8);
-    const __m512d ya = _mm512_loadu_pd(py), yb = _mm512_loadu_pd(py + 8);
-    __m512d xi = _mm512_permutex2var_pd(xa, even, xb), xj = _mm512_permutex2var_pd(xa, odd, xb);
-    __m512d yi = _mm512_permutex2var_pd(ya, even, yb), yj = _mm512_permutex2var_pd(ya, odd, yb);
-    const unsigned moved = lanes::avx512::constrain_springs(l, &xi, &yi, &xj, &yj);
-    if (moved == 0) continue;
-    changed += __builtin_popcount(moved);
-    _mm512_storeu_pd(px, _mm512_permutex2var_pd(xi, low, xj));
-    _mm512_storeu_pd(px + 8, _mm512_permutex2var_pd(xi, high, xj));
-    _mm512_storeu_pd(py, _mm512_permutex2var_pd(yi, low, yj));
-    _mm512_storeu_pd(py + 8, _mm512_permutex2var_pd(yi, high, yj));
-  }
-  *done = k;
-  return changed;
+inline void store_ends(double* p, V i, V j) {
+  _mm_storeu_pd(p, _mm_unpacklo_pd(i, j));
+  _mm_storeu_pd(p + 2, _mm_unpackhi_pd(i, j));
 }
+#define SOFTDROP_LANE_TARGET
+#include "disjoint_spring_passes.inc"
+#undef SOFTDROP_LANE_TARGET
+}  // namespace two_lanes
+
+namespace four_lanes {
+using namespace lanes::avx4;
+constexpr int kWidth = 4;
+// (x_i0 x_j0 | x_i1 x_j1), (x_i2 x_j2 | x_i3 x_j3): unpacking works within 128-bit halves, so the
+// lanes hold springs (0, 2 | 1, 3), and unpacking back restores the layout.
+SOFTDROP_AVX inline void load_ends(const double* p, V* i, V* j) {
+  const V a = _mm256_loadu_pd(p), b = _mm256_loadu_pd(p + 4);
+  *i = _mm256_unpacklo_pd(a, b);
+  *j = _mm256_unpackhi_pd(a, b);
+}
+SOFTDROP_AVX inline void store_ends(double* p, V i, V j) {
+  _mm256_storeu_pd(p, _mm256_unpacklo_pd(i, j));
+  _mm256_storeu_pd(p + 4, _mm256_unpackhi_pd(i, j));
+}
+#define SOFTDROP_LANE_TARGET SOFTDROP_AVX
+#include "disjoint_spring_passes.inc"
+#undef SOFTDROP_LANE_TARGET
+}  // namespace four_lanes
+
+namespace eight_lanes {
+using namespace lanes::avx512;
+// Lane s holds spring k + s: the first ends are the even elements, the second ends the odd ones.
+// (Two-source permutes rather than unpacks, whose GCC 12 intrinsics warn.)
+SOFTDROP_AVX512 inline void load_ends(const double* p, V* i, V* j) {
+  const V a = _mm512_loadu_pd(p), b = _mm512_loadu_pd(p + 8);
+  *i = _mm512_permutex2var_pd(a, _mm512_set_epi64(14, 12, 10, 8, 6, 4, 2, 0), b);
+  *j = _mm512_permutex2var_pd(a, _mm512_set_epi64(15, 13, 11, 9, 7, 5, 3, 1), b);
+}
+SOFTDROP_AVX512 inline void store_ends(double* p, V i, V j) {
+  _mm512_storeu_pd(p, _mm512_permutex2var_pd(i, _mm512_set_epi64(11, 3, 10, 2, 9, 1, 8, 0), j));
+  _mm512_storeu_pd(p + 8, _mm512_permutex2var_pd(i, _mm512_set_epi64(15, 7, 14, 6, 13, 5, 12, 4), j));
+}
+#define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
+#include "disjoint_spring_passes.inc"
+#undef SOFTDROP_LANE_TARGET
+}  // namespace eight_lanes
 #endif
 
 // Springs (x[2k], x[2k + 1]) for k < count: one half-pass of the red-black order. They share no
@@ -106,29 +100,10 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
   int changed = 0, k = 0;
   const int width = vector_width();
 #if defined(SOFTDROP_AVX_DISPATCH)
-  if (width >= 8) changed = constrain_disjoint_octs(x, y, count, dmin, dmax, &k);
-  if (width >= 4 && k + 4 <= count) {
-    int quads = 0;
-    changed += constrain_disjoint_quads(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &quads);
-    k += quads;
-  }
-  lanes::sse2::Limits l;
-  lanes::sse2::set_limits(&l, dmin, dmax);
-  for (; width >= 2 && k + 2 <= count; k += 2) {
-    double* px = x + 2 * k;
-    double* py = y + 2 * k;
-    const __m128d xa = _mm_loadu_pd(px), xb = _mm_loadu_pd(px + 2);  // (x_i0, x_j0), (x_i1, x_j1)
-    const __m128d ya = _mm_loadu_pd(py), yb = _mm_loadu_pd(py + 2);
-    __m128d xi = _mm_unpacklo_pd(xa, xb), xj = _mm_unpackhi_pd(xa, xb);
-    __m128d yi = _mm_unpacklo_pd(ya, yb), yj = _mm_unpackhi_pd(ya, yb);
-    const unsigned moved = lanes::sse2::bits(lanes::sse2::constrain_springs(l, &xi, &yi, &xj, &yj));
-    if (moved == 0) continue;
-    changed += static_cast<int>((moved & 1) + (moved >> 1));
-    _mm_storeu_pd(px, _mm_unpacklo_pd(xi, xj));
-    _mm_storeu_pd(px + 2, _mm_unpackhi_pd(xi, xj));
-    _mm_storeu_pd(py, _mm_unpacklo_pd(yi, yj));
-    _mm_storeu_pd(py + 2, _mm_unpackhi_pd(yi, yj));
-  }
+  int done = 0;
+  if (width >= 8) changed += eight_lanes::constrain_disjoint(x, y, count, dmin, dmax, &done), k += done;
+  if (width >= 4) changed += four_lanes::constrain_disjoint(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &done), k += done;
+  if (width >= 2) changed += two_lanes::constrain_disjoint(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &done), k += done;
 #endif
   for (; k < count; ++k) changed += constrain(x, y, 2 * k, 2 * k + 1, dmin, dmax);
   return changed;

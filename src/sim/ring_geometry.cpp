@@ -1,4 +1,5 @@
 // Geometry of a ring: its area, whether it crosses itself, whether it holds a point.
+#include "lane_scalar.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/droplet.hpp"
 
@@ -14,7 +15,7 @@ double cross(double ax, double ay, double bx, double by, double cx, double cy) {
 double ring_area(const DropletState& s) {
   const int n = s.size();
   double twice = 0;
-  for (int i = 0, j = n - 1; i < n; j = i++) twice += s.x[j] * s.y[i] - s.x[i] * s.y[j];
+  for (int i = 0, j = n - 1; i < n; j = i++) twice += lanes::scalar::shoelace_term(s.x[i], s.y[i], s.x[j], s.y[j]);
   return 0.5 * twice;
 }
 

@@ -11,25 +11,20 @@
 #include <stdexcept>
 #include <string>
 
-#include "lane_scalar.hpp"
 #include "run_stepper.hpp"
 #include "step_helpers.hpp"
+#include "util/enum_names.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {
 
-const char* to_string(Outcome outcome) {
-  switch (outcome) {
-    case Outcome::passed:
-      return "passed";
-    case Outcome::stuck:
-      return "stuck";
-    case Outcome::timeout:
-      return "timeout";
-    case Outcome::diverged:
-      return "diverged";
-  }
-  return "?";
+constexpr detail::EnumName<Outcome> kOutcomes[] = {
+    {Outcome::passed, "passed"}, {Outcome::stuck, "stuck"}, {Outcome::timeout, "timeout"}, {Outcome::diverged, "diverged"}};
+
+const char* to_string(Outcome outcome) { return detail::name_of(kOutcomes, outcome); }
+
+Outcome parse_outcome(const std::string& name) {
+  return detail::parse_name(kOutcomes, name, "outcome");
 }
 
 bool RunOptions::IsValid(std::string* why) const {
@@ -117,13 +112,6 @@ void Simulation::centre_of_mass(double* cx, double* cy) const {
   }
   *cx = sx / n;
   *cy = sy / n;
-}
-
-void Simulation::integrate() {
-  state_changed();
-  const double h2m = params_.dt * params_.dt / params_.mass;
-  lanes::scalar::verlet_lanes(h2m, state_.x.data(), state_.y.data(), state_.px.data(),
-                              state_.py.data(), state_.fx.data(), state_.fy.data(), state_.size());
 }
 
 const char* to_string(StepStage stage) {

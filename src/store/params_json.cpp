@@ -29,7 +29,9 @@ void set_legacy(const std::string& key, T& value) {
     if (key == "rest-window" || key == "rest-distance") value = 0;
 }
 
-// The lists of stored options: key (= CLI long option name) and field.
+// The lists of stored options: key (= CLI long option name) and field. They are alike in shape
+// because each is a list; a key is written once, here, and every read and write of it goes through
+// the list.
 template <class Droplet, class F>
 void visit_droplet(Droplet& d, F&& f) {
   visit_droplet_fields([&](const DropletField& field, auto& value) { f(field.key, value); }, d);
@@ -184,7 +186,7 @@ std::vector<std::string> simulation_param_keys() {
 
 std::string sweep_params_to_json(const SweepOptions& options) {
   SweepFields s{options, to_string(options.medium.kind),
-                options.medium.radii == RadiusDistribution::uniform ? "uniform" : "lognormal", !options.medium.periodic};
+                to_string(options.medium.radii), !options.medium.periodic};
   return fields_to_json(s, [](auto& f, auto&& g) { visit_sweep(f, g); });
 }
 

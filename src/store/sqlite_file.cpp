@@ -15,6 +15,8 @@
 namespace softdrop::detail {
 namespace {
 
+// The schema as SQL, by version. Tables that share column shapes (run_id, generation, x, y) are
+// alike because they describe the same rows' keys; each is written once, here.
 // Version 1: the search history.
 constexpr const char* kSchemaV1 = R"sql(
 CREATE TABLE IF NOT EXISTS runs (

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -74,6 +75,31 @@ auto read_row(SQLite::Database& db, const std::string& select, std::int64_t id, 
   return read(q);
 }
 
+/// `value` where `present`, else SQL NULL, for insert_row.
+template <class T>
+std::optional<T> value_if(bool present, const T& value) {
+  return present ? std::optional<T>(value) : std::nullopt;
+}
+
+/// Binds `values` to the parameters of `q` in order (an empty std::optional as NULL) and runs it,
+/// after resetting it and its bindings, so one statement can insert row after row.
+template <class... Values>
+void insert_row(SQLite::Statement& q, const Values&... values) {
+  q.reset();
+  q.clearBindings();
+  int index = 0;
+  const auto bind = [&](const auto& v) {
+    ++index;
+    if constexpr (requires { v.has_value(); }) {
+      if (v.has_value()) q.bind(index, *v);
+    } else {
+      q.bind(index, v);
+    }
+  };
+  (bind(values), ...);
+  q.exec();
+}
+
 /// Runs f, turning its errors (SQLite's, and damaged contents found while reading) into one line
 /// naming the file.
 template <class F>
@@ -84,6 +110,8 @@ auto guarded(const std::string& path, F&& f) -> decltype(f()) {
     throw file_error(path, e.what());
   } catch (const std::runtime_error& e) {
     if (std::string(e.what()).find(path) != std::string::npos) throw;
+    throw file_error(path, e.what());
+  } catch (const std::invalid_argument& e) {  // a stored name no parse knows
     throw file_error(path, e.what());
   }
 }

@@ -29,17 +29,10 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
                                            "seed, lambda, grains, width, height, periodic, generations, "
                                            "evaluations, best_t, best_generation) VALUES (") +
                                    kNow + ", " + kNow + ", ?, 'running', ?, ?, ?, ?, ?, ?, ?, 0, ?, ?, 0)");
-      q.bind(1, kVersion);
-      q.bind(2, params_json);
-      q.bind(3, to_i64(o.seed));
-      q.bind(4, o.lambda);
-      q.bind(5, static_cast<std::int64_t>(best.medium.grains.size()));
-      q.bind(6, best.medium.width);
-      q.bind(7, best.medium.height);
-      q.bind(8, best.medium.periodic ? 1 : 0);
-      q.bind(9, static_cast<std::int64_t>(g0.candidates.size()));
-      q.bind(10, best.eval.tortuosity);
-      q.exec();
+      detail::insert_row(q, kVersion, params_json, to_i64(o.seed), o.lambda,
+                         static_cast<std::int64_t>(best.medium.grains.size()), best.medium.width, best.medium.height,
+                         best.medium.periodic ? 1 : 0, static_cast<std::int64_t>(g0.candidates.size()),
+                         best.eval.tortuosity);
       const std::int64_t run = db_.getLastInsertRowid();
       write_generation(run, g0);
       t.commit();
@@ -329,34 +322,16 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     SQLite::Statement q(db_, std::string("INSERT INTO generations (run_id, generation, kind, accepted_candidate, "
                                          "best_t, touched, seconds, state, finished) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ") +
                                  kNow + ")");
-    q.bind(1, rid);
-    q.bind(2, gen);
-    q.bind(3, to_string(g.kind));
-    if (g.accepted >= 0) q.bind(4, g.accepted); else q.bind(4);
-    q.bind(5, g.best_t);
-    q.bind(6, g.touched);
-    q.bind(7, g.seconds);
-    if (!g.state.empty()) q.bind(8, g.state);
-    q.exec();
-
+    detail::insert_row(q, rid, gen, to_string(g.kind), detail::value_if(g.accepted >= 0, g.accepted), g.best_t,
+                       g.touched, g.seconds, detail::value_if(!g.state.empty(), g.state));
     SQLite::Statement c(db_, "INSERT INTO candidates (run_id, generation, candidate, moved_grain, moved, outcome, "
                              "reason, tortuosity, steps, touched, seconds) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-    for (const Candidate& k : g.candidates) {
-      c.reset();
-      c.clearBindings();
-      c.bind(1, rid);
-      c.bind(2, gen);
-      c.bind(3, k.index);
-      if (k.moved_grain >= 0) c.bind(4, k.moved_grain);
-      c.bind(5, k.moved);
-      c.bind(6, to_string(k.eval.outcome));
-      c.bind(7, k.eval.reason);
-      if (k.eval.outcome == Outcome::passed) c.bind(8, k.eval.tortuosity);
-      c.bind(9, static_cast<std::int64_t>(k.eval.steps));
-      c.bind(10, static_cast<int>(k.eval.touched.size()));
-      c.bind(11, k.eval.seconds);
-      c.exec();
-    }
+    for (const Candidate& k : g.candidates)
+      detail::insert_row(c, rid, gen, k.index, detail::value_if(k.moved_grain >= 0, k.moved_grain), k.moved,
+                         to_string(k.eval.outcome), k.eval.reason,
+                         detail::value_if(k.eval.outcome == Outcome::passed, k.eval.tortuosity),
+                         static_cast<std::int64_t>(k.eval.steps), static_cast<int>(k.eval.touched.size()),
+                         k.eval.seconds);
     if (g.accepted < 0) return;
     const Candidate& kept = g.candidates.at(static_cast<std::size_t>(g.accepted));
     if (kept.eval.outcome != Outcome::passed) throw std::logic_error("append: the kept candidate did not pass");
@@ -367,26 +342,11 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
                               "VALUES (?, ?, ?, ?, ?, ?, ?)");
     for (std::size_t i = 0; i < kept.medium.grains.size(); ++i) {
       const Grain& gr = kept.medium.grains[i];
-      gq.reset();
-      gq.bind(1, rid);
-      gq.bind(2, gen);
-      gq.bind(3, static_cast<std::int64_t>(i));
-      gq.bind(4, gr.x);
-      gq.bind(5, gr.y);
-      gq.bind(6, gr.r);
-      gq.bind(7, static_cast<int>(touched[i]));
-      gq.exec();
+      detail::insert_row(gq, rid, gen, static_cast<std::int64_t>(i), gr.x, gr.y, gr.r, static_cast<int>(touched[i]));
     }
     SQLite::Statement pq(db_, "INSERT INTO paths (run_id, generation, point, x, y) VALUES (?, ?, ?, ?, ?)");
-    for (std::size_t i = 0; i < kept.eval.path_x.size(); ++i) {
-      pq.reset();
-      pq.bind(1, rid);
-      pq.bind(2, gen);
-      pq.bind(3, static_cast<std::int64_t>(i));
-      pq.bind(4, kept.eval.path_x[i]);
-      pq.bind(5, kept.eval.path_y[i]);
-      pq.exec();
-    }
+    for (std::size_t i = 0; i < kept.eval.path_x.size(); ++i)
+      detail::insert_row(pq, rid, gen, static_cast<std::int64_t>(i), kept.eval.path_x[i], kept.eval.path_y[i]);
   }
 };
 

@@ -12,14 +12,6 @@ namespace softdrop {
 namespace {
 using detail::kNow;
 
-Outcome parse_outcome(const std::string& s) {
-  if (s == "passed") return Outcome::passed;
-  if (s == "stuck") return Outcome::stuck;
-  if (s == "timeout") return Outcome::timeout;
-  if (s == "diverged") return Outcome::diverged;
-  throw std::runtime_error("unknown outcome '" + s + "'");
-}
-
 class SqliteSweepStore final : public SweepStore, private detail::SqliteConnection {
  public:
   SqliteSweepStore(const std::string& path, OpenMode mode) : SqliteConnection(path, mode) {}
@@ -36,10 +28,7 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       if (id == 0) {
         SQLite::Statement q(db_, std::string("INSERT INTO sweeps (created, updated, version, status, params, units) "
                                              "VALUES (") + kNow + ", " + kNow + ", ?, 'running', ?, ?)");
-        q.bind(1, kVersion);
-        q.bind(2, params);
-        q.bind(3, static_cast<std::int64_t>(o.porosities.size()) * o.media);
-        q.exec();
+        detail::insert_row(q, kVersion, params, static_cast<std::int64_t>(o.porosities.size()) * o.media);
         id = db_.getLastInsertRowid();
       }
       t.commit();
@@ -70,38 +59,15 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
                                "porosity, grains, medium_seed, droplets, passed, stuck, timeout, diverged, mean_t, "
                                "standard_error, stuck_fraction, seconds) "
                                "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-      q.bind(1, sweep);
-      q.bind(2, m.unit.porosity);
-      q.bind(3, m.unit.medium);
-      q.bind(4, m.target_porosity);
-      q.bind(5, m.porosity);
-      q.bind(6, m.grains);
-      q.bind(7, static_cast<std::int64_t>(m.medium_seed));
-      q.bind(8, static_cast<int>(m.droplets.size()));
-      q.bind(9, m.passed);
-      q.bind(10, m.stuck);
-      q.bind(11, m.timeout);
-      q.bind(12, m.diverged);
-      if (m.passed > 0) q.bind(13, m.mean_t);
-      if (m.passed > 1) q.bind(14, m.standard_error);
-      q.bind(15, m.stuck_fraction);
-      q.bind(16, m.seconds);
-      q.exec();
+      detail::insert_row(q, sweep, m.unit.porosity, m.unit.medium, m.target_porosity, m.porosity, m.grains,
+                         static_cast<std::int64_t>(m.medium_seed), static_cast<int>(m.droplets.size()), m.passed,
+                         m.stuck, m.timeout, m.diverged, detail::value_if(m.passed > 0, m.mean_t),
+                         detail::value_if(m.passed > 1, m.standard_error), m.stuck_fraction, m.seconds);
       SQLite::Statement d(db_, "INSERT INTO sweep_droplets (sweep_id, porosity_index, medium_index, droplet, start_x, "
                                "outcome, tortuosity, steps) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
-      for (const SweepDroplet& r : m.droplets) {
-        d.reset();
-        d.clearBindings();
-        d.bind(1, sweep);
-        d.bind(2, m.unit.porosity);
-        d.bind(3, m.unit.medium);
-        d.bind(4, r.droplet);
-        d.bind(5, r.start_x);
-        d.bind(6, to_string(r.outcome));
-        if (r.outcome == Outcome::passed) d.bind(7, r.tortuosity);
-        d.bind(8, r.steps);
-        d.exec();
-      }
+      for (const SweepDroplet& r : m.droplets)
+        detail::insert_row(d, sweep, m.unit.porosity, m.unit.medium, r.droplet, r.start_x, to_string(r.outcome),
+                           detail::value_if(r.outcome == Outcome::passed, r.tortuosity), r.steps);
       SQLite::Statement u(db_, std::string("UPDATE sweeps SET updated = ") + kNow + " WHERE id = ?");
       u.bind(1, sweep);
       u.exec();

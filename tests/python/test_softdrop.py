@@ -48,7 +48,7 @@ def test_every_droplet_option_is_an_attribute_and_gives_the_programs_bits():
                             "--format", "json"))
     assert run.tortuosity == theirs["run"]["tortuosity"]  # exactly
     assert run.steps == theirs["run"]["steps"]
-    with pytest.raises(ValueError, match="constraint-order 'zigzag'"):
+    with pytest.raises(ValueError, match="constraint-order = 'zigzag'"):
         params.constraint_order = "zigzag"
 
 
