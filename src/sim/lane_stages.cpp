@@ -74,8 +74,8 @@ SOFTDROP_AVX void transpose_rings(double* const* x, double* X, int n, double* co
 namespace avx512 {
 namespace {
 
-// The copies of the AVX code (four by four): on this processor faster than 8 x 8 transposes with
-// two-source permutes (bench_stages BM_LaneCopies, 24 rings: 0.64 against 0.80 to 0.86 us).
+// The copies of the AVX code (four by four), which bench_stages BM_LaneCopies measures faster than
+// 8 x 8 transposes with two-source permutes (bench/README.md, "Constants of the step").
 using avx::transpose_rings;
 
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
