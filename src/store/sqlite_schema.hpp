@@ -1,0 +1,127 @@
+#pragma once
+// The softdrop database's schema as SQL, by version (internal to the store; sqlite_file.cpp
+// creates and migrates it). README.md ("The database") documents it; keep the two in step.
+
+namespace softdrop::detail {
+
+// The schema as SQL, by version. Tables that share column shapes (run_id, generation, x, y) are
+// alike because they describe the same rows' keys; each is written once, here.
+// Version 1: the search history.
+inline constexpr const char* kSchemaV1 = R"sql(
+CREATE TABLE IF NOT EXISTS runs (
+  id              INTEGER PRIMARY KEY,
+  created         TEXT NOT NULL,
+  updated         TEXT NOT NULL,
+  version         TEXT NOT NULL,
+  status          TEXT NOT NULL CHECK (status IN ('running', 'finished', 'interrupted')),
+  params          TEXT NOT NULL,
+  seed            INTEGER NOT NULL,
+  lambda          INTEGER NOT NULL,
+  grains          INTEGER NOT NULL,
+  width           REAL NOT NULL,
+  height          REAL NOT NULL,
+  periodic        INTEGER NOT NULL,
+  generations     INTEGER NOT NULL,
+  evaluations     INTEGER NOT NULL,
+  best_t          REAL NOT NULL,
+  best_generation INTEGER NOT NULL,
+  island          INTEGER,
+  archipelago     INTEGER
+);
+CREATE TABLE IF NOT EXISTS generations (
+  run_id             INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
+  generation         INTEGER NOT NULL,
+  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate')),
+  accepted_candidate INTEGER,
+  best_t             REAL NOT NULL,
+  touched            INTEGER NOT NULL,
+  seconds            REAL NOT NULL,
+  finished           TEXT NOT NULL,
+  PRIMARY KEY (run_id, generation)
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS candidates (
+  run_id      INTEGER NOT NULL,
+  generation  INTEGER NOT NULL,
+  candidate   INTEGER NOT NULL,
+  moved_grain INTEGER,
+  moved       INTEGER NOT NULL,
+  outcome     TEXT NOT NULL CHECK (outcome IN ('passed', 'stuck', 'timeout', 'diverged')),
+  reason      TEXT NOT NULL,
+  tortuosity  REAL,
+  steps       INTEGER NOT NULL,
+  touched     INTEGER NOT NULL,
+  seconds     REAL NOT NULL,
+  PRIMARY KEY (run_id, generation, candidate),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS grains (
+  run_id     INTEGER NOT NULL,
+  generation INTEGER NOT NULL,
+  grain      INTEGER NOT NULL,
+  x          REAL NOT NULL,
+  y          REAL NOT NULL,
+  r          REAL NOT NULL,
+  touched    INTEGER NOT NULL,
+  PRIMARY KEY (run_id, generation, grain),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS paths (
+  run_id     INTEGER NOT NULL,
+  generation INTEGER NOT NULL,
+  point      INTEGER NOT NULL,
+  x          REAL NOT NULL,
+  y          REAL NOT NULL,
+  PRIMARY KEY (run_id, generation, point),
+  FOREIGN KEY (run_id, generation) REFERENCES generations(run_id, generation) ON DELETE CASCADE
+) WITHOUT ROWID;
+)sql";
+
+// Version 2 adds the porosity sweeps.
+inline constexpr const char* kSchemaV2 = R"sql(
+CREATE TABLE IF NOT EXISTS sweeps (
+  id          INTEGER PRIMARY KEY,
+  created     TEXT NOT NULL,
+  updated     TEXT NOT NULL,
+  version     TEXT NOT NULL,
+  status      TEXT NOT NULL CHECK (status IN ('running', 'complete', 'interrupted')),
+  params      TEXT NOT NULL UNIQUE,
+  units       INTEGER NOT NULL
+);
+CREATE TABLE IF NOT EXISTS sweep_media (
+  sweep_id        INTEGER NOT NULL REFERENCES sweeps(id) ON DELETE CASCADE,
+  porosity_index  INTEGER NOT NULL,
+  medium_index    INTEGER NOT NULL,
+  target_porosity REAL NOT NULL,
+  porosity        REAL NOT NULL,
+  grains          INTEGER NOT NULL,
+  medium_seed     INTEGER NOT NULL,
+  droplets        INTEGER NOT NULL,
+  passed          INTEGER NOT NULL,
+  stuck           INTEGER NOT NULL,
+  timeout         INTEGER NOT NULL,
+  diverged        INTEGER NOT NULL,
+  mean_t          REAL,
+  standard_error  REAL,
+  stuck_fraction  REAL NOT NULL,
+  seconds         REAL NOT NULL,
+  PRIMARY KEY (sweep_id, porosity_index, medium_index)
+) WITHOUT ROWID;
+CREATE TABLE IF NOT EXISTS sweep_droplets (
+  sweep_id       INTEGER NOT NULL,
+  porosity_index INTEGER NOT NULL,
+  medium_index   INTEGER NOT NULL,
+  droplet        INTEGER NOT NULL,
+  start_x        REAL NOT NULL,
+  outcome        TEXT NOT NULL CHECK (outcome IN ('passed', 'stuck', 'timeout', 'diverged')),
+  tortuosity     REAL,
+  steps          INTEGER NOT NULL,
+  PRIMARY KEY (sweep_id, porosity_index, medium_index, droplet),
+  FOREIGN KEY (sweep_id, porosity_index, medium_index)
+    REFERENCES sweep_media(sweep_id, porosity_index, medium_index) ON DELETE CASCADE
+) WITHOUT ROWID;
+)sql";
+
+// Version 3 stores a search strategy's state with each generation (NULL: none, as before).
+inline constexpr const char* kSchemaV3 = "ALTER TABLE generations ADD COLUMN state TEXT";
+
+}  // namespace softdrop::detail
