@@ -1,0 +1,96 @@
+#!/usr/bin/env python3
+"""Springs that carry the tension, at larger scale: where the droplet's area swells past S0.
+
+With the paper's g, k_s, k_d and dt, a droplet whose springs (not the length constraint) hold its
+surface needs its weight small against its springs: the group N^2 m g / (strain R k_s) must be
+small. At R = 8 that asks for masses so light that k_d is unstable, and the light rings fold at
+their impacts (springs.csv). This study scales every length by S instead (droplet radius 8 S,
+grains 8 S to 16 S, box 500 S, contact depth, stuck distance; times by sqrt(S)) and sets the gas
+for a given spring strain at rest, to see which regime keeps the ring whole with no or little
+internal viscosity and lets its area go above S0. One row per setting and medium kind:
+scaled.csv. SOFTDROP=path runs another build. About 12 minutes on 2 cores.
+"""
+import csv
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import pandas as pd
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+SOFTDROP = os.environ.get("SOFTDROP", os.path.join(HERE, "..", "..", "build", "softdrop"))
+N = 24          # masses
+KS = 119755.0   # the paper's k_s
+STRAIN_LIMIT = 0.1
+
+
+def nrt_for(radius, strain):
+    """nRT that holds the ring at `strain` at rest (Laplace: tension k_s strain l0 = P R_rest)."""
+    l0 = 2 * radius * math.sin(math.pi / N) / (1 + STRAIN_LIMIT)  # DropletParams::rest_length
+    rest_radius = radius * (1 + strain) / (1 + STRAIN_LIMIT)
+    return math.pi * rest_radius * KS * strain * l0
+
+
+def run(scale, mass, strain, viscosity, kind, porosity, droplets, seed, tmp):
+    radius = 8 * scale
+    nrt = nrt_for(radius, strain) if strain is not None else 1.5e9
+    args = [SOFTDROP, "simulate", "--quiet", "--threads", "2", "--seed", str(seed),
+            "--droplets", str(droplets), "--kind", kind, "--porosity", str(porosity),
+            "--width", str(500 * scale), "--height", str(500 * scale),
+            "--r-min", str(8 * scale), "--r-max", str(16 * scale), "--radius", str(radius),
+            "--masses", str(N), "--mass", str(mass), "--nrt", repr(nrt),
+            "--kc", repr(2e8 * mass), "--cc", repr(2e4 * mass), "--viscosity", str(viscosity),
+            "--max-depth", repr(0.5 * scale), "--stuck-distance", repr(5 * scale),
+            "--stuck-window", repr(0.5 * math.sqrt(scale)), "--max-steps", "20000000",
+            "--runs", os.path.join(tmp, "runs.csv"), "--trace", os.path.join(tmp, "trace.csv")]
+    start = time.time()
+    subprocess.run(args, check=True, stdout=subprocess.DEVNULL)
+    seconds = time.time() - start
+    runs = pd.read_csv(os.path.join(tmp, "runs.csv"))
+    trace = pd.read_csv(os.path.join(tmp, "trace.csv"))
+    inside = trace[trace.phase == "inside"].groupby("droplet").area_ratio.agg(["min", "max"])
+    passed = runs[runs.outcome == "passed"]
+    counts = runs.outcome.value_counts()
+    return {
+        "scale": scale, "radius": radius, "mass": mass,
+        "rest_strain": "" if strain is None else strain, "nrt": nrt,
+        "kc": 2e8 * mass, "cc": 2e4 * mass, "viscosity": viscosity, "kind": kind, "porosity": porosity,
+        "droplets": droplets, "passed": int(counts.get("passed", 0)), "stuck": int(counts.get("stuck", 0)),
+        "timeout": int(counts.get("timeout", 0)), "diverged": int(counts.get("diverged", 0)),
+        "mean_t": passed.tortuosity.mean() if len(passed) else "",
+        "area_min": inside["min"].min(), "area_max": inside["max"].max(),
+        "above_1_02": int((inside["max"] > 1.02).sum()), "below_0_95": int((inside["min"] < 0.95).sum()),
+        "mean_steps": runs.steps.mean(), "seconds": round(seconds, 2),
+    }
+
+
+def main():
+    out = os.path.join(HERE, "scaled.csv")
+    settings = [(1, 1.0, None, 3000)]  # the calibrated defaults (a balloon), for comparison
+    for scale in (1, 125, 840, 8400):
+        for mass in (0.015, 0.1, 1.0):
+            for viscosity in (0, 3000):
+                settings.append((scale, mass, 0.05, viscosity))
+    for viscosity in (30, 100, 300):  # between the two, where the area swells (S = 8400, m = 1)
+        settings.append((8400, 1.0, 0.05, viscosity))
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for i, (scale, mass, strain, viscosity) in enumerate(settings):
+            for kind, porosity in (("non-overlapping", 0.79), ("overlapping", 0.8)):
+                rows.append(run(scale, mass, strain, viscosity, kind, porosity, 10, 11, tmp))
+                r = rows[-1]
+                print(f"[{i + 1}/{len(settings)}] S={scale} m={mass} strain={strain} nu={viscosity} {kind}: "
+                      f"passed {r['passed']} stuck {r['stuck']} timeout {r['timeout']} diverged {r['diverged']}, "
+                      f"T {r['mean_t']}, area {r['area_min']:.3f}-{r['area_max']:.3f}", file=sys.stderr)
+                with open(out + ".tmp", "w", newline="") as f:
+                    w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
+                    w.writeheader()
+                    w.writerows(rows)
+                os.replace(out + ".tmp", out)
+
+
+if __name__ == "__main__":
+    main()
