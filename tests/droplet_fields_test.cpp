@@ -52,7 +52,7 @@ DropletParams changed(const DropletParams& p, const std::string& key) {
 
 TEST(DropletFields, TheContactFieldsAloneMayDifferWithinALaneBlock) {
   const auto all = uses();
-  ASSERT_EQ(all.size(), 15u);
+  ASSERT_EQ(all.size(), 16u);
   std::set<std::string> constraint, contacts;
   for (const auto& [key, use] : all) {
     if (use == FieldUse::constraint) constraint.insert(key);

@@ -124,6 +124,54 @@ TEST(Droplet, InternalForcesSumToZero) {
   EXPECT_LT(std::abs(sy), 1e-12 * scale);
 }
 
+// The viscosity stage's forces on a ring moving as a whole (translation u, rotation omega) and
+// dilating uniformly at rate delta, from rest positions and one step's displacement.
+std::vector<double> viscous_forces(double dilation_share, double delta, double* torque, double* net) {
+  DropletParams p;
+  p.gravity = 0;
+  p.viscosity_dilation = dilation_share;
+  const Medium empty = test::empty_medium();
+  Simulation sim(p, empty);
+  sim.place(250, 250);
+  DropletState& s = sim.mutable_state();
+  const double dt = p.dt, omega = 40, ux = 300, uy = -200;
+  for (int i = 0; i < s.size(); ++i) {
+    const double rx = s.x[i] - 250, ry = s.y[i] - 250;
+    s.px[i] = s.x[i] - dt * (ux - omega * ry + delta * rx);
+    s.py[i] = s.y[i] - dt * (uy + omega * rx + delta * ry);
+  }
+  sim.run_stage(StepStage::gravity);  // zero forces (no gravity)
+  sim.run_stage(StepStage::viscosity);
+  std::vector<double> f;
+  *torque = *net = 0;
+  for (int i = 0; i < s.size(); ++i) {
+    f.push_back(s.fx[i]);
+    f.push_back(s.fy[i]);
+    *torque += (s.x[i] - 250) * s.fy[i] - (s.y[i] - 250) * s.fx[i];
+    *net += std::hypot(s.fx[i], s.fy[i]);
+  }
+  return f;
+}
+
+TEST(Droplet, TheViscositySparesTheRingsDilationOnlyWhenAsked) {
+  const DropletParams p;
+  const double delta = 25;  // 1/time
+  double torque = 0, size = 0;
+  // Damped as any deformation (the default): each mass feels -m nu delta r_i.
+  std::vector<double> f = viscous_forces(1.0, delta, &torque, &size);
+  const double expected = p.mass * p.viscosity * delta * p.radius;
+  for (std::size_t k = 0; k < f.size(); k += 2)
+    EXPECT_NEAR(std::hypot(f[k], f[k + 1]), expected, 1e-6 * expected);
+  EXPECT_LT(std::abs(torque), 1e-9 * size * p.radius);
+  // Spared: translation, rotation and dilation are all "rigid" now, so no force at all.
+  f = viscous_forces(0.0, delta, &torque, &size);
+  for (double v : f) EXPECT_LT(std::abs(v), 1e-6 * expected);
+  // Half spared: half the force.
+  f = viscous_forces(0.5, delta, &torque, &size);
+  for (std::size_t k = 0; k < f.size(); k += 2)
+    EXPECT_NEAR(std::hypot(f[k], f[k + 1]), 0.5 * expected, 1e-6 * expected);
+}
+
 TEST(Droplet, SpringForcesHaveTheSameBitsAtEveryVectorWidth) {
   // The springs go eight at a time with AVX or AVX-512 (the last eight overlapping the ones before)
   // from 9 masses on; each lane must do the scalar operations. Their forces are too small beside

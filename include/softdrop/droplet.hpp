@@ -48,6 +48,10 @@ struct DropletParams {
   /// ring's rigid motion (centre-of-mass translation plus rotation). It dissipates deformation
   /// only, so the centre of mass still moves under gravity and contacts alone. 0 disables it.
   double viscosity = 3.0e3;
+  /// The share of nu that acts on the ring's uniform dilation (its breathing mode, velocities
+  /// delta (x_i - centre)): 1 damps it as any other deformation; 0 spares it, so a squeezed ring can
+  /// overshoot and swell past its rest area. Like nu, it adds no net force or torque.
+  double viscosity_dilation = 1.0;
 
   /// Rest length of a spring: d0 = 2 R sin(pi/N) / (1 + max_strain), so the ring at its stretch
   /// limit is the regular N-gon inscribed in the circle of radius R.
@@ -123,6 +127,10 @@ void visit_droplet_fields(F&& f, Params&... p) {
   f(DropletField{"viscosity", U::lanes, "Internal viscosity nu, damps motion relative to rigid motion (1/time)",
                  at_least(0)},
     p.viscosity...);
+  f(DropletField{"viscosity-dilation", U::lanes,
+                 "Share of nu acting on uniform dilation, the breathing mode (1: damped as any deformation; 0: spared)",
+                 between(0, true, 1, true)},
+    p.viscosity_dilation...);
 }
 
 /// Whether a and b agree, to the bit, on every field whose use is `use` or one of the uses listed

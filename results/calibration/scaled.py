@@ -8,7 +8,7 @@ their impacts (springs.csv). This study scales every length by S instead (drople
 grains 8 S to 16 S, box 500 S, contact depth, stuck distance; times by sqrt(S)) and sets the gas
 for a given spring strain at rest, to see which regime keeps the ring whole with no or little
 internal viscosity and lets its area go above S0. One row per setting and medium kind:
-scaled.csv. SOFTDROP=path runs another build. About 12 minutes on 2 cores.
+scaled.csv. SOFTDROP=path runs another build. About 20 minutes on 2 cores.
 """
 import csv
 import math
@@ -34,7 +34,7 @@ def nrt_for(radius, strain):
     return math.pi * rest_radius * KS * strain * l0
 
 
-def run(scale, mass, strain, viscosity, kind, porosity, droplets, seed, tmp):
+def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed, tmp):
     radius = 8 * scale
     nrt = nrt_for(radius, strain) if strain is not None else 1.5e9
     args = [SOFTDROP, "simulate", "--quiet", "--threads", "2", "--seed", str(seed),
@@ -43,6 +43,7 @@ def run(scale, mass, strain, viscosity, kind, porosity, droplets, seed, tmp):
             "--r-min", str(8 * scale), "--r-max", str(16 * scale), "--radius", str(radius),
             "--masses", str(N), "--mass", str(mass), "--nrt", repr(nrt),
             "--kc", repr(2e8 * mass), "--cc", repr(2e4 * mass), "--viscosity", str(viscosity),
+            "--viscosity-dilation", str(dilation),
             "--max-depth", repr(0.5 * scale), "--stuck-distance", repr(5 * scale),
             "--stuck-window", repr(0.5 * math.sqrt(scale)), "--max-steps", "20000000",
             "--runs", os.path.join(tmp, "runs.csv"), "--trace", os.path.join(tmp, "trace.csv")]
@@ -57,7 +58,7 @@ def run(scale, mass, strain, viscosity, kind, porosity, droplets, seed, tmp):
     return {
         "scale": scale, "radius": radius, "mass": mass,
         "rest_strain": "" if strain is None else strain, "nrt": nrt,
-        "kc": 2e8 * mass, "cc": 2e4 * mass, "viscosity": viscosity, "kind": kind, "porosity": porosity,
+        "kc": 2e8 * mass, "cc": 2e4 * mass, "viscosity": viscosity, "viscosity_dilation": dilation, "kind": kind, "porosity": porosity,
         "droplets": droplets, "passed": int(counts.get("passed", 0)), "stuck": int(counts.get("stuck", 0)),
         "timeout": int(counts.get("timeout", 0)), "diverged": int(counts.get("diverged", 0)),
         "mean_t": passed.tortuosity.mean() if len(passed) else "",
@@ -69,20 +70,23 @@ def run(scale, mass, strain, viscosity, kind, porosity, droplets, seed, tmp):
 
 def main():
     out = os.path.join(HERE, "scaled.csv")
-    settings = [(1, 1.0, None, 3000)]  # the calibrated defaults (a balloon), for comparison
+    settings = [(1, 1.0, None, 3000, 1.0)]  # the calibrated defaults (a balloon), for comparison
     for scale in (1, 125, 840, 8400):
         for mass in (0.015, 0.1, 1.0):
             for viscosity in (0, 3000):
-                settings.append((scale, mass, 0.05, viscosity))
+                settings.append((scale, mass, 0.05, viscosity, 1.0))
     for viscosity in (30, 100, 300):  # between the two, where the area swells (S = 8400, m = 1)
-        settings.append((8400, 1.0, 0.05, viscosity))
+        settings.append((8400, 1.0, 0.05, viscosity, 1.0))
+    for scale in (125, 840, 8400):  # a viscosity that spares the breathing mode (--viscosity-dilation 0)
+        for viscosity in (300, 1000, 3000):
+            settings.append((scale, 1.0, 0.05, viscosity, 0.0))
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for i, (scale, mass, strain, viscosity) in enumerate(settings):
+        for i, (scale, mass, strain, viscosity, dilation) in enumerate(settings):
             for kind, porosity in (("non-overlapping", 0.79), ("overlapping", 0.8)):
-                rows.append(run(scale, mass, strain, viscosity, kind, porosity, 10, 11, tmp))
+                rows.append(run(scale, mass, strain, viscosity, dilation, kind, porosity, 10, 11, tmp))
                 r = rows[-1]
-                print(f"[{i + 1}/{len(settings)}] S={scale} m={mass} strain={strain} nu={viscosity} {kind}: "
+                print(f"[{i + 1}/{len(settings)}] S={scale} m={mass} strain={strain} nu={viscosity} dilation={dilation} {kind}: "
                       f"passed {r['passed']} stuck {r['stuck']} timeout {r['timeout']} diverged {r['diverged']}, "
                       f"T {r['mean_t']}, area {r['area_min']:.3f}-{r['area_max']:.3f}", file=sys.stderr)
                 with open(out + ".tmp", "w", newline="") as f:

@@ -54,6 +54,7 @@ struct StepConstants {
   double rest_length = 0;   ///< d0
   double half_nrt = 0;      ///< 0.5 nRT (the pressure is 0.5 nRT / area on each edge end)
   double viscous = 0;       ///< m nu; 0: no viscosity
+  double spared_dilation = 0;  ///< 1 - viscosity_dilation: the share of uniform dilation not damped
   double h2m = 0;           ///< dt^2 / m (position Verlet)
 };
 

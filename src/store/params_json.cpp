@@ -16,12 +16,12 @@ NLOHMANN_JSON_SERIALIZE_ENUM(StrategyKind, {{StrategyKind::paper, "paper"},
 namespace {
 
 // Keys added after files already existed. A missing one reads as what older builds did: the
-// default for the constraint order and the strategy (paper) and its options, no rest test (0) for
-// the rest test's keys.
+// default for the constraint order, the viscosity's share on dilation (1) and the strategy (paper)
+// and its options, no rest test (0) for the rest test's keys.
 bool optional_key(const std::string& key) {
   return key == "constraint-order" || key == "rest-window" || key == "rest-distance" || key == "strategy" ||
          key == "target-success" || key == "history-length" || key == "temperature" || key == "half-life" ||
-         key == "relocate-every";
+         key == "relocate-every" || key == "viscosity-dilation";
 }
 template <class T>
 void set_legacy(const std::string& key, T& value) {
