@@ -22,7 +22,6 @@ namespace {
 // Two rings per SSE2 register.
 namespace pairs {
 using namespace lanes::sse2;
-constexpr int kWidth = 2;
 inline void load_lanes(double* const* x, int base, int i, V* v) {
   *v = _mm_loadh_pd(_mm_load_sd(x[base] + i), x[base + 1] + i);
 }
@@ -38,7 +37,6 @@ inline void store_lanes(double* const* x, int base, int i, const V& v) {
 // Four rings per AVX register.
 namespace quads {
 using namespace lanes::avx4;
-constexpr int kWidth = 4;
 SOFTDROP_AVX inline void load_lanes(double* const* x, int base, int i, V* v) {
   *v = _mm256_set_pd(x[base + 3][i], x[base + 2][i], x[base + 1][i], x[base][i]);
 }

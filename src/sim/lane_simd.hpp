@@ -25,6 +25,7 @@ inline bool avx512_in_use() { return constraint_vector_width() == VectorWidth::a
 // Two and four lanes, for the one-ring constraints (length_constraint.cpp, interleaved_constraint.cpp):
 // only the operations spring_kernel.inc needs.
 namespace sse2 {
+constexpr int kWidth = 2;  // lanes of a V
 using V = __m128d;
 using M = __m128d;  // all bits set in a lane that is in
 inline V set1(double d) { return _mm_set1_pd(d); }
@@ -63,6 +64,7 @@ inline V sub_where(M m, V a, V b) { return _mm_sub_pd(a, _mm_and_pd(m, b)); }
 }  // namespace sse2
 
 namespace avx4 {
+constexpr int kWidth = 4;  // lanes of a V
 using V = __m256d;
 using M = __m256d;  // all bits set in a lane that is in
 SOFTDROP_AVX inline V set1(double d) { return _mm256_set1_pd(d); }

@@ -39,7 +39,6 @@ int vector_width() {
 // step. Only the split of kWidth interleaved pairs of ends into two registers is per width.
 namespace two_lanes {
 using namespace lanes::sse2;
-constexpr int kWidth = 2;
 // (x_i0, x_j0), (x_i1, x_j1) -> (x_i0, x_i1), (x_j0, x_j1) and back.
 inline void load_ends(const double* p, V* i, V* j) {
   const V a = _mm_loadu_pd(p), b = _mm_loadu_pd(p + 2);
@@ -57,7 +56,6 @@ inline void store_ends(double* p, V i, V j) {
 
 namespace four_lanes {
 using namespace lanes::avx4;
-constexpr int kWidth = 4;
 // (x_i0 x_j0 | x_i1 x_j1), (x_i2 x_j2 | x_i3 x_j3): unpacking works within 128-bit halves, so the
 // lanes hold springs (0, 2 | 1, 3), and unpacking back restores the layout.
 SOFTDROP_AVX inline void load_ends(const double* p, V* i, V* j) {
