@@ -84,8 +84,14 @@ TEST(DamagedRuns, AreRefusedByResumeAsByHistoryNamingTheFile) {
   for (const Case& c : {
            Case{"UPDATE runs SET params = '{not json'", "run 1: its params are not a JSON object"},
            Case{"UPDATE runs SET params = '{}'", "run 1: stored parameters: 'seed' missing"},
-           Case{"DELETE FROM generations WHERE generation = 12", "generation 12 is missing"},
-           Case{"PRAGMA foreign_keys = ON; DELETE FROM generations WHERE generation = 12", "generation 12 is missing"},
+           // A name no build knows is refused in the command line's words, not read as 'paper'.
+           Case{"UPDATE runs SET params = json_set(params, '$.strategy', 'cmaes')",
+                "run 1: stored parameters: strategy = 'cmaes': must be paper, es, lahc or anneal"},
+           Case{"UPDATE runs SET params = json_set(params, '$.constraint-order', 'zigzag')",
+                "run 1: stored parameters: constraint-order = 'zigzag': must be sequential or red-black"},
+           Case{"DELETE FROM generations WHERE generation = 12", "stores 14 generations numbered 0 to 14"},
+           Case{"PRAGMA foreign_keys = ON; DELETE FROM generations WHERE generation = 12",
+                "stores 14 generations numbered 0 to 14"},
            Case{"DELETE FROM candidates WHERE generation = 5", "a generation without candidates"},
        }) {
     SCOPED_TRACE(c.sql);
@@ -98,6 +104,7 @@ TEST(DamagedRuns, AreRefusedByResumeAsByHistoryNamingTheFile) {
     const std::string before = dump(db, 1);
     const Result resume = run("optimize --db " + db + " --resume 1 --generations 16 --quiet");
     expect_one_line(resume, "'" + db + "'");
+    EXPECT_NE(resume.err.find(c.names), std::string::npos) << resume.err;
     EXPECT_EQ(resume.err.rfind("softdrop: error: --db '" + db + "': ", 0), 0u) << resume.err;
     if (c.sql.find("generation") != std::string::npos) {
       EXPECT_NE(resume.err.find("run 1: "), std::string::npos) << resume.err;

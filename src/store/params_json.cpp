@@ -6,13 +6,6 @@
 
 namespace softdrop {
 
-NLOHMANN_JSON_SERIALIZE_ENUM(ConstraintOrder, {{ConstraintOrder::sequential, "sequential"},
-                                               {ConstraintOrder::red_black, "red-black"}})
-NLOHMANN_JSON_SERIALIZE_ENUM(StrategyKind, {{StrategyKind::paper, "paper"},
-                                            {StrategyKind::es, "es"},
-                                            {StrategyKind::lahc, "lahc"},
-                                            {StrategyKind::anneal, "anneal"}})
-
 namespace {
 
 // Keys added after files already existed. A missing one reads as what older builds did: the
@@ -23,6 +16,13 @@ bool optional_key(const std::string& key) {
          key == "target-success" || key == "history-length" || key == "temperature" || key == "half-life" ||
          key == "relocate-every" || key == "viscosity-dilation";
 }
+// The stored enums go through the same names as the command line (their to_string and parse), so
+// an unknown stored name is refused in the parse's words instead of read as the first value.
+const char* stored_name(ConstraintOrder order) { return to_string(order); }
+const char* stored_name(StrategyKind kind) { return to_string(kind); }
+void parse_stored(const std::string& name, ConstraintOrder* order) { *order = parse_constraint_order(name); }
+void parse_stored(const std::string& name, StrategyKind* kind) { *kind = parse_strategy(name); }
+
 template <class T>
 void set_legacy(const std::string& key, T& value) {
   if constexpr (std::is_arithmetic_v<T>)
@@ -123,18 +123,12 @@ struct Reader {
     else ok = v.is_number();
     if (ok) {
       try {
-        if constexpr (std::is_enum_v<T>) {
-          // An unknown name would silently map to the first enumerator: refuse it instead.
-          const T parsed = v.template get<T>();
-          if (nlohmann::json(parsed) == v) {
-            value = parsed;
-            return;
-          }
-        } else {
-          value = v.template get<T>();
-          return;
-        }
+        if constexpr (std::is_enum_v<T>) parse_stored(v.template get<std::string>(), &value);
+        else value = v.template get<T>();
+        return;
       } catch (const nlohmann::json::exception&) {
+      } catch (const std::invalid_argument& e) {
+        throw std::runtime_error(std::string("stored parameters: ") + e.what());
       }
     }
     throw std::runtime_error(std::string("stored parameters: '") + key + "' has the wrong type");
@@ -145,7 +139,10 @@ struct Reader {
 template <class Fields, class Visit>
 std::string fields_to_json(Fields& fields, Visit visit) {
   nlohmann::json j = nlohmann::json::object();
-  visit(fields, [&](const char* key, const auto& value) { j[key] = value; });
+  visit(fields, [&](const char* key, const auto& value) {
+    if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>) j[key] = stored_name(value);
+    else j[key] = value;
+  });
   return j.dump();
 }
 template <class Fields, class Visit>
