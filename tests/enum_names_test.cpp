@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "softdrop/droplet.hpp"
 #include "softdrop/islands.hpp"
@@ -69,6 +70,16 @@ TEST(EnumNames, TheTableHelpersNameOneValueAndListAll) {
   EXPECT_EQ(c, Colour::grey);
   EXPECT_TRUE(detail::value_of(kThree, "green", &c));
   EXPECT_EQ(c, Colour::green);
+  EXPECT_EQ(detail::name_list(kThree), (std::vector<std::string>{"red", "green", "blue"}));
+}
+
+TEST(EnumNames, TheCommandLineOffersEveryNameAParseTakes) {
+  EXPECT_EQ(strategy_names(), (std::vector<std::string>{"paper", "es", "lahc", "anneal"}));
+  EXPECT_EQ(constraint_order_names(), (std::vector<std::string>{"sequential", "red-black"}));
+  EXPECT_EQ(medium_kind_names(), (std::vector<std::string>{"overlapping", "non-overlapping"}));
+  EXPECT_EQ(radius_distribution_names(), (std::vector<std::string>{"uniform", "lognormal"}));
+  for (const std::string& name : strategy_names()) EXPECT_STREQ(to_string(parse_strategy(name)), name.c_str());
+  for (const std::string& name : medium_kind_names()) EXPECT_STREQ(to_string(parse_medium_kind(name)), name.c_str());
 }
 
 }  // namespace

@@ -18,6 +18,8 @@ namespace softdrop {
 enum class ConstraintOrder { sequential, red_black };
 /// Parses "sequential" / "red-black"; throws std::invalid_argument naming the value.
 ConstraintOrder parse_constraint_order(const std::string& name);
+/// Every constraint order's name, in the enum's order.
+std::vector<std::string> constraint_order_names();
 const char* to_string(ConstraintOrder order);
 
 /// g, k_s, k_d and dt are the paper's; the other defaults are calibrated against the paper's mean

@@ -36,6 +36,8 @@ enum class MediumKind {
 
 /// Parses "overlapping" / "non-overlapping"; throws std::invalid_argument naming the value.
 MediumKind parse_medium_kind(const std::string& name);
+/// Every medium kind's name offered (without the spelling "nonoverlapping", also taken).
+std::vector<std::string> medium_kind_names();
 const char* to_string(MediumKind kind);
 
 /// How grain radii are drawn.
@@ -47,6 +49,8 @@ enum class RadiusDistribution {
 
 /// Parses "uniform" / "lognormal"; throws std::invalid_argument naming the value.
 RadiusDistribution parse_radius_distribution(const std::string& name);
+/// Every radius distribution's name, in the enum's order.
+std::vector<std::string> radius_distribution_names();
 const char* to_string(RadiusDistribution radii);
 
 /// Creation data of a random medium.

@@ -47,6 +47,8 @@ enum class StrategyKind {
 const char* to_string(StrategyKind kind);
 /// Parses paper / es / lahc / anneal; throws std::invalid_argument naming the value.
 StrategyKind parse_strategy(const std::string& name);
+/// Every strategy's name, in the enum's order.
+std::vector<std::string> strategy_names();
 
 /// The strategy and its own options; each strategy reads only its own.
 struct StrategyOptions {

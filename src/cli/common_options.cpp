@@ -19,7 +19,7 @@ CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_cou
   } else {
     g->add_option("--kind", a.kind, "overlapping or non-overlapping")
         ->capture_default_str()
-        ->check(CLI::IsMember({"overlapping", "non-overlapping"}));
+        ->check(CLI::IsMember(medium_kind_names()));
     g->add_option("--porosity", a.options.porosity, "Target porosity phi, in (0, 1)")->capture_default_str();
   }
   g->add_option("--width", a.options.width, "Box width W (length units)")->capture_default_str();
@@ -29,7 +29,7 @@ CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_cou
   g->add_option("--radius-distribution", a.radii,
                 "uniform in [r-min, r-max], or lognormal (--r-median, --r-sigma) cut to that range")
       ->capture_default_str()
-      ->check(CLI::IsMember({"uniform", "lognormal"}));
+      ->check(CLI::IsMember(radius_distribution_names()));
   g->add_option("--r-median", a.options.r_median, "Log-normal: median grain radius (length units)")
       ->capture_default_str();
   g->add_option("--r-sigma", a.options.r_sigma, "Log-normal: standard deviation of ln r")
@@ -63,7 +63,7 @@ CLI::Option_group* add_droplet_options(CLI::App* s, DropletParams& d) {
         if constexpr (std::is_same_v<std::decay_t<decltype(value)>, ConstraintOrder>) {
           g->add_option_function<std::string>(
                name, [&value](const std::string& v) { value = parse_constraint_order(v); }, field.help)
-              ->check(CLI::IsMember({"sequential", "red-black"}))
+              ->check(CLI::IsMember(constraint_order_names()))
               ->default_str(to_string(value));
         } else {
           g->add_option(name, value, field.help)->capture_default_str();

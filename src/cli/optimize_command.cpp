@@ -56,7 +56,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
        "--strategy", [&a](const std::string& v) { a.search.strategy.kind = parse_strategy(v); },
        "paper (the paper's hill climb), es (its moves with step sizes that adapt), lahc (late acceptance: "
        "also keeps candidates no worse than history-length generations ago) or anneal (simulated annealing)")
-      ->check(CLI::IsMember({"paper", "es", "lahc", "anneal"}))
+      ->check(CLI::IsMember(strategy_names()))
       ->default_str(to_string(a.search.strategy.kind));
   g->add_option("--target-success", a.search.strategy.target_success,
                 "es: share of candidates that should improve; steps grow above it, shrink below")

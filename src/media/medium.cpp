@@ -53,6 +53,10 @@ const char* to_string(MediumKind kind) { return detail::name_of(kMediumKinds, ki
 
 const char* to_string(RadiusDistribution radii) { return detail::name_of(kRadiusDistributions, radii); }
 
+std::vector<std::string> medium_kind_names() { return detail::name_list(kMediumKinds); }
+
+std::vector<std::string> radius_distribution_names() { return detail::name_list(kRadiusDistributions); }
+
 namespace {
 double mean_disc_area(const MediumOptions& o);
 }  // namespace

@@ -48,6 +48,8 @@ StrategyKind parse_strategy(const std::string& name) {
   return detail::parse_name(kStrategies, name, "strategy");
 }
 
+std::vector<std::string> strategy_names() { return detail::name_list(kStrategies); }
+
 bool StrategyOptions::IsValid(std::string* why) const {
   if (!(target_success > 0 && target_success < 1))
     return fail(why, "target-success = " + num(target_success) + ": must be in (0, 1)");

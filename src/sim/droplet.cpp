@@ -94,4 +94,6 @@ ConstraintOrder parse_constraint_order(const std::string& name) {
 
 const char* to_string(ConstraintOrder order) { return detail::name_of(kConstraintOrders, order); }
 
+std::vector<std::string> constraint_order_names() { return detail::name_list(kConstraintOrders); }
+
 }  // namespace softdrop

@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace softdrop::detail {
 
@@ -40,6 +41,14 @@ std::string names_of(const EnumName<E> (&table)[N]) {
     list += table[i].name;
   }
   return list;
+}
+
+/// Every name of the table, in order (for a command line's list of choices).
+template <class E, std::size_t N>
+std::vector<std::string> name_list(const EnumName<E> (&table)[N]) {
+  std::vector<std::string> names;
+  for (const EnumName<E>& e : table) names.emplace_back(e.name);
+  return names;
 }
 
 /// The value named `name`; throws std::invalid_argument "KEY = 'name': must be a, b or c" naming
