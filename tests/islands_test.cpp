@@ -56,6 +56,12 @@ TEST(Islands, RingAndBroadcastChooseTheirImmigrants) {
   EXPECT_TRUE(is_migration(10, {4, 5, Migration::ring}));
   EXPECT_FALSE(is_migration(11, {4, 5, Migration::ring}));
   EXPECT_FALSE(is_migration(10, {1, 5, Migration::ring}));  // one island: no migrations
+  EXPECT_FALSE(is_migration(10, {4, 0, Migration::ring}));  // migrate-every 0: none either
+  EXPECT_EQ((IslandOptions{4, 5, Migration::ring}.next_migration(0)), 5);
+  EXPECT_EQ((IslandOptions{4, 5, Migration::ring}.next_migration(9)), 10);
+  EXPECT_EQ((IslandOptions{4, 5, Migration::ring}.next_migration(10)), 15);
+  EXPECT_EQ((IslandOptions{4, 0, Migration::ring}.next_migration(10)), std::numeric_limits<std::int64_t>::max());
+  EXPECT_EQ((IslandOptions{1, 5, Migration::ring}.next_migration(10)), std::numeric_limits<std::int64_t>::max());
   EXPECT_EQ(island_search_options(SearchOptions{}, 2).seed, derive_seed(SearchOptions{}.seed, 2));
 }
 
@@ -131,6 +137,50 @@ TEST(Islands, DrivenOnTwoThreadsTheyMakeWhatOneThreadMakes) {
   for (int i = 0; i < 2; ++i) EXPECT_EQ(one[i].best().medium, two[i].best().medium);
 }
 
+TEST(Islands, WithoutMigrationEachIslandIsTheSearchOfItsOwnSeed) {
+  // --migrate-every 0: independent lineages from the same start. Island i's history is, row for
+  // row, that of one search with island i's seed, and the summary's best is the best of them.
+  const std::string db = fresh("islands_apart.db"), alone = fresh("islands_alone.db");
+  const auto r = run("optimize --db " + db + kScene + " --islands 2 --migrate-every 0 --generations 8 --lambda 2");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("no migration"), std::string::npos) << r.out;
+  for (int island = 0; island < 2; ++island) {
+    SearchOptions scene;
+    scene.seed = 7;  // kScene's
+    std::string args = kScene;
+    args.replace(args.find("--seed 7"), 8, "--seed " + std::to_string(island_search_options(scene, island).seed));
+    std::filesystem::remove(alone);
+    ASSERT_EQ(run("optimize --db " + alone + args + " --generations 8 --lambda 2").code, 0);
+    EXPECT_EQ(dump(db, island + 1, 8), dump(alone, 1, 8)) << "island " << island;
+  }
+  SQLite::Database d(db, SQLite::OPEN_READONLY);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM generations WHERE kind = 'migrate'").getInt(), 0);
+}
+
+TEST(Islands, OwnStartsGiveEachIslandTheMediumOfItsOwnSeed) {
+  // --island-starts own: island i starts from the medium a plain run with medium seed
+  // derive_seed(medium seed, i) starts from; a resume that says otherwise is refused untouched.
+  const std::string db = fresh("islands_own.db"), alone = fresh("islands_own_alone.db");
+  ASSERT_EQ(run("optimize --db " + db + kScene + " --islands 3 --migrate-every 0 --island-starts own --generations 2").code, 0);
+  std::string starts;
+  for (int island = 0; island < 3; ++island) {
+    std::string args = kScene;
+    args.replace(args.find("--medium-seed 2"), 15, "--medium-seed " + std::to_string(derive_seed(2, static_cast<std::uint64_t>(island))));
+    std::filesystem::remove(alone);
+    ASSERT_EQ(run("optimize --db " + alone + args + " --generations 0").code, 0);
+    EXPECT_EQ(dump(db, island + 1, 0), dump(alone, 1, 0)) << "island " << island;
+    EXPECT_EQ(starts.find(dump(alone, 1, 0)), std::string::npos) << "island " << island << " starts as another";
+    starts += dump(alone, 1, 0);
+  }
+  const std::string before = islands_dump(db, 3);
+  const auto r = run("optimize --db " + db + " --resume 2 --island-starts shared --generations 4");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("--island-starts \"shared\" (stored \"own\")"), std::string::npos) << r.err;
+  EXPECT_EQ(islands_dump(db, 3), before);
+  ASSERT_EQ(run("optimize --db " + db + " --resume 2 --generations 4").code, 0);  // every island goes on
+  EXPECT_EQ(lowest_committed(db, 3), 4);
+}
+
 TEST(Islands, TheSameHistoryOnAnyThreadCountWithAndWithoutSpeculation) {
   for (const std::string strategy : {"paper", "es"}) {
     SCOPED_TRACE(strategy);
@@ -179,8 +229,12 @@ TEST(Islands, BadOptionsAndContradictionsGetOneLine) {
   const std::string db = fresh("islands_bad.db");
   for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
            {" --islands 0", "islands = 0: must be in [1, 1024]"},
-           {" --islands 3 --migrate-every 1", "migrate-every = 1: must be >= 2"},
-           {" --islands 3 --migration star", "star"}}) {
+           {" --islands 3 --migrate-every 1", "migrate-every = 1: must be 0 (never) or >= 2"},
+           {" --islands 3 --migrate-every -4", "migrate-every = -4: must be 0 (never) or >= 2"},
+           {" --islands 3 --migration star", "star"},
+           {" --island-starts own", "island-starts = own: an option of --islands K (K > 1)"},
+           {" --islands 2 --island-starts own --medium grains.json", "island-starts = own: needs generated media, not --medium grains.json"},
+           {" --islands 2 --island-starts mine", "mine"}}) {
     const auto r = run("optimize --db " + db + kScene + args);
     EXPECT_NE(r.code, 0) << args;
     EXPECT_NE(r.err.find(says), std::string::npos) << r.err;

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -25,13 +26,21 @@ enum class Migration {
 const char* to_string(Migration migration);
 /// Parses "ring" / "broadcast"; throws std::invalid_argument naming the value.
 Migration parse_migration(const std::string& name);
+/// Every migration's name, in the enum's order.
+std::vector<std::string> migration_names();
 
 struct IslandOptions {
   int islands = 1;         ///< K
-  int migrate_every = 50;  ///< generations between migrations
+  /// Generations between migrations; 0: none, the islands are independent lineages (restarts
+  /// from the same start, with seeds of their own) and the search's best is the best of them.
+  int migrate_every = 50;
   Migration migration = Migration::ring;
-  /// False, with the reason naming the option, for islands outside [1, 1024] or migrate_every < 2.
+  /// False, with the reason naming the option, for islands outside [1, 1024] or migrate_every
+  /// neither 0 nor >= 2.
   bool IsValid(std::string* why) const;
+  /// The first migration after generation `after` (>= 0); past every generation
+  /// (std::numeric_limits<std::int64_t>::max()) for one island or migrate_every = 0.
+  std::int64_t next_migration(std::int64_t after) const;
 };
 
 /// Island i's search options: `options` with the seed derive_seed(options.seed, i).

@@ -15,6 +15,7 @@
 #include "cli/output.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/porosity.hpp"
+#include "softdrop/random.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
@@ -87,6 +88,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   given["islands"] = a.islands.islands;  // (given or not: only those given are compared on resume)
   given["migrate-every"] = a.islands.migrate_every;
   given["migration"] = to_string(a.islands.migration);
+  given["island-starts"] = a.own_island_starts ? "own" : "shared";
   std::unique_ptr<History> history;
   std::vector<std::int64_t> runs;
   std::vector<Search> islands;
@@ -100,6 +102,8 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
       a.islands.islands = stored.at("islands").get<int>();
       a.islands.migrate_every = stored.at("migrate-every").get<int>();
       a.islands.migration = parse_migration(stored.at("migration").get<std::string>());
+      if (!stored.contains("island-starts")) stored["island-starts"] = "shared";  // islands made before the option
+      a.own_island_starts = stored.at("island-starts").get<std::string>() == "own";
     } catch (const std::exception& e) {
       throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(members.front().id) + ": " + e.what());
     }
@@ -122,24 +126,36 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   } else {
     check_database(a.db);
     if (!std::filesystem::exists(a.db)) check_output_path("--db", a.db);
-    Configuration best;
-    const Generation g0 = start(a, &best);  // every island starts from it (its evaluation takes no seed)
-    initial_evaluations = static_cast<std::int64_t>(g0.candidates.size());
+    // Every island starts from one medium (its evaluation takes no seed), or each from its own,
+    // all made before the history is touched.
+    const std::size_t starts = a.own_island_starts ? static_cast<std::size_t>(a.islands.islands) : 1;
+    std::vector<Generation> g0(starts);
+    std::vector<Configuration> start_of(starts);
+    for (std::size_t s = 0; s < starts; ++s) {
+      OptimizeArgs from = a;
+      if (a.own_island_starts) from.medium.options.seed = derive_seed(a.medium.options.seed, s);
+      g0[s] = start(from, &start_of[s]);
+      initial_evaluations += static_cast<std::int64_t>(g0[s].candidates.size());
+    }
     history = open_history(a.db, OpenMode::create);
     nlohmann::json params = given;
     params["target-generations"] = a.generations;
     for (int i = 0; i < a.islands.islands; ++i) {
+      const std::size_t s = a.own_island_starts ? static_cast<std::size_t>(i) : 0;
       params["island"] = i;
       const SearchOptions options = island_search_options(a.search, i);
-      const std::int64_t id = history->create_run(params.dump(), options, g0, best);
+      const std::int64_t id = history->create_run(params.dump(), options, g0[s], start_of[s]);
       history->set_island(id, i, runs.empty() ? id : runs.front());
       runs.push_back(id);
-      islands.emplace_back(options, best, 0);
+      islands.emplace_back(options, start_of[s], 0);
     }
     if (!a.quiet)
-      std::cerr << "optimize: " << runs.size() << " islands, runs " << runs.front() << " to " << runs.back() << " in "
-                << a.db << ": " << best.medium.grains.size() << " grains, porosity "
-                << fmt(exact_porosity(best.medium), 6) << ", T0 = " << fmt(best.eval.tortuosity, 8) << "\n";
+      for (std::size_t s = 0; s < start_of.size(); ++s)
+        std::cerr << "optimize: " << (a.own_island_starts ? "island " + std::to_string(s) + " of " : std::string())
+                  << runs.size() << " islands, runs " << runs.front() << " to " << runs.back() << " in " << a.db
+                  << ": " << start_of[s].medium.grains.size() << " grains, porosity "
+                  << fmt(exact_porosity(start_of[s].medium), 6) << ", T0 = " << fmt(start_of[s].eval.tortuosity, 8)
+                  << "\n";
   }
 
   std::optional<StopOnSignal> stop;  // a host handles the signals itself
@@ -196,8 +212,11 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
                    {"evaluations_per_second", summary.evaluations_per_second()}};
   if (!deliver_summary(a, j, host)) {
     std::cout << "runs         " << runs.front() << " to " << runs.back() << " in " << a.db << " (" << runs.size()
-              << " islands, " << to_string(a.islands.migration) << " migration every " << a.islands.migrate_every
-              << " generations)\n"
+              << " islands, "
+              << (a.islands.migrate_every > 0 ? std::string(to_string(a.islands.migration)) + " migration every " +
+                                                    std::to_string(a.islands.migrate_every) + " generations"
+                                              : std::string("no migration"))
+              << ")\n"
               << "stopped      " << summary.message << "\n"
               << "best T       " << fmt(summary.best_t, 10) << " (island " << top << ", run " << runs[top]
               << ", generation " << best_of[top].generation << ")\n"

@@ -111,9 +111,9 @@ struct LocalIslands {
   SearchSummary run(std::int64_t upto, DriveOptions d,
                     const std::function<bool(int, const Generation&, const Configuration&)>& on_generation) {
     if (searches.empty()) return {};
-    IslandOptions alone;  // no migration below generation 2^30
+    IslandOptions alone;
     alone.islands = static_cast<int>(searches.size());
-    alone.migrate_every = 1 << 30;
+    alone.migrate_every = 0;  // no migration among them
     d.generations = upto;
     IslandCallbacks cb;
     cb.generation = [&](int i, const Generation& g, const Configuration& best) {
@@ -168,7 +168,7 @@ SearchSummary drive_islands_on_ranks(const Job& job, std::vector<Search>& island
     for (int i = 0; i < k; i += ranks) local.searches.push_back(std::move(islands[static_cast<std::size_t>(i)])), local.number.push_back(i);
     for (;;) {
       const std::int64_t from = *std::min_element(last.begin(), last.end());
-      std::int64_t next = k > 1 ? (from / io.migrate_every + 1) * io.migrate_every : options.generations + 1;
+      std::int64_t next = io.next_migration(from);
       if (next > options.generations) next = options.generations + 1;
       int code = 1 + (next <= options.generations ? 1 : 0);  // 1: a stretch, 2: a stretch and a migration
       if (from >= options.generations) code = 0, sum.termination = Termination::generations;

@@ -78,13 +78,19 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
                 "Island model: this many searches with seeds of their own, run side by side, each a run of the "
                 "history; every --migrate-every generations each takes another's best (1: one search)")
       ->capture_default_str();
-  g->add_option("--migrate-every", a.islands.migrate_every, "Islands: generations between migrations")
+  g->add_option("--migrate-every", a.islands.migrate_every, "Islands: generations between migrations (0: never: independent lineages from the same start, the best of them kept)")
       ->capture_default_str();
   g->add_option_function<std::string>(
        "--migration", [&a](const std::string& v) { a.islands.migration = parse_migration(v); },
        "Islands: ring (island i takes island i-1's best) or broadcast (every island takes the best of all)")
-      ->check(CLI::IsMember({"ring", "broadcast"}))
+      ->check(CLI::IsMember(migration_names()))
       ->default_str(to_string(a.islands.migration));
+  g->add_option_function<std::string>(
+       "--island-starts", [&a](const std::string& v) { a.own_island_starts = v == "own"; },
+       "Islands: shared (every island starts from one medium) or own (each from a generated medium of its "
+       "own: with --migrate-every 0, restarts that sample starting media)")
+      ->check(CLI::IsMember({"shared", "own"}))
+      ->default_str("shared");
   g->add_option("--max-redraws", a.search.max_redraws,
                 "Redraws of a jump refused by the spacing rule before the grain stays put")
       ->capture_default_str();
@@ -167,6 +173,10 @@ void check_optimize(OptimizeArgs& a) {
                                     ", not used by --strategy " + to_string(a.search.strategy.kind));
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   if (std::string why; !a.islands.IsValid(&why)) throw std::invalid_argument(why);
+  if (a.own_island_starts && a.resume == 0 && a.islands.islands < 2)
+    throw std::invalid_argument("island-starts = own: an option of --islands K (K > 1)");
+  if (a.own_island_starts && !a.medium.file.empty())
+    throw std::invalid_argument("island-starts = own: needs generated media, not --medium " + a.medium.file);
   if (a.resume == 0) {  // a resumed run takes its options from the history
     // (0 grains would mean "fill to a porosity" to the medium generator, which optimize does not offer)
     if (a.medium.file.empty() && a.medium.options.grains < 1)

@@ -53,6 +53,9 @@ nlohmann::json params_of(const OptimizeArgs& a) {
     j["islands"] = a.islands.islands;
     j["migrate-every"] = a.islands.migrate_every;
     j["migration"] = to_string(a.islands.migration);
+    j["island-starts"] = a.own_island_starts ? "own" : "shared";
+  } else if (a.own_island_starts) {
+    j["island-starts"] = "own";  // (refused: for a new run here, on a resumed plain run as a contradiction)
   }
   return j;
 }

@@ -33,6 +33,9 @@ struct OptimizeArgs {
   int start_attempts = 100;     ///< random starting media tried until the droplet passes
   SearchOptions search;
   IslandOptions islands;  ///< islands > 1: the island model (islands.hpp)
+  /// Islands: each starts from a generated medium of its own (island i's medium seed is
+  /// derive_seed(medium seed, i)) instead of all from one: restarts that sample starting media.
+  bool own_island_starts = false;
   MediumArgs medium;
   bool quiet = false;
   bool verbose = false;  ///< also print how the speculation went

@@ -22,12 +22,19 @@ Migration parse_migration(const std::string& name) {
   return detail::parse_name(kMigrations, name, "migration");
 }
 
+std::vector<std::string> migration_names() { return detail::name_list(kMigrations); }
+
 bool IslandOptions::IsValid(std::string* why) const {
   if (islands < 1 || islands > 1024)
     return detail::fail(why, "islands = " + std::to_string(islands) + ": must be in [1, 1024]");
-  if (migrate_every < 2)
-    return detail::fail(why, "migrate-every = " + std::to_string(migrate_every) + ": must be >= 2");
+  if (migrate_every < 0 || migrate_every == 1)
+    return detail::fail(why, "migrate-every = " + std::to_string(migrate_every) + ": must be 0 (never) or >= 2");
   return true;
+}
+
+std::int64_t IslandOptions::next_migration(std::int64_t after) const {
+  if (islands <= 1 || migrate_every <= 0) return std::numeric_limits<std::int64_t>::max();
+  return (after / migrate_every + 1) * migrate_every;
 }
 
 SearchOptions island_search_options(const SearchOptions& options, int island) {
@@ -37,7 +44,7 @@ SearchOptions island_search_options(const SearchOptions& options, int island) {
 }
 
 bool is_migration(std::int64_t generation, const IslandOptions& options) {
-  return options.islands > 1 && generation >= 1 && generation % options.migrate_every == 0;
+  return options.islands > 1 && options.migrate_every > 0 && generation >= 1 && generation % options.migrate_every == 0;
 }
 
 std::vector<const Configuration*> immigrants(const std::vector<const Configuration*>& bests, Migration migration) {
@@ -89,9 +96,8 @@ SearchSummary drive_islands(std::vector<Search>& islands, const IslandOptions& i
       break;
     }
     // The next migration after the lowest island, if it comes before the end.
-    std::int64_t next = from + 1;
-    if (k > 1) next = (from / io.migrate_every + 1) * io.migrate_every;
-    if (k == 1 || next > options.generations) next = options.generations + 1;
+    std::int64_t next = io.next_migration(from);
+    if (next > options.generations) next = options.generations + 1;
     if (lowest() < next - 1) {  // every island up to the generation before it
       DriveOptions d = options;
       d.generations = next - 1;
