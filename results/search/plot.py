@@ -2,7 +2,8 @@
 against evaluations (top row) and against wall seconds (bottom row), one line a strategy, with the
 band from the least to the largest seed.
 Where some seeds' searches went further than the others, each goes on as a thin line of its own.
-A strategy NAME+rN (with relocation) is drawn solid, NAME alone dashed, in NAME's colour.
+A strategy NAME+rN (with relocation) is drawn solid, NAME alone dashed, in NAME's colour; restarts
+(NAME+rN+oK) dash-dotted.
 
     python3 results/search/plot.py results/search/curves.csv results/search/curves.png
 """
@@ -16,7 +17,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
 COLOURS = {"paper": "#4d4d4d", "es": "#d62728", "lahc": "#1f77b4", "anneal": "#2ca02c"}
-PROBLEMS = ["default", "dense", "large", "fine", "fine60"]
+PROBLEMS = ["default", "dense", "large", "fine", "fine60", "small"]
 
 
 def band(runs, column, grid):
@@ -46,7 +47,8 @@ def main(csv, png):
         for strategy in sorted(set(of_problem.strategy)):
             runs = [r.sort_values("generation") for _, r in of_problem[of_problem.strategy == strategy].groupby("seed")]
             base = strategy.split("+")[0]
-            style = dict(color=COLOURS.get(base, "#9467bd"), linestyle="-" if "+r" in strategy else "--")
+            line = "-." if "+o" in strategy else "-" if "+r" in strategy else "--"
+            style = dict(color=COLOURS.get(base, "#9467bd"), linestyle=line)
             for row, column in enumerate(["evaluations", "seconds"]):
                 top = max(r[column].iloc[-1] for r in runs)
                 grid = np.linspace(0, top, 400)

@@ -9,7 +9,9 @@
 #   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
 #   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal es+r3"
 #        bash results/search/run.sh report   (no search: the tables and the plot from the databases)
-# A strategy NAME+rN is NAME with --relocate-every N; NAME alone has --relocate-every 0.
+# A strategy NAME+rN is NAME with --relocate-every N; NAME alone has --relocate-every 0. A further
+# +oK makes it K restarts: K islands that never migrate, each from a starting medium of its own
+# (--islands K --migrate-every 0 --island-starts own), sharing the evaluations.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 S=${SOFTDROP:-./build/softdrop}
@@ -30,16 +32,23 @@ problem_options() {
     fine) echo "--grains 100 --width 300 --height 300 --r-min 8 --r-max 8" ;;  # phi ~ 0.78
     # as fine, with fewer grains in the way of a ramp
     fine60) echo "--grains 60 --width 300 --height 300 --r-min 8 --r-max 8" ;;  # phi ~ 0.87
+    # half the default box's height and width, grains about the droplet's size: a ramp down the
+    # whole height needs about 20 grains here, against about 40 in the default box (see README)
+    small) echo "--grains 20 --width 150 --height 150 --r-min 6 --r-max 10" ;;  # phi ~ 0.82
     *) echo "unknown problem '$1'" >&2; exit 2 ;;
   esac
 }
 # Candidates per generation: the paper's hill climb speculates ahead on every thread with 2; the
 # others evaluate a whole generation at once, so they get enough candidates for every lane.
 lambda_of() { case ${1%%+*} in paper) echo 2 ;; *) echo 8 ;; esac; }
+restarts_of() { if [[ $1 =~ \+o([0-9]+) ]]; then echo "${BASH_REMATCH[1]}"; else echo 1; fi; }
 strategy_options() {
   local name=${1%%+*} relocate=0  # said outright: optimize relocates every third generation by default
-  [[ $1 == *+r* ]] && relocate=${1##*+r}
+  [[ $1 =~ \+r([0-9]+) ]] && relocate=${BASH_REMATCH[1]}
   echo "--strategy $name --relocate-every $relocate"
+  local k; k=$(restarts_of "$1")
+  (( k > 1 )) && echo "--islands $k --migrate-every 0 --island-starts own"
+  return 0
 }
 
 for problem in $PROBLEMS; do
@@ -48,7 +57,8 @@ for problem in $PROBLEMS; do
     for seed in $SEEDS; do
       db="$OUT/db/$problem-$strategy-$seed.db"
       lambda=$(lambda_of "$strategy")
-      generations=$(( (EVALUATIONS + lambda - 1) / lambda ))
+      per=$(( lambda * $(restarts_of "$strategy") ))  # evaluations a generation, over the restarts
+      generations=$(( (EVALUATIONS + per - 1) / per ))
       echo "search: $problem $strategy seed $seed: $EVALUATIONS evaluations" >&2
       if [[ -f $db ]]; then
         $S optimize --db "$db" --resume 1 --generations "$generations" --quiet > /dev/null
@@ -74,10 +84,12 @@ cat "$kept" >> "$OUT/curves.csv"
 for db in "$OUT"/db/*.db; do
   [[ -f $db ]] || continue
   name=$(basename "$db" .db); IFS=- read -r problem strategy seed <<< "$name"
+  # Restarts (islands, one run each) count the evaluations of them all and the best of them all;
+  # they run side by side, so a generation's wall seconds are its slowest island's.
   sqlite3 -csv "$db" "SELECT '$problem', '$strategy', $seed, g.generation,
-                             1 + g.generation * (SELECT lambda FROM runs WHERE id = 1),
-                             sum(g.seconds) OVER (ORDER BY g.generation), g.best_t
-                      FROM generations g WHERE g.run_id = 1 ORDER BY g.generation" >> "$OUT/curves.csv"
+                             count(*) * (1 + g.generation * (SELECT lambda FROM runs WHERE id = 1)),
+                             sum(max(g.seconds)) OVER (ORDER BY g.generation), max(g.best_t)
+                      FROM generations g GROUP BY g.generation ORDER BY g.generation" >> "$OUT/curves.csv"
 done
 
 # Best T at fixed budgets, over the seeds whose search got that far (searches of several budgets
