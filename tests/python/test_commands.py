@@ -102,6 +102,18 @@ def test_islands_from_python_are_runs_with_their_island(tmp_path):
     assert softdrop.read_history(tmp_path / "plain.db")["runs"]["island"].isna().all()
 
 
+def test_restarts_from_python_start_from_media_of_their_own(tmp_path):
+    db = tmp_path / "restarts.db"
+    summary = softdrop.optimize(db, islands=2, migrate_every=0, island_starts="own", generations=3, **SEARCH)
+    assert summary.last_generation == 3 and summary.migrate_every == 0
+    history = softdrop.read_history(db)
+    assert set(history["generations"]["kind"]) <= {"initial", "all", "single", "relocate"}  # no migration
+    grains = history["grains"]
+    start = grains[grains.generation == 0]
+    assert not start[start.run_id == 1][["x", "y"]].reset_index(drop=True).equals(
+        start[start.run_id == 2][["x", "y"]].reset_index(drop=True))
+
+
 def test_sweep_writes_the_programs_store(tmp_path):
     ours, theirs = tmp_path / "ours.db", tmp_path / "theirs.db"
     seen = []
