@@ -9,6 +9,10 @@ grains 8 S to 16 S, box 500 S, contact depth, stuck distance; times by sqrt(S)) 
 for a given spring strain at rest, to see which regime keeps the ring whole with no or little
 internal viscosity and lets its area go above S0. One row per setting and medium kind:
 scaled.csv. SOFTDROP=path runs another build. About 20 minutes on 2 cores.
+
+    /usr/bin/python3 results/calibration/scaled.py            # scaled.csv
+    /usr/bin/python3 results/calibration/scaled.py contact    # scaled_contact.csv, about 12 minutes:
+        # S = 840 with --viscosity-dilation 0: contact damping and viscosity against T
 """
 import csv
 import math
@@ -34,7 +38,7 @@ def nrt_for(radius, strain):
     return math.pi * rest_radius * KS * strain * l0
 
 
-def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed, tmp):
+def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed, tmp, cc_per_mass=2e4):
     radius = 8 * scale
     nrt = nrt_for(radius, strain) if strain is not None else 1.5e9
     args = [SOFTDROP, "simulate", "--quiet", "--threads", "2", "--seed", str(seed),
@@ -42,7 +46,7 @@ def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed
             "--width", str(500 * scale), "--height", str(500 * scale),
             "--r-min", str(8 * scale), "--r-max", str(16 * scale), "--radius", str(radius),
             "--masses", str(N), "--mass", str(mass), "--nrt", repr(nrt),
-            "--kc", repr(2e8 * mass), "--cc", repr(2e4 * mass), "--viscosity", str(viscosity),
+            "--kc", repr(2e8 * mass), "--cc", repr(cc_per_mass * mass), "--viscosity", str(viscosity),
             "--viscosity-dilation", str(dilation),
             "--max-depth", repr(0.5 * scale), "--stuck-distance", repr(5 * scale),
             "--stuck-window", repr(0.5 * math.sqrt(scale)), "--max-steps", "20000000",
@@ -58,7 +62,7 @@ def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed
     return {
         "scale": scale, "radius": radius, "mass": mass,
         "rest_strain": "" if strain is None else strain, "nrt": nrt,
-        "kc": 2e8 * mass, "cc": 2e4 * mass, "viscosity": viscosity, "viscosity_dilation": dilation, "kind": kind, "porosity": porosity,
+        "kc": 2e8 * mass, "cc": cc_per_mass * mass, "viscosity": viscosity, "viscosity_dilation": dilation, "kind": kind, "porosity": porosity,
         "droplets": droplets, "passed": int(counts.get("passed", 0)), "stuck": int(counts.get("stuck", 0)),
         "timeout": int(counts.get("timeout", 0)), "diverged": int(counts.get("diverged", 0)),
         "mean_t": passed.tortuosity.mean() if len(passed) else "",
@@ -69,7 +73,9 @@ def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed
 
 
 def main():
-    out = os.path.join(HERE, "scaled.csv")
+    if sys.argv[1:] == ["contact"]:  # S = 840, m = 1, dilation 0: softer contact damping, other nu
+        settings = [(840, 1.0, 0.05, nu, 0.0, cc) for nu, cc in ((3000, 2e3), (3000, 6e3), (1000, 2e3), (10000, 2e4))]
+        return scan(settings, os.path.join(HERE, "scaled_contact.csv"))
     settings = [(1, 1.0, None, 3000, 1.0)]  # the calibrated defaults (a balloon), for comparison
     for scale in (1, 125, 840, 8400):
         for mass in (0.015, 0.1, 1.0):
@@ -80,11 +86,17 @@ def main():
     for scale in (125, 840, 8400):  # a viscosity that spares the breathing mode (--viscosity-dilation 0)
         for viscosity in (300, 1000, 3000):
             settings.append((scale, 1.0, 0.05, viscosity, 0.0))
+    scan(settings, os.path.join(HERE, "scaled.csv"))
+
+
+def scan(settings, out):
+    """Runs every setting (scale, mass, rest strain, nu, dilation[, c_c per unit mass]) on both
+    media kinds, rewriting `out` after each row."""
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for i, (scale, mass, strain, viscosity, dilation) in enumerate(settings):
+        for i, (scale, mass, strain, viscosity, dilation, *cc) in enumerate(settings):
             for kind, porosity in (("non-overlapping", 0.79), ("overlapping", 0.8)):
-                rows.append(run(scale, mass, strain, viscosity, dilation, kind, porosity, 10, 11, tmp))
+                rows.append(run(scale, mass, strain, viscosity, dilation, kind, porosity, 10, 11, tmp, *cc))
                 r = rows[-1]
                 print(f"[{i + 1}/{len(settings)}] S={scale} m={mass} strain={strain} nu={viscosity} dilation={dilation} {kind}: "
                       f"passed {r['passed']} stuck {r['stuck']} timeout {r['timeout']} diverged {r['diverged']}, "
