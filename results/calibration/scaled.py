@@ -11,7 +11,7 @@ internal viscosity and lets its area go above S0. One row per setting and medium
 scaled.csv. SOFTDROP=path runs another build. About 20 minutes on 2 cores.
 
     /usr/bin/python3 results/calibration/scaled.py            # scaled.csv
-    /usr/bin/python3 results/calibration/scaled.py contact    # scaled_contact.csv, about 12 minutes:
+    /usr/bin/python3 results/calibration/scaled.py contact    # scaled_contact.csv, about 20 minutes:
         # S = 840 with --viscosity-dilation 0: contact damping and viscosity against T
 """
 import csv
@@ -74,7 +74,8 @@ def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed
 
 def main():
     if sys.argv[1:] == ["contact"]:  # S = 840, m = 1, dilation 0: softer contact damping, other nu
-        settings = [(840, 1.0, 0.05, nu, 0.0, cc) for nu, cc in ((3000, 2e3), (3000, 6e3), (1000, 2e3), (10000, 2e4))]
+        settings = [(840, 1.0, 0.05, nu, 0.0, cc) for nu, cc in ((3000, 2e3), (3000, 6e3), (1000, 2e3), (10000, 2e4),
+                                                                      (20000, 2e4), (25000, 2e4))]  # nu dt <= 0.5
         return scan(settings, os.path.join(HERE, "scaled_contact.csv"))
     settings = [(1, 1.0, None, 3000, 1.0)]  # the calibrated defaults (a balloon), for comparison
     for scale in (1, 125, 840, 8400):
