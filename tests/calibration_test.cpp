@@ -69,7 +69,8 @@ TEST(ScanAxis, SettingsVaryTheFirstAxisSlowest) {
 
 TEST(ScanAxis, ExplicitSettingsOverrideTheBase) {
   const DropletParams base;
-  const DropletParams s = apply_setting(base, "radius=5.5  mass=0.5 masses=30");
+  const DropletParams s = apply_setting(base, "radius=5.5  mass=0.5 masses=30 viscosity-dilation=0");
+  EXPECT_EQ(s.viscosity_dilation, 0.0);  // the spared breathing mode can be scanned too
   EXPECT_EQ(s.radius, 5.5);
   EXPECT_EQ(s.mass, 0.5);
   EXPECT_EQ(s.masses, 30);
@@ -186,6 +187,45 @@ TEST(Calibration, TheRestingTestTellsABuzzingDropletFromAResting) {
   buzzing.nrt = 1.1e9;
   EXPECT_LT(resting_travel(quiet), 1e-6);
   EXPECT_GT(resting_travel(buzzing), 10.0);
+}
+
+// The model with every length S times as long and g fixed runs sqrt(S) times slower: k_s, k_c and
+// nRT / S^2 keep the forces, k_d, c_c and nu over sqrt(S) keep the damping. At S = 4 every factor is
+// a power of two, so the scaled droplet on the scaled floor repeats the droplet's resting test
+// exactly, twice as fast.
+TEST(Calibration, TheRestingTestScalesWithTheDroplet) {
+  DropletParams quiet;
+  quiet.mass = 0.5;
+  quiet.radius = 5.5;
+  quiet.masses = 30;
+  quiet.kc = 2e8;
+  quiet.cc = 2e4;
+  quiet.viscosity = 5000;
+  quiet.nrt = 4e8;
+  DropletParams buzzing = quiet;
+  buzzing.nrt = 1.1e9;  // buzzes against its contacts for ever (the test above)
+  auto scaled_by_4 = [](DropletParams d) {
+    d.radius *= 4, d.max_depth *= 4, d.nrt *= 4;
+    d.ks /= 4, d.kc /= 4;
+    d.kd /= 2, d.cc /= 2, d.viscosity /= 2, d.dt *= 2;
+    return d;
+  };
+  const double buzz = resting_travel(buzzing);
+  EXPECT_EQ(resting_travel(scaled_by_4(buzzing), 4), 2 * buzz);  // the same path, to the bit
+  EXPECT_GT(buzz, 10.0);
+  EXPECT_NE(resting_travel(scaled_by_4(buzzing), 1), 2 * buzz);  // on the default's floor it is not
+  const double big_quiet = resting_travel(scaled_by_4(quiet), 4);
+  EXPECT_EQ(big_quiet, 2 * resting_travel(quiet));
+  EXPECT_LT(big_quiet, resting_limit(4));
+  EXPECT_EQ(resting_limit(1), 0.01);
+  EXPECT_EQ(resting_limit(4), 0.02);
+  CalibrationOptions o = tiny();
+  for (const double bad : {0.0, -1.0, std::nan(""), 2e6}) {
+    o.rest_scale = bad;
+    std::string why;
+    EXPECT_FALSE(o.IsValid(&why)) << bad;
+    EXPECT_EQ(why.rfind("rest-scale = ", 0), 0u) << why;
+  }
 }
 
 TEST(Calibration, RefusesBadOptionsAndUnstableDroplets) {

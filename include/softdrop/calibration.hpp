@@ -28,6 +28,9 @@ struct CalibrationOptions {
   double trace_porosity = 0.79;
   int trace_media = 2;
   int trace_droplets = 5;
+  /// The resting test's scale S (see resting_travel): 1 for droplets of the default's size; S for
+  /// a droplet whose lengths are S times the default's, with g fixed.
+  double rest_scale = 1;
 
   static SweepOptions default_sweep();
   bool IsValid(std::string* why) const;
@@ -65,7 +68,7 @@ struct CalibrationResult {
   /// (its ring buzzing against the contacts) lengthens the path of every droplet that pauses in
   /// a pore, and so inflates T.
   double resting_travel = 0;
-  bool comes_to_rest = false;     ///< resting_travel <= 0.01
+  bool comes_to_rest = false;     ///< resting_travel <= resting_limit(rest_scale)
   double steps = 0;               ///< steps taken by all sweep droplets
   /// rms_distance + diverged_fraction + (1 unless it comes to rest) + 0.05 (area not on both
   /// sides) + 0.05 stuck_fraction: the distance from the paper first, a diverging droplet as bad as
@@ -81,8 +84,13 @@ CalibrationResult run_calibration(const CalibrationOptions& options, const Dropl
 
 /// The resting test of CalibrationResult::resting_travel on its own: the droplet is dropped on a
 /// row of touching grains (radius 12, centres 20 apart, in a 200-wide periodic box), left 0.4 time
-/// units to settle, then followed for 1 time unit.
-double resting_travel(const DropletParams& droplet);
+/// units to settle, then followed for 1 time unit. At scale S every length of the floor is S
+/// times as long and every time sqrt(S) times (with g fixed, a model scaled in length by S runs
+/// sqrt(S) times slower), so a droplet scaled with its floor is tested as the default one is.
+double resting_travel(const DropletParams& droplet, double scale = 1);
+/// The most a droplet resting at scale S may still travel a time unit: 0.01 sqrt(S) (speeds grow as
+/// sqrt(S)).
+double resting_limit(double scale);
 
 /// One axis of a scan: a droplet parameter, by its option name, and its values.
 struct ScanAxis {
@@ -91,7 +99,7 @@ struct ScanAxis {
 };
 
 /// The option names a scan can vary: masses, mass, radius, nrt, ks, kd, kc, cc, max-strain,
-/// max-depth, viscosity, constraint-iterations.
+/// max-depth, viscosity, constraint-iterations, viscosity-dilation.
 std::vector<std::string> scan_parameter_names();
 
 /// Parses "name=v1,v2,..." or "name=lo:hi:n" (n values, evenly spaced) or "name=lo:hi:n:log"

@@ -21,7 +21,7 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
   g->add_option("--scan", a.scans,
                 "An axis of the grid, name=v1,v2,... or name=lo:hi:n or name=lo:hi:n:log (repeat for more axes; "
                 "names: masses, mass, radius, nrt, ks, kd, kc, cc, max-strain, max-depth, viscosity, "
-                "constraint-iterations); the other parameters come from the Droplet options")
+                "constraint-iterations, viscosity-dilation); the other parameters come from the Droplet options")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   g->add_option("--setting", a.settings,
                 "Or one setting to run, \"[label:] name=value name=value ...\" over the Droplet options (repeat for "
@@ -40,6 +40,10 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
       ->capture_default_str();
   g->add_option("--trace-media", a.calibration.trace_media, "Media of the area traces")->capture_default_str();
   g->add_option("--trace-droplets", a.calibration.trace_droplets, "Area-traced droplets per trace medium")
+      ->capture_default_str();
+  g->add_option("--rest-scale", a.calibration.rest_scale,
+                "Resting test at S times the lengths (times sqrt(S) the times) of the default droplet's, for droplets "
+                "scaled up with their grains")
       ->capture_default_str();
   g->add_flag("--skip-unstable", a.skip_unstable,
               "Record settings the limits refuse (unstable at their dt) as refused rows instead of refusing the scan");

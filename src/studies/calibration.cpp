@@ -14,6 +14,7 @@
 #include "softdrop/area_trace.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/random.hpp"
+#include "util/validation.hpp"
 
 namespace softdrop {
 
@@ -34,11 +35,13 @@ bool CalibrationOptions::IsValid(std::string* why) const {
   };
   if (!sweep.IsValid(why)) return false;
   if (!(trace_porosity > 0 && trace_porosity < 1))
-    return fail("trace-porosity = " + std::to_string(trace_porosity) + ": must be in (0, 1)");
+    return fail("trace-porosity = " + detail::num(trace_porosity) + ": must be in (0, 1)");
   if (trace_media < 0 || trace_media > 1000)
     return fail("trace-media = " + std::to_string(trace_media) + ": must be in [0, 1000]");
   if (trace_droplets < 0 || trace_droplets > 10000)
     return fail("trace-droplets = " + std::to_string(trace_droplets) + ": must be in [0, 10000]");
+  if (!(rest_scale > 0 && rest_scale <= 1e6))
+    return fail("rest-scale = " + detail::num(rest_scale) + ": must be in (0, 1e6]");
   return true;
 }
 
@@ -109,13 +112,16 @@ Medium trace_medium(const CalibrationOptions& o, int index) {
 
 }  // namespace
 
-double resting_travel(const DropletParams& droplet) {
-  Medium floor{200, 200, true, {}};
-  for (int i = 0; i < 10; ++i) floor.grains.push_back({10.0 + 20.0 * i, 100, 12});
+double resting_limit(double scale) { return 0.01 * std::sqrt(scale); }
+
+double resting_travel(const DropletParams& droplet, double scale) {
+  const double time = std::sqrt(scale);  // (scale 1 leaves every number as it was)
+  Medium floor{200 * scale, 200 * scale, true, {}};
+  for (int i = 0; i < 10; ++i) floor.grains.push_back({(10.0 + 20.0 * i) * scale, 100 * scale, 12 * scale});
   Simulation sim(droplet, floor);
-  sim.place_above(37.0);
-  const auto settle = static_cast<std::int64_t>(std::llround(0.4 / droplet.dt));
-  const auto follow = static_cast<std::int64_t>(std::llround(1.0 / droplet.dt));
+  sim.place_above(37.0 * scale);
+  const auto settle = static_cast<std::int64_t>(std::llround(0.4 * time / droplet.dt));
+  const auto follow = static_cast<std::int64_t>(std::llround(1.0 * time / droplet.dt));
   for (std::int64_t k = 0; k < settle; ++k)
     if (!sim.step()) return NAN;
   double px, py, path = 0;
@@ -188,8 +194,8 @@ CalibrationResult run_calibration(const CalibrationOptions& o, const DropletPara
   r.area_max = std::isfinite(hi) ? hi : NAN;
   r.area_both_sides = std::isfinite(lo) && lo < 0.95 && hi > 1.02;
   r.diverged_fraction = total > 0 ? static_cast<double>(sweep_diverged + r.trace_diverged) / static_cast<double>(total) : 0;
-  r.resting_travel = resting_travel(droplet);
-  r.comes_to_rest = r.resting_travel <= 0.01;  // NaN (diverged) does not
+  r.resting_travel = resting_travel(droplet, o.rest_scale);
+  r.comes_to_rest = r.resting_travel <= resting_limit(o.rest_scale);  // NaN (diverged) does not
   r.score = r.rms_distance + r.diverged_fraction + (r.comes_to_rest ? 0 : 1) + 0.05 * (r.area_both_sides ? 0 : 1) + 0.05 * r.stuck_fraction;
   return r;
 }

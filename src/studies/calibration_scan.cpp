@@ -29,6 +29,7 @@ const Field kFields[] = {
     {"max-depth", &DropletParams::max_depth, nullptr},
     {"viscosity", &DropletParams::viscosity, nullptr},
     {"constraint-iterations", nullptr, &DropletParams::constraint_iterations},
+    {"viscosity-dilation", &DropletParams::viscosity_dilation, nullptr},
 };
 
 const Field* find_field(const std::string& name) {
