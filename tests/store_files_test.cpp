@@ -89,9 +89,11 @@ TEST(DamagedRuns, AreRefusedByResumeAsByHistoryNamingTheFile) {
                 "run 1: stored parameters: strategy = 'cmaes': must be paper, es, lahc or anneal"},
            Case{"UPDATE runs SET params = json_set(params, '$.constraint-order', 'zigzag')",
                 "run 1: stored parameters: constraint-order = 'zigzag': must be sequential or red-black"},
-           Case{"DELETE FROM generations WHERE generation = 12", "stores 14 generations numbered 0 to 14"},
+           Case{"DELETE FROM generations WHERE generation = 12",
+                "run 1: generation 12 is missing: stores 14 generations numbered 0 to 14"},
            Case{"PRAGMA foreign_keys = ON; DELETE FROM generations WHERE generation = 12",
-                "stores 14 generations numbered 0 to 14"},
+                "run 1: generation 12 is missing: stores 14 generations numbered 0 to 14"},
+           Case{"DELETE FROM generations WHERE generation = 0", "run 1: generation 0 is missing: stores 14"},
            Case{"DELETE FROM candidates WHERE generation = 5", "a generation without candidates"},
        }) {
     SCOPED_TRACE(c.sql);

@@ -172,10 +172,21 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       q.executeStep();
       const std::int64_t count = detail::as_int64(q.getColumn(0)), first = detail::as_int64(q.getColumn(1)),
                          last = detail::as_int64(q.getColumn(2));
-      if (first != 0 || last != r.generations || count != r.generations + 1)
-        throw std::runtime_error(where + "stores " + std::to_string(count) + " generations numbered " +
+      if (first != 0 || last != r.generations || count != r.generations + 1) {
+        // The first generation of the run's range that is not stored, if any is missing.
+        SQLite::Statement gap(db_, "SELECT CASE WHEN NOT EXISTS (SELECT 1 FROM generations WHERE run_id = ?1 AND "
+                                   "generation = 0) THEN 0 ELSE (SELECT min(g.generation) + 1 FROM generations g "
+                                   "WHERE g.run_id = ?1 AND g.generation < ?2 AND NOT EXISTS (SELECT 1 FROM "
+                                   "generations h WHERE h.run_id = ?1 AND h.generation = g.generation + 1)) END");
+        gap.bind(1, run_id);
+        gap.bind(2, r.generations);
+        gap.executeStep();
+        const std::string missing =
+            gap.getColumn(0).isNull() ? "" : "generation " + gap.getColumn(0).getString() + " is missing: ";
+        throw std::runtime_error(where + missing + "stores " + std::to_string(count) + " generations numbered " +
                                  std::to_string(first) + " to " + std::to_string(last) + ", the run has 0 to " +
                                  std::to_string(r.generations) + " (damaged or edited file?)");
+      }
       if (detail::as_int64(q.getColumn(3)) != 0)
         throw std::runtime_error(where + "a generation without candidates (damaged or edited file?)");
       if (detail::as_int64(q.getColumn(4)) != 0)
