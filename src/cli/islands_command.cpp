@@ -88,7 +88,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   given["islands"] = a.islands.islands;  // (given or not: only those given are compared on resume)
   given["migrate-every"] = a.islands.migrate_every;
   given["migration"] = to_string(a.islands.migration);
-  given["island-starts"] = a.own_island_starts ? "own" : "shared";
+  given["island-starts"] = island_starts_name(a.own_island_starts);
   std::unique_ptr<History> history;
   std::vector<std::int64_t> runs;
   std::vector<Search> islands;
@@ -102,8 +102,8 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
       a.islands.islands = stored.at("islands").get<int>();
       a.islands.migrate_every = stored.at("migrate-every").get<int>();
       a.islands.migration = parse_migration(stored.at("migration").get<std::string>());
-      if (!stored.contains("island-starts")) stored["island-starts"] = "shared";  // islands made before the option
-      a.own_island_starts = stored.at("island-starts").get<std::string>() == "own";
+      if (!stored.contains("island-starts")) stored["island-starts"] = island_starts_name(false);  // made before it
+      a.own_island_starts = stored.at("island-starts").get<std::string>() == island_starts_name(true);
     } catch (const std::exception& e) {
       throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(members.front().id) + ": " + e.what());
     }

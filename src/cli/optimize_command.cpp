@@ -86,11 +86,11 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->check(CLI::IsMember(migration_names()))
       ->default_str(to_string(a.islands.migration));
   g->add_option_function<std::string>(
-       "--island-starts", [&a](const std::string& v) { a.own_island_starts = v == "own"; },
+       "--island-starts", [&a](const std::string& v) { a.own_island_starts = v == island_starts_name(true); },
        "Islands: shared (every island starts from one medium) or own (each from a generated medium of its "
        "own: with --migrate-every 0, restarts that sample starting media)")
-      ->check(CLI::IsMember({"shared", "own"}))
-      ->default_str("shared");
+      ->check(CLI::IsMember({island_starts_name(false), island_starts_name(true)}))
+      ->default_str(island_starts_name(false));
   g->add_option("--max-redraws", a.search.max_redraws,
                 "Redraws of a jump refused by the spacing rule before the grain stays put")
       ->capture_default_str();

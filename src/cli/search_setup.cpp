@@ -35,6 +35,8 @@ OptimizeArgs::OptimizeArgs() {
 }
 
 // The command line's view of the run: search options plus how the starting medium was made.
+const char* island_starts_name(bool own) { return own ? "own" : "shared"; }
+
 nlohmann::json params_of(const OptimizeArgs& a) {
   nlohmann::json j = nlohmann::json::parse(search_params_to_json(a.search));
   const MediumOptions& m = a.medium.options;
@@ -53,9 +55,9 @@ nlohmann::json params_of(const OptimizeArgs& a) {
     j["islands"] = a.islands.islands;
     j["migrate-every"] = a.islands.migrate_every;
     j["migration"] = to_string(a.islands.migration);
-    j["island-starts"] = a.own_island_starts ? "own" : "shared";
+    j["island-starts"] = island_starts_name(a.own_island_starts);
   } else if (a.own_island_starts) {
-    j["island-starts"] = "own";  // (refused: for a new run here, on a resumed plain run as a contradiction)
+    j["island-starts"] = island_starts_name(true);  // (refused: for a new run here, on a resumed plain run as a contradiction)
   }
   return j;
 }

@@ -47,6 +47,8 @@ struct OptimizeArgs {
   OptimizeArgs();
 };
 
+/// The stored and command-line spelling of OptimizeArgs::own_island_starts: "own" or "shared".
+const char* island_starts_name(bool own);
 /// The run's parameters as the command line gives them (search options and how the starting
 /// medium was made), stored with the run.
 nlohmann::json params_of(const OptimizeArgs& args);

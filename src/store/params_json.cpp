@@ -18,8 +18,6 @@ bool optional_key(const std::string& key) {
 }
 // The stored enums go through the same names as the command line (their to_string and parse), so
 // an unknown stored name is refused in the parse's words instead of read as the first value.
-const char* stored_name(ConstraintOrder order) { return to_string(order); }
-const char* stored_name(StrategyKind kind) { return to_string(kind); }
 void parse_stored(const std::string& name, ConstraintOrder* order) { *order = parse_constraint_order(name); }
 void parse_stored(const std::string& name, StrategyKind* kind) { *kind = parse_strategy(name); }
 
@@ -140,7 +138,7 @@ template <class Fields, class Visit>
 std::string fields_to_json(Fields& fields, Visit visit) {
   nlohmann::json j = nlohmann::json::object();
   visit(fields, [&](const char* key, const auto& value) {
-    if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>) j[key] = stored_name(value);
+    if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>) j[key] = to_string(value);
     else j[key] = value;
   });
   return j.dump();
