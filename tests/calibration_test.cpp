@@ -297,7 +297,8 @@ TEST(CalibrateCommand, BadInputIsOneLineNamingIt) {
                         Case{"--porosities 0.5,1.2", "porosit"}, Case{"--trace-media -1", "trace-media = -1"},
                         Case{"--best 0", "best = 0"},
                         Case{"--setting mass=1 --scan nrt=1e8", "--setting and --scan do not mix"},
-                        Case{"--setting 'mass=1,2'", "must give one value"}, Case{"--medium x.json", "--medium is not used"}}) {
+                        Case{"--setting 'mass=1,2'", "must give one value"},
+                        Case{"--setting 'soft m=1: mass=1'", "'soft' is not name=value (a label goes before"}, Case{"--medium x.json", "--medium is not used"}}) {
     SCOPED_TRACE(c.args);
     const auto r = run("calibrate --quiet " + c.args);
     EXPECT_NE(r.code, 0);

@@ -116,6 +116,9 @@ DropletParams apply_setting(const DropletParams& base, const std::string& text) 
   std::istringstream words(text);
   int count = 0;
   for (std::string word; words >> word; ++count) {
+    if (word.find('=') == std::string::npos)
+      throw std::invalid_argument("setting '" + text + "': '" + word +
+                                  "' is not name=value (a label goes before the first ':' and has no '=')");
     const ScanAxis one = parse_scan_axis(word);
     if (one.values.size() != 1) throw std::invalid_argument("setting '" + text + "': '" + word + "' must give one value");
     set_scan_parameter(params, one.name, one.values[0]);
