@@ -2,10 +2,12 @@
 // determinism, and the command's bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <type_traits>
 
 #include "cli_run.hpp"
 #include "softdrop/area_trace.hpp"
@@ -47,6 +49,34 @@ TEST(ScanAxis, BadAxesNameWhatIsWrong) {
       EXPECT_NE(std::string(e.what()).find("scan '"), std::string::npos) << e.what();
     }
   }
+}
+
+// Every numeric field of the droplet's one field list can be scanned by its option name, and a
+// setting of it changes that field and no other; the enum constraint-order cannot.
+TEST(ScanAxis, EveryNumericDropletFieldCanBeScanned) {
+  const std::vector<std::string> names = scan_parameter_names();
+  for (const std::string& key : {"masses", "radius", "gravity", "dt", "max-strain", "constraint-iterations",
+                                 "viscosity-dilation"})
+    EXPECT_NE(std::find(names.begin(), names.end(), key), names.end()) << key;
+  EXPECT_EQ(std::find(names.begin(), names.end(), "constraint-order"), names.end());
+  const DropletParams base;
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    const DropletParams set = apply_setting(base, name + "=3");
+    int changed = 0;
+    visit_droplet_fields(
+        [&](const DropletField& field, const auto& before, const auto& after) {
+          if constexpr (std::is_arithmetic_v<std::decay_t<decltype(before)>>) {
+            if (field.key == name) EXPECT_EQ(after, 3);
+            changed += before != after;
+          } else {
+            EXPECT_EQ(before, after);
+          }
+        },
+        base, set);
+    EXPECT_EQ(changed, 1);
+  }
+  EXPECT_THROW(parse_scan_axis("constraint-order=1"), std::invalid_argument);
 }
 
 TEST(ScanAxis, SettingsVaryTheFirstAxisSlowest) {
@@ -276,6 +306,9 @@ TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
     for (std::string cell; std::getline(row_in, cell, ',');) c.push_back(cell);
     return c;
   };
+  // Every droplet field has its column, the time step and the breathing mode's share included.
+  for (const std::string column : {",gravity,dt,max_strain,", ",constraint_order,", ",viscosity_dilation,"})
+    EXPECT_NE(lines[0].find(column), std::string::npos) << lines[0];
   const auto first = cells(lines[1]), second = cells(lines[2]);  // setting, status, masses, mass, radius, nrt
   EXPECT_EQ(first[0] + first[1] + first[4] + first[5], "0ok83e+08") << lines[1];
   EXPECT_EQ(second[0] + second[1] + second[4], "1ok9") << lines[2];

@@ -98,8 +98,9 @@ struct ScanAxis {
   std::vector<double> values;
 };
 
-/// The option names a scan can vary: masses, mass, radius, nrt, ks, kd, kc, cc, max-strain,
-/// max-depth, viscosity, constraint-iterations, viscosity-dilation.
+/// The option names a scan can vary: every numeric field of visit_droplet_fields (all but
+/// constraint-order), in its order: masses, mass, radius, nrt, ks, kd, kc, cc, gravity, dt,
+/// max-strain, constraint-iterations, max-depth, viscosity, viscosity-dilation.
 std::vector<std::string> scan_parameter_names();
 
 /// Parses "name=v1,v2,..." or "name=lo:hi:n" (n values, evenly spaced) or "name=lo:hi:n:log"

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iostream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "cli/output.hpp"
 #include "softdrop/render.hpp"
@@ -18,10 +19,11 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
       "calibrate", "Scan droplet parameters against the paper: a small sweep and area traces per setting, ranked");
   c->fallthrough();
   auto* g = c->add_option_group("Calibration", "what every setting runs, and the grid");
+  std::string names;
+  for (const std::string& name : scan_parameter_names()) names += (names.empty() ? "" : ", ") + name;
   g->add_option("--scan", a.scans,
                 "An axis of the grid, name=v1,v2,... or name=lo:hi:n or name=lo:hi:n:log (repeat for more axes; "
-                "names: masses, mass, radius, nrt, ks, kd, kc, cc, max-strain, max-depth, viscosity, "
-                "constraint-iterations, viscosity-dilation); the other parameters come from the Droplet options")
+                "names: " + names + "); the other parameters come from the Droplet options")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   g->add_option("--setting", a.settings,
                 "Or one setting to run, \"[label:] name=value name=value ...\" over the Droplet options (repeat for "
@@ -116,21 +118,37 @@ struct Row {
   double seconds = 0;
 };
 
+// A droplet field's CSV column: its option name with '_' for '-' (max-strain: max_strain), so
+// that pandas can name it as an attribute.
+std::string column_name(std::string key) {
+  std::replace(key.begin(), key.end(), '-', '_');
+  return key;
+}
+
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 Table settings_table(const std::vector<const Row*>& rows) {
   Table t;
-  t.header = {"setting", "status", "masses", "mass", "radius", "nrt", "ks", "kd", "kc", "cc", "max_strain",
-              "max_depth", "viscosity", "constraint_iterations", "score", "rms_distance", "measured_rms", "measured", "within", "stuck_fraction",
+  t.header = {"setting", "status"};
+  const DropletParams names_only;
+  visit_droplet_fields([&](const DropletField& field, const auto&) { t.header.push_back(column_name(field.key)); },
+                       names_only);
+  t.header.insert(t.header.end(), {"score", "rms_distance", "measured_rms", "measured", "within", "stuck_fraction",
               "diverged_fraction", "area_min", "area_max", "area_both_sides", "trace_passed", "trace_runs", "resting_travel", "comes_to_rest",
-              "steps_per_second", "seconds", "label"};
+              "steps_per_second", "seconds", "label"});
   for (const Row* r : rows) {
     const DropletParams& d = r->droplet;
     const CalibrationResult& c = r->result;
     const bool ok = r->refused.empty();
     auto fig = [&](double v) { return ok ? number_or_null(v) : nlohmann::json(nullptr); };
-    t.rows.push_back({r->setting, ok ? "ok" : "refused: " + r->refused, d.masses, d.mass, d.radius, d.nrt, d.ks, d.kd,
-                      d.kc, d.cc, d.max_strain, d.max_depth, d.viscosity, d.constraint_iterations, fig(c.score),
+    std::vector<nlohmann::json> row{r->setting, ok ? "ok" : "refused: " + r->refused};
+    visit_droplet_fields(
+        [&](const DropletField&, const auto& value) {
+          if constexpr (std::is_arithmetic_v<std::decay_t<decltype(value)>>) row.emplace_back(value);
+          else row.emplace_back(to_string(value));
+        },
+        d);
+    row.insert(row.end(), {fig(c.score),
                       fig(c.rms_distance), fig(c.measured_rms), ok ? nlohmann::json(c.measured) : nullptr,
                       ok ? nlohmann::json(c.within) : nullptr, fig(c.stuck_fraction),
                       fig(c.diverged_fraction), fig(c.area_min), fig(c.area_max),
@@ -138,6 +156,7 @@ Table settings_table(const std::vector<const Row*>& rows) {
                       ok ? nlohmann::json(c.trace_runs) : nullptr, fig(c.resting_travel),
                       ok ? nlohmann::json(c.comes_to_rest) : nullptr,
                       fig(r->seconds > 0 ? c.steps / r->seconds : NAN), fig(r->seconds), r->label});
+    t.rows.push_back(std::move(row));
   }
   return t;
 }

@@ -4,38 +4,32 @@
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
+#include <type_traits>
 
 #include "softdrop/calibration.hpp"
 
 namespace softdrop {
 namespace {
 
-struct Field {
-  const char* name;
-  double DropletParams::*real;
-  int DropletParams::*whole;
+// What a scan needs of a droplet field: whether it exists and is numeric, and whether it takes
+// whole numbers. Every numeric field of visit_droplet_fields can be scanned, by its option name;
+// the enum (constraint-order) cannot.
+struct FieldKind {
+  bool numeric = false, whole = false;
 };
 
-const Field kFields[] = {
-    {"masses", nullptr, &DropletParams::masses},
-    {"mass", &DropletParams::mass, nullptr},
-    {"radius", &DropletParams::radius, nullptr},
-    {"nrt", &DropletParams::nrt, nullptr},
-    {"ks", &DropletParams::ks, nullptr},
-    {"kd", &DropletParams::kd, nullptr},
-    {"kc", &DropletParams::kc, nullptr},
-    {"cc", &DropletParams::cc, nullptr},
-    {"max-strain", &DropletParams::max_strain, nullptr},
-    {"max-depth", &DropletParams::max_depth, nullptr},
-    {"viscosity", &DropletParams::viscosity, nullptr},
-    {"constraint-iterations", nullptr, &DropletParams::constraint_iterations},
-    {"viscosity-dilation", &DropletParams::viscosity_dilation, nullptr},
-};
-
-const Field* find_field(const std::string& name) {
-  for (const Field& f : kFields)
-    if (name == f.name) return &f;
-  return nullptr;
+FieldKind field_kind(const std::string& name) {
+  FieldKind kind;
+  DropletParams probe;
+  visit_droplet_fields(
+      [&](const DropletField& field, const auto& value) {
+        using T = std::decay_t<decltype(value)>;
+        if (name != field.key) return;
+        kind.numeric = std::is_arithmetic_v<T>;
+        kind.whole = std::is_integral_v<T>;
+      },
+      probe);
+  return kind;
 }
 
 // A finite number taking the whole text, or an error naming the axis.
@@ -61,7 +55,12 @@ std::vector<std::string> split(const std::string& text, char by) {
 
 std::vector<std::string> scan_parameter_names() {
   std::vector<std::string> names;
-  for (const Field& f : kFields) names.emplace_back(f.name);
+  DropletParams probe;
+  visit_droplet_fields(
+      [&](const DropletField& field, const auto& value) {
+        if (std::is_arithmetic_v<std::decay_t<decltype(value)>>) names.emplace_back(field.key);
+      },
+      probe);
   return names;
 }
 
@@ -69,8 +68,8 @@ ScanAxis parse_scan_axis(const std::string& text) {
   const std::size_t eq = text.find('=');
   if (eq == std::string::npos) throw std::invalid_argument("scan '" + text + "': expected name=values");
   ScanAxis axis{text.substr(0, eq), {}};
-  const Field* field = find_field(axis.name);
-  if (!field) {
+  const FieldKind field = field_kind(axis.name);
+  if (!field.numeric) {
     std::string known;
     for (const std::string& n : scan_parameter_names()) known += (known.empty() ? "" : ", ") + n;
     throw std::invalid_argument("scan '" + text + "': unknown parameter '" + axis.name + "' (one of " + known + ")");
@@ -95,7 +94,7 @@ ScanAxis parse_scan_axis(const std::string& text) {
   } else {
     for (const std::string& v : split(values, ',')) axis.values.push_back(number(v, text));
   }
-  if (field->whole)
+  if (field.whole)
     for (double& v : axis.values) {
       if (v != std::round(v) || std::abs(v) > 1e9) throw std::invalid_argument("scan '" + text + "': " + axis.name + " takes whole numbers");
       v = std::round(v);
@@ -104,10 +103,15 @@ ScanAxis parse_scan_axis(const std::string& text) {
 }
 
 void set_scan_parameter(DropletParams& params, const std::string& name, double value) {
-  const Field* field = find_field(name);
-  if (!field) throw std::invalid_argument("scan: unknown parameter '" + name + "'");
-  if (field->real) params.*(field->real) = value;
-  else params.*(field->whole) = static_cast<int>(value);
+  bool found = false;
+  visit_droplet_fields(
+      [&](const DropletField& field, auto& field_value) {
+        using T = std::decay_t<decltype(field_value)>;
+        if constexpr (std::is_arithmetic_v<T>)
+          if (name == field.key) field_value = static_cast<T>(value), found = true;
+      },
+      params);
+  if (!found) throw std::invalid_argument("scan: unknown parameter '" + name + "'");
 }
 
 DropletParams apply_setting(const DropletParams& base, const std::string& text) {
