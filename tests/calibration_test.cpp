@@ -55,7 +55,7 @@ TEST(ScanAxis, BadAxesNameWhatIsWrong) {
 // setting of it changes that field and no other; the enum constraint-order cannot.
 TEST(ScanAxis, EveryNumericDropletFieldCanBeScanned) {
   const std::vector<std::string> names = scan_parameter_names();
-  for (const std::string& key : {"masses", "radius", "gravity", "dt", "max-strain", "constraint-iterations",
+  for (const std::string key : {"masses", "radius", "gravity", "dt", "max-strain", "constraint-iterations",
                                  "viscosity-dilation"})
     EXPECT_NE(std::find(names.begin(), names.end(), key), names.end()) << key;
   EXPECT_EQ(std::find(names.begin(), names.end(), "constraint-order"), names.end());
@@ -67,7 +67,9 @@ TEST(ScanAxis, EveryNumericDropletFieldCanBeScanned) {
     visit_droplet_fields(
         [&](const DropletField& field, const auto& before, const auto& after) {
           if constexpr (std::is_arithmetic_v<std::decay_t<decltype(before)>>) {
-            if (field.key == name) EXPECT_EQ(after, 3);
+            if (field.key == name) {
+              EXPECT_EQ(after, 3);
+            }
             changed += before != after;
           } else {
             EXPECT_EQ(before, after);

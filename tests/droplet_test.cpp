@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -29,6 +30,45 @@ TEST(Droplet, InflatedRingIsCounterClockwiseWithTheStatedArea) {
   EXPECT_FALSE(ring_self_intersects(s));
   EXPECT_TRUE(ring_contains(s, 3, 4));
   EXPECT_FALSE(ring_contains(s, 3 + 1.01 * p.radius, 4));
+}
+
+// The ring starts at rest: a balloon (the defaults) at its stretch limit, R itself, to the bit; a
+// ring whose springs carry the tension on the N-gon where they balance the gas, so it does not
+// breathe; a weak gas leaves the springs at about their rest length.
+TEST(Droplet, TheRingStartsWhereItsSpringsBalanceTheGas) {
+  const DropletParams balloon;
+  EXPECT_EQ(balloon.resting_radius(), balloon.radius);
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(balloon.resting_area()), std::bit_cast<std::uint64_t>(balloon.inflated_area()));
+
+  DropletParams springs;  // the gas holds the springs at about 5 % strain, well inside the limit
+  springs.nrt = 2.5e5, springs.gravity = 0, springs.viscosity = 0;
+  const double rho = springs.resting_radius(), s = std::sin(M_PI / springs.masses);
+  EXPECT_LT(rho, springs.radius);
+  const double strain = 2 * rho * s / springs.rest_length() - 1;
+  EXPECT_GT(strain, 0.03);
+  EXPECT_LT(strain, 0.06);
+  // Per mass: the gas's 2 nRT / (N rho) out, the two springs' 2 k_s (d - d0) s in.
+  const double out = 2 * springs.nrt / (springs.masses * rho);
+  const double in = 2 * springs.ks * (2 * rho * s - springs.rest_length()) * s;
+  EXPECT_NEAR(in, out, 1e-12 * out);
+  const Medium empty{500, 500, true, {}};
+  Simulation sim(springs, empty);
+  EXPECT_NEAR(sim.area(), springs.resting_area(), 1e-12 * springs.resting_area());
+  EXPECT_EQ(sim.initial_area(), springs.resting_area());
+  double least = sim.area(), most = sim.area();
+  for (int k = 0; k < 5000; ++k) {  // 0.1 time units, some 30 periods of the breathing mode
+    ASSERT_TRUE(sim.step());
+    least = std::min(least, sim.area()), most = std::max(most, sim.area());
+  }
+  // Started at R instead, the ring would swing between about 0.90 and 1.0 of its inflated area.
+  EXPECT_LT((most - least) / springs.resting_area(), 1e-6);
+
+  DropletParams weak = springs;
+  weak.nrt = 1;
+  EXPECT_NEAR(2 * weak.resting_radius() * s, weak.rest_length(), 1e-6 * weak.rest_length());
+  DropletParams no_springs = springs;
+  no_springs.ks = 0;
+  EXPECT_EQ(no_springs.resting_radius(), no_springs.radius);
 }
 
 TEST(Droplet, ReversedRingHasNegativeAreaAndFigureEightIntersects) {

@@ -60,6 +60,14 @@ struct DropletParams {
   double rest_length() const;
   /// Area of the inflated droplet, the regular N-gon of circumradius R.
   double inflated_area() const;
+  /// Circumradius of the ring at rest in free fall: the regular N-gon on which the springs'
+  /// tension balances the gas, k_s sin(pi/N) (2 rho sin(pi/N) - d0) rho = nRT / N, or R itself
+  /// when the gas would stretch the springs past their limit (a balloon, as the defaults). A weak
+  /// gas leaves the springs near their rest length d0. (length)
+  double resting_radius() const;
+  /// Area of the ring at rest, the regular N-gon of circumradius resting_radius(): S0 of the
+  /// area ratios a run reports.
+  double resting_area() const;
 
   bool IsValid(std::string* why) const;
 };
@@ -163,7 +171,8 @@ struct DropletState {
   int size() const { return static_cast<int>(x.size()); }
 };
 
-/// Places the droplet as the inflated regular N-gon centred at (cx, cy), at rest.
+/// Places the droplet as the regular N-gon of circumradius resting_radius() centred at (cx, cy),
+/// at rest: a droplet whose springs carry the tension starts without breathing.
 void place_droplet(const DropletParams& params, double cx, double cy, DropletState* state);
 
 /// Provot's inverse-dynamics length constraint on the ring's springs: every spring longer than

@@ -1,6 +1,7 @@
 // A droplet's parameters (their checks and derived lengths), its placement, the constraint orders.
 #include "softdrop/droplet.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -18,6 +19,21 @@ double DropletParams::rest_length() const {
 
 double DropletParams::inflated_area() const {
   return 0.5 * masses * radius * radius * std::sin(2 * M_PI / masses);
+}
+
+double DropletParams::resting_radius() const {
+  // Each mass of the regular N-gon feels the gas's 2 nRT / (N rho) outward and its two springs'
+  // 2 k_s (d - d0) sin(pi/N) inward, with d = 2 rho sin(pi/N): the positive root of
+  // 2 k_s s^2 rho^2 - k_s s d0 rho - nRT / N = 0 (s = sin(pi/N)).
+  if (!(ks > 0)) return radius;  // no springs: the gas inflates the ring to its limit
+  const double s = std::sin(M_PI / masses), a = 2 * ks * s * s, b = ks * s * rest_length(), c = nrt / masses;
+  const double rho = (b + std::sqrt(b * b + 4 * a * c)) / (2 * a);
+  return std::min(rho, radius);  // (rho > d0 / (2 s): a gas always stretches the springs a little)
+}
+
+double DropletParams::resting_area() const {
+  const double rho = resting_radius();
+  return 0.5 * masses * rho * rho * std::sin(2 * M_PI / masses);
 }
 
 namespace {
@@ -78,10 +94,11 @@ void DropletState::resize(int n) {
 
 void place_droplet(const DropletParams& params, double cx, double cy, DropletState* state) {
   state->resize(params.masses);
+  const double rho = params.resting_radius();
   for (int i = 0; i < params.masses; ++i) {
     const double a = 2 * M_PI * i / params.masses;
-    state->x[i] = state->px[i] = cx + params.radius * std::cos(a);
-    state->y[i] = state->py[i] = cy + params.radius * std::sin(a);
+    state->x[i] = state->px[i] = cx + rho * std::cos(a);
+    state->y[i] = state->py[i] = cy + rho * std::sin(a);
   }
 }
 
