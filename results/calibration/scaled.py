@@ -13,6 +13,8 @@ scaled.csv. SOFTDROP=path runs another build. About 20 minutes on 2 cores.
     /usr/bin/python3 results/calibration/scaled.py            # scaled.csv
     /usr/bin/python3 results/calibration/scaled.py contact    # scaled_contact.csv, about 20 minutes:
         # S = 840 with --viscosity-dilation 0: contact damping and viscosity against T
+    /usr/bin/python3 results/calibration/scaled.py size       # scaled_size.csv, about 20 minutes:
+        # the same droplet's radius against the grains, and its springs' strain at rest
 """
 import csv
 import math
@@ -38,8 +40,9 @@ def nrt_for(radius, strain):
     return math.pi * rest_radius * KS * strain * l0
 
 
-def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed, tmp, cc_per_mass=2e4):
-    radius = 8 * scale
+def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed, tmp, cc_per_mass=2e4,
+        radius_factor=8):
+    radius = radius_factor * scale
     nrt = nrt_for(radius, strain) if strain is not None else 1.5e9
     args = [SOFTDROP, "simulate", "--quiet", "--threads", "2", "--seed", str(seed),
             "--droplets", str(droplets), "--kind", kind, "--porosity", str(porosity),
@@ -77,6 +80,10 @@ def main():
         settings = [(840, 1.0, 0.05, nu, 0.0, cc) for nu, cc in ((3000, 2e3), (3000, 6e3), (1000, 2e3), (10000, 2e4),
                                                                       (20000, 2e4), (25000, 2e4))]  # nu dt <= 0.5
         return scan(settings, os.path.join(HERE, "scaled_contact.csv"))
+    if sys.argv[1:] == ["size"]:  # S = 840, m = 1, dilation 0, nu = 10 000: the droplet against the grains (8 S to 16 S)
+        settings = [(840, 1.0, strain, 10000, 0.0, 2e4, r) for r, strain in ((5, 0.05), (6.5, 0.05), (11, 0.05),
+                                                                           (8, 0.02), (8, 0.08))]
+        return scan(settings, os.path.join(HERE, "scaled_size.csv"))
     settings = [(1, 1.0, None, 3000, 1.0)]  # the calibrated defaults (a balloon), for comparison
     for scale in (1, 125, 840, 8400):
         for mass in (0.015, 0.1, 1.0):
@@ -91,15 +98,15 @@ def main():
 
 
 def scan(settings, out):
-    """Runs every setting (scale, mass, rest strain, nu, dilation[, c_c per unit mass]) on both
+    """Runs every setting (scale, mass, rest strain, nu, dilation[, c_c per unit mass[, radius / S]]) on both
     media kinds, rewriting `out` after each row."""
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        for i, (scale, mass, strain, viscosity, dilation, *cc) in enumerate(settings):
+        for i, (scale, mass, strain, viscosity, dilation, *extra) in enumerate(settings):
             for kind, porosity in (("non-overlapping", 0.79), ("overlapping", 0.8)):
-                rows.append(run(scale, mass, strain, viscosity, dilation, kind, porosity, 10, 11, tmp, *cc))
+                rows.append(run(scale, mass, strain, viscosity, dilation, kind, porosity, 10, 11, tmp, *extra))
                 r = rows[-1]
-                print(f"[{i + 1}/{len(settings)}] S={scale} m={mass} strain={strain} nu={viscosity} dilation={dilation} {kind}: "
+                print(f"[{i + 1}/{len(settings)}] S={scale} R={r['radius']:g} m={mass} strain={strain} nu={viscosity} dilation={dilation} {kind}: "
                       f"passed {r['passed']} stuck {r['stuck']} timeout {r['timeout']} diverged {r['diverged']}, "
                       f"T {r['mean_t']}, area {r['area_min']:.3f}-{r['area_max']:.3f}", file=sys.stderr)
                 with open(out + ".tmp", "w", newline="") as f:
