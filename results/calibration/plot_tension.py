@@ -18,7 +18,7 @@ import pandas as pd  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 # (scale, grains from, grains to, label) of the settings drawn; scale 1 is the balloon.
-DRAWN = [(8400, 8, 16, "nu 100"), (8400, 16, 32, "nu 30"), (8400, 16, 32, "nu 1000, c_c 0"),
+DRAWN = [(8400, 8, 16, "nu 100"), (8400, 16, 32, "nu 1000, c_c 0"), (8400, 16, 48, "nu 1500, c_c 0"),
          (8400, 20, 40, "nu 30"), (1, 16, 32, "viscosity=1500")]
 
 
@@ -54,7 +54,8 @@ def main():
                   label="defaults: balloon, grains 8-16")
     ax_p.plot(defaults.porosity, defaults.passed / defaults.droplets, "ks--", mfc="white", label="defaults")
     for scale, g1, g2, label in DRAWN:
-        rows = points[(points.scale == scale) & (points.grains_from == g1) & (points.label == label)]
+        rows = points[(points.scale == scale) & (points.grains_from == g1) & (points.grains_to == g2)
+                      & (points.label == label)]
         if rows.empty:
             continue
         name = (f"balloon, {label.replace('viscosity=', 'nu ')}" if scale == 1 else f"S = {scale}, {label}") + \

@@ -65,6 +65,9 @@ group 8400 16 32 elastic "nu 300, c_c 0: viscosity=300 cc=0" "nu 500, c_c 0: vis
 group 8400 16 32 around "nu 700, c_c 0: viscosity=700 cc=0 dt=4.58e-4" \
   "nu 700, c_c 50: viscosity=700 cc=50 dt=4.58e-4" "nu 1000, c_c 50: viscosity=1000 cc=50 dt=4.58e-4" \
   "nu 1000, c_c 100: viscosity=1000 cc=100 dt=4.58e-4"
+# Grains of radii 16 S to 48 S, a wider spread: elastic contacts, a stiff shape.
+group 8400 16 48 elastic "nu 1000, c_c 0: viscosity=1000 cc=0 dt=4.58e-4" \
+  "nu 1500, c_c 0: viscosity=1500 cc=0 dt=3.2e-4" "nu 2000, c_c 0: viscosity=2000 cc=0 dt=2.4e-4"
 group 8400 20 40 nu "nu 30: viscosity=30"
 group 8400 24 48 nu "nu 30: viscosity=30"
 
