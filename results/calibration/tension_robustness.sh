@@ -1,17 +1,15 @@
 #!/usr/bin/env bash
-# The closest tension-carrying droplet of tension.sh (S = 8 400, grains 16 S to 48 S, c_c = 0,
-# nu = 1 500) through 10 080 droplets: porosities 0.5 to 0.95, overlapping and non-overlapping
-# media, 10 media of each, 84 droplets from random starts in each, none of them the calibration's.
+# The calibrated tension-carrying droplet of tension.sh (tension_droplet.toml: S = 8 400, grains
+# 16 S to 48 S, c_c = 0, nu = 1 500) through 10 080 droplets: porosities 0.5 to 0.95, overlapping
+# and non-overlapping media, 10 media of each, 84 droplets from random starts in each, none of them
+# the calibration's.
 # Writes tension_robustness.csv, one row per porosity, kind and medium: droplets passed, stuck,
 # timed out and diverged, and their mean T. About 10 minutes on 2 cores. SOFTDROP=path runs
 # another build.
 set -euo pipefail
 cd "$(dirname "$0")"
 BIN=${SOFTDROP:-../../build/softdrop}
-S=8400
-DROPLET=(--radius 67200 --nrt 19243482594231.984 --kc 23809.523809523809 --cc 0 --viscosity 1500
-  --viscosity-dilation 0 --dt 3.2e-4 --max-depth 4200 --width 4200000 --height 4200000
-  --r-min 134400 --r-max 403200 --stuck-distance 42000 --stuck-window 45.8257569495584 --max-steps 100000000)
+DROPLET=(--config tension_droplet.toml)
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "porosity_target,kind,medium_seed,droplets,passed,stuck,timeout,diverged,mean_t" > "$tmp/out.csv"
