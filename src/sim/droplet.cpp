@@ -17,9 +17,12 @@ double DropletParams::rest_length() const {
   return 2 * radius * std::sin(M_PI / masses) / (1 + max_strain);
 }
 
-double DropletParams::inflated_area() const {
-  return 0.5 * masses * radius * radius * std::sin(2 * M_PI / masses);
-}
+namespace {
+// Area of the regular n-gon of circumradius r.
+double regular_polygon_area(int n, double r) { return 0.5 * n * r * r * std::sin(2 * M_PI / n); }
+}  // namespace
+
+double DropletParams::inflated_area() const { return regular_polygon_area(masses, radius); }
 
 double DropletParams::resting_radius() const {
   // Each mass of the regular N-gon feels the gas's 2 nRT / (N rho) outward and its two springs'
@@ -31,10 +34,7 @@ double DropletParams::resting_radius() const {
   return std::min(rho, radius);  // (rho > d0 / (2 s): a gas always stretches the springs a little)
 }
 
-double DropletParams::resting_area() const {
-  const double rho = resting_radius();
-  return 0.5 * masses * rho * rho * std::sin(2 * M_PI / masses);
-}
+double DropletParams::resting_area() const { return regular_polygon_area(masses, resting_radius()); }
 
 namespace {
 // "must be > 0", "must be in (0, 0.01]", "must be finite": the range in words, its bounds printed
