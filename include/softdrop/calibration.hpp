@@ -102,6 +102,8 @@ struct ScanAxis {
 /// constraint-order), in its order: masses, mass, radius, nrt, ks, kd, kc, cc, gravity, dt,
 /// max-strain, constraint-iterations, max-depth, viscosity, viscosity-dilation.
 std::vector<std::string> scan_parameter_names();
+/// The same names as one line, "masses, mass, ...", for help texts and messages.
+std::string scan_parameter_list();
 
 /// Parses "name=v1,v2,..." or "name=lo:hi:n" (n values, evenly spaced) or "name=lo:hi:n:log"
 /// (geometric). Throws std::invalid_argument with one line naming the axis for an unknown name,

@@ -19,11 +19,9 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
       "calibrate", "Scan droplet parameters against the paper: a small sweep and area traces per setting, ranked");
   c->fallthrough();
   auto* g = c->add_option_group("Calibration", "what every setting runs, and the grid");
-  std::string names;
-  for (const std::string& name : scan_parameter_names()) names += (names.empty() ? "" : ", ") + name;
   g->add_option("--scan", a.scans,
                 "An axis of the grid, name=v1,v2,... or name=lo:hi:n or name=lo:hi:n:log (repeat for more axes; "
-                "names: " + names + "); the other parameters come from the Droplet options")
+                "names: " + scan_parameter_list() + "); the other parameters come from the Droplet options")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   g->add_option("--setting", a.settings,
                 "Or one setting to run, \"[label:] name=value name=value ...\" over the Droplet options (repeat for "

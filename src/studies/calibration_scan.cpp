@@ -64,16 +64,20 @@ std::vector<std::string> scan_parameter_names() {
   return names;
 }
 
+std::string scan_parameter_list() {
+  std::string list;
+  for (const std::string& name : scan_parameter_names()) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
 ScanAxis parse_scan_axis(const std::string& text) {
   const std::size_t eq = text.find('=');
   if (eq == std::string::npos) throw std::invalid_argument("scan '" + text + "': expected name=values");
   ScanAxis axis{text.substr(0, eq), {}};
   const FieldKind field = field_kind(axis.name);
-  if (!field.numeric) {
-    std::string known;
-    for (const std::string& n : scan_parameter_names()) known += (known.empty() ? "" : ", ") + n;
-    throw std::invalid_argument("scan '" + text + "': unknown parameter '" + axis.name + "' (one of " + known + ")");
-  }
+  if (!field.numeric)
+    throw std::invalid_argument("scan '" + text + "': unknown parameter '" + axis.name + "' (one of " +
+                                scan_parameter_list() + ")");
   const std::string values = text.substr(eq + 1);
   if (values.empty()) throw std::invalid_argument("scan '" + text + "': no values");
   if (values.find(':') != std::string::npos) {
