@@ -196,6 +196,7 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("rest_distance", &RunOptions::rest_distance)
       .def_readwrite("path_interval", &RunOptions::path_interval);
 
+  const MediumOptions kMedium;  // the program's defaults are the module's
   py::class_<Medium>(m, "Medium", "A box of disc grains (length units)")
       .def_static(
           "generate",
@@ -210,9 +211,10 @@ PYBIND11_MODULE(_core, m) {
             py::gil_scoped_release release;
             return generate_medium(o);
           },
-          py::arg("kind") = "overlapping", py::arg("porosity") = 0.8, py::arg("width") = 500.0,
-          py::arg("height") = 500.0, py::arg("r_min") = 8.0, py::arg("r_max") = 16.0, py::arg("seed") = 1,
-          py::arg("gap") = 0.13, py::arg("periodic") = true, py::arg("grains") = 0,
+          py::arg("kind") = "overlapping", py::arg("porosity") = kMedium.porosity, py::arg("width") = kMedium.width,
+          py::arg("height") = kMedium.height, py::arg("r_min") = kMedium.r_min, py::arg("r_max") = kMedium.r_max,
+          py::arg("seed") = kMedium.seed, py::arg("gap") = kMedium.gap, py::arg("periodic") = kMedium.periodic,
+          py::arg("grains") = kMedium.grains,
           "A random medium, as `softdrop simulate` generates it (the same options give the same grains)")
       .def_static(
           "from_arrays",

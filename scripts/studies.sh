@@ -6,11 +6,12 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh > build.log 2>&1 || { cat build.log; exit 1; }
-S=./build/softdrop
+S=${SOFTDROP:-./build/softdrop}  # SOFTDROP=path runs another build
 mkdir -p results/sweep results/fit results/averagings results/area_trace results/constraint_order
+PHI=0.5,0.55,0.6,0.65,0.7,0.75,0.8,0.85,0.9,0.95
 
-# 1. Sweep: 7 porosities x 20 overlapping media x 20 droplets from random starts (500 x 500 boxes).
-$S sweep --db results/sweep/sweep.db --porosities 0.65,0.7,0.75,0.8,0.85,0.9,0.95 --media 20 --droplets 20 \
+# 1. Sweep: 10 porosities x 20 overlapping media x 20 droplets from random starts (500 x 500 boxes).
+$S sweep --db results/sweep/sweep.db --porosities "$PHI" --media 20 --droplets 20 \
   > results/sweep/summary.txt
 $S sweep-report --db results/sweep/sweep.db --format csv > results/sweep/points.csv
 $S sweep-report --db results/sweep/sweep.db --media --format csv > results/sweep/media.csv
@@ -23,7 +24,7 @@ $S averagings --db results/sweep/sweep.db --group 10 --csv results/averagings/av
   --plot results/averagings/averagings.png > /dev/null
 
 # 4. The sweep again with the red-black constraint order, compared droplet by droplet with step 1's.
-$S sweep --db results/constraint_order/sweep.db --porosities 0.65,0.7,0.75,0.8,0.85,0.9,0.95 --media 20 \
+$S sweep --db results/constraint_order/sweep.db --porosities "$PHI" --media 20 \
   --droplets 20 --constraint-order red-black > results/constraint_order/summary.txt
 $S sweep-report --db results/constraint_order/sweep.db --format csv > results/constraint_order/points.csv
 sqlite3 results/sweep/sweep.db < results/constraint_order/compare.sql > results/constraint_order/pairs.csv

@@ -61,9 +61,9 @@ TEST(Check, CatchesGrainCountsAndPorositiesTheRunCannotPlace) {
     std::string args, says;
   };
   for (const Case& c : {Case{"optimize --db " + db + " --grains 100000",
-                             "grains = 100000: cannot fit in 300 x 300: even the smallest grains (radius 8, gap 0.13) "
-                             "would need more than the box's area; at most 396"},
-                        Case{"optimize --db " + db + " --grains 300", "grains = 300: do not fit in the box"},
+                             "grains = 100000: cannot fit in 500 x 500: even the smallest grains (radius 16, gap 0.13) "
+                             "would need more than the box's area; at most 275"},
+                        Case{"optimize --db " + db + " --grains 100", "grains = 100: do not fit in the box"},
                         Case{"simulate --kind non-overlapping --porosity 0.35 --width 200 --height 200",
                              "porosity = 0.35: unreachable for non-overlapping grains"},
                         Case{"sweep --db " + db + " --kind non-overlapping --porosities 0.8,0.4 --width 200 --height 200",
@@ -75,7 +75,7 @@ TEST(Check, CatchesGrainCountsAndPorositiesTheRunCannotPlace) {
     EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(db));
-  EXPECT_EQ(run("--check optimize --db " + db + " --grains 100").code, 0);
+  EXPECT_EQ(run("--check optimize --db " + db + " --grains 60").code, 0);
   EXPECT_EQ(run("--check simulate --kind non-overlapping --porosity 0.75").code, 0);
 }
 

@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "cli_run.hpp"
+#include "fixtures.hpp"
 #include "softdrop/area_trace.hpp"
 #include "softdrop/calibration.hpp"
 
@@ -208,7 +209,7 @@ TEST(Calibration, FiguresAddUpAndDoNotDependOnThreads) {
 // A droplet whose gas pushes each mass hard (about 0.9 % of an edge a step here) buzzes against its
 // contacts for ever; the same droplet with a third of the gas comes to rest on a floor.
 TEST(Calibration, TheRestingTestTellsABuzzingDropletFromAResting) {
-  DropletParams quiet, buzzing;
+  DropletParams quiet = test::balloon_droplet(), buzzing = quiet;
   quiet.mass = buzzing.mass = 0.5;
   quiet.radius = buzzing.radius = 5.5;
   quiet.masses = buzzing.masses = 30;
@@ -226,7 +227,7 @@ TEST(Calibration, TheRestingTestTellsABuzzingDropletFromAResting) {
 // a power of two, so the scaled droplet on the scaled floor repeats the droplet's resting test
 // exactly, twice as fast.
 TEST(Calibration, TheRestingTestScalesWithTheDroplet) {
-  DropletParams quiet;
+  DropletParams quiet = test::balloon_droplet();
   quiet.mass = 0.5;
   quiet.radius = 5.5;
   quiet.masses = 30;
@@ -282,7 +283,7 @@ TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
   int rows = 0, refused = 0;
   while (std::getline(in, line)) ++rows, refused += line.find(",\"refused: ") != std::string::npos;
   EXPECT_EQ(rows, 4);
-  EXPECT_EQ(refused, 2);  // mass 1e-4 is unstable at dt = 2e-5 (the reason is quoted: it has commas)
+  EXPECT_EQ(refused, 2);  // mass 1e-4 is unstable at the default dt (the reason is quoted: it has commas)
   // stdout ranks: the run settings first, by score; the refused last.
   std::istringstream out(r.out);
   std::getline(out, line);
@@ -328,7 +329,7 @@ TEST(CalibrateCommand, BadInputIsOneLineNamingIt) {
                         Case{"--scan mass=", "scan 'mass=': no values"},
                         Case{"--scan viscosity=nan", "'nan' is not a finite number"},
                         Case{"--scan mass=1 --scan mass=2", "mass scanned twice"},
-                        Case{"--scan mass=1,1e-4", "setting 1: dt = 2e-05: too large for the stiffness"},
+                        Case{"--scan mass=1,1e-4", "setting 1: dt = 3.5e-06: too large for the stiffness"},
                         Case{"--porosities 0.5,1.2", "porosit"}, Case{"--trace-media -1", "trace-media = -1"},
                         Case{"--best 0", "best = 0"},
                         Case{"--setting mass=1 --scan nrt=1e8", "--setting and --scan do not mix"},

@@ -2,6 +2,7 @@
 // output file; good input gives a parseable summary.
 #include <gtest/gtest.h>
 
+#include "balloon.hpp"
 #include "cli_run.hpp"
 
 #include <array>
@@ -52,7 +53,7 @@ TEST(Cli, ProgressLinesEndAtOneHundredPercent) {
   EXPECT_EQ(sim.err.find('\r'), std::string::npos) << "a pipe gets plain lines";
   const std::string db = softdrop::test::temp_path("progress.db");
   std::filesystem::remove(db);
-  const Result opt = run("optimize --db " + db + " --grains 16 --width 160 --height 120 --medium-seed 2 --generations 3");
+  const Result opt = run("optimize --db " + db + softdrop::test::kSmallScene + " --generations 3");
   ASSERT_EQ(opt.code, 0) << opt.err;
   EXPECT_NE(opt.err.find("generation 3/3"), std::string::npos) << opt.err;
   EXPECT_NE(opt.err.find(" 100 %\n"), std::string::npos) << opt.err;
@@ -136,7 +137,7 @@ TEST(Cli, HelpDocumentsUnitsAndDefaults) {
   EXPECT_EQ(r.code, 0);
   EXPECT_NE(r.out.find("--dt"), std::string::npos);
   EXPECT_NE(r.out.find("time units"), std::string::npos);
-  EXPECT_NE(r.out.find("2e-05"), std::string::npos);
+  EXPECT_NE(r.out.find("3.5e-06"), std::string::npos);
 }
 
 }  // namespace

@@ -42,7 +42,7 @@ DropletParams changed(const DropletParams& p, const std::string& key) {
           v = v == ConstraintOrder::sequential ? ConstraintOrder::red_black
                                                : ConstraintOrder::sequential;
         else if constexpr (std::is_floating_point_v<T>)
-          v = v * 1.5;
+          v = v != 0 ? v * 1.5 : 0.5;  // (0.5: in every field's range)
         else
           v = v + 1;
       },

@@ -21,7 +21,7 @@ double edge(const DropletState& s, int i) {
 }
 
 TEST(Droplet, InflatedRingIsCounterClockwiseWithTheStatedArea) {
-  DropletParams p;
+  const DropletParams p = test::balloon_droplet();  // placed at its stretch limit, the inflated ring
   DropletState s;
   place_droplet(p, 3, 4, &s);
   EXPECT_NEAR(ring_area(s), p.inflated_area(), 1e-9 * p.inflated_area());
@@ -32,16 +32,16 @@ TEST(Droplet, InflatedRingIsCounterClockwiseWithTheStatedArea) {
   EXPECT_FALSE(ring_contains(s, 3 + 1.01 * p.radius, 4));
 }
 
-// The ring starts at rest: a balloon (the defaults) at its stretch limit, R itself, to the bit; a
-// ring whose springs carry the tension on the N-gon where they balance the gas, so it does not
+// The ring starts at rest: a balloon at its stretch limit, R itself, to the bit; a ring whose
+// springs carry the tension (the defaults) on the N-gon where they balance the gas, so it does not
 // breathe; a weak gas leaves the springs at about their rest length.
 TEST(Droplet, TheRingStartsWhereItsSpringsBalanceTheGas) {
-  const DropletParams balloon;
+  const DropletParams balloon = test::balloon_droplet();
   EXPECT_EQ(balloon.resting_radius(), balloon.radius);
   EXPECT_EQ(std::bit_cast<std::uint64_t>(balloon.resting_area()), std::bit_cast<std::uint64_t>(balloon.inflated_area()));
 
-  DropletParams springs;  // the gas holds the springs at about 5 % strain, well inside the limit
-  springs.nrt = 2.5e5, springs.gravity = 0, springs.viscosity = 0;
+  DropletParams springs;  // the defaults: the gas holds the springs at 5 % strain, well inside the limit
+  springs.gravity = 0, springs.viscosity = 0;
   const double rho = springs.resting_radius(), s = std::sin(M_PI / springs.masses);
   EXPECT_LT(rho, springs.radius);
   const double strain = 2 * rho * s / springs.rest_length() - 1;
@@ -56,7 +56,7 @@ TEST(Droplet, TheRingStartsWhereItsSpringsBalanceTheGas) {
   EXPECT_NEAR(sim.area(), springs.resting_area(), 1e-12 * springs.resting_area());
   EXPECT_EQ(sim.initial_area(), springs.resting_area());
   double least = sim.area(), most = sim.area();
-  for (int k = 0; k < 5000; ++k) {  // 0.1 time units, some 30 periods of the breathing mode
+  for (int k = 0; k < 5000; ++k) {  // some 80 periods of the breathing mode
     ASSERT_TRUE(sim.step());
     least = std::min(least, sim.area()), most = std::max(most, sim.area());
   }
@@ -197,9 +197,9 @@ TEST(Droplet, TheViscositySparesTheRingsDilationOnlyWhenAsked) {
   const DropletParams p;
   const double delta = 25;  // 1/time
   double torque = 0, size = 0;
-  // Damped as any deformation (the default): each mass feels -m nu delta r_i.
+  // Damped as any deformation: each mass feels -m nu delta r_i.
   std::vector<double> f = viscous_forces(1.0, delta, &torque, &size);
-  const double expected = p.mass * p.viscosity * delta * p.radius;
+  const double expected = p.mass * p.viscosity * delta * p.resting_radius();  // (the ring starts at rest)
   for (std::size_t k = 0; k < f.size(); k += 2)
     EXPECT_NEAR(std::hypot(f[k], f[k + 1]), expected, 1e-6 * expected);
   EXPECT_LT(std::abs(torque), 1e-9 * size * p.radius);

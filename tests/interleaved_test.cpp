@@ -49,6 +49,7 @@ Medium medium_of_porosity_08() {
   MediumOptions mo;
   mo.porosity = 0.8;
   mo.width = mo.height = 200;
+  mo.r_min = test::kBalloonRMin, mo.r_max = test::kBalloonRMax;  // (many grains in a small box)
   mo.seed = 3;
   return generate_medium(mo);
 }
@@ -151,8 +152,9 @@ TEST(Interleaved, LaneKernelsConstrainEachRingAsAlone) {
 }
 
 TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
-  // Mixed lanes: the reference order, a red-black droplet (constrained on its own), another ring
-  // size; recordings on; droplets of very different lengths, so lanes are refilled mid-run.
+  // Mixed lanes: the defaults and the balloon (whose springs sit at their limit), the reference
+  // order, a red-black droplet (constrained on its own), another ring size; recordings on;
+  // droplets of very different lengths, so lanes are refilled mid-run.
   const Medium medium = medium_of_porosity_08();
   const Medium pore = test::pore_of_three_grains();
   RunOptions o;
@@ -167,7 +169,7 @@ TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
   };
   std::vector<Case> cases;
   for (int i = 0; i < 9; ++i) {
-    DropletParams p;
+    DropletParams p = i % 2 == 1 ? test::balloon_droplet() : DropletParams{};
     if (i % 4 == 1) p.constraint_order = ConstraintOrder::red_black;
     if (i % 3 == 2) p.masses = 32;
     cases.push_back({p, i % 5 == 4 ? &pore : &medium, 20.0 + 19.0 * i});

@@ -29,7 +29,7 @@ TEST(Medium, OverlappingStopsAtTheFirstGrainThatReachesTheTarget) {
   Medium one_less = m;
   one_less.grains.pop_back();
   EXPECT_GT(exact_porosity(one_less), 0.7);
-  EXPECT_GT(m.grains.size(), 150u);
+  EXPECT_GT(m.grains.size(), 20u);  // (about 28 of radii 16 to 48 in 500 x 500)
   for (const Grain& g : m.grains) {
     EXPECT_GE(g.r, o.r_min);
     EXPECT_LE(g.r, o.r_max);

@@ -39,7 +39,11 @@ kill_rank_1() {
   kill -9 "$victim"
 }
 
-small=(--porosities 0.7,0.8,0.9 --media 4 --droplets 8 --width 200 --height 200 --threads 1 --quiet)
+# The balloon (the earlier defaults) on grains of radii 8 to 16, as the C++ tests run the machinery
+# (tests/balloon.hpp): a quick droplet, and many grains in a small box.
+balloon=(--r-min 8 --r-max 16 --nrt 1.5e9 --ks 119755 --kd 365 --cc 2e4 --dt 2e-5 --viscosity 3000
+  --viscosity-dilation 1)
+small=(--porosities 0.7,0.8,0.9 --media 4 --droplets 8 --width 200 --height 200 --threads 1 --quiet "${balloon[@]}")
 "$bin" sweep --db one.db "${small[@]}" > one.txt
 for p in 3 4; do
   run "$p" "$bin" sweep --db "mpi$p.db" "${small[@]}" > "mpi$p.txt"
@@ -50,7 +54,7 @@ done
 echo "ok: 3 and 4 ranks store what one process stores"
 
 # Rank 1 killed once rank 0 has committed some media; then the same command again.
-long=(--porosities 0.7,0.8,0.9 --media 8 --droplets 48 --width 200 --height 200 --threads 1)
+long=(--porosities 0.7,0.8,0.9 --media 8 --droplets 48 --width 200 --height 200 --threads 1 "${balloon[@]}")
 run 3 "$bin" sweep --db killed.db "${long[@]}" > /dev/null 2> killed.err &
 job=$!
 kill_rank_1 killed.db "SELECT count(*) FROM sweep_media" 2 "sweep --db killed.db"
@@ -64,7 +68,8 @@ grep -q "this session $((24 - before)) media" again.err || { cat again.err; fail
 echo "ok: a rank killed after $before media, the command run again did the other $((24 - before))"
 
 # Islands: the same history on threads and on ranks; a rank killed, then resumed.
-scene=(--grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 --stuck-distance 1 --lambda 2 --quiet)
+scene=(--grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 --stuck-distance 1 --lambda 2 --quiet
+  "${balloon[@]}")
 history() {
   sqlite3 "$1" "SELECT id, island, archipelago, status, params, seed, generations, evaluations, best_t, best_generation FROM runs ORDER BY id;
     SELECT run_id, generation, kind, accepted_candidate, best_t, touched, state FROM generations ORDER BY 1, 2;

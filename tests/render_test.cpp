@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "csv_table.hpp"
+#include "balloon.hpp"
 #include "cli_run.hpp"
 #include "softdrop/render.hpp"
 
@@ -233,7 +234,7 @@ TEST(RenderCli, EveryPictureKindRenders) {
   expect_png("paths --medium " + kPore + " --droplets 6 --seed 2", fresh("cli_paths.png"), 300);
 
   const std::string db = fresh("cli_search.db");
-  ASSERT_EQ(test::run("optimize --db " + db + " --grains 16 --width 160 --height 120 --medium-seed 2 --seed 7 "
+  ASSERT_EQ(test::run("optimize --db " + db + test::kSmallScene + " --seed 7 "
                       "--stuck-window 0.1 --stuck-distance 1 --generations 8 --quiet").code, 0);
   const std::string curve = fresh("cli_curve.svg");
   expect_png("search --db " + db + " --run 1 --curve " + curve, fresh("cli_search.png"), 320);
@@ -300,42 +301,56 @@ TEST(RenderCli, AnimationAsMp4ThroughFfmpeg) {
   cairo_surface_destroy(s);
 }
 
-TEST(RenderCli, AreaTraceMarksEntryAndExitAndNeverExceedsTheInflatedArea) {
+// The area trace through the pore of three grains: its samples, the entry and the exit, and the
+// ratio S/S0 between them, lowest and highest.
+struct PoreTrace {
+  double enter = -1, leave = -1, lowest = 1, highest = 1;
+};
+PoreTrace trace_through_pore(const std::string& options) {
   const std::string csv = fresh("trace.csv"), png = fresh("trace.png");
-  const test::Result r = test::run("render trace --medium " + kPore + " --x0 100 --csv " + csv + " -o " + png + " --size 400");
-  ASSERT_EQ(r.code, 0) << r.err;
+  const test::Result r = test::run("render trace --medium " + kPore + " --x0 100 --csv " + csv + " -o " + png +
+                                   " --size 400" + options);
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(read_png(png).width, 400);
   const test::CsvTable table = test::read_csv_table(csv);
-  double enter = -1, leave = -1;  // the first sample inside the medium, and below it
+  PoreTrace p;  // enter, leave: the first sample inside the medium, and below it
   std::vector<double> t, ratio;
   for (std::size_t i = 0; i < table.rows.size(); ++i) {
     EXPECT_EQ(table.cell(i, "droplet"), "0");
     t.push_back(table.number(i, "t"));
     ratio.push_back(table.number(i, "area_ratio"));
     const std::string& phase = table.cell(i, "phase");
-    if (phase == "inside" && enter < 0) enter = t.back();
-    if (phase == "below" && leave < 0) leave = t.back();
-    EXPECT_TRUE(phase == "above" ? enter < 0 : phase == "inside" ? enter >= 0 && leave < 0 : leave >= 0) << phase;
+    if (phase == "inside" && p.enter < 0) p.enter = t.back();
+    if (phase == "below" && p.leave < 0) p.leave = t.back();
+    EXPECT_TRUE(phase == "above" ? p.enter < 0 : phase == "inside" ? p.enter >= 0 && p.leave < 0 : p.leave >= 0) << phase;
   }
-  ASSERT_GT(t.size(), 50u);
-  EXPECT_GT(enter, 0);
-  EXPECT_GT(leave, enter);
-  EXPECT_LE(leave, t.back() + 1e-12);
-  double lowest = 1;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    // The inflated ring (at the stretch limit) is the largest, to within what four constraint passes
-    // leave of the gas's push in one step (a few 1e-4).
-    EXPECT_LE(ratio[i], 1 + 1e-3) << "the inflated ring is the largest: t = " << t[i];
-    if (t[i] > enter && t[i] < leave) lowest = std::min(lowest, ratio[i]);
-  }
-  EXPECT_LT(lowest, 0.95) << "squeezing through the pore shrinks the droplet";
-  EXPECT_EQ(read_png(png).width, 400);
+  EXPECT_GT(t.size(), 50u);
+  EXPECT_GT(p.enter, 0);
+  EXPECT_GT(p.leave, p.enter);
+  EXPECT_LE(p.leave, t.back() + 1e-12);
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] > p.enter && t[i] < p.leave) p.lowest = std::min(p.lowest, ratio[i]), p.highest = std::max(p.highest, ratio[i]);
+  return p;
+}
+
+TEST(RenderCli, AreaTraceMarksEntryAndExitAndTheDropletShrinksAndSwells) {
+  // The defaults' springs carry the tension: squeezed through the pore the droplet shrinks, and
+  // sprung back it overshoots its rest area.
+  const PoreTrace d = trace_through_pore("");
+  EXPECT_LT(d.lowest, 0.9) << "squeezing through the pore shrinks the droplet";
+  EXPECT_GT(d.highest, 1.02) << "and it swells past its rest area after";
+  // The balloon's ring at the stretch limit is the largest, to within what four constraint passes
+  // leave of the gas's push in one step (a few 1e-4): it only shrinks.
+  const PoreTrace b = trace_through_pore(test::kBalloonOptions);
+  EXPECT_LT(b.lowest, 0.95);
+  EXPECT_LE(b.highest, 1 + 1e-3);
 }
 
 // Overlapping grains are one solid region (one filled path, no outlines); separate grains outlines.
 TEST(RenderCli, OverlappingGrainsAreDrawnAsTheirSolidUnion) {
   auto colours = [](const std::string& kind) {
     const std::string svg = fresh("union_" + kind + ".svg");
-    EXPECT_EQ(test::run("render medium --kind " + kind + " --porosity 0.8 --width 100 --height 100 -o " + svg).code, 0);
+    EXPECT_EQ(test::run("render medium --kind " + kind + " --porosity 0.8 --width 100 --height 100 --r-min 8 --r-max 16 -o " + svg).code, 0);
     std::ifstream in(svg);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     int solid = 0, outlines = 0;
@@ -380,7 +395,8 @@ TEST(RenderCli, AScaleBarIsDrawnWhenAsked) {
 TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
   const std::string svg = fresh("paths_colours.svg");
   const test::Result ok = test::run("render paths --porosity 0.75 --width 200 --height 200 --droplets 8 --seed 1 "
-                                    "--path-colour '#ff0000' --stuck-colour '#0000ff' -o " + svg);
+                                    "--r-min 8 --r-max 16 --path-colour '#ff0000' --stuck-colour '#0000ff' -o " +
+                                    svg + test::kBalloonOptions);
   ASSERT_EQ(ok.code, 0) << ok.err;
   std::ifstream in(svg);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -390,7 +406,7 @@ TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
 
 TEST(RenderCli, CurvesDrawSeveralSearchesAndNameWhatTheyCannotDraw) {
   const std::string a = fresh("curves-a-1.db"), b = fresh("curves-a-2.db"), png = fresh("curves.png");
-  const std::string search = " --grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 "
+  const std::string search = test::kSmallScene + " --stuck-window 0.1 "
                              "--stuck-distance 1 --generations 3 --quiet";
   for (const auto& [db, seed] : {std::pair{a, 7}, std::pair{b, 8}})
     ASSERT_EQ(test::run("optimize --db " + db + search + " --seed " + std::to_string(seed)).code, 0);

@@ -109,13 +109,12 @@ RunSummary run_checked(const Medium& medium, double x0) {
   return r;
 }
 
-TEST(HardCases, AFallThroughA700HighBoxOntoOneGrain) {
-  // About 0.5 length units a step at impact, a quarter of an edge: the ring is flattened to a
-  // fraction of its area when it lands on the grain's top, and must come back whole. (From falls
-  // of about 1 000 on, 0.6 units a step and more, δt no longer resolves the impact and some rings
-  // fold into themselves for a step or two; results/calibration/README.md has the numbers.)
-  for (const double r : {8.0, 12.0}) {
-    const Medium tall{500, 700, true, {{250, 30, r}}};
+TEST(HardCases, AFallThroughA2000HighBoxOntoOneGrain) {
+  // About 1 length unit a step at impact, half an edge: the ring is flattened when it lands on the
+  // grain's top, and must come back whole. (The balloon, with its breathing damped, folds into
+  // itself in most of these falls; results/calibration/README.md has the numbers.)
+  for (const double r : {8.0, 16.0}) {
+    const Medium tall{500, 2000, true, {{250, 30, r}}};
     for (const double dx : {0.0, 0.5, 2.0, 6.0, 12.0}) {
       SCOPED_TRACE("grain radius " + std::to_string(r) + ", start " + std::to_string(dx) + " off its axis");
       const RunSummary run = run_checked(tall, 250 + dx);
@@ -141,13 +140,14 @@ TEST(HardCases, AGrainWhereTheRingStarts) {
 }
 
 TEST(HardCases, TheNarrowestPoreItPasses) {
-  // Two grains of radius 16 side by side: the droplet (16 across) squeezes through a gap of 7,
-  // shrinking to about three quarters of its area, and rests on a gap of 6.5.
+  // Two grains of radius 16 side by side: the droplet (16 across) squeezes through a gap of 12,
+  // and rests on a gap of 11. Its internal viscosity keeps its shape stiff, so it squeezes less
+  // than the balloon did (a gap of 7).
   auto pore = [](double gap) { return Medium{200, 200, true, {{100 - gap / 2 - 16, 120, 16}, {100 + gap / 2 + 16, 120, 16}}}; };
-  const RunSummary through = run_checked(pore(7), 100);
+  const RunSummary through = run_checked(pore(12), 100);
   EXPECT_EQ(through.outcome, Outcome::passed) << through.reason;
-  EXPECT_LT(through.min_area_ratio, 0.8);
-  const RunSummary held = run_checked(pore(6.5), 100);
+  EXPECT_LT(through.min_area_ratio, 0.9) << "it squeezes";
+  const RunSummary held = run_checked(pore(11), 100);
   EXPECT_EQ(held.outcome, Outcome::stuck) << held.reason;
 }
 

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "balloon.hpp"
 #include "cli_run.hpp"
 
 extern char** environ;
@@ -22,8 +23,7 @@ extern char** environ;
 namespace softdrop::test {
 
 // The small scene of search_fixtures.hpp, on the command line.
-inline const std::string kScene =
-    " --grains 16 --width 160 --height 120 --medium-seed 2 --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet ";
+inline const std::string kScene = kSmallScene + " --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet ";
 
 inline std::string fresh(const std::string& name) { return fresh_path(name); }
 

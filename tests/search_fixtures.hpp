@@ -1,7 +1,9 @@
 #pragma once
-// A small search scene shared by the search and history tests: 16 non-overlapping grains in a
-// 160 x 120 periodic box; the droplet passes through it (T0 ~ 1.25) in about 20 ms.
+// A small search scene shared by the search and history tests: 16 non-overlapping grains of radii
+// 8 to 16 in a 160 x 120 periodic box; the balloon droplet (fixtures.hpp) passes through it
+// (T0 ~ 1.25) in about 20 ms.
 
+#include "fixtures.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/search.hpp"
 
@@ -11,6 +13,7 @@ inline SearchOptions small_search_options(int lambda = 1) {
   SearchOptions o;
   o.lambda = lambda;
   o.seed = 7;
+  o.droplet = balloon_droplet();
   o.run.stuck_window = 0.1;  // stuck droplets end sooner; the tests need many evaluations
   o.run.stuck_distance = 1;
   return o;
@@ -22,6 +25,8 @@ inline Medium small_search_medium() {
   m.grains = 16;
   m.width = 160;
   m.height = 120;
+  m.r_min = kBalloonRMin;
+  m.r_max = kBalloonRMax;
   m.seed = 2;  // medium seed 1 traps the droplet under these exit conditions
   return generate_medium(m);
 }

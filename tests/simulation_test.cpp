@@ -22,10 +22,11 @@ TEST(Simulation, FreeFallWithoutGrainsHasTortuosityOneAndFollowsTheParabola) {
   ASSERT_EQ(r.outcome, Outcome::passed) << r.reason;
   EXPECT_NEAR(r.tortuosity, 1.0, 1e-9);
   EXPECT_TRUE(r.touched.empty());
-  // Centre of mass: y0 + g t^2 / 2 (internal forces cancel), x constant.
+  // Centre of mass: y0 + g t^2 / 2 (internal forces cancel), x constant; to position Verlet's
+  // rounding, which grows as steps^1.5 (about 5e-7 after this fall's 60 000 steps).
   for (std::size_t k = 0; k < r.path_t.size(); ++k) {
     const double t = r.path_t[k];
-    EXPECT_NEAR(r.path_y[k], r.start_y + 0.5 * p.gravity * t * t, 1e-9 * (1 + std::abs(r.start_y)))
+    EXPECT_NEAR(r.path_y[k], r.start_y + 0.5 * p.gravity * t * t, 1e-8 * (1 + std::abs(r.start_y)))
         << "t = " << t;
     EXPECT_NEAR(r.path_x[k], 123.0, 1e-9);
   }
@@ -212,13 +213,14 @@ TEST(Simulation, StepsThatReuseContactTestsEqualStepsThatLookEverythingUp) {
   open_options.porosity = 0.8;
   open_options.width = open_options.height = 300;
   open_options.seed = 2;
+  open_options.r_min = test::kBalloonRMin, open_options.r_max = test::kBalloonRMax;
   const Medium open = generate_medium(open_options);
   auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
     for (std::size_t i = 0; i < a.size(); ++i)
       if (std::bit_cast<std::uint64_t>(a[i]) != std::bit_cast<std::uint64_t>(b[i])) return false;
     return a.size() == b.size();
   };
-  DropletParams p;
+  const DropletParams p = test::balloon_droplet();  // (the scenes and step counts were laid out for it)
   for (const Medium& medium : {test::pore_of_three_grains(), pile, open}) {
     SCOPED_TRACE(medium.grains.size() == 3 ? "pore" : medium.grains.size() == 12 ? "pile" : "open");
     Simulation sim(p, medium);
@@ -263,6 +265,7 @@ TEST(Simulation, RecordedContactForcesEqualForcesComputedFromTheRecords) {
   open_options.porosity = 0.8;
   open_options.width = open_options.height = 300;
   open_options.seed = 2;
+  open_options.r_min = test::kBalloonRMin, open_options.r_max = test::kBalloonRMax;
   const Medium open = generate_medium(open_options);
   const Medium pore = test::pore_of_three_grains();
   struct Scene {
@@ -277,7 +280,7 @@ TEST(Simulation, RecordedContactForcesEqualForcesComputedFromTheRecords) {
       for (double d : *v) b.push_back(std::bit_cast<std::uint64_t>(d));
     return b;
   };
-  DropletParams p;
+  const DropletParams p = test::balloon_droplet();  // (the scenes and step counts were laid out for it)
   for (const Scene& scene : scenes) {
     SCOPED_TRACE(scene.name);
     Simulation recorded(p, *scene.medium), recomputed(p, *scene.medium);
@@ -331,7 +334,7 @@ TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
     for (double d : v) b.push_back(std::bit_cast<std::uint64_t>(d));
     return b;
   };
-  DropletParams p;
+  const DropletParams p = test::balloon_droplet();  // (the scenes and step counts were laid out for it)
   for (const Scene& scene : scenes) {
     SCOPED_TRACE(scene.name);
     std::vector<std::vector<std::uint64_t>> reference;  // per step: fx, fy, x, y, px, py

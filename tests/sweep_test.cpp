@@ -16,6 +16,7 @@
 #include <random>
 #include <thread>
 
+#include "fixtures.hpp"
 #include "search_cli.hpp"
 #include "softdrop/averaging.hpp"
 #include "softdrop/fit.hpp"
@@ -35,6 +36,8 @@ SweepOptions tiny() {
   o.media = 3;
   o.droplets = 4;
   o.medium.width = o.medium.height = 150;
+  o.medium.r_min = test::kBalloonRMin, o.medium.r_max = test::kBalloonRMax;  // (many grains in a small box)
+  o.droplet = test::balloon_droplet();  // (a quick droplet: these tests are of the records)
   return o;
 }
 
@@ -372,8 +375,7 @@ TEST(SweepCli, TheQuickPresetAveragesAndFitsWithoutAVerdictItCannotGive) {
 
 TEST(SweepStore, AVersionOneFileIsMigratedAndKeepsItsRuns) {
   const std::string db = fresh("v1.db");
-  ASSERT_EQ(test::run("optimize --db " + db + " --grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 "
-                      "--stuck-distance 1 --generations 2 --quiet").code, 0);
+  ASSERT_EQ(test::run("optimize --db " + db + test::kSmallScene + " --stuck-window 0.1 --stuck-distance 1 --generations 2 --quiet").code, 0);
   {
     SQLite::Database d(db, SQLite::OPEN_READWRITE);
     d.exec("DROP TABLE sweep_droplets; DROP TABLE sweep_media; DROP TABLE sweeps; PRAGMA user_version = 1");

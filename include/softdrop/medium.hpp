@@ -62,11 +62,11 @@ struct MediumOptions {
   double width = 500;      ///< W, length units
   double height = 500;     ///< H, length units
   bool periodic = true;    ///< periodic in x
-  double r_min = 8;        ///< smallest grain radius
-  double r_max = 16;       ///< largest grain radius
+  double r_min = 16;       ///< smallest grain radius (2 droplet radii)
+  double r_max = 48;       ///< largest grain radius (6 droplet radii)
   RadiusDistribution radii = RadiusDistribution::uniform;  ///< how radii are drawn
-  double r_median = 12;    ///< log-normal: median radius
-  double r_sigma = 0.25;   ///< log-normal: standard deviation of ln r
+  double r_median = 28;    ///< log-normal: median radius (about sqrt(r_min r_max))
+  double r_sigma = 0.4;    ///< log-normal: standard deviation of ln r
   double gap = 0.13;       ///< non-overlapping: min surface gap as a fraction of the larger radius
   std::uint64_t seed = 1;  ///< random seed
   /// Non-overlapping: consecutive failed placements after which the target is declared unreachable.

@@ -33,7 +33,7 @@ Outcome parse_outcome(const std::string& name);
 
 /// What to run and what to record.
 struct RunOptions {
-  std::int64_t max_steps = 2'000'000;  ///< step budget (timeout)
+  std::int64_t max_steps = 12'000'000;  ///< step budget (timeout): 42 time units at the default dt
   double stuck_window = 0.5;           ///< time window of the stuck test (time units)
   double stuck_distance = 5.0;         ///< downward progress required per window (length)
   /// The rest test, which ends a stuck droplet early: a centre of mass that travelled less than
@@ -73,6 +73,8 @@ struct RunSummary {
   std::int64_t steps = 0;        ///< steps taken
   double tortuosity = 0;         ///< T = path length between y = H and y = 0 over H (passed only)
   double path_length = 0;        ///< length of the centre-of-mass path inside the medium so far
+  /// Where the run began: the placement (Simulation::run's cx and the start height), so that a run
+  /// from start_x gives the same bits again; the centre of mass for run_from_current.
   double start_x = 0, start_y = 0;
   std::vector<std::int32_t> touched;  ///< indices of grains touched, ascending
   // Diagnostics, checked every step (area, penetration) or every check_interval steps.
@@ -159,6 +161,8 @@ class Simulation {
  private:
   friend class RunStepper;
   friend struct LaneBlockStep;
+  /// Steps to an outcome; placed as RunStepper's (the x the ring was just placed at, or null).
+  RunSummary drive(const RunOptions& options, const double* placed);
   bool any_grain_inside_ring() const;
   /// step()'s validity test: the area the pressure stage measured is finite and > 0.
   bool valid_after_step() const;

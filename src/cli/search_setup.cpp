@@ -15,11 +15,10 @@
 namespace softdrop::cli {
 
 OptimizeArgs::OptimizeArgs() {
-  // The default search scene: a 300 x 300 periodic box of 60 non-overlapping grains (phi ~ 0.735).
+  // The default search scene: the default 500 x 500 periodic box with 20 non-overlapping grains of
+  // the default radii (phi ~ 0.72).
   medium.options.kind = MediumKind::non_overlapping;
-  medium.options.grains = 60;
-  medium.options.width = 300;
-  medium.options.height = 300;
+  medium.options.grains = 20;
   // The measured best of the strategies (results/search/README.md): the evolution strategy with a
   // relocation every third generation and a generation of 8, enough candidates for every thread
   // and lane. The library's SearchOptions{} stays the paper's algorithm, and a stored run without

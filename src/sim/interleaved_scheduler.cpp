@@ -72,7 +72,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       if (l.run) continue;
       if (!next(&l.job, may_wait && busy == 0)) return;
       l.job.sim->place_above(l.job.x0);
-      l.run.emplace(l.job.sim, *l.job.options);
+      l.run.emplace(l.job.sim, *l.job.options, &l.job.x0);
       ++busy;
     }
   };

@@ -20,14 +20,17 @@ namespace softdrop {
 // run_interleaved several.
 class RunStepper {
  public:
-  RunStepper(Simulation* sim, const RunOptions& options) : sim_(sim), o_(options) {
+  /// placed: the droplet was just placed above the medium at x = *placed (place_above), which the
+  /// summary reports as its start, so that running from there again gives the same bits; null: the
+  /// run goes on from another state, and its start is the centre of mass.
+  RunStepper(Simulation* sim, const RunOptions& options, const double* placed = nullptr) : sim_(sim), o_(options) {
     std::string why;
     if (!options.IsValid(&why)) throw std::invalid_argument(why);
     dt_ = sim->params_.dt;
     H_ = sim->medium_.height;
     sim->centre_of_mass(&cx_, &cy_);
-    s_.start_x = cx_;
-    s_.start_y = cy_;
+    s_.start_x = placed ? *placed : cx_;
+    s_.start_y = placed ? sim->start_y_ : cy_;
     sim->area_ = ring_area(sim->state_);
     window_ = std::max<std::int64_t>(1, std::llround(options.stuck_window / dt_));
     rest_window_ = options.rest_window > 0

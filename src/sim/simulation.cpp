@@ -185,11 +185,13 @@ bool Simulation::any_grain_inside_ring() const {
 
 RunSummary Simulation::run(double cx, const RunOptions& options) {
   place_above(cx);
-  return run_from_current(options);
+  return drive(options, &cx);
 }
 
-RunSummary Simulation::run_from_current(const RunOptions& options) {
-  RunStepper run(this, options);
+RunSummary Simulation::run_from_current(const RunOptions& options) { return drive(options, nullptr); }
+
+RunSummary Simulation::drive(const RunOptions& options, const double* placed) {
+  RunStepper run(this, options, placed);
   while (!run.finished()) run.after_step(step());
   return run.take();
 }

@@ -23,8 +23,10 @@ void parse_stored(const std::string& name, StrategyKind* kind) { *kind = parse_s
 
 template <class T>
 void set_legacy(const std::string& key, T& value) {
-  if constexpr (std::is_arithmetic_v<T>)
+  if constexpr (std::is_arithmetic_v<T>) {
     if (key == "rest-window" || key == "rest-distance") value = 0;
+    if (key == "viscosity-dilation") value = 1;  // (the default is 0 now)
+  }
 }
 
 // The lists of stored options: key (= CLI long option name) and field. They are alike in shape

@@ -12,6 +12,8 @@ import pytest
 
 import softdrop
 
+import balloon
+
 CLI = os.environ["SOFTDROP_CLI"]
 
 
@@ -139,7 +141,7 @@ def test_run_options_end_runs_as_the_program_does():
 def test_a_search_history_reads_as_the_program_reads_it(tmp_path):
     db = tmp_path / "search.db"
     cli("optimize", "--db", str(db), "--grains", "16", "--width", "160", "--height", "120", "--medium-seed", "2",
-        "--stuck-window", "0.1", "--stuck-distance", "1", "--generations", "6", "--lambda", "2", "--quiet")
+        "--stuck-window", "0.1", "--stuck-distance", "1", "--generations", "6", "--lambda", "2", "--quiet", *balloon.ARGS)
     h = softdrop.read_history(db)
     theirs = json.loads(cli("history", "--db", str(db), "--run", "1", "--format", "json"))
     assert len(h["runs"]) == 1 and h["runs"].loc[0, "generations"] == 6
@@ -151,7 +153,7 @@ def test_a_search_history_reads_as_the_program_reads_it(tmp_path):
     best = softdrop.best_arrangement(db, run=1)
     assert best.tortuosity == h["runs"].loc[0, "best_t"]
     # The stored arrangement pushes the same droplet to the same T.
-    params = softdrop.DropletParams()
+    params = softdrop.DropletParams(**balloon.DROPLET)
     again = softdrop.simulate(best.medium, run=softdrop.RunOptions(stuck_window=0.1, stuck_distance=1), params=params)
     assert again.tortuosity == best.tortuosity
 
@@ -179,7 +181,7 @@ def test_ctrl_c_stops_a_long_run(tmp_path):
     script = tmp_path / "long.py"
     script.write_text(
         "import softdrop\n"
-        "m = softdrop.Medium.generate('non-overlapping', porosity=0.8)\n"
+        "m = softdrop.Medium.from_arrays([81, 119], [300, 300], [16, 16], 200, 400)  # a pore too narrow to pass\n"
         "print('started', flush=True)\n"
         "try:\n"
         "    softdrop.simulate(m, x0=100, run=softdrop.RunOptions(max_steps=10**9, stuck_window=1e6, stuck_distance=0))\n"
@@ -189,7 +191,7 @@ def test_ctrl_c_stops_a_long_run(tmp_path):
     assert child.stdout.readline().strip() == "started"
     import signal
     import time
-    time.sleep(1.0)  # well into the run (a droplet held in a pocket, with no stuck test, runs for minutes)
+    time.sleep(1.0)  # well into the run (a droplet held in the pore, with no stuck test, runs for minutes)
     child.send_signal(signal.SIGINT)
     out, _ = child.communicate(timeout=60)
     assert "interrupted" in out
