@@ -9,11 +9,14 @@
 
 namespace softdrop::bench {
 
-/// medium-200, or the same grain density in a box `side` wide and high (medium-5000: 2500).
-inline Medium medium_200(double side = 500) {
+/// medium-200, or the same grain density in a box `side` wide and high (medium-5000: 2500), of
+/// the default grain radii or others.
+inline Medium medium_200(double side = 500, double r_min = MediumOptions{}.r_min, double r_max = MediumOptions{}.r_max) {
   MediumOptions mo;
   mo.porosity = 0.7;
   mo.width = mo.height = side;
+  mo.r_min = r_min;
+  mo.r_max = r_max;
   mo.seed = 1;
   return generate_medium(mo);
 }

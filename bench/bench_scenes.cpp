@@ -2,7 +2,11 @@
 // machine and compiler.
 //
 //   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--lanes N] [--width W]
-//                            [--out FILE.csv]
+//                            [--droplet defaults|balloon] [--out FILE.csv]
+//
+// --droplet balloon runs every scene with the balloon (DropletParams::balloon()) on its grains
+// (radii 8 to 16) and its default search scene (60 grains in 300 x 300), to compare with the
+// defaults (grains of radii 16 to 48, 20 grains in 500 x 500) in one run.
 //
 // Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
@@ -57,10 +61,15 @@ struct Work {
 
 double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
 
+// --droplet: the droplet of every scene, and the grain radii of its media.
+DropletParams scene_droplet;
+double r_min = MediumOptions{}.r_min, r_max = MediumOptions{}.r_max;
+bool balloon = false;
+
 // Steps of one droplet, re-dropped from a new x every 20 000 steps so that every step is in the
 // medium (as bench_step does); `steps` in total.
 Work stepping(const Medium& medium, std::int64_t steps, ConstraintOrder order = ConstraintOrder::sequential) {
-  DropletParams p;
+  DropletParams p = scene_droplet;
   p.constraint_order = order;
   Simulation sim(p, medium);
   double x0 = 37;
@@ -83,7 +92,7 @@ Work stepping(const Medium& medium, std::int64_t steps, ConstraintOrder order = 
 
 Work free_fall() {
   Medium empty{500, 1'000'000, true, {}};  // tall enough for 400 000 steps of free fall
-  DropletParams p;
+  const DropletParams p = scene_droplet;
   Simulation sim(p, empty);
   sim.place(250, 999'000);
   const std::int64_t steps = 400'000;
@@ -99,7 +108,7 @@ Work free_fall() {
 // `simulate --droplets 24` on the medium-200 medium: whole runs, `lanes` droplets stepped together
 // on each thread (run_interleaved).
 Work batch(const Medium& medium, int threads, int lanes) {
-  DropletParams p;
+  const DropletParams p = scene_droplet;
   BatchOptions b;
   b.droplets = 24;
   b.threads = threads;
@@ -121,6 +130,8 @@ Work sweep(int threads, int per_medium) {
   o.media = 2;
   o.droplets = per_medium;
   o.medium.width = o.medium.height = 300;
+  o.medium.r_min = r_min, o.medium.r_max = r_max;
+  o.droplet = scene_droplet;
   Work w;
   const auto t0 = Clock::now();
   run_sweep_units(o, sweep_units(o), threads, [&](SweepMedium&& m) {  // as `softdrop sweep` runs
@@ -141,6 +152,7 @@ Work search(int lambda, int threads, int generations = 0, ConstraintOrder order 
             bool es = false) {
   SearchOptions o;
   o.lambda = lambda;
+  o.droplet = scene_droplet;
   o.droplet.constraint_order = order;
   if (es) {  // as `softdrop optimize` sets its defaults (OptimizeArgs)
     o.strategy.kind = StrategyKind::es;
@@ -148,10 +160,10 @@ Work search(int lambda, int threads, int generations = 0, ConstraintOrder order 
     o.run.rest_window = 0.05;
     o.run.rest_distance = 0.1;
   }
-  MediumOptions mo;
+  MediumOptions mo;  // optimize's default scene (OptimizeArgs), or the balloon's
   mo.kind = MediumKind::non_overlapping;
-  mo.grains = 60;
-  mo.width = mo.height = 300;
+  mo.grains = 20;
+  if (balloon) mo.grains = 60, mo.width = mo.height = 300, mo.r_min = r_min, mo.r_max = r_max;
   Configuration best;
   for (mo.seed = 1;; ++mo.seed) {  // the first medium whose droplet passes, as optimize does
     try {
@@ -235,7 +247,14 @@ int main(int argc, char** argv) {
     else if (a == "--out") out = value();
     else if (a == "--lanes") search_lanes = std::stoi(value());
     else if (a == "--width") width = std::stoi(value());
-    else {
+    else if (a == "--droplet") {
+      const std::string d = value();
+      if (d != "defaults" && d != "balloon") {
+        std::cerr << "bench_scenes: --droplet " << d << ": must be defaults or balloon\n";
+        return 2;
+      }
+      balloon = d == "balloon";
+    } else {
       std::cerr << "bench_scenes: unknown option " << a << "\n";
       return 2;
     }
@@ -249,7 +268,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   limit_constraint_vector_width(static_cast<VectorWidth>(width));
-  const Medium m200 = bench::medium_200(), m5000 = bench::medium_200(2500);
+  if (balloon) scene_droplet = DropletParams::balloon(), r_min = 8, r_max = 16;
+  const Medium m200 = bench::medium_200(500, r_min, r_max), m5000 = bench::medium_200(2500, r_min, r_max);
   const std::vector<std::pair<std::string, std::function<Work()>>> scenes{
       {"free-fall", free_fall},
       {"medium-200", [&] { return stepping(m200, 300'000); }},
@@ -287,7 +307,8 @@ int main(int argc, char** argv) {
       << "debug"
 #endif
       << " build\n# constraint vector width: " << static_cast<int>(constraint_vector_width())
-      << " doubles (8: AVX-512, 4: AVX, 2: SSE2)\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
+      << " doubles (8: AVX-512, 4: AVX, 2: SSE2)\n# droplet: " << (balloon ? "balloon" : "defaults")
+      << "\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
          "droplets_per_s,evaluations_per_s,peak_rss_mb,dropped_steps_per_kept\n";
   bool any = false;
   for (const auto& [name, run] : scenes) {

@@ -9,6 +9,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_run.hpp"
 #include "fixtures.hpp"
 #include "softdrop/area_trace.hpp"
@@ -344,3 +346,30 @@ TEST(CalibrateCommand, BadInputIsOneLineNamingIt) {
 }
 
 }  // namespace
+
+namespace softdrop {
+namespace {
+
+// results/calibration/balloon.toml is DropletParams::balloon() on grains of radii 8 to 16 (and the
+// balloon's step budget): through the same medium from the same start, the command line with that
+// file and the library give the same bits.
+TEST(CalibrateCommand, TheBalloonConfigIsTheLibrarysBalloon) {
+  const auto r = run("--config " + std::string(SOFTDROP_SOURCE_DIR) +
+                     "/results/calibration/balloon.toml simulate --x0 250 --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  MediumOptions mo;
+  mo.r_min = test::kBalloonRMin, mo.r_max = test::kBalloonRMax;
+  const Medium medium = generate_medium(mo);
+  Simulation sim(DropletParams::balloon(), medium);
+  RunOptions o;
+  o.max_steps = 2'000'000;
+  const RunSummary s = sim.run(250, o);
+  ASSERT_EQ(s.outcome, Outcome::passed) << s.reason;
+  EXPECT_EQ(j["run"]["tortuosity"].get<double>(), s.tortuosity);
+  EXPECT_EQ(j["run"]["steps"].get<std::int64_t>(), s.steps);
+  EXPECT_EQ(j["medium"]["grains"].get<std::size_t>(), medium.grains.size());
+}
+
+}  // namespace
+}  // namespace softdrop

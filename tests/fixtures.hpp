@@ -45,17 +45,7 @@ inline constexpr VectorWidth kVectorWidths[] = {VectorWidth::scalar, VectorWidth
 /// tests of the machinery (search, strategies, histories, stores) run it on their small scenes,
 /// which were laid out for it: their histories do not depend on which droplet they run, and it
 /// takes a sixth of the calibrated droplet's steps for the same time.
-inline DropletParams balloon_droplet() {
-  DropletParams p;
-  p.nrt = 1.5e9;
-  p.ks = 119755;
-  p.kd = 365;
-  p.cc = 2e4;
-  p.dt = 2e-5;
-  p.viscosity = 3e3;
-  p.viscosity_dilation = 1;
-  return p;
-}
+inline DropletParams balloon_droplet() { return DropletParams::balloon(); }
 /// An empty periodic box.
 inline Medium empty_medium(double width = 500, double height = 500) {
   return Medium{width, height, true, {}};

@@ -72,6 +72,10 @@ struct DropletParams {
   /// Area of the ring at rest, the regular N-gon of circumradius resting_radius(): S0 of the
   /// area ratios a run reports.
   double resting_area() const;
+  /// The balloon: the paper's k_s, k_d and dt at R = 8, nRT = 1.5e9 holding every spring at the
+  /// stretch limit, c_c = 2e4, nu = 3 000 damping every deformation (the defaults before the
+  /// calibrated droplet; results/calibration/balloon.toml, which also sets its grains, radii 8 to 16).
+  static DropletParams balloon();
 
   bool IsValid(std::string* why) const;
 };

@@ -36,6 +36,18 @@ double DropletParams::resting_radius() const {
 
 double DropletParams::resting_area() const { return regular_polygon_area(masses, resting_radius()); }
 
+DropletParams DropletParams::balloon() {
+  DropletParams p;
+  p.nrt = 1.5e9;
+  p.ks = 119755;
+  p.kd = 365;
+  p.cc = 2e4;
+  p.dt = 2e-5;
+  p.viscosity = 3e3;
+  p.viscosity_dilation = 1;
+  return p;
+}
+
 namespace {
 // "must be > 0", "must be in (0, 0.01]", "must be finite": the range in words, its bounds printed
 // as the field's type prints.
