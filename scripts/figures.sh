@@ -8,7 +8,7 @@ S=./build/softdrop
 out=docs/images
 mkdir -p "$out"
 # The paper's Fig. 2: a droplet squeezing through a pore of three grains.
-$S render snapshots --medium examples/pore.json --x0 100 --times 0.008,0.014,0.018,0.021,0.025,0.03 \
+$S render snapshots --medium examples/pore.json --x0 100 --times 0.0084,0.014,0.018,0.021,0.025,0.03 \
   --size 480 -o $out/pore_snapshots.png
 # The same droplet as an animation (0.005 time units per second: 8 s).
 $S render animation --medium examples/pore.json --x0 100 --speed 0.005 --size 240 -o $out/pore.gif

@@ -28,6 +28,7 @@ import pandas as pd
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SOFTDROP = os.environ.get("SOFTDROP", os.path.join(HERE, "..", "..", "build", "softdrop"))
+BALLOON = os.path.join(HERE, "balloon.toml")  # the droplet every run here scales, with the paper's k_s and k_d
 N = 24          # masses
 KS = 119755.0   # the paper's k_s
 STRAIN_LIMIT = 0.1
@@ -44,7 +45,7 @@ def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed
         radius_factor=8):
     radius = radius_factor * scale
     nrt = nrt_for(radius, strain) if strain is not None else 1.5e9
-    args = [SOFTDROP, "simulate", "--quiet", "--threads", "2", "--seed", str(seed),
+    args = [SOFTDROP, "--config", BALLOON, "simulate", "--quiet", "--threads", "2", "--seed", str(seed),
             "--droplets", str(droplets), "--kind", kind, "--porosity", str(porosity),
             "--width", str(500 * scale), "--height", str(500 * scale),
             "--r-min", str(8 * scale), "--r-max", str(16 * scale), "--radius", str(radius),

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Droplets whose springs carry the tension, at the full calibration size (6 porosities x 10
 # overlapping media x 20 droplets, area traces at phi = 0.79, the resting test), against the
-# paper's <T>(phi); and the defaults (a balloon) on grains twice as large. About 10 minutes on 2 cores.
+# paper's <T>(phi); and the balloon on grains twice as large. About 10 minutes on 2 cores.
 #
 # Every length of a tension-carrying droplet is S times the default droplet's: radius 8 S, box
 # 500 S, contact depth 0.5 S, stuck distance 5 S, grains G1 S to G2 S (8 S to 16 S as the defaults'
@@ -19,7 +19,7 @@
 #     bash results/calibration/tension.sh
 set -euo pipefail
 cd "$(dirname "$0")"
-BIN=${SOFTDROP:-../../build/softdrop}
+BIN=${SOFTDROP:-../../build/softdrop}  # every group starts from balloon.toml (the paper's k_s, k_d and dt)
 mkdir -p tension
 
 # group S G1 G2 TAG SETTING...: the settings ("label: name=value ...") of one scale and grain range,
@@ -37,7 +37,7 @@ group() {
   local settings=()
   for s in "$@"; do settings+=(--setting "$s"); done
   echo "tension.sh: S = $scale, grains $g1 S to $g2 S, $# settings" >&2
-  "$BIN" calibrate --format csv --quiet "${settings[@]}" \
+  "$BIN" --config balloon.toml calibrate --format csv --quiet "${settings[@]}" \
     --nrt "$nrt" --kc "$kc" --cc "$cc" --dt "$dt" --viscosity 0 --viscosity-dilation 0 \
     --width "$box" --height "$box" --radius "$radius" \
     --r-min "$(awk -v s="$scale" -v g="$g1" 'BEGIN { printf "%.17g", g * s }')" \
@@ -71,8 +71,8 @@ group 8400 16 48 elastic "nu 1000, c_c 0: viscosity=1000 cc=0 dt=4.58e-4" \
 group 8400 20 40 nu "nu 30: viscosity=30"
 group 8400 24 48 nu "nu 30: viscosity=30"
 
-# The defaults (a balloon) on grains 16 to 32, with less viscosity.
-echo "tension.sh: the defaults on grains 16 to 32" >&2
-"$BIN" calibrate --format csv --quiet --r-min 16 --r-max 32 --scan viscosity=1500,2000,3000 \
+# The balloon on grains 16 to 32, with less viscosity.
+echo "tension.sh: the balloon on grains 16 to 32" >&2
+"$BIN" --config balloon.toml calibrate --format csv --quiet --r-min 16 --r-max 32 --scan viscosity=1500,2000,3000 \
   --csv tension/balloon_16_32_nu.csv --points tension/balloon_16_32_nu_points.csv > /dev/null
 /usr/bin/python3 plot_tension.py

@@ -6,16 +6,21 @@
 # Writes tension_robustness.csv, one row per porosity, kind and medium: droplets passed, stuck,
 # timed out and diverged, and their mean T. About 10 minutes on 2 cores. SOFTDROP=path runs
 # another build.
+#   bash tension_robustness.sh [CONFIG OUT]: another droplet (a config file, or "defaults" for the
+#   program's defaults) through the same droplets, written to OUT.
 set -euo pipefail
 cd "$(dirname "$0")"
 BIN=${SOFTDROP:-../../build/softdrop}
-DROPLET=(--config tension_droplet.toml)
+CONFIG=${1:-tension_droplet.toml}
+OUT=${2:-tension_robustness.csv}
+DROPLET=()
+[[ $CONFIG == defaults ]] || DROPLET=(--config "$CONFIG")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "porosity_target,kind,medium_seed,droplets,passed,stuck,timeout,diverged,mean_t" > "$tmp/out.csv"
 for kind in overlapping non-overlapping; do
   for phi in 0.5 0.6 0.7 0.8 0.9 0.95; do
-    echo "tension_robustness.sh: $kind, phi = $phi" >&2
+    echo "tension_robustness.sh: $CONFIG, $kind, phi = $phi" >&2
     for medium in 1 2 3 4 5 6 7 8 9 10; do
       "$BIN" simulate --quiet "${DROPLET[@]}" --kind "$kind" --porosity "$phi" --medium-seed $((1000 + medium)) \
         --seed $((2000 + medium)) --droplets 84 --runs "$tmp/runs.csv" > /dev/null
@@ -32,4 +37,4 @@ PY
     done
   done
 done
-mv "$tmp/out.csv" tension_robustness.csv
+mv "$tmp/out.csv" "$OUT"

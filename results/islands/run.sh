@@ -22,7 +22,8 @@ LAMBDA=8
 name=${STRATEGY%%+*}
 relocate=""
 [[ $STRATEGY == *+r* ]] && relocate="--relocate-every ${STRATEGY##*+r}"
-common="--grains 60 --width 300 --height 300 --strategy $name $relocate --lambda $LAMBDA --quiet"
+# The balloon (results/calibration/balloon.toml) on its default problem.
+common="--config results/calibration/balloon.toml --grains 60 --width 300 --height 300 --strategy $name $relocate --lambda $LAMBDA --quiet"
 
 if [[ $EVALUATIONS != report ]]; then
   for seed in $SEEDS; do

@@ -7,7 +7,8 @@
 #   bash results/search/ramps.sh
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-S=${SOFTDROP:-./build/softdrop}
+# Measured with the balloon (results/calibration/balloon.toml).
+S="${SOFTDROP:-./build/softdrop} --config results/calibration/balloon.toml"
 OUT=results/search
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 echo "radius,angle_degrees,grains,outcome,tortuosity" > "$OUT/ramps.csv"

@@ -5,7 +5,8 @@
 # steps spent). Usage: bash results/stuck_test/run.sh [THREADS [SETTING...]]   (needs ./build/softdrop)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
-S=${SOFTDROP:-./build/softdrop}
+# Measured with the balloon (results/calibration/balloon.toml), whose search default the rest test is.
+S="${SOFTDROP:-./build/softdrop} --config results/calibration/balloon.toml"
 THREADS=${1:-0}
 OUT=results/stuck_test
 TMP=$(mktemp -d)
