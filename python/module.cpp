@@ -185,6 +185,9 @@ PYBIND11_MODULE(_core, m) {
   py::class_<DropletParams> droplet(m, "DropletParams",
                                     "The droplet, in the paper's numerical units (see docs/model.md)");
   droplet.def(py::init(&from_keywords<DropletParams>));
+  droplet.def_static("balloon", &DropletParams::balloon,
+                     "The balloon: the droplet held at its stretch limit, as results/calibration/balloon.toml "
+                     "(whose grains, radii 8 to 16, go to Medium.generate)");
   bind_droplet_fields(droplet);
 
   py::class_<RunOptions>(m, "RunOptions", "When a run ends, and what it records")

@@ -34,6 +34,17 @@ def test_one_droplet_has_the_programs_bits():
     assert medium.porosity() == theirs["medium"]["porosity"]
 
 
+def test_the_balloon_is_the_config_files():
+    """DropletParams.balloon() on grains of radii 8 to 16 is results/calibration/balloon.toml, to the bit."""
+    params = softdrop.DropletParams.balloon()
+    assert params.nrt == 1.5e9 and params.viscosity_dilation == 1.0
+    medium = softdrop.Medium.generate(**balloon.GRAINS)
+    run = softdrop.simulate(medium, x0=250, params=params, run=softdrop.RunOptions(max_steps=2000000))
+    config = os.path.join(os.path.dirname(__file__), "..", "..", "results", "calibration", "balloon.toml")
+    theirs = json.loads(cli("--config", config, "simulate", "--x0", "250", "--format", "json"))
+    assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
+
+
 def test_every_droplet_option_is_an_attribute_and_gives_the_programs_bits():
     params = softdrop.DropletParams()
     help_text = cli("simulate", "--help")
