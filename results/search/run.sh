@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The strategies compared: best T against evaluations and wall seconds, for every strategy, over
-# seeds, on three problems. Each search is one database under results/search/db/ (not committed);
+# seeds, on several problems. Each search is one database under results/search/db/ (not committed);
 # running the script again resumes every search to the budget given, so a long comparison can be
 # run in parts. Writes curves.csv (problem, strategy, seed, generation, evaluations, seconds,
 # best_t), summary.csv (per problem and strategy: the median, least and largest best T over the
@@ -8,6 +8,7 @@
 # curves.png (every search's best T against evaluations).
 #   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
 #   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal es+r3"
+#        bash results/search/run.sh 3000 "1 2 3" calibrated "paper es lahc anneal paper+r3 es+r3"
 #        bash results/search/run.sh report   (no search: the tables and the plot from the databases)
 # A strategy NAME+rN is NAME with --relocate-every N; NAME alone has --relocate-every 0. A further
 # +oK makes it K restarts: K islands that never migrate, each from a starting medium of its own
@@ -22,7 +23,16 @@ STRATEGIES=${4:-"paper es lahc anneal"}
 OUT=results/search
 mkdir -p "$OUT/db"
 
+# Every problem but `calibrated` runs the balloon (results/calibration/balloon.toml) on grains of
+# its size; `calibrated` is the program's default problem with the default droplet.
+BALLOON="--config results/calibration/balloon.toml"
 problem_options() {
+  case $1 in
+    calibrated) echo "" ;;  # 20 grains of radii 16-48 in 500 x 500, phi ~ 0.72
+    *) echo "$BALLOON $(balloon_problem_options "$1")" ;;
+  esac
+}
+balloon_problem_options() {
   case $1 in
     default) echo "--grains 60 --width 300 --height 300" ;;            # phi ~ 0.735
     # more, smaller grains (radii 6-11; 100 of radii 8-16 leave phi ~ 0.56, where no start passes)
