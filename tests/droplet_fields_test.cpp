@@ -10,6 +10,8 @@
 #include <type_traits>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_run.hpp"
 #include "sim/lane_block_step.hpp"
 #include "softdrop/droplet.hpp"
@@ -90,6 +92,28 @@ TEST(DropletFields, StoredParametersHoldEveryFieldAndReadItBack) {
     EXPECT_TRUE(same_fields(back.droplet, o.droplet, FieldUse::contacts));
     EXPECT_FALSE(same_fields(back.droplet, DropletParams{}, FieldUse::contacts));
   }
+}
+
+// Parameters stored by a build older than a key read as that build ran: the viscosity's share on
+// dilation as 1 (the default now is 0), no rest test, the sequential constraint order, the
+// paper's strategy. So a history stored with the balloon resumes as the balloon.
+TEST(DropletFields, StoredParametersWithoutTheNewerKeysReadAsOlderBuildsRanThem) {
+  SearchOptions o;
+  o.run.rest_window = 0.05, o.run.rest_distance = 0.1;
+  o.strategy.kind = StrategyKind::es;
+  nlohmann::json j = nlohmann::json::parse(search_params_to_json(o));
+  for (const char* key : {"viscosity-dilation", "rest-window", "rest-distance", "constraint-order", "strategy"}) {
+    ASSERT_TRUE(j.contains(key)) << key;
+    j.erase(key);
+  }
+  const SearchOptions back = search_params_from_json(j.dump());
+  EXPECT_EQ(back.droplet.viscosity_dilation, 1.0);
+  EXPECT_EQ(DropletParams{}.viscosity_dilation, 0.0);
+  EXPECT_EQ(back.run.rest_window, 0.0);
+  EXPECT_EQ(back.run.rest_distance, 0.0);
+  EXPECT_EQ(back.droplet.constraint_order, ConstraintOrder::sequential);
+  EXPECT_EQ(back.strategy.kind, StrategyKind::paper);
+  EXPECT_EQ(back.droplet.ks, o.droplet.ks);  // the keys that are there are read as they are
 }
 
 TEST(DropletFields, EveryFieldIsACommandLineOptionWithItsHelp) {
