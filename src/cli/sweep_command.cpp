@@ -31,7 +31,7 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   s->fallthrough();
   auto* g = s->add_option_group("Sweep", "stored with the sweep; the same options continue the same sweep");
   g->add_option("--db", a.db, "SQLite store (the search history's file family; created if missing)")->capture_default_str();
-  g->add_option("--preset", a.preset, "quick (3 porosities x 2 media x 8 droplets, 200 x 200 boxes) or paper "
+  g->add_option("--preset", a.preset, "quick (porosities 0.7, 0.8, 0.9 x 2 media x 8 droplets) or paper "
                                       "(10 porosities x 200 media x 200 droplets): defaults for options not given")
       ->check(CLI::IsMember({"quick", "paper"}));
   g->add_option("--porosities", a.sweep.porosities, "Target porosities, comma-separated")->delimiter(',')->capture_default_str();
@@ -102,12 +102,10 @@ void apply_preset(SweepArgs& a, const CLI::App& cmd) {
   if (a.preset.empty()) return;
   auto unset = [&](const char* name) { return cmd.get_option_no_throw(name)->count() == 0; };
   const bool quick = a.preset == "quick";
-  if (unset("--porosities")) a.sweep.porosities = quick ? std::vector<double>{0.8, 0.9, 0.98}
+  if (unset("--porosities")) a.sweep.porosities = quick ? std::vector<double>{0.7, 0.8, 0.9}
                                                         : std::vector<double>{0.45, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9};
   if (unset("--media")) a.sweep.media = quick ? 2 : 200;
   if (unset("--droplets")) a.sweep.droplets = quick ? 8 : 200;
-  if (quick && unset("--width")) a.medium.options.width = 200;
-  if (quick && unset("--height")) a.medium.options.height = 200;
 }
 
 std::pair<int, int> parse_shard(const std::string& text) {
