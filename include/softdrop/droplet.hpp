@@ -24,9 +24,9 @@ const char* to_string(ConstraintOrder order);
 
 /// The defaults are a droplet whose springs carry the tension, calibrated against the paper's mean
 /// tortuosity and area (results/calibration/README.md says how and how close; docs/model.md why
-/// each value). It is the paper's droplet (its g, k_s and k_d, N = 24, m = 1) at 8 400 times our
-/// lengths, written in our lengths: the model is similar under x -> x / S, t -> t / sqrt(S) with g
-/// fixed, which multiplies k_s by S, k_d, nu and 1 / dt by sqrt(S), and divides nRT by S.
+/// each value). It is a droplet of the paper's g, k_s and k_d (with N = 24, m = 1) at 8 400 times
+/// our lengths, written in our lengths: the model is similar under x -> x / S, t -> t / sqrt(S)
+/// with g fixed, which multiplies k_s by S, k_d, nu and 1 / dt by sqrt(S), and divides nRT by S.
 /// results/calibration/balloon.toml holds the earlier defaults (a balloon held at its stretch limit).
 struct DropletParams {
   int masses = 24;           ///< N, point masses on the ring
