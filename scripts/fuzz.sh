@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs every libFuzzer target (or those named) for SECONDS each on its corpus in fuzz/corpus/,
 # two at a time. New inputs go to build-asan/fuzz-new/<target>, never into the committed corpus;
-# a crash, sanitizer report, timeout (10 s per input) or allocation over 2 GB fails the script
+# a crash, sanitizer report, timeout (60 s per input) or allocation over 2 GB fails the script
 # and leaves the input in build-asan/fuzz-artifacts/. Usage: scripts/fuzz.sh [SECONDS] [target...]
 # Needs the build from scripts/sanitize.sh (built here if missing).
 set -euo pipefail
@@ -20,7 +20,7 @@ mkdir -p build-asan/fuzz-artifacts
 run_one() {
   local t="$1" new="build-asan/fuzz-new/$1" log="build-asan/fuzz-$1.log"
   mkdir -p "$new"
-  if ! build-asan/fuzz/fuzz_"$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
+  if ! build-asan/fuzz/fuzz_"$t" -max_total_time="$seconds" -timeout=60 -rss_limit_mb=2048 -malloc_limit_mb=2048 \
       -max_len=65536 -print_final_stats=1 -artifact_prefix=build-asan/fuzz-artifacts/"$t"- \
       "$new" fuzz/corpus/"$t" > "$log" 2>&1; then
     echo "fuzz_$t: FAILED (log $log):" >&2
