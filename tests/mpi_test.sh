@@ -7,6 +7,7 @@
 #   bash tests/mpi_test.sh SOFTDROP_BINARY
 set -euo pipefail
 bin=$(realpath "$1")
+balloon_toml=$(realpath "$(dirname "$0")/../results/calibration/balloon.toml")
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 cd "$work"
 # Test machines run as root, in containers without cross-memory attach.
@@ -41,8 +42,7 @@ kill_rank_1() {
 
 # The balloon (the earlier defaults) on grains of radii 8 to 16, as the C++ tests run the machinery
 # (tests/balloon.hpp): a quick droplet, and many grains in a small box.
-balloon=(--r-min 8 --r-max 16 --nrt 1.5e9 --ks 119755 --kd 365 --cc 2e4 --dt 2e-5 --viscosity 3000
-  --viscosity-dilation 1)
+balloon=(--config "$balloon_toml")
 small=(--porosities 0.7,0.8,0.9 --media 4 --droplets 8 --width 200 --height 200 --threads 1 --quiet "${balloon[@]}")
 "$bin" sweep --db one.db "${small[@]}" > one.txt
 for p in 3 4; do

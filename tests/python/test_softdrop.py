@@ -40,8 +40,7 @@ def test_the_balloon_is_the_config_files():
     assert params.nrt == 1.5e9 and params.viscosity_dilation == 1.0
     medium = softdrop.Medium.generate(**balloon.GRAINS)
     run = softdrop.simulate(medium, x0=250, params=params, run=softdrop.RunOptions(max_steps=2000000))
-    config = os.path.join(os.path.dirname(__file__), "..", "..", "results", "calibration", "balloon.toml")
-    theirs = json.loads(cli("--config", config, "simulate", "--x0", "250", "--format", "json"))
+    theirs = json.loads(cli("--config", balloon.CONFIG, "simulate", "--x0", "250", "--format", "json"))
     assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
 
 
@@ -164,7 +163,7 @@ def test_a_search_history_reads_as_the_program_reads_it(tmp_path):
     best = softdrop.best_arrangement(db, run=1)
     assert best.tortuosity == h["runs"].loc[0, "best_t"]
     # The stored arrangement pushes the same droplet to the same T.
-    params = softdrop.DropletParams(**balloon.DROPLET)
+    params = softdrop.DropletParams.balloon()
     again = softdrop.simulate(best.medium, run=softdrop.RunOptions(stuck_window=0.1, stuck_distance=1), params=params)
     assert again.tortuosity == best.tortuosity
 
