@@ -62,6 +62,11 @@ TEST(Islands, RingAndBroadcastChooseTheirImmigrants) {
   EXPECT_EQ((IslandOptions{4, 5, Migration::ring}.next_migration(10)), 15);
   EXPECT_EQ((IslandOptions{4, 0, Migration::ring}.next_migration(10)), std::numeric_limits<std::int64_t>::max());
   EXPECT_EQ((IslandOptions{1, 5, Migration::ring}.next_migration(10)), std::numeric_limits<std::int64_t>::max());
+  EXPECT_EQ((IslandOptions{4, 5, Migration::ring}.next_stop(9, 12)), 10);
+  EXPECT_EQ((IslandOptions{4, 5, Migration::ring}.next_stop(10, 15)), 15);
+  EXPECT_EQ((IslandOptions{4, 5, Migration::ring}.next_stop(10, 14)), 15);  // past the end: 14 + 1
+  EXPECT_EQ((IslandOptions{4, 5, Migration::ring}.next_stop(10, 12)), 13);
+  EXPECT_EQ((IslandOptions{1, 5, Migration::ring}.next_stop(10, 12)), 13);
   EXPECT_EQ(island_search_options(SearchOptions{}, 2).seed, derive_seed(SearchOptions{}.seed, 2));
 }
 

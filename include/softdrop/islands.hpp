@@ -41,6 +41,9 @@ struct IslandOptions {
   /// The first migration after generation `after` (>= 0); past every generation
   /// (std::numeric_limits<std::int64_t>::max()) for one island or migrate_every = 0.
   std::int64_t next_migration(std::int64_t after) const;
+  /// The next migration after generation `after` if it comes by generation `generations`, else
+  /// generations + 1: the islands drive to the generation before it, then migrate or stop.
+  std::int64_t next_stop(std::int64_t after, std::int64_t generations) const;
 };
 
 /// Island i's search options: `options` with the seed derive_seed(options.seed, i).

@@ -168,8 +168,7 @@ SearchSummary drive_islands_on_ranks(const Job& job, std::vector<Search>& island
     for (int i = 0; i < k; i += ranks) local.searches.push_back(std::move(islands[static_cast<std::size_t>(i)])), local.number.push_back(i);
     for (;;) {
       const std::int64_t from = *std::min_element(last.begin(), last.end());
-      std::int64_t next = io.next_migration(from);
-      if (next > options.generations) next = options.generations + 1;
+      const std::int64_t next = io.next_stop(from, options.generations);
       int code = 1 + (next <= options.generations ? 1 : 0);  // 1: a stretch, 2: a stretch and a migration
       if (from >= options.generations) code = 0, sum.termination = Termination::generations;
       else if (stop_by_callback) code = 0, sum.termination = Termination::callback;

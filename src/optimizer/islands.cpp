@@ -37,6 +37,10 @@ std::int64_t IslandOptions::next_migration(std::int64_t after) const {
   return (after / migrate_every + 1) * migrate_every;
 }
 
+std::int64_t IslandOptions::next_stop(std::int64_t after, std::int64_t generations) const {
+  return std::min(next_migration(after), generations + 1);
+}
+
 SearchOptions island_search_options(const SearchOptions& options, int island) {
   SearchOptions o = options;
   o.seed = derive_seed(options.seed, static_cast<std::uint64_t>(island));
@@ -96,8 +100,7 @@ SearchSummary drive_islands(std::vector<Search>& islands, const IslandOptions& i
       break;
     }
     // The next migration after the lowest island, if it comes before the end.
-    std::int64_t next = io.next_migration(from);
-    if (next > options.generations) next = options.generations + 1;
+    const std::int64_t next = io.next_stop(from, options.generations);
     if (lowest() < next - 1) {  // every island up to the generation before it
       DriveOptions d = options;
       d.generations = next - 1;
