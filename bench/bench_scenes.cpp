@@ -20,8 +20,9 @@
 // lambda 2 over 400 generations, where the acceptances thin out and the end of the run weighs less);
 // search-*-red-black (the same searches with the red-black constraint order: other histories, so
 // compare their steps per second); search-es-l8 and search-es-l8-long (the program's default
-// search: es, lambda 8, a relocation every third generation, the rest test; 15 and 200
-// generations, the latter the main job of scripts/run.sh). --lanes sets the search scenes' lanes (0: the default). --width
+// search: es, lambda 8, a relocation every third generation; 15 and 200 generations, the latter
+// the main job of scripts/run.sh). Every scene ends its droplets with the default exit tests,
+// the rest test among them. --lanes sets the search scenes' lanes (0: the default). --width
 // uses at most that vector width (8: AVX-512, 4: AVX, 2: SSE2, 1: scalar), to time what a
 // processor without AVX-512 runs. The last column, dropped_steps_per_kept, is a speculating
 // search's cost: the steps its dropped evaluations had taken, over the steps counted (the kept
@@ -157,8 +158,6 @@ Work search(int lambda, int threads, int generations = 0, ConstraintOrder order 
   if (es) {  // as `softdrop optimize` sets its defaults (OptimizeArgs)
     o.strategy.kind = StrategyKind::es;
     o.relocate_every = 3;
-    o.run.rest_window = 0.05;
-    o.run.rest_distance = 0.1;
   }
   MediumOptions mo;  // optimize's default scene (OptimizeArgs), or the balloon's
   mo.kind = MediumKind::non_overlapping;

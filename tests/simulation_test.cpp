@@ -101,10 +101,11 @@ TEST(Simulation, TheRestTestEndsAStuckDropletEarlyAndChangesNothingElse) {
   DropletParams p;
   Medium floor{200, 200, true, {}};
   for (int i = 0; i < 10; ++i) floor.grains.push_back({10.0 + 20.0 * i, 100, 12});
-  RunOptions stuck_test;  // the stuck test alone
-  RunOptions rest_test = stuck_test;
-  rest_test.rest_window = 0.05;
-  rest_test.rest_distance = 0.1;
+  RunOptions rest_test;  // the defaults: the stuck test and the rest test
+  ASSERT_EQ(rest_test.rest_window, 0.05);
+  ASSERT_EQ(rest_test.rest_distance, 0.1);
+  RunOptions stuck_test = rest_test;  // the stuck test alone
+  stuck_test.rest_window = 0;
   const RunSummary slow = Simulation(p, floor).run(37.0, stuck_test);
   const RunSummary fast = Simulation(p, floor).run(37.0, rest_test);
   ASSERT_EQ(slow.outcome, Outcome::stuck) << slow.reason;

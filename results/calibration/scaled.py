@@ -53,7 +53,7 @@ def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed
             "--kc", repr(2e8 * mass), "--cc", repr(cc_per_mass * mass), "--viscosity", str(viscosity),
             "--viscosity-dilation", str(dilation),
             "--max-depth", repr(0.5 * scale), "--stuck-distance", repr(5 * scale),
-            "--stuck-window", repr(0.5 * math.sqrt(scale)), "--max-steps", "20000000",
+            "--stuck-window", repr(0.5 * math.sqrt(scale)), "--rest-window", "0", "--max-steps", "20000000",
             "--runs", os.path.join(tmp, "runs.csv"), "--trace", os.path.join(tmp, "trace.csv")]
     start = time.time()
     subprocess.run(args, check=True, stdout=subprocess.DEVNULL)

@@ -20,6 +20,7 @@
 set -euo pipefail
 cd "$(dirname "$0")"
 BIN=${SOFTDROP:-../../build/softdrop}  # every group starts from balloon.toml (the paper's k_s, k_d and dt)
+# The study ran with the stuck test alone (--rest-window 0), which its stuck fractions reflect.
 mkdir -p tension
 
 # group S G1 G2 TAG SETTING...: the settings ("label: name=value ...") of one scale and grain range,
@@ -37,7 +38,7 @@ group() {
   local settings=()
   for s in "$@"; do settings+=(--setting "$s"); done
   echo "tension.sh: S = $scale, grains $g1 S to $g2 S, $# settings" >&2
-  "$BIN" --config balloon.toml calibrate --format csv --quiet "${settings[@]}" \
+  "$BIN" --config balloon.toml calibrate --format csv --quiet --rest-window 0 "${settings[@]}" \
     --nrt "$nrt" --kc "$kc" --cc "$cc" --dt "$dt" --viscosity 0 --viscosity-dilation 0 \
     --width "$box" --height "$box" --radius "$radius" \
     --r-min "$(awk -v s="$scale" -v g="$g1" 'BEGIN { printf "%.17g", g * s }')" \
@@ -73,6 +74,6 @@ group 8400 24 48 nu "nu 30: viscosity=30"
 
 # The balloon on grains 16 to 32, with less viscosity.
 echo "tension.sh: the balloon on grains 16 to 32" >&2
-"$BIN" --config balloon.toml calibrate --format csv --quiet --r-min 16 --r-max 32 --scan viscosity=1500,2000,3000 \
+"$BIN" --config balloon.toml calibrate --format csv --quiet --rest-window 0 --r-min 16 --r-max 32 --scan viscosity=1500,2000,3000 \
   --csv tension/balloon_16_32_nu.csv --points tension/balloon_16_32_nu_points.csv > /dev/null
 /usr/bin/python3 plot_tension.py

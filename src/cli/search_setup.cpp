@@ -26,11 +26,6 @@ OptimizeArgs::OptimizeArgs() {
   search.strategy.kind = StrategyKind::es;
   search.relocate_every = 3;
   search.lambda = 8;
-  // A candidate whose droplet comes to rest is stuck at once instead of at the stuck test's second
-  // window: about a third of the steps, and no verdict changed in 5 500 droplets
-  // (results/stuck_test/); a passed candidate's T does not depend on it.
-  search.run.rest_window = 0.05;
-  search.run.rest_distance = 0.1;
 }
 
 // The command line's view of the run: search options plus how the starting medium was made.

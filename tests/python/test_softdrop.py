@@ -194,7 +194,7 @@ def test_ctrl_c_stops_a_long_run(tmp_path):
         "m = softdrop.Medium.from_arrays([81, 119], [300, 300], [16, 16], 200, 400)  # a pore too narrow to pass\n"
         "print('started', flush=True)\n"
         "try:\n"
-        "    softdrop.simulate(m, x0=100, run=softdrop.RunOptions(max_steps=10**9, stuck_window=1e6, stuck_distance=0))\n"
+        "    softdrop.simulate(m, x0=100, run=softdrop.RunOptions(max_steps=10**9, stuck_window=1e6, stuck_distance=0, rest_window=0))\n"
         "except KeyboardInterrupt:\n"
         "    print('interrupted', flush=True)\n")
     child = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, text=True, env=dict(os.environ))
