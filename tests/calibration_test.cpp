@@ -299,12 +299,13 @@ TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
   EXPECT_TRUE(std::filesystem::exists(plot));
   // Explicit settings instead of a grid: one row each, in the order given.
   const auto two = run("calibrate --porosities 0.8 --media 1 --droplets 2 --width 200 --height 200 --trace-media 0 "
-                       "--quiet --setting 'radius=8 nrt=3e8' --setting 'wider: radius=9' --csv " + csv);
+                       "--quiet --setting 'radius=8 nrt=3e8' --setting 'wider: radius=9' --setting 'as given:' "
+                       "--radius 7 --csv " + csv);
   ASSERT_EQ(two.code, 0) << two.err;
   std::ifstream again(csv);
   std::vector<std::string> lines;
   while (std::getline(again, line)) lines.push_back(line);
-  ASSERT_EQ(lines.size(), 3u);
+  ASSERT_EQ(lines.size(), 4u);
   auto cells = [](const std::string& row) {
     std::vector<std::string> c;
     std::istringstream row_in(row);
@@ -314,12 +315,15 @@ TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
   // Every droplet field has its column, the time step and the breathing mode's share included.
   for (const std::string column : {",gravity,dt,max_strain,", ",constraint_order,", ",viscosity_dilation,"})
     EXPECT_NE(lines[0].find(column), std::string::npos) << lines[0];
-  const auto first = cells(lines[1]), second = cells(lines[2]);  // setting, status, masses, mass, radius, nrt
+  // setting, status, masses, mass, radius, nrt
+  const auto first = cells(lines[1]), second = cells(lines[2]), third = cells(lines[3]);
   EXPECT_EQ(first[0] + first[1] + first[4] + first[5], "0ok83e+08") << lines[1];
   EXPECT_EQ(second[0] + second[1] + second[4], "1ok9") << lines[2];
   EXPECT_EQ(std::stod(second[5]), DropletParams{}.nrt);
+  EXPECT_EQ(third[0] + third[1] + third[4], "2ok7") << lines[3];  // a name alone: --radius 7 as given
   EXPECT_EQ(first.back(), "radius=8 nrt=3e8");  // the label: the setting's text, or the name before ':'
   EXPECT_EQ(second.back(), "wider");
+  EXPECT_EQ(third.back(), "as given");
   for (const auto& f : {csv, points, plot}) std::filesystem::remove(f);
 }
 
@@ -336,7 +340,8 @@ TEST(CalibrateCommand, BadInputIsOneLineNamingIt) {
                         Case{"--best 0", "best = 0"},
                         Case{"--setting mass=1 --scan nrt=1e8", "--setting and --scan do not mix"},
                         Case{"--setting 'mass=1,2'", "must give one value"},
-                        Case{"--setting 'soft m=1: mass=1'", "'soft' is not name=value (a label goes before"}, Case{"--medium x.json", "--medium is not used"}}) {
+                        Case{"--setting 'soft m=1: mass=1'", "'soft' is not name=value (a label goes before"},
+                        Case{"--setting ' : '", "an empty name and no assignments"}, Case{"--medium x.json", "--medium is not used"}}) {
     SCOPED_TRACE(c.args);
     const auto r = run("calibrate --quiet " + c.args);
     EXPECT_NE(r.code, 0);

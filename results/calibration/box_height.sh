@@ -12,7 +12,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for h in 200 250 300 350 400 450 500; do
   echo "box_height.sh: height $h" >&2
-  "$BIN" calibrate --format csv --quiet --setting defaults --height "$h" --trace-media 0 \
+  "$BIN" calibrate --format csv --quiet --setting "height $h:" --height "$h" --trace-media 0 \
     --csv "$tmp/$h.csv" --points "$tmp/${h}_points.csv" > /dev/null
 done
 /usr/bin/python3 - "$tmp" <<'PY'
@@ -27,7 +27,7 @@ tmp = sys.argv[1]
 heights = [200, 250, 300, 350, 400, 450, 500]
 rows, points = [], []
 for h in heights:
-    rows.append(pd.read_csv(f"{tmp}/{h}.csv").assign(height=h, label=f"height {h}"))
+    rows.append(pd.read_csv(f"{tmp}/{h}.csv").assign(height=h))
     points.append(pd.read_csv(f"{tmp}/{h}_points.csv").assign(height=h))
 rows, points = pd.concat(rows), pd.concat(points)
 rows.insert(0, "height", rows.pop("height"))

@@ -24,8 +24,8 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
                 "names: " + scan_parameter_list() + "); the other parameters come from the Droplet options")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   g->add_option("--setting", a.settings,
-                "Or one setting to run, \"[label:] name=value name=value ...\" over the Droplet options (repeat for "
-                "more; not with --scan)")
+                "Or one setting to run, \"[label:] name=value name=value ...\" over the Droplet options, or "
+                "\"label:\" for those options as given (repeat for more; not with --scan)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   auto& s = a.calibration.sweep;
   g->add_option("--porosities", s.porosities, "Target porosities of each setting's sweep (overlapping media)")
@@ -93,8 +93,13 @@ std::vector<DropletParams> check_calibrate(CalibrateArgs& a, std::vector<std::st
   for (const std::string& text : a.settings) {
     const std::size_t colon = text.find(':');
     const bool named = colon != std::string::npos && text.find('=') > colon;
+    const std::string assignments = named ? text.substr(colon + 1) : text;
     names.push_back(named ? text.substr(0, colon) : text);
-    settings.push_back(apply_setting(a.calibration.sweep.droplet, named ? text.substr(colon + 1) : text));
+    // "name:" alone is the Droplet options as given, under that name.
+    const bool as_given = named && assignments.find_first_not_of(" \t") == std::string::npos;
+    if (as_given && names.back().find_first_not_of(" \t") == std::string::npos)
+      throw std::invalid_argument("setting '" + text + "': an empty name and no assignments");
+    settings.push_back(as_given ? a.calibration.sweep.droplet : apply_setting(a.calibration.sweep.droplet, assignments));
   }
   if (a.settings.empty()) settings = scan_settings(a.calibration.sweep.droplet, axes);
   if (labels) *labels = a.settings.empty() ? scan_labels(axes) : names;
