@@ -1,4 +1,4 @@
-// Cost of one droplet step through a medium, for droplets of 16, 40 and 128 masses.
+// Cost of one droplet step through a medium, for droplets of 16, 24 (the defaults), 40 and 128 masses.
 // Run: build/bench/bench_step --benchmark_out=bench/results/step.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 
@@ -33,7 +33,7 @@ void BM_StepMedium200(benchmark::State& state) {
   state.counters["mass-updates/s"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * p.masses, benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_StepMedium200)->Arg(16)->Arg(40)->Arg(128);
+BENCHMARK(BM_StepMedium200)->Arg(16)->Arg(24)->Arg(40)->Arg(128);
 
 void BM_ExactPorosity(benchmark::State& state) {
   softdrop::MediumOptions mo;
