@@ -23,8 +23,19 @@ struct LaneBlock {
   std::uint64_t last_id = 0;  // 0: the data is not a finished step's
   int lanes = 0, count = 0, masses = 0;
 };
-std::atomic<std::uint64_t> next_block_id{
-    1};  // ids unique over threads: a droplet can change thread
+// Block ids are unique over threads (a droplet can change thread). Each thread takes them from
+// the shared counter a chunk at a time, so that threads stepping blocks do not write one cache line
+// at every step; only an id's equality with another matters, never its order or value.
+alignas(64) std::atomic<std::uint64_t> next_block_chunk{1};
+constexpr std::uint64_t kBlockIdChunk = std::uint64_t{1} << 16;
+std::uint64_t new_block_id() {
+  thread_local std::uint64_t next = 0, end = 0;
+  if (next == end) {
+    next = next_block_chunk.fetch_add(kBlockIdChunk, std::memory_order_relaxed);
+    end = next + kBlockIdChunk;
+  }
+  return next++;
+}
 }  // namespace
 
 void LaneBlockStep::step(Simulation* const* sims, int count) {
@@ -132,7 +143,7 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   // still are in each state: moved there as the copy out overwrites them, rather than copied back
   // from the block.
   for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers, previous[a]);
-  const std::uint64_t id = next_block_id.fetch_add(1, std::memory_order_relaxed);
+  const std::uint64_t id = new_block_id();
   for (int t = 0; t < count; ++t) {
     sims[t]->block_id_ = id;
     sims[t]->block_lane_ = t;

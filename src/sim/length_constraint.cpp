@@ -27,7 +27,10 @@ int machine_width() {
   return 1;
 #endif
 }
-std::atomic<int> width_limit{8};
+// Read several times a step by every stage on every thread, written only by
+// limit_constraint_vector_width: on a cache line of its own, so that no variable another thread
+// writes at every step (a counter placed next to it) makes each read a cache miss.
+alignas(64) std::atomic<int> width_limit{8};
 int vector_width() {
   static const int machine = machine_width();
   return std::min(machine, width_limit.load(std::memory_order_relaxed));
