@@ -61,6 +61,12 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   const bool lane_wise = width >= VectorWidth::avx;
   LaneExchangeSeat seat(exchange, lanes);
   int busy = 0;
+  // Every droplet that joins or leaves a lane counts a change; the lanes' split into the block and
+  // the droplets stepped alone is made again only after one, since a droplet's parameters are
+  // fixed while it runs.
+  std::uint64_t changes = 0, split_at = ~std::uint64_t{0};
+  auto joined = [&] { ++busy, ++changes; };
+  auto left = [&] { --busy, ++changes; };
   auto idle_lane = [&]() -> Lane& {
     for (Lane& l : slots)
       if (!l.run) return l;
@@ -73,20 +79,20 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       if (!next(&l.job, may_wait && busy == 0)) return;
       l.job.sim->place_above(l.job.x0);
       l.run.emplace(l.job.sim, *l.job.options, &l.job.x0);
-      ++busy;
+      joined();
     }
   };
   for (;;) {
     fill(false);
-    if (busy < lanes && seat.offer_waiting() && seat.take(idle_lane(), busy)) ++busy;
+    if (busy < lanes && seat.offer_waiting() && seat.take(idle_lane(), busy)) joined();
     if (busy == 0) {
       if (seat.take_or_withdraw(idle_lane())) {
-        ++busy;
+        joined();
       } else {
         fill(true);
         if (busy == 0) {
           if (!seat.wait_for_offer(idle_lane())) return;
-          ++busy;
+          joined();
         }
       }
     }
@@ -94,7 +100,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     if (seat.should_give(busy)) {
       for (auto l = slots.rbegin(); l != slots.rend(); ++l)
         if (l->run) {
-          if (seat.give(*l, busy)) --busy;
+          if (seat.give(*l, busy)) left();
           break;
         }
     }
@@ -103,20 +109,23 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     // fewest_block_droplets(); the others, and all with SSE2 alone:
     // forces and integration each, the sequential constraints of the rings that share the first
     // one's constraint parameters together. Then the contact limits.
-    block.clear();
-    alone.clear();
-    for (Lane& l : slots) {
-      if (!l.run) continue;
-      Simulation* sim = l.run->simulation();
-      if (lane_wise &&
-          (block.empty() || LaneBlockStep::compatible(block.front()->params(), sim->params())))
-        block.push_back(sim);
-      else
-        alone.push_back(sim);
-    }
-    if (block.size() < fewest_block_droplets(width)) {
-      alone.insert(alone.end(), block.begin(), block.end());
+    if (split_at != changes) {
+      split_at = changes;
       block.clear();
+      alone.clear();
+      for (Lane& l : slots) {
+        if (!l.run) continue;
+        Simulation* sim = l.run->simulation();
+        if (lane_wise &&
+            (block.empty() || LaneBlockStep::compatible(block.front()->params(), sim->params())))
+          block.push_back(sim);
+        else
+          alone.push_back(sim);
+      }
+      if (block.size() < fewest_block_droplets(width)) {
+        alone.insert(alone.end(), block.begin(), block.end());
+        block.clear();
+      }
     }
     rings.clear();
     const Simulation* first = nullptr;
@@ -162,7 +171,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
           l.run->after_step(ok, x, y);
         } catch (const RunCancelled&) {
           l.run.reset();
-          --busy;
+          left();
           cancelled(l.job.id);
           continue;
         }
@@ -172,7 +181,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       if (l.run->finished()) {
         RunSummary summary = l.run->take();
         l.run.reset();
-        --busy;
+        left();
         done(l.job.id, std::move(summary));
       }
     }
