@@ -28,13 +28,14 @@ inline Medium medium_200(double side = 500, double r_min = MediumOptions{}.r_min
 /// benchmarks time their stage on. Contact is what makes the collision and contact-limit stages do
 /// their work, so it is found, not assumed from a fixed number of steps (a count right for one dt
 /// is free fall at another). Throws if no contact comes within 100 000 steps.
-inline std::unique_ptr<Simulation> droplet_in_contact(const DropletParams& params, const Medium& medium,
-                                                      int settle = 4000) {
+inline std::unique_ptr<Simulation> droplet_in_contact(const DropletParams& params,
+                                                      const Medium& medium, int settle = 4000) {
   auto sim = std::make_unique<Simulation>(params, medium);
   sim->place_above(428);
   const auto step_to_contact = [&sim] {
     for (int steps = 0; sim->last_penetration() <= 0; ++steps) {
-      if (steps == 100000) throw std::runtime_error("droplet_in_contact: no grain touched in 100 000 steps");
+      if (steps == 100000)
+        throw std::runtime_error("droplet_in_contact: no grain touched in 100 000 steps");
       sim->step();
     }
   };

@@ -65,8 +65,14 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   // the droplets stepped alone is made again only after one, since a droplet's parameters are
   // fixed while it runs.
   std::uint64_t changes = 0, split_at = ~std::uint64_t{0};
-  auto joined = [&] { ++busy, ++changes; };
-  auto left = [&] { --busy, ++changes; };
+  auto joined = [&] {
+    ++busy;
+    ++changes;
+  };
+  auto left = [&] {
+    --busy;
+    ++changes;
+  };
   auto idle_lane = [&]() -> Lane& {
     for (Lane& l : slots)
       if (!l.run) return l;
