@@ -23,13 +23,12 @@ inline Medium medium_200(double side = 500, double r_min = MediumOptions{}.r_min
 }
 
 /// A droplet dropped at x = 428, where it lands on grains of medium-200, stepped until a mass first
-/// touches a grain, then `settle` steps more (0.014 time units at the defaults' dt), then on to the
+/// touches a grain, then 4 000 steps more (0.014 time units at the defaults' dt), then on to the
 /// next step in which a mass touches a grain, with its forces computed: the state the stage
 /// benchmarks time their stage on. Contact is what makes the collision and contact-limit stages do
 /// their work, so it is found, not assumed from a fixed number of steps (a count right for one dt
 /// is free fall at another). Throws if no contact comes within 100 000 steps.
-inline std::unique_ptr<Simulation> droplet_in_contact(const DropletParams& params,
-                                                      const Medium& medium, int settle = 4000) {
+inline std::unique_ptr<Simulation> droplet_in_contact(const DropletParams& params, const Medium& medium) {
   auto sim = std::make_unique<Simulation>(params, medium);
   sim->place_above(428);
   const auto step_to_contact = [&sim] {
@@ -40,7 +39,7 @@ inline std::unique_ptr<Simulation> droplet_in_contact(const DropletParams& param
     }
   };
   step_to_contact();
-  for (int i = 0; i < settle; ++i) sim->step();
+  for (int i = 0; i < 4000; ++i) sim->step();
   step_to_contact();
   sim->compute_forces();
   return sim;

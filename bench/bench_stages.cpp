@@ -1,5 +1,5 @@
-// The stages of one step, each timed on its own (Google Benchmark), for rings of 16, 24 (the defaults), 40 and 128
-// masses in the medium-200 scene, with the droplet in contact with grains.
+// The stages of one step, each timed on its own (Google Benchmark), for rings of 16, 24 (the
+// defaults), 40 and 128 masses in the medium-200 scene, with the droplet in contact with grains.
 // Run: build/bench/bench_stages --benchmark_out=bench/results/stages.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,5 @@
-// Cost of one droplet step through a medium, for droplets of 16, 24 (the defaults), 40 and 128 masses.
+// Cost of one droplet step through a medium, for droplets of 16, 24 (the defaults), 40 and 128
+// masses.
 // Run: build/bench/bench_step --benchmark_out=bench/results/step.json --benchmark_out_format=json
 #include <benchmark/benchmark.h>
 

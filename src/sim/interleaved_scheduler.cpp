@@ -61,17 +61,16 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   const bool lane_wise = width >= VectorWidth::avx;
   LaneExchangeSeat seat(exchange, lanes);
   int busy = 0;
-  // Every droplet that joins or leaves a lane counts a change; the lanes' split into the block and
-  // the droplets stepped alone is made again only after one, since a droplet's parameters are
-  // fixed while it runs.
-  std::uint64_t changes = 0, split_at = ~std::uint64_t{0};
+  // The lanes' split into the block and the droplets stepped alone is made again only after a
+  // droplet joins or leaves a lane, since a droplet's parameters are fixed while it runs.
+  bool lanes_changed = true;
   auto joined = [&] {
     ++busy;
-    ++changes;
+    lanes_changed = true;
   };
   auto left = [&] {
     --busy;
-    ++changes;
+    lanes_changed = true;
   };
   auto idle_lane = [&]() -> Lane& {
     for (Lane& l : slots)
@@ -115,8 +114,8 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     // fewest_block_droplets(); the others, and all with SSE2 alone:
     // forces and integration each, the sequential constraints of the rings that share the first
     // one's constraint parameters together. Then the contact limits.
-    if (split_at != changes) {
-      split_at = changes;
+    if (lanes_changed) {
+      lanes_changed = false;
       block.clear();
       alone.clear();
       for (Lane& l : slots) {

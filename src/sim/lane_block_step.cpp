@@ -26,7 +26,7 @@ struct LaneBlock {
 // Block ids are unique over threads (a droplet can change thread). Each thread takes them from
 // the shared counter a chunk at a time, so that threads stepping blocks do not write one cache line
 // at every step; only an id's equality with another matters, never its order or value.
-alignas(64) std::atomic<std::uint64_t> next_block_chunk{1};
+std::atomic<std::uint64_t> next_block_chunk{1};
 constexpr std::uint64_t kBlockIdChunk = std::uint64_t{1} << 16;
 std::uint64_t new_block_id() {
   thread_local std::uint64_t next = 0, end = 0;

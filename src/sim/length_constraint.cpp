@@ -28,12 +28,15 @@ int machine_width() {
 #endif
 }
 // Read several times a step by every stage on every thread, written only by
-// limit_constraint_vector_width: on a cache line of its own, so that no variable another thread
-// writes at every step (a counter placed next to it) makes each read a cache miss.
-alignas(64) std::atomic<int> width_limit{8};
+// limit_constraint_vector_width: padded to a whole cache line, so that no variable another thread
+// writes at every step can share its line and make each read a cache miss.
+struct alignas(64) WidthLimit {
+  std::atomic<int> value{8};
+};
+WidthLimit width_limit;
 int vector_width() {
   static const int machine = machine_width();
-  return std::min(machine, width_limit.load(std::memory_order_relaxed));
+  return std::min(machine, width_limit.value.load(std::memory_order_relaxed));
 }
 
 #if defined(SOFTDROP_AVX_DISPATCH)
@@ -178,7 +181,7 @@ VectorWidth limit_constraint_vector_width(VectorWidth width) {
   const int w = static_cast<int>(width);
   if (w != 1 && w != 2 && w != 4 && w != 8)
     throw std::invalid_argument("vector width " + std::to_string(w) + ": must be 1, 2, 4 or 8");
-  width_limit.store(w, std::memory_order_relaxed);
+  width_limit.value.store(w, std::memory_order_relaxed);
   return constraint_vector_width();
 }
 
