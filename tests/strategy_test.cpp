@@ -81,6 +81,51 @@ TEST(Strategy, EvolutionStepsGrowWithSuccessesAndShrinkWithFailures) {
   }
 }
 
+TEST(Strategy, ForeseeTakesTheCandidatesStillRunningToImproveOnNothing) {
+  SearchOptions o = test::small_search_options(4);
+  o.strategy.kind = StrategyKind::es;
+  o.strategy.target_success = 0.2;
+  o.single_every = 4;  // candidate 3 of every generation is a single move
+  const Configuration s0 = test::small_search_start(o);
+  const double t0 = s0.eval.tortuosity;
+  const auto s = make_strategy(o, s0, "");
+  ASSERT_TRUE(s->speculative());
+  const std::string before = s->state();
+  const auto c = results(*s, 1, {t0 + 0.1, t0 + 0.2, t0 - 0.1, t0 + 0.3});
+  auto steps = [](const Strategy& x) {
+    const auto j = nlohmann::json::parse(x.state());
+    return std::pair{j["step"].get<double>(), j["single-step"].get<double>()};
+  };
+  const double up = std::exp(1.0 / 3), down = std::exp(-0.25 / 3);
+  int kept = -2;
+  // Candidates 1 and 3 still run: 0 is the best improvement so far, and 1 and 3 count as failures.
+  const auto partial = s->foresee(1, {&c[0], nullptr, &c[2], nullptr}, &kept);
+  EXPECT_EQ(kept, 0);
+  EXPECT_EQ(partial->current().eval.tortuosity, t0 + 0.1);
+  EXPECT_DOUBLE_EQ(steps(*partial).first, o.step * up * down * down);
+  EXPECT_DOUBLE_EQ(steps(*partial).second, o.single_step * down);
+  EXPECT_EQ(s->state(), before) << "foresee tells a copy";
+  EXPECT_EQ(s->current().eval.tortuosity, t0);
+  // Nothing evaluated yet: nothing kept, every step shrinks once per candidate of its kind.
+  const auto none = s->foresee(1, {nullptr, nullptr, nullptr, nullptr}, &kept);
+  EXPECT_EQ(kept, -1);
+  EXPECT_DOUBLE_EQ(steps(*none).first, o.step * down * down * down);
+  EXPECT_DOUBLE_EQ(steps(*none).second, o.single_step * down);
+  // Everything evaluated: what tell() decides.
+  const auto all = s->foresee(1, {&c[0], &c[1], &c[2], &c[3]}, &kept);
+  const auto told = s->clone();
+  EXPECT_EQ(told->tell(1, c), 3);
+  EXPECT_EQ(kept, 3);
+  EXPECT_EQ(all->state(), told->state());
+  EXPECT_EQ(all->current().medium, c[3].medium);
+  // The strategies that may keep a worse candidate cannot be foreseen from improvements alone.
+  for (const StrategyKind kind : {StrategyKind::paper, StrategyKind::lahc, StrategyKind::anneal}) {
+    o.strategy.kind = kind;
+    EXPECT_EQ(make_strategy(o, s0, "")->speculative(), kind == StrategyKind::paper)
+        << to_string(kind);
+  }
+}
+
 TEST(Strategy, AnnealingKeepsWorseCandidatesLessOftenAsItCools) {
   SearchOptions o = test::small_search_options(2);
   o.strategy.kind = StrategyKind::anneal;

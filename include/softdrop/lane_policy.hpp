@@ -24,13 +24,12 @@ int interleaved_lanes();
 std::size_t fewest_block_droplets(VectorWidth width);
 
 /// Droplets each thread of a speculating search steps together, when its options leave it to the
-/// program: `per_generation` candidates a generation, `threads` threads. 8 on 1 and 2 threads; 16
-/// on one thread with AVX-512, the sequential order and per_generation >= 2; 4 at per_generation
-/// = 1 with SSE2 alone (there the lanes only hide the sequential constraint's chain). With the
-/// red-black order, 1 with SSE2 alone and with AVX at per_generation = 1 on several threads. More
-/// threads keep the droplets in flight of 2 threads, over fewer lanes each: more lanes run further
-/// ahead, so more speculative work is thrown away, and slow each droplet, which delays the
-/// decisions the rest waits for.
+/// program: `per_generation` candidates a generation, `threads` threads. 8 on 1 and 2 threads; 4
+/// at per_generation = 1 with SSE2 alone (there the lanes only hide the sequential constraint's
+/// chain). With the red-black order, 1 with SSE2 alone and with AVX at per_generation = 1 on
+/// several threads. More threads keep the droplets in flight of 2 threads, over fewer lanes each:
+/// more lanes run further ahead, so more speculative work is thrown away, and slow each droplet,
+/// which delays the decisions the rest waits for.
 int speculative_lanes(int per_generation, int threads, ConstraintOrder order);
 
 }  // namespace softdrop

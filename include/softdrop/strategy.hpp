@@ -21,23 +21,41 @@ class Strategy {
  public:
   virtual ~Strategy() = default;
 
+  /// The options it was made with (options.lambda candidates a generation).
+  virtual const SearchOptions& options() const = 0;
   /// The arrangement the next candidates are made from, with its evaluation (its touched grains
   /// are the ones single moves choose from: the paper's insight, kept by every strategy).
   virtual const Configuration& current() const = 0;
-  /// The candidates of `generation` (made, not evaluated): options.lambda of them, in index order.
-  virtual std::vector<Candidate> propose(std::int64_t generation) const = 0;
+  /// Candidate k of `generation` (made, not evaluated), k in [0, options.lambda).
+  virtual Candidate propose(std::int64_t generation, int k) const = 0;
+  /// The candidates of `generation`: propose(generation, k) for every k, in index order.
+  std::vector<Candidate> propose(std::int64_t generation) const;
   /// Takes the evaluated candidates of `generation` in index order, updates the state and returns
   /// the index of the candidate kept as the new current arrangement (-1: none). A passed candidate
   /// whose T beats every arrangement kept before must be kept, so the best of a search is always
   /// an arrangement its history stores.
-  virtual int tell(std::int64_t generation, const std::vector<Candidate>& candidates) = 0;
+  int tell(std::int64_t generation, const std::vector<Candidate>& candidates);
   /// The state beyond the current arrangement, as a JSON object; "" when there is none. Stored
   /// with every generation and handed back to make_strategy on resume.
   virtual std::string state() const = 0;
-  /// Whether the drive may evaluate later generations ahead of this one's decision: true when a
-  /// generation that keeps nothing changes nothing, and the kept candidate is the best strict
-  /// improvement of the current arrangement (the paper's hill climb).
+  /// Whether the drive may evaluate later generations ahead of this one's decision: true when
+  /// tell() depends on a generation only through which candidates improve on current() and their
+  /// T, keeping the best improvement. A candidate still running can then be taken to improve on
+  /// nothing until it finishes (foresee), and a generation in which none improves changes the
+  /// state in a way known in advance (the paper's hill climb: not at all; es: smaller steps).
   virtual bool speculative() const { return false; }
+  /// A copy, state and all.
+  virtual std::unique_ptr<Strategy> clone() const = 0;
+  /// A copy told `generation` as far as its candidates are evaluated: evaluated[k] is candidate k
+  /// or nullptr while it runs (taken to pass no test: for a speculative() strategy, to improve on
+  /// nothing). Sets *kept to what tell() returned. Once every candidate is there, this is tell().
+  std::unique_ptr<Strategy> foresee(std::int64_t generation,
+                                    const std::vector<const Candidate*>& evaluated,
+                                    int* kept) const;
+
+ protected:
+  /// tell() and foresee(): candidates[k] is candidate k, or nullptr when not yet evaluated.
+  virtual int decide(std::int64_t generation, const std::vector<const Candidate*>& candidates) = 0;
 };
 
 /// A strategy (options.strategy) moving on from `current`, with `state` as a previous state()

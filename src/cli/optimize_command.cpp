@@ -98,9 +98,11 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->capture_default_str();
   g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
-  g->add_flag("--no-speculation", a.no_speculation,
-              "Evaluate one generation at a time (by default idle threads evaluate the next generations "
-              "ahead, assuming no acceptance; the history is the same either way)");
+  g->add_flag(
+      "--no-speculation", a.no_speculation,
+      "Evaluate one generation at a time (by default, with --strategy paper or es, idle threads "
+      "evaluate the next generations ahead, assuming no improvement; the history is the same "
+      "either way)");
   g->add_option("--lanes", a.lanes,
                 "Candidates each thread steps together, in [0, 64] (0: chosen for this processor, see "
                 "docs/search.md); a matter of speed only: results do not depend on it")

@@ -13,11 +13,20 @@ namespace softdrop::detail {
 // droplet (ties go to the earlier candidate, so the choice does not depend on threads).
 inline bool improves(const Evaluation& e, double best_t) { return e.outcome == Outcome::passed && e.tortuosity > best_t; }
 
-// The candidate that improves on `t` the most (the earliest on a tie), -1 if none improves.
-inline int best_improvement(const std::vector<Candidate>& candidates, double t) {
+// Pointers to every candidate, in their order: the form best_improvement and Strategy's decisions
+// take.
+inline std::vector<const Candidate*> pointers(const std::vector<Candidate>& candidates) {
+  std::vector<const Candidate*> out;
+  for (const Candidate& c : candidates) out.push_back(&c);
+  return out;
+}
+
+// The candidate that improves on `t` the most (the earliest on a tie), -1 if none improves;
+// nullptr stands for a candidate not yet evaluated.
+inline int best_improvement(const std::vector<const Candidate*>& candidates, double t) {
   int best = -1;
-  for (const Candidate& c : candidates)
-    if (improves(c.eval, t)) t = c.eval.tortuosity, best = c.index;
+  for (const Candidate* c : candidates)
+    if (c && improves(c->eval, t)) t = c->eval.tortuosity, best = c->index;
   return best;
 }
 

@@ -187,7 +187,8 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
                            std::to_string(options_.lambda));
   g.accepted = strategy_->tell(g.number, g.candidates);
   // The best so far is always an arrangement the strategy kept (and so the history stored).
-  const int best_k = detail::best_improvement(g.candidates, best_.eval.tortuosity);
+  const int best_k =
+      detail::best_improvement(detail::pointers(g.candidates), best_.eval.tortuosity);
   if (best_k >= 0) {
     if (best_k != g.accepted)
       throw std::logic_error("search strategy " + std::string(to_string(options_.strategy.kind)) + ": generation " +

@@ -32,26 +32,27 @@ using detail::num;
 
 namespace {
 
-// Speculative evaluation: worker threads take candidates (g, k) in order, up to `depth`
-// generations ahead of the last completed one, each made from the parent the pipeline expects
-// generation g to have. A lineage is one such parent and the generations handed out from it, from
-// the one where it begins on. A newer lineage ends the older ones where it begins (`dead_from`),
-// wholly those that begin at a later generation (a prediction for an earlier generation, below):
-// their candidates of those generations are dropped, or cancelled while they run. A lineage begins
-// - as a prediction: once a finished candidate of a generation beats that generation's parent, the
-//   generation will accept one (this one, or a better one still running), provided its parent is
-//   right, so that parent has no future after it. The pipeline goes on from the candidate that wins
-//   among those finished. This holds for any generation handed out whole, not only the next one to
-//   complete: a later generation's parent is the one its earlier, undecided generations predict
-//   (the last prediction before it, or the best if none), so its own prediction is conditional on
-//   theirs. A candidate finishing later may win instead: the prediction changes to it and the work
-//   made from the first is dropped. A prediction made for an earlier generation ends those of the
-//   later ones with their lineage. The last candidate of a generation to arrive settles its
-//   prediction, so a generation always completes as predicted;
-// - when a completed generation accepts a candidate nobody predicted (kept as a safeguard; the
-//   above leaves no such case).
-// Every candidate that reaches a generation was made from that generation's true parent, so the
-// history is that of one generation at a time.
+// Speculative evaluation (Strategy::speculative): worker threads take candidates (g, k) in order,
+// up to `depth` generations ahead of the last completed one, each made from the strategy state the
+// pipeline expects generation g to have. A lineage is a state and the generations handed out from
+// it, from the one where it begins on, each made from the state its predecessors leave if none of
+// their candidates improves on anything (the paper's hill climb: the same parent; es: smaller
+// steps). A newer lineage ends the older ones where it begins (`dead_from`), wholly those that
+// begin at a later generation (a prediction for an earlier generation, below): their candidates of
+// those generations are dropped, or cancelled while they run.
+//
+// A lineage begins as a prediction. Once a finished candidate of a generation improves on the
+// arrangement the generation was made from, the state after it is not the one its lineage assumed.
+// The pipeline goes on from Strategy::foresee, which takes the candidates still running to improve
+// on nothing. This holds for any generation handed out whole, not only the next one to complete: a
+// later generation's state is the one its earlier, undecided generations predict, so its own
+// prediction is conditional on theirs. A candidate finishing later may improve too (for the
+// paper's hill climb, by more; for es, by anything, as a success changes the steps): the
+// prediction changes and the work made from the first is dropped. A prediction made for an earlier
+// generation ends those of the later ones with their lineage. The last candidate of a generation
+// to arrive settles its prediction, so a generation always completes as predicted or, without a
+// prediction, as its lineage assumed. Every candidate that reaches a generation was made from that
+// generation's true state, so the history is that of one generation at a time.
 class Pipeline {
  public:
   Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
@@ -61,8 +62,7 @@ class Pipeline {
     // generations in flight (bench/README.md, "Lanes of a search").
     depth_ = std::max<std::int64_t>(2, 4 * workers * lanes / lambda);
     completed_ = search.last_generation();
-    base_ = std::make_shared<const Configuration>(search.best());
-    add_lineage(base_, completed_ + 1);
+    add_lineage(search.strategy().clone(), completed_ + 1);
     next_gen_ = completed_ + 1;
     for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
   }
@@ -107,18 +107,20 @@ class Pipeline {
     const Generation gen =
         search_.complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     completed_ = gen.number;
+    // predict() saw the last of these candidates arrive, so it foresaw what complete() did: the
+    // prediction if it made one, else no improvement. Either way the next generation's lineage
+    // begins from that.
     const auto p = predicted_.find(gen.number);
-    if (p != predicted_.end()) {
-      // predict() saw the last of these candidates arrive, so it chose as complete() did.
-      if (gen.accepted != p->second.k)
-        throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) + " accepted " +
-                               std::to_string(gen.accepted) + ", predicted " + std::to_string(p->second.k));
-      base_ = p->second.parent;
-      predicted_.erase(p);
-    } else if (gen.accepted >= 0) {
-      base_ = std::make_shared<const Configuration>(search_.best());
-      begin_lineage(base_, gen.number + 1);
-    }
+    const int expected = p != predicted_.end() ? p->second.k : -1;
+    const std::string expected_state = before(gen.number + 1)->state();
+    if (gen.accepted != expected || gen.state != expected_state)
+      throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) +
+                             " kept " + std::to_string(gen.accepted) + " with state '" + gen.state +
+                             "', foreseen " + std::to_string(expected) + " with '" +
+                             expected_state + "'");
+    if (p != predicted_.end()) predicted_.erase(p);
+    for (const std::shared_ptr<Lineage>& l : lines_)  // what no generation to come is made from
+      l->before.erase(l->before.begin(), l->before.lower_bound(completed_));
     predict();  // the next generation's candidates may all have finished already
     lock.unlock();
     cv_.notify_all();
@@ -132,18 +134,42 @@ class Pipeline {
 
  private:
   struct Lineage {
-    std::shared_ptr<const Configuration> parent;
-    std::int64_t start = 0;  // the first generation made from parent
+    std::int64_t start = 0;  // the first generation it makes
+    // By generation (from start on, the ones still needed): the state its candidates are made from.
+    std::map<std::int64_t, std::shared_ptr<const Strategy>> before;
     std::atomic<std::int64_t> dead_from{std::numeric_limits<std::int64_t>::max()};
   };
   struct Prediction {
-    int k = -1;                                    // the candidate expected to be accepted
-    std::shared_ptr<const Configuration> parent;   // it, as the next generation's parent
+    int k = -1;                             // the candidate expected to be kept
+    std::shared_ptr<const Strategy> after;  // the state after the generation
   };
 
-  // Under m_. Generations from `start` on are made from `parent`; every generation before `start`
-  // has been handed out whole. The predictions from `start` on were made from the parent ended here.
-  void begin_lineage(std::shared_ptr<const Configuration> parent, std::int64_t start) {
+  // Under m_. The state generation g (>= line.start, at most one past the last it made) is made
+  // from.
+  const std::shared_ptr<const Strategy>& before(Lineage& line, std::int64_t g) {
+    auto it = line.before.find(g);
+    if (it != line.before.end()) return it->second;
+    if (line.before.empty() || g < line.before.begin()->first)
+      throw std::logic_error("search pipeline: generation " + std::to_string(g) +
+                             " is not in its lineage");
+    int kept = -1;
+    const std::vector<const Candidate*> none(static_cast<std::size_t>(search_.options().lambda),
+                                             nullptr);
+    std::shared_ptr<const Strategy> s = before(line, g - 1)->foresee(g - 1, none, &kept);
+    return line.before.emplace(g, std::move(s)).first->second;
+  }
+  // Under m_. The state generation g is made from, in the lineage that makes it now: the newest one
+  // begun at or before g.
+  const std::shared_ptr<const Strategy>& before(std::int64_t g) {
+    for (auto it = lines_.rbegin(); it != lines_.rend(); ++it)
+      if ((*it)->start <= g) return before(**it, g);
+    throw std::logic_error("search pipeline: no lineage makes generation " + std::to_string(g));
+  }
+
+  // Under m_. Generations from `start` on are made from `strategy` as their predecessors leave it;
+  // every generation before `start` has been handed out whole. The predictions from `start` on
+  // were made from the lineages ended here.
+  void begin_lineage(std::shared_ptr<const Strategy> strategy, std::int64_t start) {
     // A prediction for an earlier generation ends the lineages begun after it as well.
     for (const std::shared_ptr<Lineage>& l : lines_)
       if (l->dead_from.load(std::memory_order_relaxed) > start) l->dead_from.store(start, std::memory_order_relaxed);
@@ -152,7 +178,7 @@ class Pipeline {
       const std::int64_t dead_from = l->dead_from.load(std::memory_order_relaxed);
       return dead_from <= l->start || dead_from <= completed_ + 1;
     });
-    add_lineage(std::move(parent), start);
+    add_lineage(std::move(strategy), start);
     for (auto it = done_.lower_bound({start, 0}); it != done_.end(); it = done_.erase(it)) {
       ++stats_.dropped;
       stats_.dropped_steps += it->second.eval.steps;
@@ -164,46 +190,43 @@ class Pipeline {
   }
 
   // Under m_. The newest lineage, from which work is handed out: lines_.back().
-  void add_lineage(std::shared_ptr<const Configuration> parent, std::int64_t start) {
+  void add_lineage(std::shared_ptr<const Strategy> strategy, std::int64_t start) {
     auto line = std::make_shared<Lineage>();
-    line->parent = std::move(parent);
     line->start = start;
+    line->before.emplace(start, std::move(strategy));
     lines_.push_back(std::move(line));
   }
 
-  // Under m_. Goes through the generations handed out whole, from the next to complete on, each
-  // with the parent the predictions before it give, and predicts the acceptance of the first whose
-  // finished candidates beat that parent and which has no prediction, or a different one, yet.
+  // Under m_. Goes through the generations handed out whole, from the next to complete on, and
+  // predicts the state after the first whose finished candidates improve on the arrangement it
+  // was made from and which has no prediction, or a different one, yet.
   void predict() {
-    std::shared_ptr<const Configuration> parent = base_;
+    const auto lambda = static_cast<std::size_t>(search_.options().lambda);
     for (std::int64_t g = completed_ + 1; g < next_gen_ && g <= upto_; ++g) {
-      const Candidate* winner = nullptr;
-      double best_t = parent->eval.tortuosity;
-      for (int k = 0; k < search_.options().lambda; ++k) {  // Search::complete's choice, among these
-        const auto it = done_.find({g, k});
-        if (it != done_.end() && improves(it->second.eval, best_t)) {
-          winner = &it->second;
-          best_t = winner->eval.tortuosity;
-        }
+      const std::shared_ptr<const Strategy>& from = before(g);
+      std::vector<const Candidate*> finished(lambda, nullptr);
+      bool improved = false;
+      for (std::size_t k = 0; k < lambda; ++k) {
+        const auto it = done_.find({g, static_cast<int>(k)});
+        if (it == done_.end()) continue;
+        finished[k] = &it->second;
+        improved = improved || improves(it->second.eval, from->current().eval.tortuosity);
       }
-      if (winner == nullptr) continue;  // no prediction: g is assumed to accept nothing
+      if (!improved) continue;  // no prediction: g is assumed to improve on nothing, as its lineage
+      int kept = -1;
+      std::shared_ptr<const Strategy> after = from->foresee(g, finished, &kept);
       auto p = predicted_.find(g);
-      if (p != predicted_.end() && p->second.k == winner->index) {
-        parent = p->second.parent;
+      if (p != predicted_.end() && p->second.k == kept &&
+          p->second.after->state() == after->state())
         continue;
-      }
       if (p != predicted_.end()) {
         ++stats_.mispredictions;
         predicted_.erase(p);
       }
       ++stats_.predictions;
       if (g > completed_ + 1) ++stats_.predictions_ahead;
-      auto next = std::make_shared<Configuration>();  // what Search::complete will make the best
-      next->generation = g;
-      next->medium = winner->medium;
-      next->eval = winner->eval;
-      predicted_.emplace(g, Prediction{winner->index, next});
-      begin_lineage(std::move(next), g + 1);  // nothing after g + 1 is left to look at
+      predicted_.emplace(g, Prediction{kept, after});
+      begin_lineage(std::move(after), g + 1);  // nothing after g + 1 is left to look at
       return;
     }
   }
@@ -241,10 +264,11 @@ class Pipeline {
       j.k = next_k_;
       if (++next_k_ == options.lambda) next_k_ = 0, ++next_gen_;
       j.line = lines_.back();
+      const std::shared_ptr<const Strategy> from = before(*j.line, j.g);  // work() reports a throw
       lock.unlock();
       const std::int64_t id = next_id++;
       try {
-        j.c = make_candidate(*j.line->parent, j.g, j.k, options);
+        j.c = from->propose(j.g, j.k);
         j.t0 = std::chrono::steady_clock::now();
         j.run = evaluation_run(options.run);
         Job& placed = jobs.emplace(id, std::move(j)).first->second;
@@ -308,7 +332,6 @@ class Pipeline {
   // The lineages with generations not yet ended, oldest first; the last one is the newest, whose
   // generations from its start on are handed out.
   std::vector<std::shared_ptr<Lineage>> lines_;
-  std::shared_ptr<const Configuration> base_;  // the best after completed_
   std::int64_t completed_ = 0, next_gen_ = 0;
   int next_k_ = 0;
   std::map<std::int64_t, Prediction> predicted_;  // standing predictions, by generation

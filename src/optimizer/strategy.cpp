@@ -23,35 +23,37 @@ std::uint64_t stream(const SearchOptions& o, std::int64_t g, int k) {
 }
 
 // The candidate of the generation that passed with the highest T (the earliest on a tie), -1 if none.
-int best_passed(const std::vector<Candidate>& candidates) {
+int best_passed(const std::vector<const Candidate*>& candidates) {
   int best = -1;
-  for (const Candidate& c : candidates)
-    if (c.eval.outcome == Outcome::passed &&
-        (best < 0 || c.eval.tortuosity > candidates[static_cast<std::size_t>(best)].eval.tortuosity))
-      best = c.index;
+  for (const Candidate* c : candidates)
+    if (c && c->eval.outcome == Outcome::passed &&
+        (best < 0 ||
+         c->eval.tortuosity > candidates[static_cast<std::size_t>(best)]->eval.tortuosity))
+      best = c->index;
   return best;
 }
 
 class Base : public Strategy {
  public:
   Base(const SearchOptions& o, Configuration current) : o_(o), current_(std::move(current)) {}
+  const SearchOptions& options() const override { return o_; }
   const Configuration& current() const override { return current_; }
+  using Strategy::propose;
+  // The paper's candidates: its move kinds, steps and streams (the strategies that override this
+  // have moves of their own).
+  Candidate propose(std::int64_t generation, int k) const override {
+    return make_candidate(current_, generation, k, o_);
+  }
 
  protected:
-  int keep(std::int64_t generation, const std::vector<Candidate>& candidates, int k) {
+  int keep(std::int64_t generation, const std::vector<const Candidate*>& candidates, int k) {
     if (k < 0) return -1;
-    const Candidate& c = candidates[static_cast<std::size_t>(k)];
+    const Candidate& c = *candidates[static_cast<std::size_t>(k)];
     current_ = {generation, c.medium, c.eval};
     return k;
   }
-  // The paper's candidates: its move kinds, steps and streams.
-  std::vector<Candidate> paper_candidates(std::int64_t generation) const {
-    std::vector<Candidate> out;
-    for (int k = 0; k < o_.lambda; ++k) out.push_back(make_candidate(current_, generation, k, o_));
-    return out;
-  }
   // The best strict improvement of the current arrangement, -1 if none.
-  int best_improvement(const std::vector<Candidate>& candidates) const {
+  int best_improvement(const std::vector<const Candidate*>& candidates) const {
     return detail::best_improvement(candidates, current_.eval.tortuosity);
   }
 
@@ -63,12 +65,14 @@ class Base : public Strategy {
 class Paper final : public Base {
  public:
   using Base::Base;
-  std::vector<Candidate> propose(std::int64_t generation) const override { return paper_candidates(generation); }
-  int tell(std::int64_t generation, const std::vector<Candidate>& candidates) override {
-    return keep(generation, candidates, best_improvement(candidates));
-  }
   std::string state() const override { return ""; }
   bool speculative() const override { return true; }
+  std::unique_ptr<Strategy> clone() const override { return std::make_unique<Paper>(*this); }
+
+ protected:
+  int decide(std::int64_t generation, const std::vector<const Candidate*>& candidates) override {
+    return keep(generation, candidates, best_improvement(candidates));
+  }
 };
 
 // (1 + lambda) evolution strategy: the paper's two move kinds, spread over the candidates in the
@@ -87,29 +91,34 @@ class Evolution final : public Base {
       throw std::invalid_argument("strategy es: stored state '" + state + "' is not an es state");
     steps_ = {j["step"].get<double>(), j["single-step"].get<double>()};
   }
-  std::vector<Candidate> propose(std::int64_t generation) const override {
-    std::vector<Candidate> out;
-    for (int k = 0; k < o_.lambda; ++k) {
-      const MoveKind kind = kind_of(generation, k);
-      out.push_back(make_move(current_, kind, steps_[kind == MoveKind::single], stream(o_, generation, k), k, o_));
-    }
-    return out;
+  Candidate propose(std::int64_t generation, int k) const override {
+    const MoveKind kind = kind_of(generation, k);
+    return make_move(current_, kind, steps_[kind == MoveKind::single], stream(o_, generation, k), k,
+                     o_);
   }
-  int tell(std::int64_t generation, const std::vector<Candidate>& candidates) override {
+  std::string state() const override {
+    return nlohmann::json{{"step", steps_[0]}, {"single-step", steps_[1]}}.dump();
+  }
+  // Speculative: a generation in which nothing improves multiplies each step by the failure
+  // factor once per candidate of its kind.
+  bool speculative() const override { return true; }
+  std::unique_ptr<Strategy> clone() const override { return std::make_unique<Evolution>(*this); }
+
+ protected:
+  int decide(std::int64_t generation, const std::vector<const Candidate*>& candidates) override {
     const double p = o_.strategy.target_success;
     const double up = std::exp(1.0 / kDamping), down = std::exp(-p / (1 - p) / kDamping);
-    for (const Candidate& c : candidates) {
-      if (c.kind == MoveKind::relocate) continue;  // no step: the grain goes next to the path
-      double& s = steps_[c.kind == MoveKind::single];
-      s *= improves(c.eval, current_.eval.tortuosity) ? up : down;
+    for (int k = 0; k < o_.lambda; ++k) {
+      const MoveKind kind = kind_of(generation, k);  // the kind propose() made candidate k of
+      if (kind == MoveKind::relocate) continue;      // no step: the grain goes next to the path
+      const Candidate* c = candidates[static_cast<std::size_t>(k)];
+      double& s = steps_[kind == MoveKind::single];
+      s *= c && improves(c->eval, current_.eval.tortuosity) ? up : down;
       // Below the smallest step a jump barely changes the path; above a quarter of the box a
       // jump is a new arrangement, not a move.
       s = std::clamp(s, kMinStep, 0.25 * current_.medium.width);
     }
     return keep(generation, candidates, best_improvement(candidates));
-  }
-  std::string state() const override {
-    return nlohmann::json{{"step", steps_[0]}, {"single-step", steps_[1]}}.dump();
   }
 
  private:
@@ -143,19 +152,23 @@ class LateAcceptance final : public Base {
       history_[i] = j["history"][i].get<double>();
     }
   }
-  std::vector<Candidate> propose(std::int64_t generation) const override { return paper_candidates(generation); }
-  int tell(std::int64_t generation, const std::vector<Candidate>& candidates) override {
+  std::string state() const override { return nlohmann::json{{"history", history_}}.dump(); }
+  std::unique_ptr<Strategy> clone() const override {
+    return std::make_unique<LateAcceptance>(*this);
+  }
+
+ protected:
+  int decide(std::int64_t generation, const std::vector<const Candidate*>& candidates) override {
     const auto v = static_cast<std::size_t>(generation % static_cast<std::int64_t>(history_.size()));
     int k = best_passed(candidates);
     if (k >= 0) {
-      const double t = candidates[static_cast<std::size_t>(k)].eval.tortuosity;
+      const double t = candidates[static_cast<std::size_t>(k)]->eval.tortuosity;
       if (!(t >= current_.eval.tortuosity || t >= history_[v])) k = -1;
     }
     const int kept = keep(generation, candidates, k);
     history_[v] = current_.eval.tortuosity;
     return kept;
   }
-  std::string state() const override { return nlohmann::json{{"history", history_}}.dump(); }
 
  private:
   std::vector<double> history_;  // the current T of the last history-length generations, by generation mod length
@@ -172,18 +185,23 @@ class Annealing final : public Base {
     if (!state.empty() && !nlohmann::json::parse(state, nullptr, false).is_object())
       throw std::invalid_argument("strategy anneal: stored state '" + state + "' is not an anneal state");
   }
-  std::vector<Candidate> propose(std::int64_t generation) const override { return paper_candidates(generation); }
-  int tell(std::int64_t generation, const std::vector<Candidate>& candidates) override {
+  std::string state() const override {
+    return nlohmann::json{{"temperature", temperature_}}.dump();
+  }
+  std::unique_ptr<Strategy> clone() const override { return std::make_unique<Annealing>(*this); }
+
+ protected:
+  int decide(std::int64_t generation, const std::vector<const Candidate*>& candidates) override {
     temperature_ = temperature(generation);
     int k = best_passed(candidates);
     if (k >= 0) {
-      const double dt = candidates[static_cast<std::size_t>(k)].eval.tortuosity - current_.eval.tortuosity;
+      const double dt =
+          candidates[static_cast<std::size_t>(k)]->eval.tortuosity - current_.eval.tortuosity;
       Rng rng(stream(o_, generation, o_.lambda));
       if (dt < 0 && !(rng.uniform() < std::exp(dt / temperature_))) k = -1;
     }
     return keep(generation, candidates, k);
   }
-  std::string state() const override { return nlohmann::json{{"temperature", temperature_}}.dump(); }
 
  private:
   double temperature(std::int64_t generation) const {
@@ -193,6 +211,24 @@ class Annealing final : public Base {
 };
 
 }  // namespace
+
+std::vector<Candidate> Strategy::propose(std::int64_t generation) const {
+  std::vector<Candidate> out;
+  for (int k = 0; k < options().lambda; ++k) out.push_back(propose(generation, k));
+  return out;
+}
+
+int Strategy::tell(std::int64_t generation, const std::vector<Candidate>& candidates) {
+  return decide(generation, detail::pointers(candidates));
+}
+
+std::unique_ptr<Strategy> Strategy::foresee(std::int64_t generation,
+                                            const std::vector<const Candidate*>& evaluated,
+                                            int* kept) const {
+  std::unique_ptr<Strategy> told = clone();
+  *kept = told->decide(generation, evaluated);
+  return told;
+}
 
 std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configuration current, const std::string& state) {
   switch (options.strategy.kind) {

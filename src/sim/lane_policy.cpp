@@ -22,8 +22,6 @@ int speculative_lanes(int per_generation, int threads, ConstraintOrder order) {
   if (order == ConstraintOrder::red_black &&
       (width < VectorWidth::avx || (width == VectorWidth::avx && per_generation == 1 && threads > 1)))
     return 1;
-  if (threads == 1 && per_generation >= 2 && width == VectorWidth::avx512 && order == ConstraintOrder::sequential)
-    return 16;
   const int per_thread = width >= VectorWidth::avx ? 8 : std::min(8, 4 * per_generation);
   return std::max(1, std::min(per_thread, 2 * per_thread / threads));
 }
