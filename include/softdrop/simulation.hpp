@@ -191,6 +191,11 @@ class Simulation {
   /// other writer of state_ clears it).
   std::uint64_t block_id_ = 0;
   int block_lane_ = 0;
+  /// The centre of mass the lane-by-lane step computed, for the state it left while block_id_ is
+  /// still block_centre_id_ (a contact limit that moved a mass, or any other writer, clears
+  /// block_id_).
+  double block_cx_ = 0, block_cy_ = 0;
+  std::uint64_t block_centre_id_ = 0;
   /// What a writer of state_ other than the lane-by-lane step and the contact limit does: the
   /// block and the contact records no longer describe it.
   void state_changed() {

@@ -23,7 +23,7 @@ namespace {
 // Simulation::centre_of_mass of sims[0..count): four droplets' ordered sums side by side where
 // they have the same number of masses (each sum's additions in its own order, so the same bits),
 // so that the processor overlaps their chains of dependent additions instead of waiting out each.
-void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy) {
+void centres_of_four(Simulation* const* sims, int count, double* cx, double* cy) {
   int t = 0;
   for (; t + 4 <= count; t += 4) {
     const DropletState* s[4] = {&sims[t]->state(), &sims[t + 1]->state(), &sims[t + 2]->state(),
@@ -43,6 +43,17 @@ void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy)
   }
   for (; t < count; ++t) sims[t]->centre_of_mass(cx + t, cy + t);
 }
+
+// Simulation::centre_of_mass of sims[0..count), `rest` a scratch of count: the lane-by-lane step's
+// where it still holds; the others' own sums (centres_of_four's when none holds).
+void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy,
+                     std::vector<int>& rest) {
+  rest.clear();
+  for (int t = 0; t < count; ++t)
+    if (!LaneBlockStep::centre_of_mass(*sims[t], cx + t, cy + t)) rest.push_back(t);
+  if (rest.size() == static_cast<std::size_t>(count)) return centres_of_four(sims, count, cx, cy);
+  for (const int t : rest) sims[t]->centre_of_mass(cx + t, cy + t);
+}
 }  // namespace
 
 void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
@@ -56,6 +67,8 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   std::vector<int> corrections;
   std::vector<Simulation*> block, alone, stepped;
   std::vector<double> cx(static_cast<std::size_t>(lanes)), cy(cx.size());
+  std::vector<int> rest;  // centres_of_mass's scratch
+  rest.reserve(cx.size());
   std::vector<char> valid(cx.size());
   const VectorWidth width = constraint_vector_width();
   const bool lane_wise = width >= VectorWidth::avx;
@@ -164,7 +177,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       valid[stepped.size()] = l.run->simulation()->after_constraint();
       stepped.push_back(l.run->simulation());
     }
-    centres_of_mass(stepped.data(), static_cast<int>(stepped.size()), cx.data(), cy.data());
+    centres_of_mass(stepped.data(), static_cast<int>(stepped.size()), cx.data(), cy.data(), rest);
     std::size_t t = 0;
     for (Lane& l : slots) {
       if (!l.run) continue;

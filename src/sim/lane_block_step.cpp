@@ -139,6 +139,10 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
     }
   };
   run_step_stages(run, StepStage::gravity, StepStage::constraint);
+  // The centres of mass from the block (run_interleaved needs them after the contact limits, which
+  // seldom move a mass: then they are computed again from the state).
+  double cx[lanes::kMaxLanes], cy[lanes::kMaxLanes];
+  lanes::centres(block[0], block[1], n, registers, cx, cy);
   // Verlet left the positions the step began with as the previous ones, so px, py are x, y as they
   // still are in each state: moved there as the copy out overwrites them, rather than copied back
   // from the block.
@@ -147,6 +151,9 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   for (int t = 0; t < count; ++t) {
     sims[t]->block_id_ = id;
     sims[t]->block_lane_ = t;
+    sims[t]->block_centre_id_ = id;
+    sims[t]->block_cx_ = cx[t];
+    sims[t]->block_cy_ = cy[t];
     sims[t]->contact_.current = false;  // the step moved every mass
   }
   memory.last_id = id;

@@ -24,6 +24,14 @@ struct LaneBlockStep {
   // The stages of kStepStages from gravity to the constraint (all of step() but the contact
   // limit) for sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0].
   static void step(Simulation* const* sims, int count);
+  // Simulation::centre_of_mass of sim as the last step left it, if that step was a block's and
+  // nothing has moved a mass since: false otherwise.
+  static bool centre_of_mass(const Simulation& sim, double* cx, double* cy) {
+    if (sim.block_id_ == 0 || sim.block_id_ != sim.block_centre_id_) return false;
+    *cx = sim.block_cx_;
+    *cy = sim.block_cy_;
+    return true;
+  }
 };
 
 }  // namespace softdrop

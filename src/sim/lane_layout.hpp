@@ -74,6 +74,8 @@ void ring_spring_forces(const StepConstants& k, const double* x, const double* y
 /// Simulation::accumulate_viscosity on every lane (adds to FX, FY).
 void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY,
                double* FX, double* FY, int n, int registers);
+/// Simulation::centre_of_mass of every lane: cx[t], cy[t] for t < 8 registers.
+void centres(const double* X, const double* Y, int n, int registers, double* cx, double* cy);
 /// Simulation::integrate (position Verlet) on every lane.
 void integrate(double h2m, double* X, double* Y, double* PX, double* PY, const double* FX, const double* FY, int n,
                int registers);

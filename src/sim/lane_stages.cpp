@@ -122,6 +122,12 @@ void viscosity(const StepConstants& k, const double* X, const double* Y, const d
   if (avx512_in_use()) avx512::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
   else avx::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
 }
+void centres(const double* X, const double* Y, int n, int registers, double* cx, double* cy) {
+  if (avx512_in_use())
+    avx512::centres(X, Y, n, registers, cx, cy);
+  else
+    avx::centres(X, Y, n, registers, cx, cy);
+}
 void integrate(double h2m, double* X, double* Y, double* PX, double* PY, const double* FX, const double* FY, int n,
                int registers) {
   if (avx512_in_use()) avx512::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);

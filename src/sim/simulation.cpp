@@ -11,6 +11,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lane_scalar.hpp"
 #include "run_stepper.hpp"
 #include "step_helpers.hpp"
 #include "util/enum_names.hpp"
@@ -104,14 +105,7 @@ void Simulation::place(double cx, double cy) {
 void Simulation::place_above(double cx) { place(cx, start_y_); }
 
 void Simulation::centre_of_mass(double* cx, double* cy) const {
-  const int n = state_.size();
-  double sx = 0, sy = 0;
-  for (int i = 0; i < n; ++i) {
-    sx += state_.x[i];
-    sy += state_.y[i];
-  }
-  *cx = sx / n;
-  *cy = sy / n;
+  lanes::scalar::centres_k<1>(state_.x.data(), state_.y.data(), state_.size(), cx, cy);
 }
 
 const char* to_string(StepStage stage) {
