@@ -26,8 +26,8 @@
 
 namespace softdrop {
 using detail::as_evaluation;
+using detail::best_improvement;
 using detail::evaluation_run;
-using detail::improves;
 using detail::num;
 
 namespace {
@@ -205,14 +205,13 @@ class Pipeline {
     for (std::int64_t g = completed_ + 1; g < next_gen_ && g <= upto_; ++g) {
       const std::shared_ptr<const Strategy>& from = before(g);
       std::vector<const Candidate*> finished(lambda, nullptr);
-      bool improved = false;
       for (std::size_t k = 0; k < lambda; ++k) {
         const auto it = done_.find({g, static_cast<int>(k)});
-        if (it == done_.end()) continue;
-        finished[k] = &it->second;
-        improved = improved || improves(it->second.eval, from->current().eval.tortuosity);
+        if (it != done_.end()) finished[k] = &it->second;
       }
-      if (!improved) continue;  // no prediction: g is assumed to improve on nothing, as its lineage
+      // No prediction while no finished candidate improves: g is taken to improve on nothing, as its
+      // lineage does.
+      if (best_improvement(finished, from->current().eval.tortuosity) < 0) continue;
       int kept = -1;
       std::shared_ptr<const Strategy> after = from->foresee(g, finished, &kept);
       auto p = predicted_.find(g);
