@@ -112,8 +112,8 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
                  "stuck_fraction", "seconds"});
   Columns droplets({"sweep_id", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity",
                     "steps"});
-  Columns points({"sweep_id", "target_phi", "phi", "media", "droplets", "passed", "mean_t", "standard_error",
-                  "stuck_fraction"});
+  Columns points({"sweep_id", "target_phi", "phi", "media", "droplets", "passed", "mean_t",
+                  "standard_error", "media_passed", "media_standard_error", "stuck_fraction"});
   const std::vector<SweepRecord> all = only > 0 ? std::vector<SweepRecord>{store.sweep(only)} : store.sweeps();
   for (const SweepRecord& s : all) {
     sweeps["id"].append(s.id), sweeps["created"].append(s.created), sweeps["updated"].append(s.updated);
@@ -142,6 +142,8 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
       points["media"].append(p.media), points["droplets"].append(p.droplets), points["passed"].append(p.passed);
       points["mean_t"].append(p.passed ? p.mean_t : kNaN);
       points["standard_error"].append(p.passed > 1 ? p.standard_error : kNaN);
+      points["media_passed"].append(p.media_passed);
+      points["media_standard_error"].append(p.media_passed > 1 ? p.media_standard_error : kNaN);
       points["stuck_fraction"].append(p.stuck_fraction);
     }
   }

@@ -188,6 +188,13 @@ TEST(Calibration, FiguresAddUpAndDoNotDependOnThreads) {
     EXPECT_EQ(p1.paper_t, paper_tortuosity(p1.porosity));
     EXPECT_EQ(p1.mean_t, b.points[i].mean_t);  // bit for bit
     EXPECT_EQ(p1.standard_error, b.points[i].standard_error);
+    EXPECT_EQ(p1.media_standard_error, b.points[i].media_standard_error);
+    EXPECT_EQ(p1.media_passed, b.points[i].media_passed);
+    EXPECT_LE(p1.media_passed, std::min(p1.passed, 2));  // 2 media a porosity
+    EXPECT_EQ(p1.media_passed > 0, p1.passed > 0);
+    if (p1.media_passed < 2) {
+      EXPECT_EQ(p1.media_standard_error, 0);
+    }
     const double miss = p1.passed >= 2 ? p1.mean_t - p1.paper_t : p1.paper_t - 1;
     sum2 += miss * miss;
     if (p1.passed >= 2) measured2 += miss * miss, ++measured;

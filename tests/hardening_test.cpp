@@ -139,6 +139,40 @@ TEST(FitPointsFile, BadLinesAndTooManyPointsNameTheFileAndLine) {
   EXPECT_THROW(softdrop::read_fit_points(in, "p.csv"), std::runtime_error);
 }
 
+TEST(FitPointsFile, ASweepReportGivesTheChosenErrorAndAnOlderOneSaysWhichToChoose) {
+  const std::string report =
+      "target_phi,phi,media,droplets,passed,mean_t,standard_error,media_passed,media_standard_"
+      "error,stuck_fraction\n"
+      "0.5,0.49,10,200,1,1.6,,1,,0.99\n"  // one droplet passed: no error of either kind, not a
+                                          // point
+      "0.6,0.59,10,200,60,1.5,0.02,7,0.03,0.7\n"
+      "0.8,0.79,10,200,150,1.3,0.01,10,0.017,0.25\n";
+  std::istringstream media(report), droplets(report);
+  const auto m = softdrop::read_fit_points(media, "r.csv");
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0].phi, 0.59);
+  EXPECT_EQ(m[0].t, 1.5);
+  EXPECT_EQ(m[0].se, 0.03);
+  EXPECT_EQ(m[1].se, 0.017);
+  const auto d = softdrop::read_fit_points(droplets, "r.csv", softdrop::FitErrors::droplets);
+  ASSERT_EQ(d.size(), 2u);
+  EXPECT_EQ(d[0].se, 0.02);
+  EXPECT_EQ(d[1].se, 0.01);
+  std::istringstream older(
+      "target_phi,phi,media,droplets,passed,mean_t,standard_error,stuck_fraction\n"
+      "0.6,0.59,10,200,60,1.5,0.02,0.7\n");
+  try {
+    softdrop::read_fit_points(older, "old.csv");
+    ADD_FAILURE() << "an older report was fitted with errors it does not have";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("--points 'old.csv' line 1: no media_standard_error column"),
+        std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("--errors droplets"), std::string::npos) << e.what();
+  }
+}
+
 TEST(FitFailures, PowerLawRunningToTheLogLawIsFittedAndFlagged) {
   // Found by fuzz_fit_points: on these points L-BFGS ended with NLopt's generic failure, so
   // `softdrop fit` printed only "nlopt failure". The best power law lies at b -> 0.

@@ -41,6 +41,10 @@ struct CalibrationPoint {
   double target_porosity = 0, porosity = 0;  ///< target, and mean exact porosity of its media
   int droplets = 0, passed = 0, stuck = 0, diverged = 0;
   double mean_t = 0, standard_error = 0;     ///< over passed droplets (0 if none; se 0 if < 2)
+  /// Media with a passed droplet, and mean_t's standard error with them as clusters (0 if < 2),
+  /// as SweepPoint's.
+  int media_passed = 0;
+  double media_standard_error = 0;
   double paper_t = 0;                        ///< paper_tortuosity(porosity)
   /// |mean_t - paper_t| <= max(0.03, 2 standard errors), with at least two droplets passed.
   bool within = false;

@@ -47,11 +47,20 @@ struct FitResult {
 /// Most points a points file may hold.
 constexpr std::size_t kMaxFitPoints = 1'000'000;
 
+/// Which standard error of a sweep's per-porosity points weighs a fit.
+enum class FitErrors {
+  media,     ///< media_standard_error: the porosity's media as clusters (the error to quote)
+  droplets,  ///< standard_error: every passed droplet taken as independent
+};
+
 /// Reads a points file: optional `#` comment lines, a header naming the columns phi, t and se
 /// (others are ignored), then one point per line; or the output of `sweep-report --format csv`
-/// (phi, mean_t, standard_error; rows without a standard error are skipped). Throws std::runtime_error naming `name` and the line on a bad line or more than
-/// kMaxFitPoints points (the values themselves are checked by fit_law).
-std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name);
+/// (phi, mean_t, and media_standard_error or standard_error as `errors` says; rows without that
+/// error are skipped). Throws std::runtime_error naming `name` and the line on a bad line, a
+/// sweep-report file without the chosen error's column, or more than kMaxFitPoints points (the
+/// values themselves are checked by fit_law).
+std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
+                                      FitErrors errors = FitErrors::media);
 
 /// Fits one law. Throws std::invalid_argument for fewer points than parameters, a non-finite
 /// value, phi outside (0, 1] or se <= 0 (naming the point).

@@ -98,6 +98,11 @@ struct SweepPoint {
   double porosity = 0;        ///< mean exact porosity of its media
   int media = 0, droplets = 0, passed = 0, stuck = 0;
   double mean_t = 0, standard_error = 0;  ///< over all passed droplets of the porosity
+  /// Media where at least one droplet passed, and the standard error of mean_t with those media as
+  /// clusters (0 if fewer than two): droplets of one medium share its throats, so this is the
+  /// error to quote for the porosity; standard_error treats every droplet as independent.
+  int media_passed = 0;
+  double media_standard_error = 0;
   double stuck_fraction = 0;
 };
 /// Aggregates records by target porosity (ascending); points with no passed droplet are kept with

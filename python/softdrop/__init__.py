@@ -149,7 +149,8 @@ def read_sweep(db, sweep=None):
     """The records of `softdrop sweep` (all sweeps of the file, or the one with id `sweep`), read
     by the program's own store: a dict of pandas DataFrames `sweeps`, `media` and `droplets` (the
     database's tables; mean_t, standard_error and tortuosity are NaN where nothing passed), and
-    `points` (per target porosity, as `softdrop sweep-report` aggregates them). A file the store
+    `points` (per target porosity, as `softdrop sweep-report` aggregates them, with the standard
+    error over droplets and, in media_standard_error, over media as clusters). A file the store
     refuses raises StoreError naming it."""
     import pandas as pd
 

@@ -166,13 +166,26 @@ Table settings_table(const std::vector<const Row*>& rows) {
 
 Table points_table(const std::vector<const Row*>& rows) {
   Table t;
-  t.header = {"setting", "target_porosity", "porosity", "droplets", "passed", "stuck", "diverged", "mean_t",
-              "standard_error", "paper_t", "within"};
+  t.header = {"setting",
+              "target_porosity",
+              "porosity",
+              "droplets",
+              "passed",
+              "stuck",
+              "diverged",
+              "mean_t",
+              "standard_error",
+              "media_passed",
+              "media_standard_error",
+              "paper_t",
+              "within"};
   for (const Row* r : rows)
     for (const CalibrationPoint& p : r->result.points)
-      t.rows.push_back({r->setting, p.target_porosity, p.porosity, p.droplets, p.passed, p.stuck, p.diverged,
-                        p.passed > 0 ? nlohmann::json(p.mean_t) : nullptr,
-                        p.passed > 1 ? nlohmann::json(p.standard_error) : nullptr, p.paper_t, p.within});
+      t.rows.push_back({r->setting, p.target_porosity, p.porosity, p.droplets, p.passed, p.stuck,
+                        p.diverged, p.passed > 0 ? nlohmann::json(p.mean_t) : nullptr,
+                        p.passed > 1 ? nlohmann::json(p.standard_error) : nullptr, p.media_passed,
+                        p.media_passed > 1 ? nlohmann::json(p.media_standard_error) : nullptr,
+                        p.paper_t, p.within});
   return t;
 }
 
@@ -198,7 +211,8 @@ void plot_best(const std::vector<const Row*>& ranked, int best, const std::strin
     s.width = 4;
     s.colour = colours[drawn % 5];
     for (const CalibrationPoint& p : r->result.points)
-      if (p.passed >= 2) s.x.push_back(p.porosity), s.y.push_back(p.mean_t), s.err.push_back(p.standard_error);
+      if (p.passed >= 2)
+        s.x.push_back(p.porosity), s.y.push_back(p.mean_t), s.err.push_back(p.media_standard_error);
     s.label = r->label + " (score " + fmt(r->result.score, 3) + ")";
     if (!s.x.empty()) c.series.push_back(std::move(s)), ++drawn;
   }
@@ -253,12 +267,19 @@ int run_calibrate(CalibrateArgs& a) {
       });
       row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
       if (!a.quiet)
-        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << ": score " << fmt(row.result.score, 4)
-                  << ", rms " << fmt(row.result.rms_distance, 4) << " (measured " << fmt(row.result.measured_rms, 4)
-                  << ")" << ", stuck " << fmt(row.result.stuck_fraction, 3)
-                  << ", diverged " << fmt(row.result.diverged_fraction, 3) << ", S/S0 in ["
-                  << fmt(row.result.area_min, 4) << ", " << fmt(row.result.area_max, 4) << "], at rest "
-                  << (row.result.comes_to_rest ? "yes" : "no (travels " + fmt(row.result.resting_travel, 3) + " a time unit)")
+        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << ": score "
+                  << fmt(row.result.score, 4) << ", rms " << fmt(row.result.rms_distance, 4)
+                  << " (measured " << fmt(row.result.measured_rms, 4) << ")"
+                  << ", stuck " << fmt(row.result.stuck_fraction, 3) << ", diverged "
+                  << fmt(row.result.diverged_fraction, 3)
+                  << (std::isnan(row.result.area_min)
+                          ? std::string(", no area trace")
+                          : ", S/S0 in [" + fmt(row.result.area_min, 4) + ", " +
+                                fmt(row.result.area_max, 4) + "]")
+                  << ", at rest "
+                  << (row.result.comes_to_rest
+                          ? "yes"
+                          : "no (travels " + fmt(row.result.resting_travel, 3) + " a time unit)")
                   << (tty ? "\033[K\n" : "\n");
     }
     rows.push_back(std::move(row));

@@ -19,6 +19,11 @@
 
 namespace softdrop::cli {
 namespace {
+// Below this many media with a passed droplet, a porosity's media error is itself too uncertain
+// to weigh a fit without a warning (the spread of a standard deviation from G clusters is about
+// 1 / sqrt(2 (G - 1)) of it: 24 % at 10).
+constexpr int kFewMedia = 10;
+
 RenderStyle plot_style(int size, double dpi) {
   RenderStyle style;
   style.width = size;
@@ -32,15 +37,26 @@ RenderStyle plot_style(int size, double dpi) {
 int run_fit(const FitArgs& a) {
   if (!a.plot.empty()) check_picture_path("--plot", a.plot), plot_style(a.size, a.dpi);
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
+  const FitErrors errors = a.errors == "droplets" ? FitErrors::droplets : FitErrors::media;
   std::vector<FitPoint> points;
   if (!a.points.empty()) {
     std::ifstream in(a.points);
     if (!in) throw std::runtime_error("--points '" + a.points + "': cannot read");
-    points = read_fit_points(in, a.points);
+    points = read_fit_points(in, a.points, errors);
   } else {
     auto store = open_sweep_store(a.db, OpenMode::read_only);
-    for (const SweepPoint& p : sweep_points(store->media(pick_sweep(*store, a.sweep, a.db))))
-      if (p.passed > 1 && p.standard_error > 0) points.push_back({p.porosity, p.mean_t, p.standard_error});
+    int few = 0, fewest = kFewMedia;
+    for (const SweepPoint& p : sweep_points(store->media(pick_sweep(*store, a.sweep, a.db)))) {
+      const double se = errors == FitErrors::media ? p.media_standard_error : p.standard_error;
+      if (p.passed < 2 || !(se > 0)) continue;
+      points.push_back({p.porosity, p.mean_t, se});
+      if (p.media_passed < kFewMedia) ++few, fewest = std::min(fewest, p.media_passed);
+    }
+    if (errors == FitErrors::media && few > 0)
+      std::cerr << "fit: warning: " << few << " of " << points.size()
+                << " points have their error from fewer than " << kFewMedia
+                << " media with a passed droplet (" << fewest << " at the least), too few for the "
+                << "error itself to be sure (sweep more media, or weigh by --errors droplets)\n";
   }
   const FitResult power = fit_law(FitLaw::power, points), log = fit_law(FitLaw::log, points);
   for (const FitResult* r : {&power, &log})
@@ -54,6 +70,8 @@ int run_fit(const FitArgs& a) {
   nlohmann::ordered_json j;
   j["version"] = kVersion;
   j["points"] = points.size();
+  if (a.points.empty() || a.errors == "droplets")
+    j["errors"] = a.errors;  // (a phi,t,se file brings its own)
   for (const FitResult* r : {&power, &log}) {
     nlohmann::ordered_json f;
     f["law"] = r->law == FitLaw::power ? "T = a - c phi^b" : "T = 1 - p ln(phi)";
@@ -74,7 +92,11 @@ int run_fit(const FitArgs& a) {
   if (a.format == "json") {
     std::cout << j.dump(2) << '\n';
   } else {
-    std::cout << points.size() << " points\n";
+    std::cout << points.size() << " points";
+    if (j.contains("errors"))
+      std::cout << " weighed by the " << (a.errors == "media" ? "media's" : "droplets'")
+                << " standard errors";
+    std::cout << "\n";
     for (const FitResult* r : {&power, &log}) {
       std::cout << (r->law == FitLaw::power ? "T = a - c phi^b  " : "T = 1 - p ln phi ");
       for (std::size_t i = 0; i < r->names.size(); ++i)

@@ -67,6 +67,13 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   src->add_option("--points", f.points, "Or a CSV file with columns phi,t,se (or the output of sweep-report --format csv)")->check(CLI::ExistingFile);
   src->require_option(1);
   ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)");
+  ft->add_option(
+        "--errors", f.errors,
+        "Weights of a sweep's points: the standard error of each porosity's <T> with its media as "
+        "clusters (media), or with every droplet taken as independent (droplets: smaller, as droplets "
+        "of one medium share its dead ends); a phi,t,se file brings its own")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"media", "droplets"}));
   ft->add_option("--plot", f.plot, "Also draw T(phi) with error bars and both fits (.png, .svg, .pdf)");
   ft->add_option("--size", f.size, "Plot width in points (1/72 inch)")->capture_default_str();
   ft->add_option("--dpi", f.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
@@ -123,11 +130,17 @@ std::pair<int, int> parse_shard(const std::string& text) {
 
 Table points_table(const std::vector<SweepPoint>& points) {
   Table t;
-  t.header = {"target_phi", "phi", "media", "droplets", "passed", "mean_t", "standard_error", "stuck_fraction"};
+  t.header = {"target_phi",     "phi",          "media",
+              "droplets",       "passed",       "mean_t",
+              "standard_error", "media_passed", "media_standard_error",
+              "stuck_fraction"};
   for (const SweepPoint& p : points)
-    t.rows.push_back({p.target_porosity, p.porosity, p.media, p.droplets, p.passed,
-                      p.passed ? nlohmann::json(p.mean_t) : nlohmann::json(),
-                      p.passed > 1 ? nlohmann::json(p.standard_error) : nlohmann::json(), p.stuck_fraction});
+    t.rows.push_back(
+        {p.target_porosity, p.porosity, p.media, p.droplets, p.passed,
+         p.passed ? nlohmann::json(p.mean_t) : nlohmann::json(),
+         p.passed > 1 ? nlohmann::json(p.standard_error) : nlohmann::json(), p.media_passed,
+         p.media_passed > 1 ? nlohmann::json(p.media_standard_error) : nlohmann::json(),
+         p.stuck_fraction});
   return t;
 }
 
@@ -223,10 +236,14 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     if (!a.quiet && (now - last > std::chrono::seconds(tty ? 1 : 10) || units_done == todo.size())) {
       last = now;
       const double s = std::chrono::duration<double>(now - t0).count();
-      const double eta = s / static_cast<double>(units_done) * static_cast<double>(todo.size() - units_done);
-      std::cerr << (tty ? "\r" : "") << "sweep: " << units_done << "/" << todo.size() << " media, "
-                << fmt(static_cast<double>(droplets_done) / s, 3) << " droplets/s, phi "
-                << fmt(m.target_porosity, 3) << " <T> " << fmt(m.mean_t, 5) << ", ETA " << fmt(eta, 3) << " s"
+      // The pace so far, and the medium just stored: its porosity, how many passed and their <T>.
+      std::cerr << (tty ? "\r" : "") << "sweep: " << units_done << "/" << todo.size() << " media ("
+                << percent_and_eta(s, static_cast<double>(units_done),
+                                   static_cast<double>(todo.size()))
+                << "), " << fmt(static_cast<double>(droplets_done) / s, 3)
+                << " droplets/s; last medium: phi " << fmt(m.target_porosity, 3) << ", " << m.passed
+                << "/" << m.droplets.size() << " passed"
+                << (m.passed ? ", <T> " + fmt(m.mean_t, 5) : std::string())
                 << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
     }
     if (host && host->on_progress &&

@@ -45,6 +45,8 @@ struct FitArgs {
   std::string db;           ///< sweep store ...
   std::int64_t sweep = 0;
   std::string points;       ///< ... or a CSV with columns phi,t,se
+  std::string errors =
+      "media";              ///< a sweep's points weighed by media_standard_error, or "droplets"
   std::string plot;         ///< T(phi) with error bars and both fits
   int size = 800;           ///< plot width (points)
   double dpi = 72;          ///< PNG pixels an inch

@@ -14,6 +14,7 @@
 #include "softdrop/area_trace.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/random.hpp"
+#include "studies/media_error.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {
@@ -64,6 +65,7 @@ struct Mean {
 long score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& media, CalibrationResult* r) {
   const std::size_t count = sweep.porosities.size();
   std::vector<Mean> t(count);
+  std::vector<detail::MediaMean> by_medium(count);
   std::vector<double> porosity(count, 0.0);
   std::vector<int> n_media(count, 0);
   r->points.assign(count, {});
@@ -74,10 +76,12 @@ long score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& med
     porosity[i] += m.porosity, ++n_media[i];
     p.droplets += static_cast<int>(m.droplets.size());
     p.passed += m.passed, p.stuck += m.stuck, p.diverged += m.diverged;
+    double medium_sum = 0;
     for (const SweepDroplet& d : m.droplets) {
-      if (d.outcome == Outcome::passed) t[i].add(d.tortuosity);
+      if (d.outcome == Outcome::passed) t[i].add(d.tortuosity), medium_sum += d.tortuosity;
       r->steps += static_cast<double>(d.steps);
     }
+    by_medium[i].add_medium(m.passed, medium_sum);
   }
   double sum2 = 0, measured2 = 0;
   for (std::size_t i = 0; i < count; ++i) {
@@ -86,6 +90,8 @@ long score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& med
     p.porosity = n_media[i] > 0 ? porosity[i] / n_media[i] : p.target_porosity;
     p.mean_t = t[i].mean();
     p.standard_error = t[i].standard_error();
+    p.media_passed = by_medium[i].media();
+    p.media_standard_error = by_medium[i].standard_error();
     p.paper_t = paper_tortuosity(p.porosity);
     const double miss = p.passed >= 2 ? p.mean_t - p.paper_t : p.paper_t - 1;
     p.within = p.passed >= 2 && std::abs(miss) <= std::max(0.03, 2 * p.standard_error);

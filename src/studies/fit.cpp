@@ -15,7 +15,7 @@
 namespace softdrop {
 using detail::num;
 
-std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name) {
+std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name, FitErrors errors) {
   std::string line;
   std::vector<FitPoint> out;
   int number = 0;
@@ -37,10 +37,18 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name)
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
     const std::vector<std::string> f = split(line);
-    if (!header) {  // phi,t,se; or sweep-report --format csv, whose points are phi, mean_t, standard_error
+    if (!header) {  // phi,t,se; or sweep-report --format csv, whose points are phi, mean_t and the
+                    // errors
       auto at = [&](const char* column) { return std::size_t(std::find(f.begin(), f.end(), column) - f.begin()); };
       sweep_report = at("t") == f.size() && at("mean_t") < f.size();
-      phi = at("phi"), t = at(sweep_report ? "mean_t" : "t"), se = at(sweep_report ? "standard_error" : "se");
+      const char* error = !sweep_report                ? "se"
+                          : errors == FitErrors::media ? "media_standard_error"
+                                                       : "standard_error";
+      phi = at("phi"), t = at(sweep_report ? "mean_t" : "t"), se = at(error);
+      if (sweep_report && phi < f.size() && se == f.size())
+        throw bad(std::string("no ") + error +
+                  " column (a sweep-report of an older softdrop? fit it with --errors " +
+                  (errors == FitErrors::media ? "droplets" : "media") + ")");
       if (phi == f.size() || t == f.size() || se == f.size())
         throw bad("expected the header phi,t,se (or sweep-report --format csv's columns)");
       header = true;

@@ -2,18 +2,19 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <map>
 #include <memory>
 #include <mutex>
-#include <thread>
-#include <cmath>
-#include <map>
 #include <stdexcept>
+#include <thread>
 
 #include "softdrop/batch.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
+#include "studies/media_error.hpp"
 #include "util/validation.hpp"
 #include "util/worker_threads.hpp"
 
@@ -272,15 +273,22 @@ std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media) {
     SweepPoint p;
     p.target_porosity = target;
     double phi = 0, sum = 0;
+    detail::MediaMean by_medium;
     for (const SweepMedium* m : list) {
       ++p.media;
       phi += m->porosity;
+      int passed = 0;
+      double medium_sum = 0;
       for (const SweepDroplet& d : m->droplets) {
         ++p.droplets;
         if (d.outcome == Outcome::stuck) ++p.stuck;
-        if (d.outcome == Outcome::passed) ++p.passed, sum += d.tortuosity;
+        if (d.outcome == Outcome::passed)
+          ++p.passed, ++passed, sum += d.tortuosity, medium_sum += d.tortuosity;
       }
+      by_medium.add_medium(passed, medium_sum);
     }
+    p.media_passed = by_medium.media();
+    p.media_standard_error = by_medium.standard_error();
     p.porosity = phi / p.media;
     p.stuck_fraction = p.droplets ? static_cast<double>(p.stuck) / p.droplets : 0.0;
     if (p.passed > 0) p.mean_t = sum / p.passed;

@@ -132,6 +132,10 @@ def test_sweep_writes_the_programs_store(tmp_path):
     rows = json.loads(cli("sweep-report", "--db", str(theirs), "--format", "json"))
     assert a["points"]["mean_t"].tolist() == [r["mean_t"] for r in rows]
     assert a["points"]["phi"].tolist() == [r["phi"] for r in rows]
+    assert a["points"]["media_passed"].tolist() == [r["media_passed"] for r in rows]
+    np.testing.assert_array_equal(  # NaN where fewer than two media had a droplet pass
+        a["points"]["media_standard_error"].to_numpy(),
+        np.array([np.nan if r["media_standard_error"] is None else r["media_standard_error"] for r in rows]))
 
 
 def test_a_sweep_stopped_by_the_callback_goes_on_where_it_stopped(tmp_path):
