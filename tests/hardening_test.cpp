@@ -114,8 +114,11 @@ TEST(GrainFileLimits, PeriodicCentresMustLieInTheBox) {
 
 TEST(FitPointsFile, BadLinesAndTooManyPointsNameTheFileAndLine) {
   std::istringstream good("# comment\nphi,t,se\n0.5,1.5,0.02\n0.9,1.1,0.01\n");
-  const auto points = softdrop::read_fit_points(good, "p.csv");
+  bool used_errors = true;
+  const auto points =
+      softdrop::read_fit_points(good, "p.csv", softdrop::FitErrors::media, &used_errors);
   ASSERT_EQ(points.size(), 2u);
+  EXPECT_FALSE(used_errors);  // a phi,t,se file brings its own
   EXPECT_EQ(points[1].phi, 0.9);
   EXPECT_EQ(points[1].se, 0.01);
   struct Case {
@@ -154,7 +157,10 @@ TEST(FitPointsFile, ASweepReportGivesTheChosenErrorAndAnOlderOneSaysWhichToChoos
   EXPECT_EQ(m[0].t, 1.5);
   EXPECT_EQ(m[0].se, 0.03);
   EXPECT_EQ(m[1].se, 0.017);
-  const auto d = softdrop::read_fit_points(droplets, "r.csv", softdrop::FitErrors::droplets);
+  bool used_errors = false;
+  const auto d =
+      softdrop::read_fit_points(droplets, "r.csv", softdrop::FitErrors::droplets, &used_errors);
+  EXPECT_TRUE(used_errors);
   ASSERT_EQ(d.size(), 2u);
   EXPECT_EQ(d[0].se, 0.02);
   EXPECT_EQ(d[1].se, 0.01);

@@ -58,9 +58,11 @@ enum class FitErrors {
 /// (phi, mean_t, and media_standard_error or standard_error as `errors` says; rows without that
 /// error are skipped). Throws std::runtime_error naming `name` and the line on a bad line, a
 /// sweep-report file without the chosen error's column, or more than kMaxFitPoints points (the
-/// values themselves are checked by fit_law).
+/// values themselves are checked by fit_law). `*used_errors`, if given, is set to whether the file
+/// was a sweep-report's, whose errors `errors` chose (a phi,t,se file brings its own).
 std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
-                                      FitErrors errors = FitErrors::media);
+                                      FitErrors errors = FitErrors::media,
+                                      bool* used_errors = nullptr);
 
 /// Fits one law. Throws std::invalid_argument for fewer points than parameters, a non-finite
 /// value, phi outside (0, 1] or se <= 0 (naming the point).

@@ -39,10 +39,11 @@ int run_fit(const FitArgs& a) {
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   const FitErrors errors = a.errors == "droplets" ? FitErrors::droplets : FitErrors::media;
   std::vector<FitPoint> points;
+  bool used_errors = true;  // false: a phi,t,se file, which brings its own
   if (!a.points.empty()) {
     std::ifstream in(a.points);
     if (!in) throw std::runtime_error("--points '" + a.points + "': cannot read");
-    points = read_fit_points(in, a.points, errors);
+    points = read_fit_points(in, a.points, errors, &used_errors);
   } else {
     auto store = open_sweep_store(a.db, OpenMode::read_only);
     int few = 0, fewest = kFewMedia;
@@ -70,8 +71,7 @@ int run_fit(const FitArgs& a) {
   nlohmann::ordered_json j;
   j["version"] = kVersion;
   j["points"] = points.size();
-  if (a.points.empty() || a.errors == "droplets")
-    j["errors"] = a.errors;  // (a phi,t,se file brings its own)
+  if (used_errors) j["errors"] = a.errors;
   for (const FitResult* r : {&power, &log}) {
     nlohmann::ordered_json f;
     f["law"] = r->law == FitLaw::power ? "T = a - c phi^b" : "T = 1 - p ln(phi)";

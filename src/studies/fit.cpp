@@ -15,7 +15,8 @@
 namespace softdrop {
 using detail::num;
 
-std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name, FitErrors errors) {
+std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name, FitErrors errors,
+                                      bool* used_errors) {
   std::string line;
   std::vector<FitPoint> out;
   int number = 0;
@@ -53,6 +54,7 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
         throw bad("expected the header phi,t,se (or sweep-report --format csv's columns)");
       header = true;
       columns = f.size();
+      if (used_errors) *used_errors = sweep_report;
       continue;
     }
     if (f.size() != columns) throw bad("expected " + std::to_string(columns) + " fields, as the header");
