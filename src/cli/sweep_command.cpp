@@ -59,6 +59,12 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   rp->add_option("--sweep", r.sweep, "Sweep id (default: the only one)");
   rp->add_flag("--media", r.media, "One row per medium instead of one per porosity");
   rp->add_option("--format", r.format, "table, csv or json")->capture_default_str()->check(CLI::IsMember({"table", "csv", "json"}));
+  rp->footer(
+      "Columns. Points: phi = mean exact porosity of the media; mean_t = <T> over the passed droplets; "
+      "standard_error = its error taking every passed droplet as independent; media_passed = media where a "
+      "droplet passed; media_standard_error = its error taking each medium's droplets as one cluster (they share "
+      "its throats and dead ends: the error to quote, larger); stuck_fraction over all droplets. Media (--media): "
+      "one row per medium, mean_t and standard_error over its own passed droplets; seconds = its wall time.");
 
   CLI::App* ft = app.add_subcommand("fit", "Weighted least-squares fits of <T>(phi): a - c phi^b and 1 - p ln phi (NLopt)");
   ft->fallthrough();
