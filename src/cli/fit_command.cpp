@@ -94,7 +94,7 @@ int run_fit(const FitArgs& a) {
   } else {
     std::cout << points.size() << " points";
     if (j.contains("errors"))
-      std::cout << " weighed by the " << (a.errors == "media" ? "media's" : "droplets'")
+      std::cout << " weighed by the " << (errors == FitErrors::media ? "media's" : "droplets'")
                 << " standard errors";
     std::cout << "\n";
     for (const FitResult* r : {&power, &log}) {

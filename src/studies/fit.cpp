@@ -38,8 +38,7 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
     const std::vector<std::string> f = split(line);
-    if (!header) {  // phi,t,se; or sweep-report --format csv, whose points are phi, mean_t and the
-                    // errors
+    if (!header) {  // phi,t,se; or sweep-report --format csv: phi, mean_t and both errors
       auto at = [&](const char* column) { return std::size_t(std::find(f.begin(), f.end(), column) - f.begin()); };
       sweep_report = at("t") == f.size() && at("mean_t") < f.size();
       const char* error = !sweep_report                ? "se"
