@@ -1,5 +1,5 @@
 // The studies: sweep units and shards, deterministic records, the store (resume after SIGKILL,
-// shards merged), fits recovering known laws, the two averagings.
+// shards merged), fits recovering known laws, the two averagings' command.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -18,7 +18,6 @@
 
 #include "fixtures.hpp"
 #include "search_cli.hpp"
-#include "softdrop/averaging.hpp"
 #include "softdrop/fit.hpp"
 #include "softdrop/history.hpp"
 #include "softdrop/params_json.hpp"
@@ -206,21 +205,6 @@ TEST(Fit, RecoversTheLogLawAndRefusesBadPoints) {
   EXPECT_THROW(fit_law(FitLaw::log, {{1.5, 1.2, 0.1}}), std::invalid_argument);
 }
 
-TEST(Averaging, GroupsSortedByTOrByPhi) {
-  const std::vector<MediumPoint> pts{{0.5, 1.4}, {0.9, 1.0}, {0.6, 1.1}, {0.7, 1.3}, {0.8, 1.2}};
-  const auto by_t = group_averages(pts, AveragingType::by_t, 2);
-  ASSERT_EQ(by_t.size(), 2u);  // the fifth point is left over
-  EXPECT_DOUBLE_EQ(by_t[0].t, 1.05);
-  EXPECT_DOUBLE_EQ(by_t[0].phi, 0.75);
-  EXPECT_DOUBLE_EQ(by_t[1].t, 1.25);
-  EXPECT_DOUBLE_EQ(by_t[1].phi, 0.75);
-  const auto by_phi = group_averages(pts, AveragingType::by_phi, 2);
-  EXPECT_DOUBLE_EQ(by_phi[0].phi, 0.55);
-  EXPECT_DOUBLE_EQ(by_phi[0].t, 1.25);
-  EXPECT_NEAR(by_phi[0].t_se, 0.15, 1e-12);  // sd 0.15 sqrt(2) over sqrt(2) points
-  EXPECT_THROW(group_averages(pts, AveragingType::by_t, 0), std::invalid_argument);
-}
-
 // ---- the command line ----
 
 using test::sweep_dump;
@@ -355,6 +339,17 @@ TEST(SweepCli, TheQuickPresetAveragesAndFitsWithoutAVerdictItCannotGive) {
   ASSERT_EQ(a.code, 0) << a.err;
   EXPECT_NE(a.err.find("groups of 2 (from the 6 media"), std::string::npos) << a.err;
   EXPECT_EQ(std::count(a.out.begin(), a.out.end(), '\n'), 1 + 2 * 3) << a.out;  // header, 3 groups a type
+  EXPECT_EQ(a.err.find("left out"), std::string::npos) << a.err;
+  // Groups of 4 leave 2 media over: dropped, and said; or kept as a last group of 2.
+  const test::Result four = test::run("averagings --db " + db + " --group 4");
+  EXPECT_NE(four.err.find("2 of the 6 media do not fill a group of 4 and are left out"),
+            std::string::npos)
+      << four.err;
+  EXPECT_EQ(std::count(four.out.begin(), four.out.end(), '\n'), 1 + 2 * 1) << four.out;
+  const test::Result kept = test::run("averagings --db " + db + " --group 4 --leftover keep");
+  EXPECT_EQ(kept.err.find("left out"), std::string::npos) << kept.err;
+  EXPECT_EQ(std::count(kept.out.begin(), kept.out.end(), '\n'), 1 + 2 * 2) << kept.out;
+  EXPECT_EQ(test::run("averagings --db " + db + " --leftover all").code, 2);
   const test::Result big = test::run("averagings --db " + db + " --group 7");
   EXPECT_EQ(big.code, 1);
   EXPECT_NE(big.err.find("group = 7: larger than the 6 media with a passed droplet (use --group 2)"), std::string::npos)

@@ -179,8 +179,15 @@ int run_averagings(const AveragingArgs& args) {
     throw std::invalid_argument("group = " + std::to_string(a.group) + ": larger than the " +
                                 std::to_string(points.size()) + " media with a passed droplet (use --group " +
                                 std::to_string(default_group(points.size())) + ")");
-  const auto by_t = group_averages(points, AveragingType::by_t, a.group);
-  const auto by_phi = group_averages(points, AveragingType::by_phi, a.group);
+  const Leftover leftover = a.leftover == "keep" ? Leftover::keep : Leftover::drop;
+  const std::size_t left = points.size() % static_cast<std::size_t>(a.group);
+  if (left > 0 && leftover == Leftover::drop)
+    std::cerr << "averagings: " << left << " of the " << points.size()
+              << " media do not fill a group of " << a.group
+              << " and are left out: the highest in T (type 1) and in phi (type 2); --leftover "
+                 "keep averages them\n";
+  const auto by_t = group_averages(points, AveragingType::by_t, a.group, leftover);
+  const auto by_phi = group_averages(points, AveragingType::by_phi, a.group, leftover);
   Table t;
   t.header = {"type", "phi", "t", "phi_se", "t_se", "count"};
   for (const auto& [type, groups] : {std::pair{1, &by_t}, std::pair{2, &by_phi}})
@@ -208,6 +215,7 @@ int run_averagings(const AveragingArgs& args) {
     c.x_label = "porosity φ";
     c.y_label = "tortuosity ⟨T⟩";
     c.title = "groups of " + std::to_string(a.group) + " media";
+    if (left > 0 && leftover == Leftover::keep) c.title += ", the last of " + std::to_string(left);
     render_chart(c, plot_style(a.size, a.dpi), a.plot);
   }
   return 0;

@@ -93,6 +93,11 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   av->add_option("--group", v.group,
                  "Points per group (default: the paper's 100, or a twentieth of the media when the store has "
                  "fewer than 2000, at least 2)");
+  av->add_option("--leftover", v.leftover,
+                 "Media left over after the last full group: drop (every group full, as the "
+                 "paper's) or keep (averaged as a last, smaller group)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"drop", "keep"}));
   av->add_option("--csv", v.csv, "Write the groups (type,phi,t,phi_se,t_se,count) to this CSV");
   av->add_option("--plot", v.plot, "Draw the per-medium points and both averagings");
   av->add_option("--size", v.size, "Plot width in points (1/72 inch)")->capture_default_str();

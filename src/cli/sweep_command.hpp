@@ -58,6 +58,7 @@ struct AveragingArgs {
   std::string db = "sweep.db";
   std::int64_t sweep = 0;
   int group = 0;  ///< points per group; 0: from the store (see default_group)
+  std::string leftover = "drop";  ///< drop or keep (see Leftover)
   std::string csv, plot;
   int size = 800;   ///< plot width (points)
   double dpi = 72;  ///< PNG pixels an inch
