@@ -198,6 +198,8 @@ TEST(Calibration, FiguresAddUpAndDoNotDependOnThreads) {
     const double miss = p1.passed >= 2 ? p1.mean_t - p1.paper_t : p1.paper_t - 1;
     sum2 += miss * miss;
     if (p1.passed >= 2) measured2 += miss * miss, ++measured;
+    EXPECT_EQ(p1.within,
+              p1.passed >= 2 && std::abs(miss) <= std::max(0.03, 2 * p1.media_standard_error));
     within += p1.within;
   }
   EXPECT_DOUBLE_EQ(a.rms_distance, std::sqrt(sum2 / 2));

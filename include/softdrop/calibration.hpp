@@ -46,7 +46,8 @@ struct CalibrationPoint {
   int media_passed = 0;
   double media_standard_error = 0;
   double paper_t = 0;                        ///< paper_tortuosity(porosity)
-  /// |mean_t - paper_t| <= max(0.03, 2 standard errors), with at least two droplets passed.
+  /// |mean_t - paper_t| <= max(0.03, 2 media_standard_error), with at least two droplets passed:
+  /// the media's error, since droplets in one medium share its throats.
   bool within = false;
 };
 

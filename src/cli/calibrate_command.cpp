@@ -18,6 +18,12 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
   CLI::App* c = app.add_subcommand(
       "calibrate", "Scan droplet parameters against the paper: a small sweep and area traces per setting, ranked");
   c->fallthrough();
+  c->footer(
+      "Figures. score (lower is better) = rms_distance + diverged_fraction + 1 unless the droplet comes to rest + "
+      "0.05 unless its area goes both below 0.95 and above 1.02 of S0 + 0.05 stuck_fraction. rms_distance = rms of "
+      "<T> - f(phi) over the porosities (f(phi) - 1 where fewer than two droplets passed); measured_rms the same "
+      "over the porosities where they did. within = porosities where |<T> - f(phi)| <= max(0.03, 2 "
+      "media_standard_error), the error that takes each medium's droplets as one cluster.");
   auto* g = c->add_option_group("Calibration", "what every setting runs, and the grid");
   g->add_option("--scan", a.scans,
                 "An axis of the grid, name=v1,v2,... or name=lo:hi:n or name=lo:hi:n:log (repeat for more axes; "
@@ -28,7 +34,7 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
                 "\"label:\" for those options as given (repeat for more; not with --scan)")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   auto& s = a.calibration.sweep;
-  g->add_option("--porosities", s.porosities, "Target porosities of each setting's sweep (overlapping media)")
+  g->add_option("--porosities", s.porosities, "Target porosities of each setting's sweep (media of --kind)")
       ->delimiter(',')
       ->capture_default_str();
   g->add_option("--media", s.media, "Media per porosity")->capture_default_str();

@@ -94,7 +94,7 @@ long score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& med
     p.media_standard_error = by_medium[i].standard_error();
     p.paper_t = paper_tortuosity(p.porosity);
     const double miss = p.passed >= 2 ? p.mean_t - p.paper_t : p.paper_t - 1;
-    p.within = p.passed >= 2 && std::abs(miss) <= std::max(0.03, 2 * p.standard_error);
+    p.within = p.passed >= 2 && std::abs(miss) <= std::max(0.03, 2 * p.media_standard_error);
     sum2 += miss * miss;
     if (p.passed >= 2) measured2 += miss * miss, ++r->measured;
     r->within += p.within;
