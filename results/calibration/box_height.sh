@@ -2,7 +2,7 @@
 # The defaults in boxes of other heights: the calibration's 6 porosities x 10 overlapping media x 20
 # droplets in boxes 500 wide and 200 to 500 high (no area traces). Shows what the box's depth does
 # to the passage at low porosity and to <T>. Writes box_height.csv (one row per height),
-# box_height_points.csv (one row per height and porosity) and box_height.png. About 2 minutes on
+# box_height_points.csv (one row per height and porosity) and box_height.png. Under a minute on
 # 2 cores. SOFTDROP=path runs another build.
 #     bash results/calibration/box_height.sh
 set -euo pipefail

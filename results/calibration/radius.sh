@@ -6,7 +6,7 @@
 # strain; every other parameter is the defaults'. Shows what the droplet's size and the kind of
 # medium do to the passage at low porosity and to <T>. Writes radius.csv (one row per radius),
 # radius_points.csv (one row per radius and porosity), the same for non-overlapping media
-# (radius_non_overlapping.csv, radius_non_overlapping_points.csv) and radius.png. About 20 minutes
+# (radius_non_overlapping.csv, radius_non_overlapping_points.csv) and radius.png. About 16 minutes
 # on 2 cores. SOFTDROP=path runs another build.
 #     bash results/calibration/radius.sh
 set -euo pipefail

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Regenerates results/calibration/: the droplet's free parameters scanned against the paper's
-# <T>(phi) (about 13 minutes on 2 cores). Every stage is one `softdrop calibrate` command; each
+# <T>(phi) (about 6 minutes on 2 cores). Every stage is one `softdrop calibrate` command; each
 # writes a settings CSV (one row per setting; the ranking goes to stdout) and a points CSV (one row
 # per setting and porosity). SOFTDROP=path runs another build.
 set -euo pipefail

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Droplets whose springs carry the tension, at the full calibration size (6 porosities x 10
 # overlapping media x 20 droplets, area traces at phi = 0.79, the resting test), against the
-# paper's <T>(phi); and the balloon on grains twice as large. About 10 minutes on 2 cores.
+# paper's <T>(phi); and the balloon on grains twice as large. About 7 minutes on 2 cores.
 #
 # Every length of a tension-carrying droplet is S times the default droplet's: radius 8 S, box
 # 500 S, contact depth 0.5 S, stuck distance 5 S, grains G1 S to G2 S (8 S to 16 S as the defaults'
