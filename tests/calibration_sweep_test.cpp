@@ -4,28 +4,20 @@
 
 #include <vector>
 
+#include "fixtures.hpp"
 #include "softdrop/calibration.hpp"
 #include "softdrop/sweep.hpp"
 
 namespace softdrop {
 namespace {
 
-CalibrationOptions small(MediumKind kind) {
-  CalibrationOptions o;
-  o.sweep.porosities = {0.7, 0.9};
-  o.sweep.media = 2;
-  o.sweep.droplets = 3;
-  o.sweep.medium.width = o.sweep.medium.height = 200;
-  o.sweep.medium.kind = kind;
-  o.trace_media = 0;
-  return o;
-}
-
 TEST(CalibrationSweep, ThePointsAreTheSweepsOnEitherKindOfMedium) {
   const DropletParams droplet;
   std::vector<CalibrationResult> results;
   for (const MediumKind kind : {MediumKind::overlapping, MediumKind::non_overlapping}) {
-    const CalibrationOptions o = small(kind);
+    CalibrationOptions o = test::tiny_calibration();
+    o.sweep.medium.kind = kind;
+    o.trace_media = 0;  // the sweep alone
     const CalibrationResult c = run_calibration(o, droplet, 2);
     SweepOptions s = o.sweep;
     s.droplet = droplet;

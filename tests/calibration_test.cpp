@@ -157,19 +157,8 @@ TEST(AreaTrace, BelongsToTheRunAndStartsAtS0) {
   EXPECT_THROW(trace_area(p, medium, 100, run, 0), std::invalid_argument);
 }
 
-CalibrationOptions tiny() {
-  CalibrationOptions o;
-  o.sweep.porosities = {0.7, 0.9};
-  o.sweep.media = 2;
-  o.sweep.droplets = 3;
-  o.sweep.medium.width = o.sweep.medium.height = 200;
-  o.trace_media = 1;
-  o.trace_droplets = 2;
-  return o;
-}
-
 TEST(Calibration, FiguresAddUpAndDoNotDependOnThreads) {
-  const CalibrationOptions o = tiny();
+  const CalibrationOptions o = test::tiny_calibration();
   const DropletParams p;
   long calls = 0, last = 0, total = 0;
   const CalibrationResult a = run_calibration(o, p, 1, [&](long done, long all) { ++calls, last = done, total = all; });
@@ -263,7 +252,7 @@ TEST(Calibration, TheRestingTestScalesWithTheDroplet) {
   EXPECT_LT(big_quiet, resting_limit(4));
   EXPECT_EQ(resting_limit(1), 0.01);
   EXPECT_EQ(resting_limit(4), 0.02);
-  CalibrationOptions o = tiny();
+  CalibrationOptions o = test::tiny_calibration();
   for (const double bad : {0.0, -1.0, std::nan(""), 2e6}) {
     o.rest_scale = bad;
     std::string why;
@@ -273,7 +262,7 @@ TEST(Calibration, TheRestingTestScalesWithTheDroplet) {
 }
 
 TEST(Calibration, RefusesBadOptionsAndUnstableDroplets) {
-  CalibrationOptions o = tiny();
+  CalibrationOptions o = test::tiny_calibration();
   DropletParams p;
   p.mass = 1e-4;  // k_d dt / m = 73: the explicit damping would blow up
   EXPECT_THROW(run_calibration(o, p, 1), std::invalid_argument);

@@ -2,6 +2,7 @@
 // Shared scenes for the tests.
 
 #include "balloon.hpp"
+#include "softdrop/calibration.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/random.hpp"
@@ -46,6 +47,18 @@ inline constexpr VectorWidth kVectorWidths[] = {VectorWidth::scalar, VectorWidth
 /// which were laid out for it: their histories do not depend on which droplet they run, and it
 /// takes a sixth of the calibrated droplet's steps for the same time.
 inline DropletParams balloon_droplet() { return DropletParams::balloon(); }
+/// A calibration small enough for a unit test: porosities 0.7 and 0.9, 2 media of 200 x 200 each
+/// with 3 droplets, and one trace medium with 2 droplets.
+inline CalibrationOptions tiny_calibration() {
+  CalibrationOptions o;
+  o.sweep.porosities = {0.7, 0.9};
+  o.sweep.media = 2;
+  o.sweep.droplets = 3;
+  o.sweep.medium.width = o.sweep.medium.height = 200;
+  o.trace_media = 1;
+  o.trace_droplets = 2;
+  return o;
+}
 /// An empty periodic box.
 inline Medium empty_medium(double width = 500, double height = 500) {
   return Medium{width, height, true, {}};

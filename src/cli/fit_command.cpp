@@ -93,7 +93,7 @@ int run_fit(const FitArgs& a) {
     std::cout << j.dump(2) << '\n';
   } else {
     std::cout << points.size() << " points";
-    if (j.contains("errors"))
+    if (used_errors)
       std::cout << " weighed by the " << (errors == FitErrors::media ? "media's" : "droplets'")
                 << " standard errors";
     std::cout << "\n";
