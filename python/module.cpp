@@ -21,6 +21,7 @@
 #include "softdrop/grain_file.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/porosity.hpp"
+#include "softdrop/rigid_descent.hpp"
 #include "softdrop/simulation.hpp"
 #include "softdrop/version.hpp"
 
@@ -312,4 +313,28 @@ PYBIND11_MODULE(_core, m) {
         return out;
       },
       py::arg("medium"), py::arg("n"), py::arg("seed"), py::arg("threads"), py::arg("params"), py::arg("run"));
+
+  m.def(
+      "_rigid_descents",
+      [](const Medium& medium, double radius, const std::vector<double>& x0s) {
+        std::vector<RigidDescent> runs;
+        {
+          py::gil_scoped_release release;
+          runs = rigid_descents(medium, radius, x0s);
+        }
+        py::dict columns;  // one entry a column, one element a start
+        const auto column = [&](auto field) {
+          std::vector<std::decay_t<decltype(runs.front().*field)>> values;
+          for (const RigidDescent& r : runs) values.push_back(r.*field);
+          return values;
+        };
+        columns["start_x"] = x0s;
+        columns["passed"] = column(&RigidDescent::passed);
+        columns["tortuosity"] = column(&RigidDescent::tortuosity);
+        columns["x"] = column(&RigidDescent::x);
+        columns["y"] = column(&RigidDescent::y);
+        columns["slides"] = column(&RigidDescent::slides);
+        return columns;
+      },
+      py::arg("medium"), py::arg("radius"), py::arg("x0s"));
 }

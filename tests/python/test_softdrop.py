@@ -116,6 +116,23 @@ def test_media_as_arrays_files_and_images(tmp_path):
     assert abs(image.mean() - medium.porosity()) < 0.01  # pore fraction of the pixels
 
 
+def test_rigid_descent_stops_in_a_notch_and_passes_a_gap():
+    # Grains of radius 50 at x = 200 and 280 meet at (240, 280); one at 400 leaves a gap of 20.
+    medium = softdrop.Medium.from_arrays([200, 280, 400], [250, 250, 250], [50, 50, 50], 500, 500)
+    runs = softdrop.rigid_descent(medium, [230, 330, 350, 475], radius=4)
+    assert list(runs.columns) == ["start_x", "outcome", "tortuosity", "x", "y", "slides"]
+    assert list(runs.outcome) == ["stuck", "passed", "passed", "passed"]
+    notch = runs.iloc[0]
+    assert notch.x == pytest.approx(240) and notch.y == pytest.approx(250 + math.sqrt(54**2 - 40**2))
+    assert math.isnan(notch.tortuosity)
+    assert runs.x[1] == pytest.approx(334) and runs.x[2] == pytest.approx(346)  # off each side of the gap
+    assert runs.tortuosity[3] == 1.0 and runs.slides[3] == 0
+    wide = softdrop.rigid_descent(medium, 340, radius=11)  # a scalar start: one row
+    assert len(wide) == 1 and wide.outcome[0] == "stuck"
+    with pytest.raises(ValueError, match="radius = -1: must be finite and >= 0"):
+        softdrop.rigid_descent(medium, 10, radius=-1)
+
+
 @pytest.mark.parametrize("call, says", [
     (lambda: softdrop.Medium.generate(porosity=1.5), "porosity = 1.5: must be in (0, 1)"),
     (lambda: softdrop.Medium.generate(kind="sponge"), "sponge"),
