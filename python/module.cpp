@@ -337,4 +337,17 @@ PYBIND11_MODULE(_core, m) {
         return columns;
       },
       py::arg("medium"), py::arg("radius"), py::arg("x0s"));
+
+  m.def(
+      "_rigid_path",
+      [](const Medium& medium, double radius, double x0) {
+        const RigidDescent d = rigid_descent(medium, radius, x0, true);
+        py::array_t<double> rows({static_cast<py::ssize_t>(d.path_x.size()), py::ssize_t{2}});
+        auto v = rows.mutable_unchecked<2>();
+        for (std::size_t i = 0; i < d.path_x.size(); ++i)
+          v(static_cast<py::ssize_t>(i), 0) = d.path_x[i],
+                                         v(static_cast<py::ssize_t>(i), 1) = d.path_y[i];
+        return rows;
+      },
+      py::arg("medium"), py::arg("radius"), py::arg("x0"));
 }

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "softdrop/simulation.hpp"
+
 namespace softdrop {
 namespace {
 
@@ -89,6 +91,37 @@ TEST(RigidDescent, SlidesAcrossThePeriodicEdgeOrStopsAtAWall) {
   EXPECT_NEAR(walled.y, 250 + std::sqrt(50.0 * 50.0 - 10.0 * 10.0), 1e-9);
   // A disc of radius 20 keeps its centre 20 from the walls: the start is moved in.
   EXPECT_EQ(rigid_descent(box({}, false), 20.0, 3.0).x, 20.0);
+}
+
+TEST(RigidDescent, ItsPathIsAsLongAsItsTortuositySaysAndRunsOnAcrossThePeriodicEdge) {
+  MediumOptions o;
+  o.porosity = 0.7, o.seed = 9;
+  const Medium m = generate_medium(o);
+  int passed = 0;
+  for (double x0 = 3; x0 < 500; x0 += 31) {
+    const RigidDescent d = rigid_descent(m, 4.0, x0, true);
+    const RigidDescent bare = rigid_descents(m, 4.0, {x0}).front();
+    EXPECT_EQ(d.passed, bare.passed);
+    EXPECT_EQ(d.x, bare.x);  // recording changes nothing
+    EXPECT_EQ(d.y, bare.y);
+    ASSERT_GE(d.path_x.size(), 2u);
+    EXPECT_EQ(d.path_x.size(), d.path_y.size());
+    EXPECT_EQ(d.path_x.front(), x0);
+    EXPECT_EQ(d.path_y.back(), d.y);
+    for (std::size_t i = 1; i < d.path_y.size(); ++i) EXPECT_LE(d.path_y[i], d.path_y[i - 1]);
+    if (!d.passed) continue;
+    ++passed;
+    EXPECT_EQ(d.tortuosity, bare.tortuosity);
+    // The path ends on y = 0; a droplet's runs on below it, as this one's, extended, does.
+    std::vector<double> xs = d.path_x, ys = d.path_y;
+    xs.push_back(xs.back()), ys.push_back(-1);
+    // Arcs are drawn as chords 0.02 rad apart: about 2e-5 shorter.
+    EXPECT_NEAR(polyline_tortuosity(xs, ys, m.height), d.tortuosity, 1e-4);
+  }
+  EXPECT_GT(passed, 5);
+  const RigidDescent wrapped = rigid_descent(box({{490, 250, 50}}), 0.0, 495.0, true);
+  EXPECT_NEAR(wrapped.path_x.back(), 540.0, 1e-9);  // the box's x is 40
+  EXPECT_NEAR(wrapped.x, 40.0, 1e-9);
 }
 
 TEST(RigidDescent, APointPassesEveryNonOverlappingMedium) {

@@ -24,6 +24,9 @@ struct RigidDescent {
   double x = 0;           ///< where the centre crossed y = 0 (passed) or stopped (length units)
   double y = 0;           ///< 0 when passed, the stopping height otherwise
   int slides = 0;         ///< grain surfaces it slid along
+  /// The centre's path, if asked: from the start above the medium to the end, arcs sampled every
+  /// 0.02 rad; x does not jump at the periodic edge (it runs on past W or below 0).
+  std::vector<double> path_x, path_y;
 };
 
 /// Drops a rigid disc of `radius` (length units, >= 0; 0 is a point) with its centre at x0 (in
@@ -31,9 +34,10 @@ struct RigidDescent {
 /// wall (x0 is moved in if need be). Deterministic: the same inputs give the same bits. Throws
 /// std::invalid_argument naming radius or x0 if it is negative, non-finite, out of the box, or
 /// (with walls) the disc is wider than the box.
-RigidDescent rigid_descent(const Medium& medium, double radius, double x0);
+RigidDescent rigid_descent(const Medium& medium, double radius, double x0,
+                           bool record_path = false);
 
-/// rigid_descent for each start in `x0s`, in order.
+/// rigid_descent for each start in `x0s`, in order, without paths (every start is checked first).
 std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius,
                                          const std::vector<double>& x0s);
 

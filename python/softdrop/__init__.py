@@ -54,21 +54,24 @@ def simulate_many(medium, n, seed=1, threads=0, params=None, run=None):
     return _runs_frame(rows)
 
 
-def rigid_descent(medium, x0, radius=0.0):
+def rigid_descent(medium, x0, radius=0.0, path=False):
     """The geometric limit of passage: a rigid, frictionless disc of `radius` (0: a point) without
     inertia, dropped with its centre at x0 (one start or a sequence) and moved by gravity alone. It
     falls, slides along grains' upper halves and stops in the first dead end (between two grains, or
     a grain and a wall). Exact circle geometry; the same inputs give the same bits. Returns a pandas
     DataFrame, one row a start: start_x, outcome ("passed" or "stuck"), tortuosity (path length
     between y = H and 0 over H; NaN unless passed), x and y (where it crossed y = 0 or stopped),
-    slides (grain surfaces it slid along). A droplet that neither deforms nor bounces passes where
-    this disc passes."""
+    slides (grain surfaces it slid along). path=True adds `path`, each an array of rows x, y from
+    the start above the medium (arcs every 0.02 rad; x runs on across the periodic edge, as a
+    droplet's path does). A droplet that neither deforms nor bounces passes where this disc passes."""
     import numpy as np
     import pandas as pd
 
     starts = np.atleast_1d(np.asarray(x0, dtype=float))
     frame = pd.DataFrame(_core._rigid_descents(medium, float(radius), starts.tolist()))
     frame.insert(1, "outcome", np.where(frame.pop("passed"), "passed", "stuck"))
+    if path:
+        frame["path"] = [_core._rigid_path(medium, float(radius), x) for x in starts.tolist()]
     return frame
 
 

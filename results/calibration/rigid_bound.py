@@ -13,8 +13,8 @@ larger radius), the calibration's six porosities, 200 media x 20 uniform starts 
 Writes rigid_bound.csv (one row per kind, porosity and disc radius) and rigid_bound.png. Then,
 start by start: the default droplet (softdrop.simulate_many) and the rigid discs of radius 0 and 8
 from the same starts in the same media, 100 overlapping media x 20 starts at porosities 0.5 and 0.7:
-rigid_bound_starts.csv, one row per start. Needs the Python module (PYTHONPATH=build/python); about
-3 minutes on 2 cores.
+rigid_bound_starts.csv, one row per start, and rigid_bound_paths.png, the paths from three of those
+starts. Needs the Python module (PYTHONPATH=build/python); about 3 minutes on 2 cores.
 
     PYTHONPATH=build/python /usr/bin/python3 results/calibration/rigid_bound.py
 """
@@ -93,6 +93,45 @@ def start_by_start(porosities=(0.5, 0.7), media=100, starts=20):
     return pd.concat(frames, ignore_index=True)
 
 
+def plot_paths(starts):
+    """The droplet's path and the rigid discs' from three starts at phi = 0.5: the first where the
+    droplet passes and the point stops, the first where the point passes and the droplet stops,
+    and the first where both pass."""
+    at = starts[starts.target_porosity == 0.5]
+    cases = [("droplet passes, point stops", (at.droplet_outcome == "passed") & (at.point_outcome == "stuck")),
+             ("point passes, droplet stops", (at.droplet_outcome == "stuck") & (at.point_outcome == "passed")),
+             ("both pass", (at.droplet_outcome == "passed") & (at.point_outcome == "passed"))]
+    fig, axes = plt.subplots(1, 3, figsize=(13, 5))
+    for ax, (title, chosen) in zip(axes, cases):
+        row = at[chosen].iloc[0]
+        medium = softdrop.Medium.generate("overlapping", porosity=0.5, seed=int(row.medium_seed))
+        droplet = np.asarray(softdrop.simulate(medium, x0=row.start_x, path=True).path)[:, 1:]
+        paths = [(droplet, "C3", "-", f"droplet, T = {row.droplet_t:.3f}" if row.droplet_outcome == "passed"
+                  else "droplet, stops")]
+        for radius, colour in ((0.0, "k"), (8.0, "C0")):
+            rigid = softdrop.rigid_descent(medium, row.start_x, radius=radius, path=True)
+            label = f"rigid disc r = {radius:g}, " + (f"T = {rigid.tortuosity[0]:.3f}" if rigid.outcome[0] == "passed"
+                                                       else "stops")
+            paths.append((rigid.path[0], colour, "--", label))
+        xs = np.concatenate([p[:, 0] for p, *_ in paths])
+        lo, hi = min(xs.min(), 0) - 30, max(xs.max(), medium.width) + 30
+        for image in range(int(np.floor(lo / medium.width)), int(np.ceil(hi / medium.width)) + 1):
+            for x, y, r in medium.grains:
+                ax.add_patch(plt.Circle((x + image * medium.width, y), r, color="0.75", lw=0))
+        for path, colour, style, label in paths:
+            keep = path[:, 1] >= -30
+            ax.plot(path[keep, 0], path[keep, 1], style, color=colour, lw=1.2, label=label)
+        ax.axvspan(0, medium.width, ymin=0, ymax=1, fill=False, ls=":", lw=0.8)
+        ax.set_xlim(lo, hi)
+        ax.set_ylim(-30, medium.height + 60)
+        ax.set_aspect("equal")
+        ax.set_title(f"{title} (medium {int(row.medium_seed)}, x0 = {row.start_x:.1f})", fontsize=8)
+        ax.legend(fontsize=7, loc="lower left")
+    fig.suptitle("paths from the same start, overlapping medium at φ = 0.5 (dotted: the periodic box)", fontsize=9)
+    fig.tight_layout()
+    fig.savefig("rigid_bound_paths.png", dpi=100)
+
+
 def droplet_points(name):
     """The droplet's pass fraction per radius and porosity from a committed radius study."""
     rows, points = pd.read_csv(f"{name}.csv"), pd.read_csv(f"{name}_points.csv")
@@ -128,6 +167,9 @@ def plot(table):
 
 def main():
     os.chdir(os.path.dirname(os.path.abspath(__file__)))
+    if sys.argv[1:] == ["paths"]:  # redraw rigid_bound_paths.png from the committed starts
+        plot_paths(pd.read_csv("rigid_bound_starts.csv"))
+        return
     table = measure()
     table.to_csv("rigid_bound.csv.tmp", index=False)
     os.replace("rigid_bound.csv.tmp", "rigid_bound.csv")
@@ -135,6 +177,7 @@ def main():
     starts = start_by_start()
     starts.to_csv("rigid_bound_starts.csv.tmp", index=False)
     os.replace("rigid_bound_starts.csv.tmp", "rigid_bound_starts.csv")
+    plot_paths(starts)
 
 
 if __name__ == "__main__":

@@ -18,6 +18,8 @@ constexpr double kTolerance = 1e-7;
 // A descent is a strictly falling sequence of contacts; more than this many means a numerical
 // cycle.
 constexpr int kMaxEvents = 100000;
+// A recorded path samples arcs at least this often (radians): chords 2e-5 shorter than the arcs.
+constexpr double kPathStep = 0.02;
 
 struct Disc {
   double x, y, r;  // a grain dilated by the body's radius; periodic media hold three images
@@ -43,19 +45,19 @@ class Walk {
     start_y_ = top + 1;
   }
 
-  RigidDescent run(double x0) {
-    x_ = std::clamp(x0, lo_, hi_), y_ = start_y_, length_ = 0;
+  RigidDescent run(double x0, bool record_path) {
+    x_ = std::clamp(x0, lo_, hi_), y_ = start_y_, length_ = 0, shift_ = 0;
     RigidDescent out;
+    path_ = record_path ? &out : nullptr;
+    record();
     int next = kFall;
-    for (int events = 0; events < kMaxEvents && next != kStuck; ++events) {
+    for (int events = 0; events < kMaxEvents && next != kStuck && next != kPassed; ++events) {
       next = next == kFall ? fall() : slide(next);
-      if (next == kPassed) {
-        out.passed = true, out.tortuosity = length_ / height_, out.x = x_;
-        return out;
-      }
       if (next >= 0) ++out.slides;
     }
-    out.tortuosity = std::numeric_limits<double>::quiet_NaN(), out.x = x_, out.y = y_;
+    out.passed = next == kPassed;
+    out.tortuosity = out.passed ? length_ / height_ : std::numeric_limits<double>::quiet_NaN();
+    out.x = periodic_ ? x_ - width_ * std::floor(x_ / width_) : x_, out.y = y_;
     return out;
   }
 
@@ -65,7 +67,7 @@ class Walk {
 
   // Falls from (x_, y_) onto the highest disc top below and returns it, or kPassed.
   int fall() {
-    if (periodic_) x_ -= width_ * std::floor(x_ / width_);
+    if (periodic_) shift(-width_ * std::floor(x_ / width_));
     int best = -1;
     double best_y = -std::numeric_limits<double>::infinity();
     for (int i = 0; i < static_cast<int>(discs_.size()); ++i) {
@@ -78,6 +80,7 @@ class Walk {
     if (best < 0 || best_y < 0) best_y = 0, best = kPassed;
     length_ += band(y_, best_y);
     y_ = best_y;
+    record();
     return best;
   }
 
@@ -147,25 +150,41 @@ class Walk {
   int rebase(int h) {
     if (!periodic_) return h;
     const int image = h / per_image_;  // 0, 1, 2: left, middle, right copies
-    if (x_ >= width_ && image > 0) x_ -= width_, h -= per_image_;
-    if (x_ < 0 && image < 2) x_ += width_, h += per_image_;
+    if (x_ >= width_ && image > 0) shift(-width_), h -= per_image_;
+    if (x_ < 0 && image < 2) shift(width_), h += per_image_;
     return h;
+  }
+
+  // Moves the centre to another image of itself; the recorded path stays continuous.
+  void shift(double dx) { x_ += dx, shift_ -= dx; }
+
+  void record() {
+    if (!path_) return;
+    path_->path_x.push_back(x_ + shift_);
+    path_->path_y.push_back(y_);
   }
 
   // Moves the centre along the upper half of d from angle `from` to `to` (the same side); true if
   // it crossed y = 0 on the way (it stops there).
   bool move_along(const Disc& d, double from, double to) {
     const double y_from = d.y + d.r * std::sin(from), y_to = d.y + d.r * std::sin(to);
-    const auto angle =
-        [&](double y) {  // the angle at height y on this side, from the side's equator
-          const double a = std::asin(std::clamp((y - d.y) / d.r, -1.0, 1.0));
-          return to < kPi / 2 ? a : kPi - a;
-        };
+    // The angle at height y on this side of the disc.
+    const auto angle = [&](double y) {
+      const double a = std::asin(std::clamp((y - d.y) / d.r, -1.0, 1.0));
+      return to < kPi / 2 ? a : kPi - a;
+    };
     const double upper = std::min(y_from, height_), lower = std::max(y_to, 0.0);
     if (upper > lower) length_ += d.r * std::abs(angle(upper) - angle(lower));
     const bool crossed = y_to < 0;
     const double at = crossed ? angle(0.0) : to;
-    x_ = d.x + d.r * std::cos(at), y_ = crossed ? 0.0 : d.y + d.r * std::sin(at);
+    const int pieces = path_ ? static_cast<int>(std::ceil(std::abs(at - from) / kPathStep)) : 1;
+    for (int i = 1; i <= pieces; ++i) {
+      const double a = i == pieces ? at : from + (at - from) * i / pieces;
+      x_ = d.x + d.r * std::cos(a), y_ = d.y + d.r * std::sin(a);
+      if (i < pieces) record();
+    }
+    if (crossed) y_ = 0.0;
+    record();
     return crossed;
   }
 
@@ -180,16 +199,15 @@ class Walk {
   bool periodic_;
   double lo_, hi_, start_y_;
   double x_ = 0, y_ = 0, length_ = 0;
+  double shift_ = 0;              // the recorded path's x is x_ + shift_ (no periodic jumps)
+  RigidDescent* path_ = nullptr;  // where to record the path, if asked
 };
 
 }  // namespace
 
-RigidDescent rigid_descent(const Medium& medium, double radius, double x0) {
-  return rigid_descents(medium, radius, {x0}).front();
-}
+namespace {
 
-std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius,
-                                         const std::vector<double>& x0s) {
+void check(const Medium& medium, double radius) {
   std::string why;
   if (!medium.IsValid(&why)) throw std::invalid_argument(why);
   if (!(std::isfinite(radius) && radius >= 0))
@@ -197,14 +215,29 @@ std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius,
   if (!medium.periodic && 2 * radius > medium.width)
     throw std::invalid_argument("radius = " + detail::num(radius) +
                                 ": the disc is wider than the box");
+}
+
+void check_start(const Medium& medium, double x0) {
+  if (!(x0 >= 0 && x0 <= medium.width))
+    throw std::invalid_argument("x0 = " + detail::num(x0) + ": must be in [0, width]");
+}
+
+}  // namespace
+
+RigidDescent rigid_descent(const Medium& medium, double radius, double x0, bool record_path) {
+  check(medium, radius);
+  check_start(medium, x0);
+  return Walk(medium, radius).run(x0, record_path);
+}
+
+std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius,
+                                         const std::vector<double>& x0s) {
+  check(medium, radius);
+  for (double x0 : x0s) check_start(medium, x0);
   Walk walk(medium, radius);
   std::vector<RigidDescent> out;
   out.reserve(x0s.size());
-  for (double x0 : x0s) {
-    if (!(x0 >= 0 && x0 <= medium.width))
-      throw std::invalid_argument("x0 = " + detail::num(x0) + ": must be in [0, width]");
-    out.push_back(walk.run(x0));
-  }
+  for (double x0 : x0s) out.push_back(walk.run(x0, false));
   return out;
 }
 

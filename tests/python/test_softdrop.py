@@ -127,8 +127,9 @@ def test_rigid_descent_stops_in_a_notch_and_passes_a_gap():
     assert math.isnan(notch.tortuosity)
     assert runs.x[1] == pytest.approx(334) and runs.x[2] == pytest.approx(346)  # off each side of the gap
     assert runs.tortuosity[3] == 1.0 and runs.slides[3] == 0
-    wide = softdrop.rigid_descent(medium, 340, radius=11)  # a scalar start: one row
+    wide = softdrop.rigid_descent(medium, 340, radius=11, path=True)  # a scalar start: one row
     assert len(wide) == 1 and wide.outcome[0] == "stuck"
+    assert wide.path[0].shape[1] == 2 and tuple(wide.path[0][-1]) == (wide.x[0], wide.y[0])
     with pytest.raises(ValueError, match="radius = -1: must be finite and >= 0"):
         softdrop.rigid_descent(medium, 10, radius=-1)
 
