@@ -4,7 +4,7 @@
     PYTHONPATH=build/python python3 examples/python/droplets.py
 
 Generates a medium, pushes one droplet and draws its path, then 200 droplets from random starts
-as a pandas DataFrame, then runs a 30-generation search and plots its curve from the history. The
+as a pandas DataFrame and a rigid disc from the same starts, then runs a 30-generation search and plots its curve from the history. The
 pictures need matplotlib (python3-matplotlib); without it the numbers are printed only.
 """
 import os
@@ -21,6 +21,11 @@ print("one droplet:", run.outcome, "T =", run.tortuosity, "after", run.steps, "s
 frame = softdrop.simulate_many(medium, 200, seed=3)
 print(frame.groupby("outcome").size())
 print("mean T of the passed droplets:", frame.loc[frame.outcome == "passed", "tortuosity"].mean())
+
+# A rigid disc of the droplet's radius from the same starts, moved by gravity alone: it cannot
+# squeeze or bounce, so it stops in the first gap narrower than itself.
+rigid = softdrop.rigid_descent(medium, frame.start_x, radius=8)
+print("a rigid disc of radius 8 passes", (rigid.outcome == "passed").mean(), "of the same starts")
 
 # A 30-generation search on the defaults (8 candidates a generation), written to an SQLite history
 # as `softdrop optimize` writes it, with a line every 10 generations from the callback; then its history read back as DataFrames.
