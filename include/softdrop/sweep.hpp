@@ -96,7 +96,7 @@ SweepMedium decode_sweep_medium(const std::string& bytes);
 struct SweepPoint {
   double target_porosity = 0;
   double porosity = 0;        ///< mean exact porosity of its media
-  int media = 0, droplets = 0, passed = 0, stuck = 0;
+  int media = 0, droplets = 0, passed = 0, stuck = 0, diverged = 0;
   double mean_t = 0, standard_error = 0;  ///< over all passed droplets of the porosity
   /// Media where at least one droplet passed, and the standard error of mean_t with those media as
   /// clusters (0 if fewer than two): droplets of one medium share its throats, so this is the

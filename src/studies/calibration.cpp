@@ -14,7 +14,6 @@
 #include "softdrop/area_trace.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/random.hpp"
-#include "studies/media_error.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {
@@ -48,50 +47,25 @@ bool CalibrationOptions::IsValid(std::string* why) const {
 
 namespace {
 
-// Accumulates T over passed droplets: mean and standard error (sample sd / sqrt(n)).
-struct Mean {
-  double sum = 0, sum2 = 0;
-  int n = 0;
-  void add(double t) { sum += t, sum2 += t * t, ++n; }
-  double mean() const { return n > 0 ? sum / n : 0; }
-  double standard_error() const {
-    if (n < 2) return 0;
-    const double m = mean();
-    return std::sqrt(std::max(0.0, (sum2 - n * m * m) / (n - 1)) / n);
-  }
-};
-
-// Fills the per-porosity points and the sweep's figures of `r`; returns the sweep's diverged droplets.
+// Fills the per-porosity points and the sweep's figures of `r` from the sweep's own points (in
+// the order of sweep.porosities); returns the sweep's diverged droplets.
 long score_points(const SweepOptions& sweep, const std::vector<SweepMedium>& media, CalibrationResult* r) {
   const std::size_t count = sweep.porosities.size();
-  std::vector<Mean> t(count);
-  std::vector<detail::MediaMean> by_medium(count);
-  std::vector<double> porosity(count, 0.0);
-  std::vector<int> n_media(count, 0);
+  const std::vector<SweepPoint> measured = sweep_points(media);
   r->points.assign(count, {});
-  long droplets = 0, stuck = 0, diverged = 0;
-  for (const SweepMedium& m : media) {
-    const std::size_t i = static_cast<std::size_t>(m.unit.porosity);
-    CalibrationPoint& p = r->points[i];
-    porosity[i] += m.porosity, ++n_media[i];
-    p.droplets += static_cast<int>(m.droplets.size());
-    p.passed += m.passed, p.stuck += m.stuck, p.diverged += m.diverged;
-    double medium_sum = 0;
-    for (const SweepDroplet& d : m.droplets) {
-      if (d.outcome == Outcome::passed) t[i].add(d.tortuosity), medium_sum += d.tortuosity;
-      r->steps += static_cast<double>(d.steps);
-    }
-    by_medium[i].add_medium(m.passed, medium_sum);
-  }
+  for (const SweepMedium& m : media)
+    for (const SweepDroplet& d : m.droplets) r->steps += static_cast<double>(d.steps);
   double sum2 = 0, measured2 = 0;
+  long droplets = 0, stuck = 0, diverged = 0;
   for (std::size_t i = 0; i < count; ++i) {
     CalibrationPoint& p = r->points[i];
-    p.target_porosity = sweep.porosities[i];
-    p.porosity = n_media[i] > 0 ? porosity[i] / n_media[i] : p.target_porosity;
-    p.mean_t = t[i].mean();
-    p.standard_error = t[i].standard_error();
-    p.media_passed = by_medium[i].media();
-    p.media_standard_error = by_medium[i].standard_error();
+    p.target_porosity = p.porosity = sweep.porosities[i];
+    for (const SweepPoint& q : measured) {
+      if (q.target_porosity != p.target_porosity) continue;
+      p.porosity = q.porosity, p.droplets = q.droplets, p.passed = q.passed, p.stuck = q.stuck;
+      p.diverged = q.diverged, p.mean_t = q.mean_t, p.standard_error = q.standard_error;
+      p.media_passed = q.media_passed, p.media_standard_error = q.media_standard_error;
+    }
     p.paper_t = paper_tortuosity(p.porosity);
     const double miss = p.passed >= 2 ? p.mean_t - p.paper_t : p.paper_t - 1;
     p.within = p.passed >= 2 && std::abs(miss) <= std::max(0.03, 2 * p.media_standard_error);

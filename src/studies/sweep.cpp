@@ -282,6 +282,7 @@ std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media) {
       for (const SweepDroplet& d : m->droplets) {
         ++p.droplets;
         if (d.outcome == Outcome::stuck) ++p.stuck;
+        if (d.outcome == Outcome::diverged) ++p.diverged;
         if (d.outcome == Outcome::passed)
           ++p.passed, ++passed, sum += d.tortuosity, medium_sum += d.tortuosity;
       }
