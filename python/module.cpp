@@ -316,11 +316,11 @@ PYBIND11_MODULE(_core, m) {
 
   m.def(
       "_rigid_descents",
-      [](const Medium& medium, double radius, const std::vector<double>& x0s) {
+      [](const Medium& medium, double radius, const std::vector<double>& x0s, bool paths) {
         std::vector<RigidDescent> runs;
         {
           py::gil_scoped_release release;
-          runs = rigid_descents(medium, radius, x0s);
+          runs = rigid_descents(medium, radius, x0s, paths);
         }
         py::dict columns;  // one entry a column, one element a start
         const auto column = [&](auto field) {
@@ -334,20 +334,18 @@ PYBIND11_MODULE(_core, m) {
         columns["x"] = column(&RigidDescent::x);
         columns["y"] = column(&RigidDescent::y);
         columns["slides"] = column(&RigidDescent::slides);
+        if (!paths) return columns;
+        py::list rows_of;  // each start's path: rows of x, y
+        for (const RigidDescent& r : runs) {
+          py::array_t<double> rows({static_cast<py::ssize_t>(r.path_x.size()), py::ssize_t{2}});
+          auto v = rows.mutable_unchecked<2>();
+          for (py::ssize_t i = 0; i < rows.shape(0); ++i)
+            v(i, 0) = r.path_x[static_cast<std::size_t>(i)],
+                 v(i, 1) = r.path_y[static_cast<std::size_t>(i)];
+          rows_of.append(rows);
+        }
+        columns["path"] = rows_of;
         return columns;
       },
-      py::arg("medium"), py::arg("radius"), py::arg("x0s"));
-
-  m.def(
-      "_rigid_path",
-      [](const Medium& medium, double radius, double x0) {
-        const RigidDescent d = rigid_descent(medium, radius, x0, true);
-        py::array_t<double> rows({static_cast<py::ssize_t>(d.path_x.size()), py::ssize_t{2}});
-        auto v = rows.mutable_unchecked<2>();
-        for (std::size_t i = 0; i < d.path_x.size(); ++i)
-          v(static_cast<py::ssize_t>(i), 0) = d.path_x[i],
-                                         v(static_cast<py::ssize_t>(i), 1) = d.path_y[i];
-        return rows;
-      },
-      py::arg("medium"), py::arg("radius"), py::arg("x0"));
+      py::arg("medium"), py::arg("radius"), py::arg("x0s"), py::arg("paths"));
 }

@@ -37,8 +37,8 @@ struct RigidDescent {
 RigidDescent rigid_descent(const Medium& medium, double radius, double x0,
                            bool record_path = false);
 
-/// rigid_descent for each start in `x0s`, in order, without paths (every start is checked first).
+/// rigid_descent for each start in `x0s`, in order (every start is checked first).
 std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius,
-                                         const std::vector<double>& x0s);
+                                         const std::vector<double>& x0s, bool record_paths = false);
 
 }  // namespace softdrop

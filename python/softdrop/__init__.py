@@ -68,10 +68,12 @@ def rigid_descent(medium, x0, radius=0.0, path=False):
     import pandas as pd
 
     starts = np.atleast_1d(np.asarray(x0, dtype=float))
-    frame = pd.DataFrame(_core._rigid_descents(medium, float(radius), starts.tolist()))
+    columns = _core._rigid_descents(medium, float(radius), starts.tolist(), bool(path))
+    paths = columns.pop("path", None)
+    frame = pd.DataFrame(columns)
     frame.insert(1, "outcome", np.where(frame.pop("passed"), "passed", "stuck"))
-    if path:
-        frame["path"] = [_core._rigid_path(medium, float(radius), x) for x in starts.tolist()]
+    if paths is not None:
+        frame["path"] = paths
     return frame
 
 

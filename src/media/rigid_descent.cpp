@@ -225,19 +225,17 @@ void check_start(const Medium& medium, double x0) {
 }  // namespace
 
 RigidDescent rigid_descent(const Medium& medium, double radius, double x0, bool record_path) {
-  check(medium, radius);
-  check_start(medium, x0);
-  return Walk(medium, radius).run(x0, record_path);
+  return rigid_descents(medium, radius, {x0}, record_path).front();
 }
 
 std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius,
-                                         const std::vector<double>& x0s) {
+                                         const std::vector<double>& x0s, bool record_paths) {
   check(medium, radius);
   for (double x0 : x0s) check_start(medium, x0);
   Walk walk(medium, radius);
   std::vector<RigidDescent> out;
   out.reserve(x0s.size());
-  for (double x0 : x0s) out.push_back(walk.run(x0, false));
+  for (double x0 : x0s) out.push_back(walk.run(x0, record_paths));
   return out;
 }
 
