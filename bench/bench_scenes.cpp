@@ -1,12 +1,13 @@
 // Scene benchmarks: whole runs, timed over repeats (minimum and median), written as CSV with the
 // machine and compiler.
 //
-//   build/bench/bench_scenes [--scene NAME|all] [--repeats 5] [--threads N] [--lanes N] [--width W]
-//                            [--droplet defaults|balloon] [--out FILE.csv]
+//   build/bench/bench_scenes [--scene NAME[,NAME...]|all] [--repeats 5] [--threads N] [--lanes N]
+//                            [--width W] [--droplet defaults|balloon|fast] [--out FILE.csv]
 //
 // --droplet balloon runs every scene with the balloon (DropletParams::balloon()) on its grains
 // (radii 8 to 16) and its default search scene (60 grains in 300 x 300), to compare with the
-// defaults (grains of radii 16 to 48, 20 grains in 500 x 500) in one run.
+// defaults (grains of radii 16 to 48, 20 grains in 500 x 500) in one run. --droplet fast runs them
+// with DropletParams::fast() (the defaults' droplet, exponential viscosity step, 1.7 times the dt).
 //
 // Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
@@ -15,18 +16,18 @@
 // default lanes stepped together (24 with AVX-512 or AVX, 6 with SSE2) on 1 thread, and on all
 // threads);
 // sweep and sweep-long (16 and 64 droplets through each of 4 media, on 1 thread and on all; the
-// paper's sweep has 200 per medium); search-l1 and search-l2 (the paper's search at lambda 1 and 2, on 1 thread and on all threads
-// with speculation, as `optimize` runs it: 120 and 60 generations); search-l2-long (the same at
-// lambda 2 over 400 generations, where the acceptances thin out and the end of the run weighs less);
-// search-*-red-black (the same searches with the red-black constraint order: other histories, so
-// compare their steps per second); search-es-l8 and search-es-l8-long (the program's default
-// search: es, lambda 8, a relocation every third generation; 15 and 200 generations, the latter
-// the main job of scripts/run.sh). Every scene ends its droplets with the default exit tests,
-// the rest test among them. --lanes sets the search scenes' lanes (0: the default). --width
-// uses at most that vector width (8: AVX-512, 4: AVX, 2: SSE2, 1: scalar), to time what a
-// processor without AVX-512 runs. The last column, dropped_steps_per_kept, is a speculating
-// search's cost: the steps its dropped evaluations had taken, over the steps counted (the kept
-// evaluations').
+// paper's sweep has 200 per medium); search-l1 and search-l2 (the paper's search at lambda 1 and 2,
+// on 1 thread and on all threads with speculation, as `optimize` runs it: 120 and 60 generations);
+// search-l2-long (the same at lambda 2 over 400 generations, where the acceptances thin out and the
+// end of the run weighs less); search-*-red-black (the same searches with the red-black constraint
+// order: other histories, so compare their steps per second); search-es-l8 and search-es-l8-long
+// (the program's default search: es, lambda 8, a relocation every third generation; 15 and 200
+// generations, the latter the main job of scripts/run.sh). Every scene ends its droplets with the
+// default exit tests, the rest test among them. --lanes sets the search scenes' lanes (0: the
+// default). --width uses at most that vector width (8: AVX-512, 4: AVX, 2: SSE2, 1: scalar), to
+// time what a processor without AVX-512 runs. The last column, dropped_steps_per_kept, is a
+// speculating search's cost: the steps its dropped evaluations had taken, over the steps counted
+// (the kept evaluations').
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -66,6 +67,7 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 DropletParams scene_droplet;
 double r_min = MediumOptions{}.r_min, r_max = MediumOptions{}.r_max;
 bool balloon = false;
+std::string droplet_name = "defaults";
 
 // Steps of one droplet, re-dropped from a new x every 20 000 steps so that every step is in the
 // medium (as bench_step does); `steps` in total.
@@ -248,10 +250,11 @@ int main(int argc, char** argv) {
     else if (a == "--width") width = std::stoi(value());
     else if (a == "--droplet") {
       const std::string d = value();
-      if (d != "defaults" && d != "balloon") {
-        std::cerr << "bench_scenes: --droplet " << d << ": must be defaults or balloon\n";
+      if (d != "defaults" && d != "balloon" && d != "fast") {
+        std::cerr << "bench_scenes: --droplet " << d << ": must be defaults, balloon or fast\n";
         return 2;
       }
+      droplet_name = d;
       balloon = d == "balloon";
     } else {
       std::cerr << "bench_scenes: unknown option " << a << "\n";
@@ -268,6 +271,7 @@ int main(int argc, char** argv) {
   }
   limit_constraint_vector_width(static_cast<VectorWidth>(width));
   if (balloon) scene_droplet = DropletParams::balloon(), r_min = 8, r_max = 16;
+  if (droplet_name == "fast") scene_droplet = DropletParams::fast();
   const Medium m200 = bench::medium_200(500, r_min, r_max), m5000 = bench::medium_200(2500, r_min, r_max);
   const std::vector<std::pair<std::string, std::function<Work()>>> scenes{
       {"free-fall", free_fall},
@@ -306,12 +310,12 @@ int main(int argc, char** argv) {
       << "debug"
 #endif
       << " build\n# constraint vector width: " << static_cast<int>(constraint_vector_width())
-      << " doubles (8: AVX-512, 4: AVX, 2: SSE2)\n# droplet: " << (balloon ? "balloon" : "defaults")
+      << " doubles (8: AVX-512, 4: AVX, 2: SSE2)\n# droplet: " << droplet_name
       << "\nscene,threads,repeats,grains,seconds_min,seconds_median,steps_per_s,mass_updates_per_s,"
          "droplets_per_s,evaluations_per_s,peak_rss_mb,dropped_steps_per_kept\n";
   bool any = false;
   for (const auto& [name, run] : scenes) {
-    if (scene != "all" && scene != name) continue;
+    if (scene != "all" && ("," + scene + ",").find("," + name + ",") == std::string::npos) continue;
     any = true;
     std::vector<Work> ws;
     for (int r = 0; r < repeats; ++r) ws.push_back(run());

@@ -374,5 +374,21 @@ TEST(CalibrateCommand, TheBalloonConfigIsTheLibrarysBalloon) {
   EXPECT_EQ(j["medium"]["grains"].get<std::size_t>(), medium.grains.size());
 }
 
+// results/calibration/fast.toml is DropletParams::fast(): the same bits from the command line with
+// that file and from the library, and a different run from the defaults'.
+TEST(CalibrateCommand, TheFastConfigIsTheLibrarysFastDroplet) {
+  const auto r = run("--config " + std::string(SOFTDROP_SOURCE_DIR) +
+                     "/results/calibration/fast.toml simulate --x0 250 --format json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const Medium medium = generate_medium(MediumOptions{});
+  const RunSummary s = Simulation(DropletParams::fast(), medium).run(250, RunOptions{});
+  ASSERT_EQ(s.outcome, Outcome::passed) << s.reason;
+  EXPECT_EQ(j["run"]["tortuosity"].get<double>(), s.tortuosity);
+  EXPECT_EQ(j["run"]["steps"].get<std::int64_t>(), s.steps);
+  const RunSummary slow = Simulation(DropletParams{}, medium).run(250, RunOptions{});
+  EXPECT_GT(slow.steps, 1.5 * s.steps);  // dt is 1.7 times the defaults'
+}
+
 }  // namespace
 }  // namespace softdrop

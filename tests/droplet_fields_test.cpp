@@ -41,8 +41,7 @@ DropletParams changed(const DropletParams& p, const std::string& key) {
         if (key != field.key) return;
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_enum_v<T>)
-          v = v == ConstraintOrder::sequential ? ConstraintOrder::red_black
-                                               : ConstraintOrder::sequential;
+          v = static_cast<T>(1 - static_cast<int>(v));  // (each enum field is a choice of two)
         else if constexpr (std::is_floating_point_v<T>)
           v = v != 0 ? v * 1.5 : 0.5;  // (0.5: in every field's range)
         else
@@ -54,7 +53,7 @@ DropletParams changed(const DropletParams& p, const std::string& key) {
 
 TEST(DropletFields, TheContactFieldsAloneMayDifferWithinALaneBlock) {
   const auto all = uses();
-  ASSERT_EQ(all.size(), 16u);
+  ASSERT_EQ(all.size(), 17u);
   std::set<std::string> constraint, contacts;
   for (const auto& [key, use] : all) {
     if (use == FieldUse::constraint) constraint.insert(key);
@@ -96,13 +95,17 @@ TEST(DropletFields, StoredParametersHoldEveryFieldAndReadItBack) {
 
 // Parameters stored by a build older than a key read as that build ran: the viscosity's share on
 // dilation as 1 (the default now is 0), no rest test, the sequential constraint order, the
-// paper's strategy. So a history stored with the balloon resumes as the balloon.
+// explicit viscosity step, the paper's strategy. So a history stored with the balloon resumes as
+// the balloon.
 TEST(DropletFields, StoredParametersWithoutTheNewerKeysReadAsOlderBuildsRanThem) {
   SearchOptions o;
   o.run.rest_window = 0.05, o.run.rest_distance = 0.1;
   o.strategy.kind = StrategyKind::es;
+  o.droplet.viscosity_step = ViscosityStep::exponential;
   nlohmann::json j = nlohmann::json::parse(search_params_to_json(o));
-  for (const char* key : {"viscosity-dilation", "rest-window", "rest-distance", "constraint-order", "strategy"}) {
+  EXPECT_EQ(j.at("viscosity-step"), "exponential");
+  for (const char* key : {"viscosity-dilation", "rest-window", "rest-distance", "constraint-order",
+                          "viscosity-step", "strategy"}) {
     ASSERT_TRUE(j.contains(key)) << key;
     j.erase(key);
   }
@@ -112,6 +115,7 @@ TEST(DropletFields, StoredParametersWithoutTheNewerKeysReadAsOlderBuildsRanThem)
   EXPECT_EQ(back.run.rest_window, 0.0);
   EXPECT_EQ(back.run.rest_distance, 0.0);
   EXPECT_EQ(back.droplet.constraint_order, ConstraintOrder::sequential);
+  EXPECT_EQ(back.droplet.viscosity_step, ViscosityStep::explicit_euler);
   EXPECT_EQ(back.strategy.kind, StrategyKind::paper);
   EXPECT_EQ(back.droplet.ks, o.droplet.ks);  // the keys that are there are read as they are
 }
@@ -186,7 +190,7 @@ TEST(DropletFields, EveryFieldsRangeIsCheckedAndNamedInItsOwnWords) {
         }
       },
       defaults);
-  EXPECT_EQ(checked, static_cast<int>(uses().size()) - 1);  // all but constraint-order
+  EXPECT_EQ(checked, static_cast<int>(uses().size()) - 2);  // all but the two enums
   // The words of the three kinds of range, as users see them.
   std::string message;
   EXPECT_FALSE(with_value("dt", 0).IsValid(&message));

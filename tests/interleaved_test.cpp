@@ -219,12 +219,16 @@ TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
   o.path_interval = 40;
   const ConstraintOrder seq = ConstraintOrder::sequential, rb = ConstraintOrder::red_black;
   // An odd ring (41 masses) too: red-black's closing spring then touches the first spring's mass;
-  // and a viscosity that spares the ring's dilation.
-  for (auto [viscosity, order, masses, dilation] :
-       {std::tuple{1.0e4, seq, 40, 1.0}, std::tuple{0.0, seq, 40, 1.0}, std::tuple{1.0e4, rb, 40, 1.0},
-        std::tuple{1.0e4, rb, 41, 1.0}, std::tuple{1.0e4, seq, 40, 0.0}}) {
+  // a viscosity that spares the ring's dilation; the exponential viscosity step.
+  const ViscosityStep ex = ViscosityStep::explicit_euler;
+  for (auto [viscosity, order, masses, dilation, step] :
+       {std::tuple{1.0e4, seq, 40, 1.0, ex}, std::tuple{0.0, seq, 40, 1.0, ex},
+        std::tuple{1.0e4, rb, 40, 1.0, ex}, std::tuple{1.0e4, rb, 41, 1.0, ex},
+        std::tuple{1.0e4, seq, 40, 0.0, ex},
+        std::tuple{1.0e5, seq, 40, 0.0, ViscosityStep::exponential}}) {
     SCOPED_TRACE("viscosity " + std::to_string(viscosity) + ", " + to_string(order) + ", " +
-                 std::to_string(masses) + " masses, dilation share " + std::to_string(dilation));
+                 std::to_string(masses) + " masses, dilation share " + std::to_string(dilation) +
+                 ", " + to_string(step) + " step");
     std::vector<DropletParams> params;
     std::vector<double> x0;
     for (int i = 0; i < 30; ++i) {
@@ -233,6 +237,7 @@ TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
       p.viscosity_dilation = dilation;
       p.constraint_order = order;
       p.masses = masses;
+      p.viscosity_step = step;
       if (i % 7 == 3) p.ks *= 1.1;
       if (i % 11 == 5) p.constraint_order = order == seq ? rb : seq;
       if (i % 13 == 6) p.masses = 32;

@@ -104,8 +104,8 @@ struct ScanAxis {
 };
 
 /// The option names a scan can vary: every numeric field of visit_droplet_fields (all but
-/// constraint-order), in its order: masses, mass, radius, nrt, ks, kd, kc, cc, gravity, dt,
-/// max-strain, constraint-iterations, max-depth, viscosity, viscosity-dilation.
+/// constraint-order and viscosity-step), in its order: masses, mass, radius, nrt, ks, kd, kc, cc,
+/// gravity, dt, max-strain, constraint-iterations, max-depth, viscosity, viscosity-dilation.
 std::vector<std::string> scan_parameter_names();
 /// The same names as one line, "masses, mass, ...", for help texts and messages.
 std::string scan_parameter_list();

@@ -22,6 +22,24 @@ ConstraintOrder parse_constraint_order(const std::string& name);
 std::vector<std::string> constraint_order_names();
 const char* to_string(ConstraintOrder order);
 
+/// How the internal viscosity advances a step.
+/// - explicit: the force -m nu u on each mass's deformation velocity u, integrated as every other
+///   force; u falls by (1 - nu dt) a step, which bounds nu dt <= 0.5 (the reference).
+/// - exponential: the same force with m nu replaced by m (1 - exp(-nu dt)) / dt, so u falls by
+///   exp(-nu dt) a step, the exact decay of du/dt = -nu u: any nu dt is stable, and dt is bounded
+///   by the springs and contacts alone. The two agree to first order in nu dt.
+enum class ViscosityStep { explicit_euler, exponential };
+/// Parses "explicit" / "exponential"; throws std::invalid_argument naming the value.
+ViscosityStep parse_viscosity_step(const std::string& name);
+const char* to_string(ViscosityStep step);
+
+/// The enum fields of DropletParams by their names, alike for every enum: the command line, the
+/// stored parameters and the Python properties parse and list them through these.
+void parse_name(const std::string& name, ConstraintOrder* value);
+void parse_name(const std::string& name, ViscosityStep* value);
+std::vector<std::string> value_names(ConstraintOrder);
+std::vector<std::string> value_names(ViscosityStep);
+
 /// The defaults are a droplet whose springs carry the tension, calibrated against the paper's mean
 /// tortuosity and area (results/calibration/README.md says how and how close; docs/model.md why
 /// each value). It is a droplet of the paper's g, k_s and k_d (with N = 24, m = 1) at 8 400 times
@@ -58,6 +76,9 @@ struct DropletParams {
   /// delta (x_i - centre)): 1 damps it as any other deformation; 0 spares it, so a squeezed ring can
   /// overshoot and swell past its rest area. Like nu, it adds no net force or torque.
   double viscosity_dilation = 0.0;
+  /// How nu advances a step (see ViscosityStep); explicit is the reference, and what stored
+  /// parameters without this key ran.
+  ViscosityStep viscosity_step = ViscosityStep::explicit_euler;
 
   /// Rest length of a spring: d0 = 2 R sin(pi/N) / (1 + max_strain), so the ring at its stretch
   /// limit is the regular N-gon inscribed in the circle of radius R.
@@ -72,10 +93,19 @@ struct DropletParams {
   /// Area of the ring at rest, the regular N-gon of circumradius resting_radius(): S0 of the
   /// area ratios a run reports.
   double resting_area() const;
+  /// The viscous coefficient a step applies per unit mass (1/time): nu for the explicit step,
+  /// (1 - exp(-nu dt)) / dt for the exponential one (the force on a mass is -m rate u).
+  double viscous_rate() const;
   /// The balloon: the paper's k_s, k_d and dt at R = 8, nRT = 1.5e9 holding every spring at the
   /// stretch limit, c_c = 2e4, nu = 3 000 damping every deformation (the defaults before the
   /// calibrated droplet; results/calibration/balloon.toml, which also sets its grains, radii 8 to 16).
   static DropletParams balloon();
+  /// The defaults' droplet stepped faster (results/calibration/fast.toml): the exponential
+  /// viscosity step with nu = 1.8656e5, the continuous viscosity the defaults' explicit step
+  /// applies at their dt (exp(-nu dt) = 1 - 1.37e5 x 3.5e-6), at dt = 6e-6. About 1.8 times the
+  /// droplets a second, with <T>(phi) within 0.03 of the defaults' (results/calibration/README.md,
+  /// the time step).
+  static DropletParams fast();
 
   bool IsValid(std::string* why) const;
 };
@@ -104,7 +134,7 @@ constexpr FieldRange between(double lo, bool lo_included, double hi, bool hi_inc
 
 /// One field of DropletParams: `key` is its command-line option (--key) and its key in stored
 /// parameters, `use` the stages that read it, `help` its meaning and unit for --help, `range` the
-/// values it accepts (not read for constraint-order, a choice of two).
+/// values it accepts (not read for the enums, constraint-order and viscosity-step).
 struct DropletField {
   const char* key;
   FieldUse use;
@@ -149,6 +179,11 @@ void visit_droplet_fields(F&& f, Params&... p) {
                  "Share of nu acting on uniform dilation, the breathing mode (1: damped as any deformation; 0: spared)",
                  between(0, true, 1, true)},
     p.viscosity_dilation...);
+  f(DropletField{"viscosity-step", U::lanes,
+                 "explicit (nu's force integrated as the others, nu dt <= 0.5) or exponential "
+                 "(deformation decays by "
+                 "exp(-nu dt) a step: any nu dt)"},
+    p.viscosity_step...);
 }
 
 /// Whether a and b agree, to the bit, on every field whose use is `use` or one of the uses listed

@@ -60,10 +60,10 @@ CLI::Option_group* add_droplet_options(CLI::App* s, DropletParams& d) {
   visit_droplet_fields(
       [&](const DropletField& field, auto& value) {
         const std::string name = std::string("--") + field.key;
-        if constexpr (std::is_same_v<std::decay_t<decltype(value)>, ConstraintOrder>) {
+        if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>) {
           g->add_option_function<std::string>(
-               name, [&value](const std::string& v) { value = parse_constraint_order(v); }, field.help)
-              ->check(CLI::IsMember(constraint_order_names()))
+               name, [&value](const std::string& v) { parse_name(v, &value); }, field.help)
+              ->check(CLI::IsMember(value_names(value)))
               ->default_str(to_string(value));
         } else {
           g->add_option(name, value, field.help)->capture_default_str();

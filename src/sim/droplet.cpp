@@ -36,6 +36,12 @@ double DropletParams::resting_radius() const {
 
 double DropletParams::resting_area() const { return regular_polygon_area(masses, resting_radius()); }
 
+double DropletParams::viscous_rate() const {
+  // -expm1(-x) = 1 - exp(-x) without the cancellation of small x.
+  return viscosity_step == ViscosityStep::exponential ? -std::expm1(-viscosity * dt) / dt
+                                                      : viscosity;
+}
+
 DropletParams DropletParams::balloon() {
   DropletParams p;
   p.nrt = 1.5e9;
@@ -45,6 +51,14 @@ DropletParams DropletParams::balloon() {
   p.dt = 2e-5;
   p.viscosity = 3e3;
   p.viscosity_dilation = 1;
+  return p;
+}
+
+DropletParams DropletParams::fast() {
+  DropletParams p;
+  p.viscosity_step = ViscosityStep::exponential;
+  p.viscosity = 1.8656e5;
+  p.dt = 6e-6;
   return p;
 }
 
@@ -86,9 +100,10 @@ bool DropletParams::IsValid(std::string* why) const {
       *this);
   if (!first.empty()) return fail(why, first);
   // The limits that join fields.
-  if (viscosity * dt > 0.5)  // names both, since either may be the one the user changed
+  // Names both nu and dt, since either may be the one the user changed.
+  if (viscosity_step == ViscosityStep::explicit_euler && viscosity * dt > 0.5)
     return fail(why, "viscosity = " + num(viscosity) + ", dt = " + num(dt) + ": viscosity * dt = " +
-                         num(viscosity * dt) + " must be <= 0.5");
+                         num(viscosity * dt) + " must be <= 0.5 for viscosity-step explicit");
   // Explicit integration is only stable when the stiffest oscillator is resolved in time.
   const double omega_dt = std::sqrt(std::max(ks, kc) / mass) * dt;
   if (omega_dt > 0.5)
@@ -97,6 +112,18 @@ bool DropletParams::IsValid(std::string* why) const {
   if (std::max(kd, cc) * dt / mass > 1.0)
     return fail(why, "dt = " + num(dt) + ": too large for the damping, max(kd, cc) * dt / mass = " +
                          num(std::max(kd, cc) * dt / mass) + " must be <= 1");
+  // The ring's fastest mode, neighbours moving against each other, sees the springs as
+  // a = 4 k_s dt^2 / m a step and the spring damping and the viscosity together as
+  // b = (4 k_d / m + viscous rate) dt (the viscosity damps it whole: it is pure deformation).
+  // Position Verlet with the backward velocity keeps it bounded only while a + 2 b < 4 (b < 2
+  // follows); the checks above alone let a + 2 b reach 10.
+  const double a = 4 * ks * dt * dt / mass, b = (4 * kd / mass + viscous_rate()) * dt;
+  if (a + 2 * b >= 4)
+    return fail(
+        why, "dt = " + num(dt) +
+                 ": too large for the ring's fastest mode, 4 ks dt^2 / mass + 2 (4 kd / mass + " +
+                 "nu_rate) dt = " + num(a + 2 * b) + " must be < 4 (nu_rate = " +
+                 num(viscous_rate()) + ", the viscosity as the step applies it)");
   return true;
 }
 
@@ -124,5 +151,23 @@ ConstraintOrder parse_constraint_order(const std::string& name) {
 const char* to_string(ConstraintOrder order) { return detail::name_of(kConstraintOrders, order); }
 
 std::vector<std::string> constraint_order_names() { return detail::name_list(kConstraintOrders); }
+
+constexpr detail::EnumName<ViscosityStep> kViscositySteps[] = {
+    {ViscosityStep::explicit_euler, "explicit"}, {ViscosityStep::exponential, "exponential"}};
+
+ViscosityStep parse_viscosity_step(const std::string& name) {
+  return detail::parse_name(kViscositySteps, name, "viscosity-step");
+}
+
+const char* to_string(ViscosityStep step) { return detail::name_of(kViscositySteps, step); }
+
+void parse_name(const std::string& name, ConstraintOrder* value) {
+  *value = parse_constraint_order(name);
+}
+void parse_name(const std::string& name, ViscosityStep* value) {
+  *value = parse_viscosity_step(name);
+}
+std::vector<std::string> value_names(ConstraintOrder) { return constraint_order_names(); }
+std::vector<std::string> value_names(ViscosityStep) { return detail::name_list(kViscositySteps); }
 
 }  // namespace softdrop

@@ -143,7 +143,7 @@ StepConstants step_constants(const DropletParams& p) {
   k.inv_dt = 1.0 / p.dt;
   k.rest_length = p.rest_length();  // Simulation's rest_length()
   k.half_nrt = 0.5 * p.nrt;         // accumulate_pressure: 0.5 nRT / area
-  k.viscous = p.mass * p.viscosity;
+  k.viscous = p.mass * p.viscous_rate();
   k.spared_dilation = 1.0 - p.viscosity_dilation;
   k.h2m = p.dt * p.dt / p.mass;     // integrate
   return k;

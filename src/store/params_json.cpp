@@ -9,16 +9,18 @@ namespace softdrop {
 namespace {
 
 // Keys added after files already existed. A missing one reads as what older builds did: the
-// default for the constraint order, the viscosity's share on dilation (1) and the strategy (paper)
-// and its options, no rest test (0) for the rest test's keys.
+// default for the constraint order, the explicit viscosity step, the viscosity's share on dilation
+// (1), the strategy (paper) and its options, no rest test (0) for the rest test's keys.
 bool optional_key(const std::string& key) {
-  return key == "constraint-order" || key == "rest-window" || key == "rest-distance" || key == "strategy" ||
-         key == "target-success" || key == "history-length" || key == "temperature" || key == "half-life" ||
-         key == "relocate-every" || key == "viscosity-dilation";
+  return key == "constraint-order" || key == "rest-window" || key == "rest-distance" ||
+         key == "strategy" || key == "target-success" || key == "history-length" ||
+         key == "temperature" || key == "half-life" || key == "relocate-every" ||
+         key == "viscosity-dilation" || key == "viscosity-step";
 }
 // The stored enums go through the same names as the command line (their to_string and parse), so
 // an unknown stored name is refused in the parse's words instead of read as the first value.
-void parse_stored(const std::string& name, ConstraintOrder* order) { *order = parse_constraint_order(name); }
+void parse_stored(const std::string& name, ConstraintOrder* order) { parse_name(name, order); }
+void parse_stored(const std::string& name, ViscosityStep* step) { parse_name(name, step); }
 void parse_stored(const std::string& name, StrategyKind* kind) { *kind = parse_strategy(name); }
 
 template <class T>
@@ -27,6 +29,7 @@ void set_legacy(const std::string& key, T& value) {
     if (key == "rest-window" || key == "rest-distance") value = 0;
     if (key == "viscosity-dilation") value = 1;  // (the default is 0 now)
   }
+  if constexpr (std::is_same_v<T, ViscosityStep>) value = ViscosityStep::explicit_euler;
 }
 
 // The lists of stored options: key (= CLI long option name) and field. They are alike in shape

@@ -13,7 +13,7 @@ namespace {
 
 // What a scan needs of a droplet field: whether it exists and is numeric, and whether it takes
 // whole numbers. Every numeric field of visit_droplet_fields can be scanned, by its option name;
-// the enum (constraint-order) cannot.
+// the enums (constraint-order, viscosity-step) cannot.
 struct FieldKind {
   bool numeric = false, whole = false;
 };

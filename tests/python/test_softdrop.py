@@ -3,6 +3,7 @@ the program's columns; bad input raises ValueError with the library's one-line m
 import json
 import math
 import os
+import pathlib
 import subprocess
 import sys
 
@@ -44,6 +45,16 @@ def test_the_balloon_is_the_config_files():
     assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
 
 
+def test_the_fast_droplet_is_the_config_files():
+    """DropletParams.fast() is results/calibration/fast.toml, to the bit."""
+    params = softdrop.DropletParams.fast()
+    assert params.viscosity_step == "exponential" and params.dt == 6e-6
+    run = softdrop.simulate(softdrop.Medium.generate(), x0=250, params=params)
+    config = str(pathlib.Path(balloon.CONFIG).with_name("fast.toml"))
+    theirs = json.loads(cli("--config", config, "simulate", "--x0", "250", "--format", "json"))
+    assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
+
+
 def test_every_droplet_option_is_an_attribute_and_gives_the_programs_bits():
     params = softdrop.DropletParams()
     help_text = cli("simulate", "--help")
@@ -62,6 +73,15 @@ def test_every_droplet_option_is_an_attribute_and_gives_the_programs_bits():
     assert run.steps == theirs["run"]["steps"]
     with pytest.raises(ValueError, match="constraint-order = 'zigzag'"):
         params.constraint_order = "zigzag"
+    # The other enum, the viscosity's step, the same way; nu dt = 3.5 runs only exponentially.
+    params = softdrop.DropletParams(viscosity_step="exponential", viscosity=1e6)
+    assert params.viscosity_step == "exponential"
+    run = softdrop.simulate(medium, x0=250, params=params)
+    theirs = json.loads(cli("simulate", "--x0", "250", "--viscosity-step", "exponential", "--viscosity", "1e6",
+                            "--format", "json"))
+    assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
+    with pytest.raises(ValueError, match="viscosity-step = 'implicit'"):
+        params.viscosity_step = "implicit"
 
 
 def test_the_area_trace_is_the_programs(tmp_path):
