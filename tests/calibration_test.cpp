@@ -387,7 +387,7 @@ TEST(CalibrateCommand, TheFastConfigIsTheLibrarysFastDroplet) {
   EXPECT_EQ(j["run"]["tortuosity"].get<double>(), s.tortuosity);
   EXPECT_EQ(j["run"]["steps"].get<std::int64_t>(), s.steps);
   const RunSummary slow = Simulation(DropletParams{}, medium).run(250, RunOptions{});
-  EXPECT_GT(slow.steps, 1.5 * s.steps);  // dt is 1.7 times the defaults'
+  EXPECT_GT(2 * slow.steps, 3 * s.steps);  // dt is 1.7 times the defaults'
 }
 
 }  // namespace

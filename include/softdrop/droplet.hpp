@@ -101,10 +101,9 @@ struct DropletParams {
   /// calibrated droplet; results/calibration/balloon.toml, which also sets its grains, radii 8 to 16).
   static DropletParams balloon();
   /// The defaults' droplet stepped faster (results/calibration/fast.toml): the exponential
-  /// viscosity step with nu = 1.8656e5, the continuous viscosity the defaults' explicit step
-  /// applies at their dt (exp(-nu dt) = 1 - 1.37e5 x 3.5e-6), at dt = 6e-6. About 1.8 times the
-  /// droplets a second, with <T>(phi) within 0.03 of the defaults' (results/calibration/README.md,
-  /// the time step).
+  /// viscosity step at dt = 6e-6, 1.7 times the defaults', with nu = 2.8e5 chosen at that dt to
+  /// give the defaults' <T>(phi). About 1.8 times the droplets a second
+  /// (results/calibration/README.md, the time step).
   static DropletParams fast();
 
   bool IsValid(std::string* why) const;

@@ -4,8 +4,11 @@
 # nu = 1.8656e5 makes the exponential step take exp(-nu dt) = 1 - 1.37e5 x 3.5e-6 of the
 # deformation a step at the defaults' dt, what the defaults' explicit step takes; at other time
 # steps it is the same continuous viscosity. Shows how <T>(phi) and the run time depend on dt.
-# Writes time_step.csv (one row per dt), time_step_points.csv (one row per dt and porosity) and
-# time_step.png. About 9 minutes on 2 cores. SOFTDROP=path runs another build.
+# Then, at dt = 6e-6, three larger viscosities through the same droplets: the one that gives the
+# defaults' <T>(phi) is fast.toml's. Writes time_step.csv (one row per dt), time_step_points.csv
+# (one row per dt and porosity), time_step_viscosity.csv and time_step_viscosity_points.csv (the
+# same per viscosity at dt = 6e-6) and time_step.png. About 12 minutes on 2 cores. SOFTDROP=path
+# runs another build.
 #     bash results/calibration/time_step.sh
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -16,6 +19,10 @@ for dt in 1.75e-6 2.5e-6 3.5e-6 5e-6 6e-6 7e-6; do
 done
 "$BIN" calibrate --format csv --media 200 --droplets 20 --trace-media 0 --viscosity-step exponential \
   --viscosity 1.8656e5 "${settings[@]}" --csv time_step.csv --points time_step_points.csv > /dev/null
+"$BIN" calibrate --format csv --media 200 --droplets 20 --trace-media 0 --viscosity-step exponential \
+  --dt 6e-6 --setting "nu 2.0e5: viscosity=2.0e5" --setting "nu 2.3e5: viscosity=2.3e5" \
+  --setting "nu 2.8e5: viscosity=2.8e5" --csv time_step_viscosity.csv --points time_step_viscosity_points.csv \
+  > /dev/null
 /usr/bin/python3 - <<'PY'
 import matplotlib
 matplotlib.use("Agg")
@@ -30,8 +37,11 @@ defaults = defaults[defaults.setting == radius.setting[radius.radius == 8].iloc[
 fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
 for dt, group in points.groupby("dt"):
     left.errorbar(group.porosity, group.mean_t - group.paper_t, yerr=group.media_standard_error, marker="o", ms=3,
-                  capsize=2, label=f"exponential, δt = {dt:.3g}")
+                  capsize=2, label=f"exponential, ν = 1.8656e5, δt = {dt:.3g}")
 left.plot(defaults.porosity, defaults.mean_t - defaults.paper_t, "k--", lw=1, label="the defaults (explicit, 3.5e-06)")
+nu_rows, nu_points = pd.read_csv("time_step_viscosity.csv"), pd.read_csv("time_step_viscosity_points.csv")
+fast = nu_points[nu_points.setting == nu_rows.setting[nu_rows.viscosity == 2.8e5].iloc[0]]
+left.plot(fast.porosity, fast.mean_t - fast.paper_t, "k-", lw=2, label="fast.toml (exponential, 6e-06, ν = 2.8e5)")
 left.axhspan(-0.03, 0.03, color="0.9", label="within 0.03")
 left.axhline(0, color="k", lw=0.8)
 left.set_xlabel("porosity φ")

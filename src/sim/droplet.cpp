@@ -57,7 +57,7 @@ DropletParams DropletParams::balloon() {
 DropletParams DropletParams::fast() {
   DropletParams p;
   p.viscosity_step = ViscosityStep::exponential;
-  p.viscosity = 1.8656e5;
+  p.viscosity = 2.8e5;
   p.dt = 6e-6;
   return p;
 }
