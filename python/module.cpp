@@ -189,10 +189,11 @@ PYBIND11_MODULE(_core, m) {
   droplet.def_static("balloon", &DropletParams::balloon,
                      "The balloon: the droplet held at its stretch limit, as results/calibration/balloon.toml "
                      "(whose grains, radii 8 to 16, go to Medium.generate)");
-  droplet.def_static("fast", &DropletParams::fast,
-                     "The exponential viscosity step at 1.7 times the defaults' dt, nu = 2.8e5 "
-                     "giving their <T>(phi), "
-                     "as results/calibration/fast.toml: 1.4 to 1.8 times the droplets a second");
+  droplet.def_static(
+      "fast", &DropletParams::fast,
+      "The exponential viscosity step at 1.7 times the defaults' dt, nu = 2.8e5 giving "
+      "their <T>(phi), as results/calibration/fast.toml: 1.4 to 1.8 times the droplets "
+      "a second");
   bind_droplet_fields(droplet);
 
   py::class_<RunOptions>(m, "RunOptions", "When a run ends, and what it records")

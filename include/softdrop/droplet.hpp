@@ -27,7 +27,8 @@ const char* to_string(ConstraintOrder order);
 ///   force; u falls by (1 - nu dt) a step, which bounds nu dt <= 0.5 (the reference).
 /// - exponential: the same force with m nu replaced by m (1 - exp(-nu dt)) / dt, so u falls by
 ///   exp(-nu dt) a step, the exact decay of du/dt = -nu u: any nu dt is stable, and dt is bounded
-///   by the springs and contacts alone. The two agree to first order in nu dt.
+///   by the springs, the contacts and the ring's fastest mode (IsValid). The two agree to first
+///   order in nu dt.
 enum class ViscosityStep { explicit_euler, exponential };
 /// Parses "explicit" / "exponential"; throws std::invalid_argument naming the value.
 ViscosityStep parse_viscosity_step(const std::string& name);
@@ -102,7 +103,7 @@ struct DropletParams {
   static DropletParams balloon();
   /// The defaults' droplet stepped faster (results/calibration/fast.toml): the exponential
   /// viscosity step at dt = 6e-6, 1.7 times the defaults', with nu = 2.8e5 chosen at that dt to
-  /// give the defaults' <T>(phi). About 1.8 times the droplets a second
+  /// give the defaults' <T>(phi). 1.4 to 1.8 times the droplets a second
   /// (results/calibration/README.md, the time step).
   static DropletParams fast();
 
@@ -180,8 +181,7 @@ void visit_droplet_fields(F&& f, Params&... p) {
     p.viscosity_dilation...);
   f(DropletField{"viscosity-step", U::lanes,
                  "explicit (nu's force integrated as the others, nu dt <= 0.5) or exponential "
-                 "(deformation decays by "
-                 "exp(-nu dt) a step: any nu dt)"},
+                 "(deformation decays by exp(-nu dt) a step: any nu dt)"},
     p.viscosity_step...);
 }
 
