@@ -66,8 +66,8 @@ double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock:
 // --droplet: the droplet of every scene, and the grain radii of its media.
 DropletParams scene_droplet;
 double r_min = MediumOptions{}.r_min, r_max = MediumOptions{}.r_max;
-bool balloon = false;
 std::string droplet_name = "defaults";
+bool balloon() { return droplet_name == "balloon"; }
 
 // Steps of one droplet, re-dropped from a new x every 20 000 steps so that every step is in the
 // medium (as bench_step does); `steps` in total.
@@ -164,7 +164,7 @@ Work search(int lambda, int threads, int generations = 0, ConstraintOrder order 
   MediumOptions mo;  // optimize's default scene (OptimizeArgs), or the balloon's
   mo.kind = MediumKind::non_overlapping;
   mo.grains = 20;
-  if (balloon) mo.grains = 60, mo.width = mo.height = 300, mo.r_min = r_min, mo.r_max = r_max;
+  if (balloon()) mo.grains = 60, mo.width = mo.height = 300, mo.r_min = r_min, mo.r_max = r_max;
   Configuration best;
   for (mo.seed = 1;; ++mo.seed) {  // the first medium whose droplet passes, as optimize does
     try {
@@ -255,7 +255,6 @@ int main(int argc, char** argv) {
         return 2;
       }
       droplet_name = d;
-      balloon = d == "balloon";
     } else {
       std::cerr << "bench_scenes: unknown option " << a << "\n";
       return 2;
@@ -270,7 +269,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   limit_constraint_vector_width(static_cast<VectorWidth>(width));
-  if (balloon) scene_droplet = DropletParams::balloon(), r_min = 8, r_max = 16;
+  if (balloon()) scene_droplet = DropletParams::balloon(), r_min = 8, r_max = 16;
   if (droplet_name == "fast") scene_droplet = DropletParams::fast();
   const Medium m200 = bench::medium_200(500, r_min, r_max), m5000 = bench::medium_200(2500, r_min, r_max);
   const std::vector<std::pair<std::string, std::function<Work()>>> scenes{

@@ -180,6 +180,7 @@ class Simulation {
   GrainGrid grid_;
   DropletState state_;
   double rest_length_ = 0, area0_ = 0, area_ = 0, start_y_ = 0;
+  double viscous_ = 0;  ///< m times params_.viscous_rate(), the viscosity stage's coefficient
   double last_penetration_ = 0;
   std::vector<std::uint8_t> touched_;  ///< per medium grain
   /// Spring forces of the step, 4 x N: on the first end (-0 for a spring of zero length) and for

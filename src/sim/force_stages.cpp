@@ -190,7 +190,7 @@ void Simulation::accumulate_viscosity() {
   // rest, so it sums to zero force and zero torque (the lane block's kernel, at width 1).
   lanes::StepConstants k;  // the viscosity's constants (the others are the lane block's)
   k.inv_dt = 1.0 / params_.dt;
-  k.viscous = params_.mass * params_.viscous_rate();
+  k.viscous = viscous_;
   k.spared_dilation = 1.0 - params_.viscosity_dilation;
   lanes::scalar::viscosity_k<1>(k, state_.x.data(), state_.y.data(), state_.px.data(),
                                 state_.py.data(), state_.fx.data(), state_.fy.data(), state_.size());

@@ -67,6 +67,7 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
   if (!params.IsValid(&why)) throw std::invalid_argument(why);
   if (!medium.IsValid(&why)) throw std::invalid_argument(why);
   rest_length_ = params.rest_length();
+  viscous_ = params.mass * params.viscous_rate();
   area0_ = params.resting_area();
   // Only masses are tested against grains; a grain narrower than an edge could slip between two.
   const double longest_edge = (1 + params.max_strain) * rest_length_;

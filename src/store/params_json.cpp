@@ -19,8 +19,10 @@ bool optional_key(const std::string& key) {
 }
 // The stored enums go through the same names as the command line (their to_string and parse), so
 // an unknown stored name is refused in the parse's words instead of read as the first value.
-void parse_stored(const std::string& name, ConstraintOrder* order) { parse_name(name, order); }
-void parse_stored(const std::string& name, ViscosityStep* step) { parse_name(name, step); }
+template <class DropletEnum>  // the droplet's enums (constraint order, viscosity step)
+void parse_stored(const std::string& name, DropletEnum* value) {
+  parse_name(name, value);
+}
 void parse_stored(const std::string& name, StrategyKind* kind) { *kind = parse_strategy(name); }
 
 template <class T>
