@@ -197,9 +197,11 @@ TEST(Droplet, TheViscositySparesTheRingsDilationOnlyWhenAsked) {
   const DropletParams p;
   const double delta = 25;  // 1/time
   double torque = 0, size = 0;
-  // Damped as any deformation: each mass feels -m nu delta r_i.
+  // Damped as any deformation: each mass feels -m rate delta r_i (rate: viscous_rate(), nu's
+  // coefficient for the step).
   std::vector<double> f = viscous_forces(1.0, delta, &torque, &size);
-  const double expected = p.mass * p.viscosity * delta * p.resting_radius();  // (the ring starts at rest)
+  const double expected =
+      p.mass * p.viscous_rate() * delta * p.resting_radius();  // (the ring starts at rest)
   for (std::size_t k = 0; k < f.size(); k += 2)
     EXPECT_NEAR(std::hypot(f[k], f[k + 1]), expected, 1e-6 * expected);
   EXPECT_LT(std::abs(torque), 1e-9 * size * p.radius);

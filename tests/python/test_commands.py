@@ -175,7 +175,9 @@ def test_tables_have_the_databases_columns_and_types(tmp_path):
                                            "tortuosity", "steps"]
     assert w["droplets"].dtypes["steps"] == np.int64 and w["droplets"].dtypes["tortuosity"] == np.float64
     passed = w["droplets"]["outcome"] == "passed"
-    assert w["droplets"].loc[~passed, "tortuosity"].isna().all() and (w["droplets"].loc[passed, "tortuosity"] >= 1).all()
+    # T >= 1 up to the rounding of a path summed over thousands of steps (a straight fall gives 1 +- 1e-15)
+    assert w["droplets"].loc[~passed, "tortuosity"].isna().all()
+    assert (w["droplets"].loc[passed, "tortuosity"] >= 1 - 1e-12).all()
 
 
 @pytest.mark.parametrize("call, says", [

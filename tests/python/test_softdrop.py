@@ -45,12 +45,13 @@ def test_the_balloon_is_the_config_files():
     assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
 
 
-def test_the_fast_droplet_is_the_config_files():
-    """DropletParams.fast() is results/calibration/fast.toml, to the bit."""
-    params = softdrop.DropletParams.fast()
-    assert params.viscosity_step == "exponential" and params.dt == 6e-6
+def test_the_explicit_step_droplet_is_the_config_files():
+    """DropletParams.explicit_step() is results/calibration/explicit.toml, to the bit."""
+    params = softdrop.DropletParams.explicit_step()
+    assert params.viscosity_step == "explicit" and params.dt == 3.5e-6
+    assert softdrop.DropletParams().viscosity_step == "exponential"
     run = softdrop.simulate(softdrop.Medium.generate(), x0=250, params=params)
-    config = str(pathlib.Path(balloon.CONFIG).with_name("fast.toml"))
+    config = str(pathlib.Path(balloon.CONFIG).with_name("explicit.toml"))
     theirs = json.loads(cli("--config", config, "simulate", "--x0", "250", "--format", "json"))
     assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
 
