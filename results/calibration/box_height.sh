@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# The defaults in boxes of other heights: the calibration's 6 porosities x 10 overlapping media x 20
-# droplets in boxes 500 wide and 200 to 500 high (no area traces). Shows what the box's depth does
-# to the passage at low porosity and to <T>. Writes box_height.csv (one row per height),
-# box_height_points.csv (one row per height and porosity) and box_height.png. Under a minute on
-# 2 cores. SOFTDROP=path runs another build.
+# The explicit droplet (explicit.toml, the defaults' <T> and passage) in boxes of other heights: the
+# calibration's 6 porosities x 10 overlapping media x 20 droplets in boxes 500 wide and 200 to 500
+# high (no area traces). Shows what the box's depth does to the passage at low porosity and to <T>.
+# Writes box_height.csv (one row per height), box_height_points.csv (one row per height and
+# porosity) and box_height.png. Under a minute on 2 cores. SOFTDROP=path runs another build.
 #     bash results/calibration/box_height.sh
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -12,7 +12,7 @@ tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 for h in 200 250 300 350 400 450 500; do
   echo "box_height.sh: height $h" >&2
-  "$BIN" calibrate --format csv --quiet --setting "height $h:" --height "$h" --trace-media 0 \
+  "$BIN" calibrate --format csv --quiet --config explicit.toml --setting "height $h:" --height "$h" --trace-media 0 \
     --csv "$tmp/$h.csv" --points "$tmp/${h}_points.csv" > /dev/null
 done
 /usr/bin/python3 - "$tmp" <<'PY'

@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# The defaults with a smaller droplet, over the paper's number of media: the calibration's six
-# porosities x 200 media x 20 droplets (no area traces) for droplet radii 4 to 8 in the same grains
-# (radii 16 to 48) and box (500 x 500), on overlapping media and on non-overlapping ones (surface
-# gaps of 13 % of the larger radius). nRT scales with R^2, so the springs rest at the same 5 %
-# strain; every other parameter is the defaults'. Shows what the droplet's size and the kind of
-# medium do to the passage at low porosity and to <T>. Writes radius.csv (one row per radius),
-# radius_points.csv (one row per radius and porosity), the same for non-overlapping media
-# (radius_non_overlapping.csv, radius_non_overlapping_points.csv) and radius.png. About 16 minutes
-# on 2 cores. SOFTDROP=path runs another build.
+# The explicit droplet (explicit.toml, the defaults' <T> and passage) with a smaller droplet, over
+# the paper's number of media: the calibration's six porosities x 200 media x 20 droplets (no area
+# traces) for droplet radii 4 to 8 in the same grains (radii 16 to 48) and box (500 x 500), on
+# overlapping media and on non-overlapping ones (surface gaps of 13 % of the larger radius). nRT
+# scales with R^2, so the springs rest at the same 5 % strain; every other parameter is
+# explicit.toml's. Shows what the droplet's size and the kind of medium do to the passage at low
+# porosity and to <T>. Writes radius.csv (one row per radius), radius_points.csv (one row per radius
+# and porosity), the same for non-overlapping media (radius_non_overlapping.csv,
+# radius_non_overlapping_points.csv) and radius.png. About 16 minutes on 2 cores. SOFTDROP=path runs
+# another build.
 #     bash results/calibration/radius.sh
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -17,9 +18,9 @@ for r in 4 5 6 7 8; do
   nrt=$(awk -v r="$r" 'BEGIN { printf "%.17g", 2.29e9 * r * r / 64 }')
   settings+=(--setting "radius $r: radius=$r nrt=$nrt")
 done
-"$BIN" calibrate --format csv --media 200 --droplets 20 --trace-media 0 "${settings[@]}" \
+"$BIN" calibrate --format csv --config explicit.toml --media 200 --droplets 20 --trace-media 0 "${settings[@]}" \
   --csv radius.csv --points radius_points.csv > /dev/null
-"$BIN" calibrate --format csv --kind non-overlapping --media 200 --droplets 20 --trace-media 0 "${settings[@]}" \
+"$BIN" calibrate --format csv --config explicit.toml --kind non-overlapping --media 200 --droplets 20 --trace-media 0 "${settings[@]}" \
   --csv radius_non_overlapping.csv --points radius_non_overlapping_points.csv > /dev/null
 /usr/bin/python3 - <<'PY'
 import matplotlib
