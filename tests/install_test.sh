@@ -1,18 +1,27 @@
 #!/usr/bin/env bash
 # Installs the build into a scratch prefix (cmake --install), builds examples/library/push_droplet.cpp
 # against the installed headers and libraries only, and checks that it gives the program's own
-# tortuosity for the same droplet, to the last digit.
+# tortuosity for the same droplet, to the last digit; the installed droplet configs are the
+# options they stand for.
 #   bash tests/install_test.sh BUILD_DIR SOURCE_DIR CXX
 set -euo pipefail
 build=$(realpath "$1"); src=$(realpath "$2"); cxx=$3
 prefix=$(mktemp -d); trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" > /dev/null
-for f in bin/softdrop include/softdrop/simulation.hpp include/softdrop/version.hpp lib/libsoftdrop_sim.a; do
+for f in bin/softdrop include/softdrop/simulation.hpp include/softdrop/version.hpp lib/libsoftdrop_sim.a \
+         share/softdrop/explicit.toml share/softdrop/balloon.toml; do
   [[ -e $prefix/$f ]] || { echo "install_test: $f was not installed"; exit 1; }
 done
 "$cxx" -std=c++20 -O2 "$src/examples/library/push_droplet.cpp" -I "$prefix/include" -L "$prefix/lib" \
   -lsoftdrop_sim -lsoftdrop_media -lsoftdrop_util -ltbb -lgmp -lmpfr -o "$prefix/push_droplet"
 mine=$("$prefix/push_droplet" 250 | sed -n 's/^tortuosity //p')
-theirs=$("$prefix/bin/softdrop" simulate --x0 250 --format json | sed -n 's/^ *"tortuosity": \([^,]*\),*$/\1/p')
+t() { sed -n 's/^ *"tortuosity": \([^,]*\),*$/\1/p;T;q'; }  # the run's T in simulate's JSON
+theirs=$("$prefix/bin/softdrop" simulate --x0 250 --format json | t)
 echo "library: T = $mine; softdrop simulate: T = $theirs"
 [[ -n $mine && $(printf '%.17g' "$mine") == $(printf '%.17g' "$theirs") ]]
+# The installed explicit-step config gives the explicit step's droplet: the options it stands for.
+installed=$("$prefix/bin/softdrop" --config "$prefix/share/softdrop/explicit.toml" simulate --x0 250 --format json | t)
+options=$("$prefix/bin/softdrop" simulate --x0 250 --viscosity-step explicit --viscosity 1.37e5 --dt 3.5e-6 \
+  --format json | t)
+echo "explicit.toml: T = $installed; its options: T = $options"
+[[ -n $installed && $installed == "$options" && $installed != "$theirs" ]]
