@@ -90,8 +90,8 @@ struct DropletParams {
   double inflated_area() const;
   /// Circumradius of the ring at rest in free fall: the regular N-gon on which the springs'
   /// tension balances the gas, k_s sin(pi/N) (2 rho sin(pi/N) - d0) rho = nRT / N, or R itself
-  /// when the gas would stretch the springs past their limit (a balloon). A weak
-  /// gas leaves the springs near their rest length d0. (length)
+  /// when the gas would stretch the springs past their limit (a balloon). A weak gas leaves the
+  /// springs near their rest length d0. (length)
   double resting_radius() const;
   /// Area of the ring at rest, the regular N-gon of circumradius resting_radius(): S0 of the
   /// area ratios a run reports.
