@@ -91,6 +91,30 @@ TEST(Cli, SimulateWritesJsonSummaryAndCsvFiles) {
   EXPECT_TRUE(std::filesystem::exists(paths));
 }
 
+// A standard error needs two passed droplets. With one, the table says there is none (not "+- 0")
+// and the JSON holds null; with more, both give the same number.
+TEST(Cli, SimulateGivesNoStandardErrorForOnePassedDroplet) {
+  const std::string one = "simulate --porosity 0.7 --droplets 5";
+  const Result table = run(one), json = run(one + " --format json");
+  ASSERT_EQ(table.code, 0) << table.err;
+  ASSERT_EQ(json.code, 0) << json.err;
+  const auto j = nlohmann::json::parse(json.out);
+  ASSERT_EQ(j["passed"], 1) << "the scene no longer passes exactly one droplet: pick another";
+  EXPECT_TRUE(j["standard_error"].is_null());
+  EXPECT_NE(table.out.find(" (one droplet passed: no standard error)\n"), std::string::npos)
+      << table.out;
+  EXPECT_EQ(table.out.find("+-"), std::string::npos) << table.out;
+
+  const Result many = run("simulate --porosity 0.9 --droplets 5 --seed 3");
+  ASSERT_EQ(many.code, 0) << many.err;
+  const auto k =
+      nlohmann::json::parse(run("simulate --porosity 0.9 --droplets 5 --seed 3 --format json").out);
+  ASSERT_GT(k["passed"].get<int>(), 1);
+  std::ostringstream se;
+  se << " +- " << k["standard_error"].get<double>() << " (standard error)\n";
+  EXPECT_NE(many.out.find(se.str()), std::string::npos) << many.out;
+}
+
 TEST(Cli, ConfigFileSetsOptions) {
   const std::string config = temp("config.toml");
   std::ofstream(config) << "porosity = 0.9\nradius = 8\n";

@@ -139,7 +139,13 @@ int run_simulate(SimulateArgs& a) {
   } else {
     table << "droplets     " << stats.droplets << ": " << stats.passed << " passed, " << stats.stuck
           << " stuck, " << stats.timeout << " timeout, " << stats.diverged << " diverged\n";
-    if (stats.passed) table << "mean T       " << fmt(stats.mean_tortuosity, 8) << " +- " << stats.standard_error << " (standard error)\n";
+    // One passed droplet has no spread to measure: say so rather than print an error of 0.
+    if (stats.passed > 1)
+      table << "mean T       " << fmt(stats.mean_tortuosity, 8) << " +- " << stats.standard_error
+            << " (standard error)\n";
+    else if (stats.passed == 1)
+      table << "mean T       " << fmt(stats.mean_tortuosity, 8)
+            << " (one droplet passed: no standard error)\n";
     table << "stuck        " << stats.stuck_fraction << " of droplets\n";
   }
   table << "speed        " << total_steps / seconds << " steps/s (" << seconds << " s wall)\n";
