@@ -1,15 +1,15 @@
 #!/usr/bin/env bash
 # Installs the build into a scratch prefix (cmake --install), builds examples/library/push_droplet.cpp
 # against the installed headers and libraries only, and checks that it gives the program's own
-# tortuosity for the same droplet, to the last digit; the installed droplet configs are the
-# options they stand for.
+# tortuosity for the same droplet, to the last digit; the installed configs are the options they
+# stand for.
 #   bash tests/install_test.sh BUILD_DIR SOURCE_DIR CXX
 set -euo pipefail
 build=$(realpath "$1"); src=$(realpath "$2"); cxx=$3
 prefix=$(mktemp -d); trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" > /dev/null
 for f in bin/softdrop include/softdrop/simulation.hpp include/softdrop/version.hpp lib/libsoftdrop_sim.a \
-         share/softdrop/explicit.toml share/softdrop/balloon.toml; do
+         share/softdrop/explicit.toml share/softdrop/balloon.toml share/softdrop/passage.toml; do
   [[ -e $prefix/$f ]] || { echo "install_test: $f was not installed"; exit 1; }
 done
 "$cxx" -std=c++20 -O2 "$src/examples/library/push_droplet.cpp" -I "$prefix/include" -L "$prefix/lib" \
@@ -24,4 +24,9 @@ installed=$("$prefix/bin/softdrop" --config "$prefix/share/softdrop/explicit.tom
 options=$("$prefix/bin/softdrop" simulate --x0 250 --viscosity-step explicit --viscosity 1.37e5 --dt 3.5e-6 \
   --format json | t)
 echo "explicit.toml: T = $installed; its options: T = $options"
+[[ -n $installed && $installed == "$options" && $installed != "$theirs" ]]
+# The installed passage config sets the grains as well as the droplet.
+installed=$("$prefix/bin/softdrop" --config "$prefix/share/softdrop/passage.toml" simulate --x0 250 --format json | t)
+options=$("$prefix/bin/softdrop" simulate --x0 250 --r-min 28 --r-max 48 --radius 6 --kc 3e8 --format json | t)
+echo "passage.toml: T = $installed; its options: T = $options"
 [[ -n $installed && $installed == "$options" && $installed != "$theirs" ]]

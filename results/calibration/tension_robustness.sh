@@ -7,7 +7,8 @@
 # timed out and diverged, and their mean T. About 10 minutes on 2 cores. SOFTDROP=path runs
 # another build.
 #   bash tension_robustness.sh [CONFIG OUT]: another droplet (a config file, or "defaults" for the
-#   program's defaults) through the same droplets, written to OUT.
+#   program's defaults) through the same droplets, written to OUT. NON_OVERLAPPING="0.6 0.7 ..."
+#   leaves out the non-overlapping porosities that a config's grains cannot reach.
 set -euo pipefail
 cd "$(dirname "$0")"
 BIN=${SOFTDROP:-../../build/softdrop}
@@ -18,8 +19,11 @@ DROPLET=()
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 echo "porosity_target,kind,medium_seed,droplets,passed,stuck,timeout,diverged,mean_t" > "$tmp/out.csv"
+POROSITIES="0.5 0.6 0.7 0.8 0.9 0.95"
 for kind in overlapping non-overlapping; do
-  for phi in 0.5 0.6 0.7 0.8 0.9 0.95; do
+  porosities=$POROSITIES
+  [[ $kind == overlapping ]] || porosities=${NON_OVERLAPPING:-$POROSITIES}
+  for phi in $porosities; do
     echo "tension_robustness.sh: $CONFIG, $kind, phi = $phi" >&2
     for medium in 1 2 3 4 5 6 7 8 9 10; do
       "$BIN" simulate --quiet "${DROPLET[@]}" --kind "$kind" --porosity "$phi" --medium-seed $((1000 + medium)) \
