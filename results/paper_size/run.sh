@@ -2,7 +2,7 @@
 # Tortuosity against porosity at the paper's size: 10 porosities (0.45 to 0.9) x 200 overlapping
 # media x 200 droplets, 400 000 droplets, on the defaults; then the paper's fit (weighed by the
 # media's standard errors, and again by the droplets') and its two averagings in groups of 100
-# media. About 40 minutes on 2 cores. An interrupted run continues where it stopped: the store,
+# media. About 16 minutes on 2 cores. An interrupted run continues where it stopped: the store,
 # paper.db (not committed), keeps every finished medium. SOFTDROP=path runs another build.
 #     bash results/paper_size/run.sh
 set -euo pipefail
