@@ -19,14 +19,15 @@ t() { sed -n 's/^ *"tortuosity": \([^,]*\),*$/\1/p;T;q'; }  # the run's T in sim
 theirs=$("$prefix/bin/softdrop" simulate --x0 250 --format json | t)
 echo "library: T = $mine; softdrop simulate: T = $theirs"
 [[ -n $mine && $(printf '%.17g' "$mine") == $(printf '%.17g' "$theirs") ]]
-# The installed explicit-step config gives the explicit step's droplet: the options it stands for.
-installed=$("$prefix/bin/softdrop" --config "$prefix/share/softdrop/explicit.toml" simulate --x0 250 --format json | t)
-options=$("$prefix/bin/softdrop" simulate --x0 250 --viscosity-step explicit --viscosity 1.37e5 --dt 3.5e-6 \
-  --format json | t)
-echo "explicit.toml: T = $installed; its options: T = $options"
-[[ -n $installed && $installed == "$options" && $installed != "$theirs" ]]
-# The installed passage config sets the grains as well as the droplet.
-installed=$("$prefix/bin/softdrop" --config "$prefix/share/softdrop/passage.toml" simulate --x0 250 --format json | t)
-options=$("$prefix/bin/softdrop" simulate --x0 250 --r-min 28 --r-max 48 --radius 6 --kc 3e8 --format json | t)
-echo "passage.toml: T = $installed; its options: T = $options"
-[[ -n $installed && $installed == "$options" && $installed != "$theirs" ]]
+# An installed config gives the T of the options it stands for, which differs from the defaults'.
+#   config_is FILE OPTION...
+config_is() {
+  local file=$1; shift
+  local installed options
+  installed=$("$prefix/bin/softdrop" --config "$prefix/share/softdrop/$file" simulate --x0 250 --format json | t)
+  options=$("$prefix/bin/softdrop" simulate --x0 250 "$@" --format json | t)
+  echo "$file: T = $installed; its options: T = $options"
+  [[ -n $installed && $installed == "$options" && $installed != "$theirs" ]]
+}
+config_is explicit.toml --viscosity-step explicit --viscosity 1.37e5 --dt 3.5e-6
+config_is passage.toml --r-min 28 --r-max 48 --radius 6 --kc 3e8  # the grains as well as the droplet
