@@ -194,6 +194,10 @@ PYBIND11_MODULE(_core, m) {
       "The defaults' droplet with the explicit viscosity step (the reference) at the dt it needs, "
       "3.5e-6, and nu = 1.37e5, as results/calibration/explicit.toml: the defaults' <T>(phi) "
       "within 0.008, at 1.7 times the steps");
+  droplet.def_static(
+      "passage", &DropletParams::passage,
+      "A smaller droplet with a stiffer ring, for more passage at low porosity, as "
+      "results/calibration/passage.toml (whose grains, radii 26 to 50, go to Medium.generate)");
   bind_droplet_fields(droplet);
 
   py::class_<RunOptions>(m, "RunOptions", "When a run ends, and what it records")

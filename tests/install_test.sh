@@ -30,4 +30,4 @@ config_is() {
   [[ -n $installed && $installed == "$options" && $installed != "$theirs" ]]
 }
 config_is explicit.toml --viscosity-step explicit --viscosity 1.37e5 --dt 3.5e-6
-config_is passage.toml --r-min 28 --r-max 48 --radius 6 --kc 3e8  # the grains as well as the droplet
+config_is passage.toml --r-min 26 --r-max 50 --radius 5 --nrt 1.59e9 --kc 2.5e8 --viscosity 1e6  # the grains as well as the droplet

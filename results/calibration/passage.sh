@@ -1,13 +1,14 @@
 #!/usr/bin/env bash
-# passage.toml (a droplet of radius 6 among grains of radii 28 to 48) against the defaults, as the
+# passage.toml (a droplet of radius 5 among grains of radii 26 to 50) against the defaults, as the
 # calibration measures a setting but on 200 media a porosity (6 porosities x 200 overlapping media
 # x 20 droplets, area traces through 4 non-overlapping media at phi = 0.79, the resting test), with
 # two seeds of media and starts; then passage.toml through the robustness droplets of
-# tension_robustness.sh (non-overlapping media from phi = 0.6: at 0.5 its grains jam).
+# tension_robustness.sh (its non-overlapping media at phi = 0.5 with gaps of 0.08: at the default
+# 0.13 its grains jam).
 # Writes passage.csv (one row per droplet and seed), passage_points.csv (one row per droplet, seed
 # and porosity), passage.png and passage_robustness.csv. About 5 minutes on 2 cores.
 #     bash results/calibration/passage.sh
-#     bash results/calibration/passage.sh paper   # and the paper-size sweep of passage.toml, 16 minutes more
+#     bash results/calibration/passage.sh paper   # and the paper-size sweep of passage.toml, 24 minutes more
 # The paper-size sweep writes passage_paper_points.csv and passage_paper_fit.json; its store,
 # passage_paper.db (not committed), continues where it stopped. SOFTDROP=path runs another build.
 set -euo pipefail
@@ -62,7 +63,7 @@ right.legend(fontsize=7)
 fig.tight_layout()
 fig.savefig("passage.png", dpi=110)
 PY
-SOFTDROP=$BIN NON_OVERLAPPING="0.6 0.7 0.8 0.9 0.95" bash tension_robustness.sh passage.toml passage_robustness.csv
+SOFTDROP=$BIN NON_OVERLAPPING="0.5:0.08 0.6 0.7 0.8 0.9 0.95" bash tension_robustness.sh passage.toml passage_robustness.csv
 if [[ ${1:-} == paper ]]; then
   "$BIN" sweep --preset paper --config passage.toml --db passage_paper.db > /dev/null
   "$BIN" sweep-report --db passage_paper.db --format csv > passage_paper_points.csv

@@ -8,7 +8,9 @@
 # another build.
 #   bash tension_robustness.sh [CONFIG OUT]: another droplet (a config file, or "defaults" for the
 #   program's defaults) through the same droplets, written to OUT. NON_OVERLAPPING="0.6 0.7 ..."
-#   leaves out the non-overlapping porosities that a config's grains cannot reach.
+#   leaves out the non-overlapping porosities that a config's grains cannot reach; an entry
+#   "0.5:0.08" makes that porosity's media with surface gaps of 0.08 (the kind column then says
+#   "non-overlapping gap 0.08").
 set -euo pipefail
 cd "$(dirname "$0")"
 BIN=${SOFTDROP:-../../build/softdrop}
@@ -23,12 +25,15 @@ POROSITIES="0.5 0.6 0.7 0.8 0.9 0.95"
 for kind in overlapping non-overlapping; do
   porosities=$POROSITIES
   [[ $kind == overlapping ]] || porosities=${NON_OVERLAPPING:-$POROSITIES}
-  for phi in $porosities; do
-    echo "tension_robustness.sh: $CONFIG, $kind, phi = $phi" >&2
+  for entry in $porosities; do
+    phi=${entry%%:*}
+    GAP=() label=$kind
+    if [[ $entry == *:* ]]; then GAP=(--gap "${entry#*:}") label="$kind gap ${entry#*:}"; fi
+    echo "tension_robustness.sh: $CONFIG, $label, phi = $phi" >&2
     for medium in 1 2 3 4 5 6 7 8 9 10; do
-      "$BIN" simulate --quiet "${DROPLET[@]}" --kind "$kind" --porosity "$phi" --medium-seed $((1000 + medium)) \
+      "$BIN" simulate --quiet "${DROPLET[@]}" --kind "$kind" "${GAP[@]}" --porosity "$phi" --medium-seed $((1000 + medium)) \
         --seed $((2000 + medium)) --droplets 84 --runs "$tmp/runs.csv" > /dev/null
-      /usr/bin/python3 - "$tmp/runs.csv" "$phi" "$kind" $((1000 + medium)) >> "$tmp/out.csv" <<'PY'
+      /usr/bin/python3 - "$tmp/runs.csv" "$phi" "$label" $((1000 + medium)) >> "$tmp/out.csv" <<'PY'
 import sys
 import pandas as pd
 runs = pd.read_csv(sys.argv[1])

@@ -63,6 +63,15 @@ DropletParams DropletParams::explicit_step() {
   return p;
 }
 
+DropletParams DropletParams::passage() {
+  DropletParams p;
+  p.radius = 5;
+  p.nrt = 1.59e9;
+  p.kc = 2.5e8;
+  p.viscosity = 1e6;
+  return p;
+}
+
 namespace {
 // "must be > 0", "must be in (0, 0.01]", "must be finite": the range in words, its bounds printed
 // as the field's type prints.

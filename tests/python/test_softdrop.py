@@ -56,6 +56,16 @@ def test_the_explicit_step_droplet_is_the_config_files():
     assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
 
 
+def test_the_passage_droplet_is_the_config_files():
+    """DropletParams.passage() on grains of radii 26 to 50 is results/calibration/passage.toml, to the bit."""
+    params = softdrop.DropletParams.passage()
+    assert params.radius == 5 and params.viscosity == 1e6
+    run = softdrop.simulate(softdrop.Medium.generate(r_min=26, r_max=50), x0=250, params=params)
+    config = str(pathlib.Path(balloon.CONFIG).with_name("passage.toml"))
+    theirs = json.loads(cli("--config", config, "simulate", "--x0", "250", "--format", "json"))
+    assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
+
+
 def test_every_droplet_option_is_an_attribute_and_gives_the_programs_bits():
     params = softdrop.DropletParams()
     help_text = cli("simulate", "--help")
