@@ -6,7 +6,7 @@
 # tension_robustness.sh (its non-overlapping media at phi = 0.5 with gaps of 0.08: at the default
 # 0.13 its grains jam).
 # Writes passage.csv (one row per droplet and seed), passage_points.csv (one row per droplet, seed
-# and porosity), passage.png and passage_robustness.csv. About 5 minutes on 2 cores.
+# and porosity), passage.png and passage_robustness.csv. About 15 minutes on 2 cores.
 #     bash results/calibration/passage.sh
 #     bash results/calibration/passage.sh paper   # and the paper-size sweep of passage.toml, 24 minutes more
 # The paper-size sweep writes passage_paper_points.csv and passage_paper_fit.json; its store,

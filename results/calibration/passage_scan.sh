@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The scan behind passage.toml: a smaller droplet (R = 3.5 to 6, nRT for about 9 % spring strain at
 # rest) with stiffer contacts and more internal viscosity, among grains of radii 28 to 48 (media
-# seed 2), 26 to 52 (seed 1) and the defaults' 16 to 48 (seed 1); each setting as the calibration
-# measures it, on 200 overlapping media a porosity (6 porosities x 200 media x 20 droplets, area
-# traces through 4 non-overlapping media at phi = 0.79).
+# seed 2), 26 to 50, 28 to 52, 30 to 52 and the defaults' 16 to 48 (seed 1); each setting as the
+# calibration measures it, on 200 overlapping media a porosity (6 porosities x 200 media x 20
+# droplets, area traces through 4 non-overlapping media at phi = 0.79).
 # Writes passage_scan.csv (one row per setting and grain range) and passage_scan_points.csv (one
 # row per setting, grain range and porosity). About 35 minutes on 2 cores. SOFTDROP=path runs
 # another build.
