@@ -32,7 +32,8 @@ TEST(Cli, BadInputGivesOneLineNamingTheParameterAndNoOutput) {
         Case{"--bogus 3", "bogus"}, Case{"--droplets abc", "droplets"},
         Case{"--medium " + temp("does_not_exist.json"), "does_not_exist.json"},
         Case{"--medium " + bad_grains, "bad.csv"}, Case{"--kind lattice", "kind"},
-        Case{"--x0 inf", "x0"}, Case{"--width 1e12 --height 1e12", "1e7"}}) {
+        Case{"--x0 inf", "x0"}, Case{"--width 1e12 --height 1e12", "width = 1e+12: must be in (0, 1e9]"},
+        Case{"--width 1e6 --height 1e6", "1e7"}}) {
     std::filesystem::remove(out);
     const Result r = run("simulate --droplets 2 --runs " + out + " " + c.args);
     SCOPED_TRACE(c.args + " -> " + r.err);

@@ -101,7 +101,8 @@ class History {
   /// and none without its generation. Cheaper than generations() on a long run.
   virtual void check_run(std::int64_t run) = 0;
   /// The arrangement kept as of `generation` (the last accepted one at or before it), with its
-  /// tortuosity, touched grains and path; generation < 0 means the latest. For the paper's
+  /// tortuosity, touched grains and path; generation -1 means the latest. Throws
+  /// std::invalid_argument for a generation outside -1 and 0 to the run's last. For the paper's
   /// strategy this is the best as of then; for others the best is at the run's best_generation.
   virtual Configuration configuration(std::int64_t run, std::int64_t generation) = 0;
   /// The strategy state stored with `generation` ("" if none).

@@ -16,6 +16,11 @@ struct Grain {
   bool operator==(const Grain&) const = default;
 };
 
+/// The largest width or height of a box, in length units (the droplet's radius is about 10). Past
+/// it a grain's position keeps too few digits for a contact, and past about 1e154 the box's area
+/// is no longer a finite double, so its porosity would be NaN.
+inline constexpr double kMaxBoxSide = 1e9;
+
 /// A medium: the box [0, width) x [0, height] and its grains.
 struct Medium {
   double width = 500;    ///< W, length units
@@ -23,7 +28,8 @@ struct Medium {
   bool periodic = true;  ///< periodic in x (otherwise solid side walls at x = 0 and x = W)
   std::vector<Grain> grains;
 
-  /// Checks box size, finiteness and positive radii; names the first bad value in `why`.
+  /// Checks box size (positive, at most kMaxBoxSide), finiteness and positive radii; names the
+  /// first bad value in `why`.
   bool IsValid(std::string* why) const;
   bool operator==(const Medium&) const = default;
 };

@@ -27,6 +27,8 @@ struct SweepRecord {
 class SweepStore {
  public:
   virtual ~SweepStore() = default;
+  /// The id of the sweep with exactly these parameters, 0 if there is none. Writes nothing.
+  virtual std::int64_t find(const std::string& params_json) = 0;
   /// The id of the sweep with exactly these parameters, created if there is none.
   virtual std::int64_t find_or_create(const std::string& params_json, const SweepOptions& options) = 0;
   /// Units already stored for a sweep.

@@ -11,6 +11,7 @@ for bit. Lengths, times and masses are in the paper's numerical units (see docs/
     history = softdrop.read_history("search.db")          # DataFrames
 """
 import numbers
+import os
 
 from ._core import DropletParams, Medium, RunOptions, StoreError, __version__  # noqa: F401
 from . import _core
@@ -88,11 +89,22 @@ def _runs_frame(rows):
                   "max_penetration", "reason"]]
 
 
+def _db_path(db, name="db"):
+    """The file name of a database argument: a str or os.PathLike, not empty (SQLite would make a
+    temporary database of "" and throw the run away; str(None) would be a file named None)."""
+    if isinstance(db, bytes) or not isinstance(db, (str, os.PathLike)):
+        raise TypeError(f"{name}: a file name (str or os.PathLike), not {db!r}")
+    path = os.fspath(db)
+    if not path:
+        raise ValueError(f"{name}: an empty file name")
+    return path
+
+
 def _command_line(command, db, options):
     """The program's command line for keyword options: name=value is --name value (underscores
     become dashes; lambda_ is --lambda), True is a flag given, False or None an option left out, a
     list or array is comma-separated. Numbers are written so that they read back exactly."""
-    args = ["softdrop", command, "--db", str(db)]
+    args = ["softdrop", command, "--db", _db_path(db)]
     for name, value in options.items():
         if value is None or value is False:
             continue
@@ -156,13 +168,22 @@ def read_history(db, arrangements=True):
 
     import pandas as pd
 
-    tables = _core._read_history(str(db), bool(arrangements))
+    tables = _core._read_history(_db_path(db), bool(arrangements))
     frames = {name: pd.DataFrame(columns) for name, columns in tables.items()}
     for name, column in (("generations", "accepted_candidate"), ("candidates", "moved_grain"), ("runs", "island"),
                          ("runs", "archipelago")):
         frames[name][column] = frames[name][column].astype("Int64")  # missing: <NA>
     frames["grains"]["touched"] = frames["grains"]["touched"].astype(bool)
-    params = pd.json_normalize([json.loads(p) for p in frames["runs"]["params"]])
+    rows = []
+    for run_id, text in zip(frames["runs"]["id"], frames["runs"]["params"]):
+        try:
+            row = json.loads(text)
+        except ValueError as e:  # JSONDecodeError, or text that is not UTF-8
+            raise StoreError(f"--db '{os.fspath(db)}': run {run_id}: its params are not JSON ({e})") from None
+        if not isinstance(row, dict):
+            raise StoreError(f"--db '{os.fspath(db)}': run {run_id}: its params are not a JSON object")
+        rows.append(row)
+    params = pd.json_normalize(rows)
     params.insert(0, "run_id", frames["runs"]["id"].to_numpy())
     frames["params"] = params
     return frames
@@ -177,11 +198,15 @@ def read_sweep(db, sweep=None):
     refuses raises StoreError naming it."""
     import pandas as pd
 
-    tables = _core._read_sweep(str(db), int(sweep or 0))
+    if sweep is not None and (isinstance(sweep, bool) or not isinstance(sweep, numbers.Integral) or sweep < 1):
+        raise ValueError(f"sweep = {sweep!r}: sweep ids are whole numbers from 1 (None: every sweep)")
+    tables = _core._read_sweep(_db_path(db), int(sweep or 0))
     return {name: pd.DataFrame(columns) for name, columns in tables.items()}
 
 
 def best_arrangement(db, run=1, generation=-1):
     """The arrangement a search kept as of `generation` (-1: the latest; the best for the paper's
     strategy): a Result with medium (a Medium), generation, tortuosity, touched and path (x, y rows)."""
-    return Result(_core._arrangement(str(db), int(run), int(generation)))
+    if isinstance(run, bool) or not isinstance(run, numbers.Integral) or run < 1:
+        raise ValueError(f"run = {run!r}: run ids are whole numbers from 1")
+    return Result(_core._arrangement(_db_path(db), int(run), int(generation)))

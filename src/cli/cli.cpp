@@ -9,7 +9,9 @@
 #include <stdexcept>
 #include <vector>
 
+#include "cli/common_options.hpp"
 #include "cli/config_file.hpp"
+#include "cli/file_roles.hpp"
 #include "cli/mpi_job.hpp"
 #include "cli/output.hpp"
 #include "cli/suggest.hpp"
@@ -39,6 +41,25 @@ void check_placement(MediumOptions o) {
   }
 }
 
+// An empty value converts to 0 (or "") without a word, and a path of "" means a temporary
+// database to SQLite: every option that takes a value refuses an empty one, on the command line, in
+// a config file and in a comma-separated list.
+void refuse_empty_values(CLI::App& command) {
+  const CLI::Validator not_empty([](std::string& value) { return value.empty() ? std::string("an empty value") : std::string(); },
+                                 "");
+  for (CLI::Option* o : command.get_options())
+    if (o->get_type_size_max() > 0) o->check(not_empty);
+  for (CLI::App* sub : command.get_subcommands([](CLI::App*) { return true; })) refuse_empty_values(*sub);
+}
+
+// The checks of a command line as a whole, for the chosen command and its subcommand.
+void check_command_line(const CLI::App& app, const std::vector<std::string>& words) {
+  for (const CLI::App* a = &app; !a->get_subcommands().empty();) {
+    a = a->get_subcommands().back();
+    check_medium_file_alone(*a, words);
+  }
+}
+
 }  // namespace
 
 Cli::Cli() {
@@ -61,11 +82,17 @@ Cli::Cli() {
   add_study_commands(app, sweep_, sweep_merge_, sweep_report_, fit_, averagings_);
   render_cmd_ = add_render_command(app, render_);
   calibrate_cmd_ = add_calibrate_command(app, calibrate_);
+  refuse_empty_values(app);
 }
 
-void Cli::parse(int argc, const char* const* argv) { app.parse(argc, argv); }
+void Cli::parse(int argc, const char* const* argv) {
+  words_.assign(argv + 1, argv + argc);
+  app.parse(argc, argv);
+}
 
 void Cli::check() {
+  check_distinct_files(named_files(app));
+  check_command_line(app, words_);
   if (simulate_cmd_->parsed()) {
     check_simulate(simulate_);
     if (simulate_.medium.file.empty()) check_placement(simulate_.medium.options);
@@ -92,6 +119,10 @@ int Cli::run() {
     check();
     return 0;
   }
+  // Before anything is read or written: no output may be a file the command reads or writes
+  // under another name, and no option may be given that the command would ignore.
+  check_distinct_files(named_files(app));
+  check_command_line(app, words_);
   if (simulate_cmd_->parsed()) return run_simulate(simulate_);
   if (optimize_cmd_->parsed()) return run_optimize(optimize_, *optimize_cmd_, host_);
   if (history_cmd_->parsed()) return run_history(history_);

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "cli/calibrate_command.hpp"
 #include "cli/history_command.hpp"
@@ -40,6 +41,7 @@ class Cli {
 
  private:
   bool check_only_ = false;
+  std::vector<std::string> words_;  ///< the command line as parsed, to tell its options from a config file's
   Host* host_ = nullptr;
   SimulateArgs simulate_;
   OptimizeArgs optimize_;

@@ -2,6 +2,7 @@
 
 #include "cli/output.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -108,6 +109,22 @@ CLI::Validator index_check() {
       "N");
 }
 
+namespace {
+// A whole decimal number >= 1; `what` names what any other text is not.
+CLI::Validator from_one(const std::string& what, const char* name) {
+  return CLI::Validator(
+      [what](std::string& v) -> std::string {
+        const bool digits = !v.empty() && v.find_first_not_of("0123456789") == std::string::npos;
+        return digits && v.find_first_not_of('0') != std::string::npos ? "" : "'" + v + "' is not " + what;
+      },
+      name);
+}
+}  // namespace
+
+CLI::Validator positive_check() { return from_one("a whole number >= 1", "N"); }
+
+CLI::Validator id_check() { return from_one("an id (ids are whole numbers from 1)", "ID"); }
+
 CLI::Validator finite_check() {
   return CLI::Validator(
       [](std::string& v) -> std::string {
@@ -160,6 +177,31 @@ void resolve_medium(MediumArgs& a) {
   a.options.periodic = !a.walls;
   std::string why;
   if (!a.options.IsValid(&why)) throw std::invalid_argument(why);
+}
+
+void check_snapshot_times(const std::vector<double>& times, const RunOptions& run, const DropletParams& droplet,
+                          const std::string& option) {
+  const double end = static_cast<double>(run.max_steps) * droplet.dt;
+  for (double t : times)
+    if (!(t <= end))
+      throw std::invalid_argument(option + ": " + fmt(t) + " is after the run's last step (max-steps x dt = " + fmt(end) +
+                                  " time units)");
+}
+
+void check_medium_file_alone(const CLI::App& command, const std::vector<std::string>& words) {
+  const auto on_command_line = [&](const std::string& name) {
+    return std::any_of(words.begin(), words.end(),
+                       [&](const std::string& w) { return w == name || w.rfind(name + "=", 0) == 0; });
+  };
+  const CLI::Option* file = command.get_option_no_throw("--medium");
+  if (file == nullptr || file->count() == 0) return;
+  const bool search = command.get_name() == "optimize";  // its moves keep --gap with any medium
+  for (const CLI::App* group :
+       command.get_subcommands([](const CLI::App* s) { return s->get_name().empty() && s->get_group() == "Medium"; }))
+    for (const CLI::Option* o : group->get_options())
+      if (o != file && o->count() > 0 && on_command_line(o->get_name()) && !(search && o->get_name() == "--gap"))
+        throw std::invalid_argument(o->get_name().substr(2) + ": has no effect with --medium (the grain file fixes the "
+                                                               "medium); leave it out");
 }
 
 }  // namespace softdrop::cli

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"
@@ -38,6 +39,12 @@ void add_exit_options(CLI::Option_group* group, RunOptions& r);
 CLI::Validator seed_check();
 /// The check of an index option such as --generation: a whole decimal number >= 0.
 CLI::Validator index_check();
+/// The check of a count that must be given as >= 1 (--group, --trace-interval), where 0 is the
+/// default's "not given".
+CLI::Validator positive_check();
+/// The check of a run or sweep id (--run, --resume, --sweep): a whole decimal number >= 1 (0 would
+/// read as "not given").
+CLI::Validator id_check();
 /// The check of --x0: a finite number (NaN would read as "not given").
 CLI::Validator finite_check();
 /// Throws std::invalid_argument naming --x0 unless the droplet starts inside the box: x0 in
@@ -59,5 +66,17 @@ void check_recording(const RunOptions& run, long droplets, int masses);
 /// Parses the names into options.kind / radii / periodic and validates them (unless a file is
 /// given); throws std::invalid_argument naming the bad parameter.
 void resolve_medium(MediumArgs& a);
+
+/// Throws std::invalid_argument naming `option` if a snapshot time lies after the last step a run
+/// may take (max-steps x dt): no run could record it.
+void check_snapshot_times(const std::vector<double>& times, const RunOptions& run, const DropletParams& droplet,
+                          const std::string& option);
+
+/// Throws std::invalid_argument naming the option if `command` was given --medium FILE together
+/// with an option that shapes a generated medium (--porosity, --width, ...) among the command
+/// line's `words`: the file fixes the medium, and the option would be ignored. A config file may
+/// hold such options (the installed droplets' configs name their grains); optimize keeps --gap,
+/// its moves' spacing rule.
+void check_medium_file_alone(const CLI::App& command, const std::vector<std::string>& words);
 
 }  // namespace softdrop::cli

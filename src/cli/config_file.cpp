@@ -41,6 +41,31 @@ void collect(const toml::table& table, std::vector<std::string> parents, std::ve
 
 }  // namespace
 
+// What the command line would refuse or misread is refused here, naming the file and the key:
+// an empty array (it would hand the parser an option without a value), an array for an option
+// that takes one value (the parser would keep its last element), and a key no option has.
+void SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string& file) const {
+  const std::string where = "config file '" + file + "': " + item.name;
+  if (item.inputs.empty()) throw CLI::ConversionError(where + " = []: an empty array (give a value, or leave the key out)");
+  const CLI::App* command = &app_;
+  for (const std::string& parent : item.parents) {
+    const auto named = command->get_subcommands([&](const CLI::App* sub) { return sub->get_name() == parent; });
+    if (named.empty()) return;  // not a command's table: the parser reports it
+    command = named.front();
+  }
+  const CLI::Option* option = command->get_option_no_throw("--" + item.name);
+  if (option == nullptr) option = app_.get_option_no_throw("--" + item.name);  // program-level options
+  if (option == nullptr) {
+    std::string path;
+    for (const std::string& parent : item.parents) path += parent + " ";
+    throw CLI::ConversionError(where + ": " + (path.empty() ? std::string("softdrop ") : path) + "has no option --" +
+                               item.name);
+  }
+  if (item.inputs.size() > 1 && option->get_items_expected_max() <= 1)
+    throw CLI::ConversionError(where + ": --" + item.name + " takes one value, not an array of " +
+                               std::to_string(item.inputs.size()));
+}
+
 std::vector<CLI::ConfigItem> SubcommandConfig::from_config(std::istream& input) const {
   // The chain of chosen subcommands, e.g. render -> medium: the commands plain keys belong to.
   std::vector<std::string> chain;
@@ -64,8 +89,10 @@ std::vector<CLI::ConfigItem> SubcommandConfig::from_config(std::istream& input) 
       throw CLI::ConversionError(where.str());
     }
   }
-  for (auto& item : found)
+  for (auto& item : found) {
     if (item.parents.empty()) item.parents = chain;
+    check_item(item, name);
+  }
   return found;
 }
 

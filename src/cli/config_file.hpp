@@ -12,13 +12,16 @@ namespace softdrop::cli {
 /// that was chosen, so a config file looks like the command line without dashes; keys under a
 /// table ([sweep]) belong to the command of that name. Strings, numbers, booleans and arrays of
 /// them are values; a quoted "#ff0000" is a string. A file that is not TOML gets one error naming
-/// its line and column; a file ending in .ini is read as INI instead (CLI11's reader).
+/// its line and column; a file ending in .ini is read as INI instead (CLI11's reader). A key no
+/// option of its command has, an empty array, or an array for an option of one value is refused
+/// with a line naming the file and the key.
 class SubcommandConfig : public CLI::ConfigTOML {
  public:
   explicit SubcommandConfig(const CLI::App& app) : app_(app) {}
   std::vector<CLI::ConfigItem> from_config(std::istream& input) const override;
 
  private:
+  void check_item(const CLI::ConfigItem& item, const std::string& file) const;
   const CLI::App& app_;
 };
 

@@ -18,7 +18,7 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
   CLI::App* s = app.add_subcommand("history", "List the runs of a search database, or one run's generations");
   s->fallthrough();
   s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
-  s->add_option("--run", a.run, "List this run's generations instead of the runs");
+  s->add_option("--run", a.run, "List this run's generations instead of the runs")->check(id_check());
   auto* best = s->add_flag("--best", a.best, "With --run: only the generations that raised the best T (the best-T curve)");
   auto* candidates = s->add_flag("--candidates", a.candidates, "With --run: one row per candidate of every generation");
   auto* params = s->add_flag("--params", a.params, "With --run: the options the run was started with (long option names) and its target generation");
@@ -45,7 +45,7 @@ CLI::App* add_export_command(CLI::App& app, ExportArgs& a) {
   CLI::App* s = app.add_subcommand("export", "Write a stored configuration as a grain file for `simulate`");
   s->fallthrough();
   s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
-  s->add_option("--run", a.run, "Run id")->required();
+  s->add_option("--run", a.run, "Run id")->required()->check(id_check());
   s->add_option("--generation", a.generation,
                 "The arrangement kept as of this generation (default: the run's best)")
       ->check(index_check());
@@ -134,21 +134,29 @@ int run_export(const ExportArgs& a) {
   const RunRecord run = history->run(a.run);
   check_stored_generation(a.generation, run);
   const Configuration c = history->configuration(a.run, a.generation < 0 ? run.best_generation : a.generation);
-  save_medium(a.output, c.medium);
+  // Both files are made in memory first, so a stored run the config cannot be made of leaves
+  // neither behind.
+  std::string config;
   if (!a.simulate_config.empty()) {
     // The droplet and exit options of the run, so that simulate pushes the same droplet from the
     // same place: numbers in JSON notation, which TOML reads back to the same doubles.
+    try {
+      search_params_from_json(run.params);  // names a required key the stored run lacks
+    } catch (const std::exception& e) {
+      throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(a.run) + ": " + e.what());
+    }
     const nlohmann::json params = nlohmann::json::parse(run.params);
     std::ostringstream toml;
     toml << "# softdrop simulate --config " << a.simulate_config << "  (run " << a.run << ", generation "
          << c.generation << ", T = " << fmt(c.eval.tortuosity) << ")\n";
     toml << "medium = " << nlohmann::json(a.output).dump() << "\n";
     toml << "x0 = " << nlohmann::json(0.5 * c.medium.width).dump() << "\n";
-    search_params_from_json(run.params);  // names a required key the stored run lacks
     for (const std::string& key : simulation_param_keys())
       if (params.contains(key)) toml << key << " = " << params.at(key).dump() << "\n";  // older runs lack newer keys
-    write_file_atomically(a.simulate_config, toml.str());
+    config = toml.str();
   }
+  save_medium(a.output, c.medium);
+  if (!config.empty()) write_file_atomically(a.simulate_config, config);
   std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation << " (T = "
             << fmt(c.eval.tortuosity) << ", " << c.medium.grains.size() << " grains) written to " << a.output
             << "\n";

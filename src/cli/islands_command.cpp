@@ -117,10 +117,12 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     if (!target_given && stored.contains("target-generations")) a.generations = stored["target-generations"].get<std::int64_t>();
     for (const RunRecord& r : members) {
       history->check_run(r.id);
-      if (target_given) history->set_param(r.id, "target-generations", std::to_string(a.generations));
       runs.push_back(r.id);
       islands.push_back(resumed_search(*history, r, island_search_options(a.search, r.island)));
     }
+    // Only once every island has been read back: a refused resume writes nothing.
+    if (target_given)
+      for (const RunRecord& r : members) history->set_param(r.id, "target-generations", std::to_string(a.generations));
     if (!a.quiet)
       std::cerr << "optimize: resuming the " << runs.size() << " islands of run " << runs.front() << " in " << a.db << "\n";
   } else {

@@ -31,7 +31,8 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
 
   auto* h = s->add_option_group("History");
   h->add_option("--db", a.db, "SQLite history file (created if missing; holds many runs)")->capture_default_str();
-  h->add_option("--resume", a.resume, "Continue this run of the database instead of starting a new one");
+  h->add_option("--resume", a.resume, "Continue this run of the database instead of starting a new one")
+      ->check(id_check());
 
   auto* g = s->add_option_group("Search", "stored with the run; a resume must not contradict them");
   g->add_option("--generations", a.generations,
@@ -253,9 +254,10 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
         std::cout << (a.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
       return 0;
     }
+    search = std::make_unique<Search>(resumed_search(*history, rec, a.search));
+    // Only once the run has been read back and checked: a refused resume writes nothing.
     if (target_given && stored_target != a.generations)
       history->set_param(run, "target-generations", std::to_string(a.generations));
-    search = std::make_unique<Search>(resumed_search(*history, rec, a.search));
     if (!a.quiet)
       std::cerr << "optimize: resuming run " << run << " of " << a.db << " at generation " << rec.generations
                 << " (best T " << fmt(rec.best_t, 8) << ")\n";

@@ -62,7 +62,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   CLI::App* q = r->add_subcommand("search", "A search's best configuration, its path, earlier paths, touched grains");
   style(q, ".png, .svg or .pdf");
   q->add_option("--db", a.db, "SQLite history file")->required();
-  q->add_option("--run", a.run_id, "Run id")->required();
+  q->add_option("--run", a.run_id, "Run id")->required()->check(id_check());
   q->add_option("--generation", a.generation, "The best as of this generation (default: the run's best)")
       ->check(index_check());
   q->add_option("--curve", a.curve, "Also draw the best-T-versus-generation chart to this file");
@@ -83,7 +83,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   CLI::App* c = r->add_subcommand("curves", "The best T of several searches against evaluations (or seconds), one line each");
   style(c, ".png, .svg or .pdf");
   c->add_option("--db", a.dbs, "A search's SQLite history (repeat for more searches)")->required();
-  c->add_option("--run", a.run_id, "Run id in every file (default: each file's only run)");
+  c->add_option("--run", a.run_id, "Run id in every file (default: each file's only run)")->check(id_check());
   c->add_option("--label", a.labels,
                 "Legend label, one a --db in order (default: the file name without a trailing -<seed>; "
                 "equal labels share a colour)");
@@ -193,6 +193,7 @@ int render_snapshots(RenderArgs& a) {
   scene.medium = medium_of(a);
   Simulation sim(a.droplet, scene.medium);
   RunOptions run = a.run;
+  check_snapshot_times(a.times, run, a.droplet, "times");
   run.snapshot_times = a.times;
   run.path_interval = 20;
   check_recording(run, 1, a.droplet.masses);

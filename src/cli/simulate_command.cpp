@@ -40,7 +40,8 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
   o->add_option("--trace", a.trace_csv,
                 "CSV of the ring area S(t), each droplet replayed to its exit (droplet,t,area,area_ratio,phase; "
                 "as render trace --csv)");
-  o->add_option("--trace-interval", a.run.area_interval, "Steps between area samples (default 100 with --trace)");
+  o->add_option("--trace-interval", a.run.area_interval, "Steps between area samples (default 100 with --trace)")
+      ->check(positive_check());
   o->add_option("--snapshots", a.snapshots_csv, "CSV of ring boundaries at --snapshot-times (droplet,t,mass,x,y)");
   o->add_option("--snapshot-times", a.run.snapshot_times, "Times (time units) of boundary snapshots")
       ->delimiter(',');
@@ -57,6 +58,11 @@ void check_simulate(SimulateArgs& a) {
   if (!a.trace_csv.empty() && a.run.area_interval == 0) a.run.area_interval = 100;
   if (!a.snapshots_csv.empty() && a.run.snapshot_times.empty())
     throw std::invalid_argument("snapshots: --snapshot-times is required with --snapshots");
+  if (a.snapshots_csv.empty() && !a.run.snapshot_times.empty())
+    throw std::invalid_argument("snapshot-times: has no effect without --snapshots FILE");
+  if (a.trace_csv.empty() && a.run.area_interval > 0)
+    throw std::invalid_argument("trace-interval: has no effect without --trace FILE");
+  check_snapshot_times(a.run.snapshot_times, a.run, a.droplet, "snapshot-times");
   if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
   check_recording(a.run, a.batch.droplets, a.droplet.masses);
   resolve_medium(a.medium);

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <csignal>
 #include <fstream>
 #include <iomanip>
@@ -18,6 +19,7 @@
 #include "cli/options_diff.hpp"
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
+#include "softdrop/history.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/sweep_store.hpp"
 #include "softdrop/version.hpp"
@@ -56,7 +58,7 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   CLI::App* rp = app.add_subcommand("sweep-report", "Per-porosity points (or per-medium rows) of a sweep");
   rp->fallthrough();
   rp->add_option("--db", r.db, "SQLite store")->capture_default_str();
-  rp->add_option("--sweep", r.sweep, "Sweep id (default: the only one)");
+  rp->add_option("--sweep", r.sweep, "Sweep id (default: the only one)")->check(id_check());
   rp->add_flag("--media", r.media, "One row per medium instead of one per porosity");
   rp->add_option("--format", r.format, "table, csv or json")->capture_default_str()->check(CLI::IsMember({"table", "csv", "json"}));
   rp->footer(
@@ -72,7 +74,7 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   src->add_option("--db", f.db, "Sweep store: fit its per-porosity points");
   src->add_option("--points", f.points, "Or a CSV file with columns phi,t,se (or the output of sweep-report --format csv)")->check(CLI::ExistingFile);
   src->require_option(1);
-  ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)");
+  ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)")->check(id_check());
   ft->add_option(
         "--errors", f.errors,
         "Weights of a sweep's points: the standard error of each porosity's <T> with its media as "
@@ -89,10 +91,11 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   CLI::App* av = app.add_subcommand("averagings", "The paper's two averagings of per-medium points (by T, by phi)");
   av->fallthrough();
   av->add_option("--db", v.db, "Sweep store")->capture_default_str();
-  av->add_option("--sweep", v.sweep, "Sweep id (default: the only one)");
+  av->add_option("--sweep", v.sweep, "Sweep id (default: the only one)")->check(id_check());
   av->add_option("--group", v.group,
                  "Points per group (default: the paper's 100, or a twentieth of the media when the store has "
-                 "fewer than 2000, at least 2)");
+                 "fewer than 2000, at least 2)")
+      ->check(positive_check());
   av->add_option("--leftover", v.leftover,
                  "Media left over after the last full group: drop (every group full, as the "
                  "paper's) or keep (averaged as a last, smaller group)")
@@ -211,17 +214,35 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     return 0;
   }
 
-  auto store = open_sweep_store(a.db, OpenMode::create);
+  // Nothing is written before the first medium is stored: a sweep refused at its start (a damaged
+  // store, a porosity random placement cannot reach) leaves every file as it was, and creates none.
   const std::string params = sweep_params_to_json(a.sweep);
-  if (!a.quiet) say_how_it_differs(*store, a.db, params);
-  const std::int64_t id = store->find_or_create(params, a.sweep);
-  const std::vector<SweepUnit> done = store->done_units(id);
+  std::unique_ptr<SweepStore> store;
+  std::int64_t id = 0;
+  std::vector<SweepUnit> done;
+  if (std::filesystem::exists(a.db)) {
+    store = open_sweep_store(a.db, OpenMode::create);
+    if (!a.quiet) say_how_it_differs(*store, a.db, params);
+    id = store->find(params);
+    if (id > 0) {
+      (void)store->media(id);  // every stored row read now: a damaged one refuses the sweep here
+      done = store->done_units(id);
+    }
+  } else {
+    check_database(a.db);
+    check_output_path("--db", a.db);
+  }
+  const auto sweep_id = [&] {  // the store and the sweep's record, made when first needed
+    if (!store) store = open_sweep_store(a.db, OpenMode::create);
+    if (id == 0) id = store->find_or_create(params, a.sweep);
+    return id;
+  };
   std::vector<SweepUnit> todo;
   for (const SweepUnit& u : sweep_units(a.sweep, shard, shards))
     if (std::find(done.begin(), done.end(), u) == done.end()) todo.push_back(u);
   const std::size_t shard_total = sweep_units(a.sweep, shard, shards).size();
   if (!a.quiet)
-    std::cerr << "sweep " << id << " in " << a.db << ": " << a.sweep.porosities.size() << " porosities x "
+    std::cerr << "sweep " << (id > 0 ? std::to_string(id) : std::string("(new)")) << " in " << a.db << ": " << a.sweep.porosities.size() << " porosities x "
               << a.sweep.media << " media x " << a.sweep.droplets << " droplets; shard " << shard << "/" << shards
               << ": " << shard_total - todo.size() << " of " << shard_total << " media already stored\n";
 
@@ -239,7 +260,8 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
   const std::function<void(SweepMedium&&)> commit = [&](SweepMedium&& m) {
     std::lock_guard lock(store_lock);
     const auto c0 = std::chrono::steady_clock::now();
-    if (!store->add(id, m)) ++units_elsewhere;  // stored meanwhile by another process
+    const std::int64_t sweep = sweep_id();  // before store-> is read: it may make the store
+    if (!store->add(sweep, m)) ++units_elsewhere;  // stored meanwhile by another process
     commit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
     ++units_done;
     droplets_done += static_cast<long>(m.droplets.size());
@@ -267,7 +289,8 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
   const std::function<bool()> stop_requested = [&] { return stopping(); };
   const std::function<bool(const SweepUnit&)> stored = [&](const SweepUnit& u) {
     std::lock_guard lock(store_lock);
-    if (!store->has_unit(id, u)) return false;
+    if (id == 0 && store) id = store->find(params);  // another process may have begun the sweep
+    if (id == 0 || !store->has_unit(id, u)) return false;
     ++units_done, ++units_elsewhere;
     return true;
   };
@@ -276,6 +299,7 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     ranks = run_sweep_units_on_ranks(*job, a.sweep, todo, a.threads, commit, stop_requested, stored);
   else
     run_sweep_units(a.sweep, todo, a.threads, commit, stop_requested, stored);
+  sweep_id();  // a sweep stopped before its first medium is recorded as begun
   const SweepRecord rec = store->sweep(id);
   const std::string status = rec.done == rec.units ? "complete" : stopping() ? "interrupted" : "running";
   store->set_status(id, status);
@@ -302,42 +326,6 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     std::cerr << "\n";
   }
   return signals->exit_code();
-}
-
-int run_sweep_merge(const SweepMergeArgs& a) {
-  auto out = open_sweep_store(a.into, OpenMode::create);
-  for (const std::string& path : a.inputs) {
-    auto in = open_sweep_store(path, OpenMode::read_only);
-    for (const SweepRecord& r : in->sweeps()) {
-      const SweepOptions o = sweep_params_from_json(r.params);
-      const std::int64_t id = out->find_or_create(r.params, o);
-      std::vector<SweepMedium> have = out->media(id);
-      long added = 0;
-      for (const SweepMedium& m : in->media(r.id)) {
-        const auto same = std::find_if(have.begin(), have.end(), [&](const SweepMedium& h) { return h.unit == m.unit; });
-        if (same == have.end()) {
-          out->add(id, m);
-          ++added;
-          continue;
-        }
-        // Determinism makes a unit computed twice identical; anything else is two different builds.
-        bool equal = same->porosity == m.porosity && same->grains == m.grains && same->droplets.size() == m.droplets.size();
-        for (std::size_t i = 0; equal && i < m.droplets.size(); ++i) {
-          const SweepDroplet &x = same->droplets[i], &y = m.droplets[i];
-          equal = x.start_x == y.start_x && x.outcome == y.outcome && x.tortuosity == y.tortuosity && x.steps == y.steps;
-        }
-        if (!equal)
-          throw std::runtime_error("sweep-merge: '" + path + "' sweep " + std::to_string(r.id) + " porosity " +
-                                   std::to_string(m.unit.porosity) + " medium " + std::to_string(m.unit.medium) +
-                                   " differs from the copy already in '" + a.into + "' (made by another build?)");
-      }
-      const SweepRecord merged = out->sweep(id);
-      out->set_status(id, merged.done == merged.units ? "complete" : "running");
-      std::cerr << "sweep-merge: " << path << " sweep " << r.id << ": " << added << " media added; sweep " << id
-                << " in " << a.into << " has " << merged.done << " of " << merged.units << "\n";
-    }
-  }
-  return 0;
 }
 
 int run_sweep_report(const SweepReportArgs& a) {

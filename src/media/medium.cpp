@@ -13,10 +13,17 @@ namespace softdrop {
 using detail::fail;
 using detail::num;
 
+namespace {
+// The box's sides, as Medium and MediumOptions both check them.
+bool box_is_valid(double width, double height, std::string* why) {
+  if (!(width > 0 && width <= kMaxBoxSide)) return fail(why, "width = " + num(width) + ": must be in (0, 1e9]");
+  if (!(height > 0 && height <= kMaxBoxSide)) return fail(why, "height = " + num(height) + ": must be in (0, 1e9]");
+  return true;
+}
+}  // namespace
+
 bool Medium::IsValid(std::string* why) const {
-  if (!std::isfinite(width) || width <= 0) return fail(why, "width = " + num(width) + ": must be > 0");
-  if (!std::isfinite(height) || height <= 0)
-    return fail(why, "height = " + num(height) + ": must be > 0");
+  if (!box_is_valid(width, height, why)) return false;
   for (std::size_t i = 0; i < grains.size(); ++i) {
     const Grain& g = grains[i];
     const std::string at = "grain " + std::to_string(i) + ": ";
@@ -66,9 +73,7 @@ bool MediumOptions::IsValid(std::string* why) const {
     return fail(why, "porosity = " + num(porosity) + ": must be in (0, 1)");
   if (grains < 0 || grains > 10'000'000)
     return fail(why, "grains = " + std::to_string(grains) + ": must be in [0, 1e7]");
-  if (!std::isfinite(width) || width <= 0) return fail(why, "width = " + num(width) + ": must be > 0");
-  if (!std::isfinite(height) || height <= 0)
-    return fail(why, "height = " + num(height) + ": must be > 0");
+  if (!box_is_valid(width, height, why)) return false;
   if (!std::isfinite(r_min) || r_min <= 0) return fail(why, "r-min = " + num(r_min) + ": must be > 0");
   if (!std::isfinite(r_max) || r_max < r_min)
     return fail(why, "r-max = " + num(r_max) + ": must be >= r-min");

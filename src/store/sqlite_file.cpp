@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "sqlite_schema.hpp"
+#include "wal_file.hpp"
 
 namespace softdrop::detail {
 namespace {
@@ -174,17 +175,15 @@ std::string immutable_uri(const std::string& path) {
   return uri + "?immutable=1";
 }
 
-// Opens a connection. On read-only media (the folder and the file not writable) a WAL-mode file
-// cannot be opened as usual, since SQLite must create its -shm file beside it. With no -shm, no
-// WAL frames and no hot journal there is nothing to recover, and nobody can change the file, so it
-// is read as immutable.
+// Opens a connection. A WAL-mode file is normally opened with its -shm and -wal files beside it,
+// which SQLite creates if they are missing. A reader who cannot write the file must not create
+// them: on read-only media it cannot, and in a shared folder they would belong to the reader, and
+// the file's owner could no longer write past them. With no -shm, no WAL frames and no hot journal
+// there is nothing to recover (no writer is at work), so such a reader reads the file as immutable.
 std::unique_ptr<SQLite::Database> connect(const std::string& path, int flags) {
   if ((flags & SQLite::OPEN_CREATE) == 0 && exists(path)) {
-    const std::string::size_type slash = path.rfind('/');
-    const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
     const bool wal_frames = file_size(path + "-wal") > 0;
-    if (::access(folder.c_str(), W_OK) != 0 && ::access(path.c_str(), W_OK) != 0 && !exists(path + "-shm") &&
-        !wal_frames && !exists(path + "-journal"))
+    if (::access(path.c_str(), W_OK) != 0 && !exists(path + "-shm") && !wal_frames && !exists(path + "-journal"))
       return std::make_unique<SQLite::Database>(immutable_uri(path), SQLite::OPEN_READONLY | SQLite::OPEN_URI, 60'000);
   }
   return std::make_unique<SQLite::Database>(path, flags, 60'000);
@@ -192,6 +191,8 @@ std::unique_ptr<SQLite::Database> connect(const std::string& path, int flags) {
 
 // The read-only checks of open_database, run before anything may write to the file.
 void validate(const std::string& path, OpenMode mode) {
+  // SQLite reads "" as a temporary database, deleted on close: a whole run would vanish.
+  if (path.empty()) throw file_error(path, "an empty file name");
   // Opening a WAL-mode file, even read-only, creates its -wal and -shm files; a refused file must
   // be left as it was found, so those made here are removed again.
   const bool had_wal = exists(path + "-wal"), had_shm = exists(path + "-shm");
@@ -199,6 +200,12 @@ void validate(const std::string& path, OpenMode mode) {
     if (!had_wal && file_size(path + "-wal") == 0) ::unlink((path + "-wal").c_str());
     if (!had_shm && !exists(path + "-wal")) ::unlink((path + "-shm").c_str());
   };
+  // Before SQLite reads the log: its recovery would drop what follows a damaged frame, and the next
+  // writer would overwrite it.
+  if (const std::string damage = wal_damage(read_wal(path + "-wal")); !damage.empty())
+    throw file_error(path, "its write-ahead log '" + path + "-wal' is damaged: " + damage +
+                               "; nothing was written. Copy both files aside; `sqlite3 '" + path +
+                               "' 'PRAGMA wal_checkpoint'` keeps what precedes the damage and drops the rest");
   const bool has_content = check_file(path, mode);
   if (!has_content) return;
   // Inspect read-only first: nothing is written to a file that turns out not to be ours.

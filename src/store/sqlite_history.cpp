@@ -192,6 +192,15 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       if (detail::as_int64(q.getColumn(4)) != 0)
         throw std::runtime_error(where + "candidates of a missing generation (damaged or edited file?)");
       q.reset();
+      // The run's best is its last generation's best so far, to the bit.
+      SQLite::Statement b(db_, "SELECT best_t FROM generations WHERE run_id = ? AND generation = ?");
+      b.bind(1, run_id);
+      b.bind(2, r.generations);
+      if (b.executeStep() && detail::as_real(b.getColumn(0)) != r.best_t)
+        throw std::runtime_error(where + "best_t " + nlohmann::json(r.best_t).dump() + " differs from its generation " +
+                                 std::to_string(r.generations) + "'s best_t " +
+                                 nlohmann::json(detail::as_real(b.getColumn(0))).dump() + " (damaged or edited file?)");
+      b.reset();
       t.commit();
       return 0;
     });
@@ -210,8 +219,11 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   }
 
   Configuration configuration(std::int64_t run_id, std::int64_t generation) override {
+    const RunRecord r = run(run_id);
+    if (generation < -1 || generation > r.generations)  // a bad argument, not a damaged file
+      throw std::invalid_argument("generation = " + std::to_string(generation) + ": run " + std::to_string(run_id) +
+                                  " has stored generations 0 to " + std::to_string(r.generations) + " (-1: the latest)");
     return guarded([&] {
-      const RunRecord r = run(run_id);
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);
       SQLite::Statement q(db_, "SELECT generation, accepted_candidate FROM generations WHERE run_id = ? AND "
                                "accepted_candidate IS NOT NULL AND generation <= ? "
@@ -297,6 +309,21 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     r.best_generation = detail::as_int64(q.getColumn(15));
     if (!q.getColumn(16).isNull()) r.island = detail::as_int(q.getColumn(16));
     if (!q.getColumn(17).isNull()) r.archipelago = detail::as_int64(q.getColumn(17));
+    // What no run of softdrop stores: a damaged or edited row is refused, not shown or resumed from.
+    const auto bad = [&](const char* column, const std::string& value) {
+      throw std::runtime_error("run " + std::to_string(r.id) + ": column " + column + " holds " + value +
+                               " (damaged or edited file?)");
+    };
+    if (r.generations < 0) bad("generations", std::to_string(r.generations));
+    if (r.evaluations < 0) bad("evaluations", std::to_string(r.evaluations));
+    if (r.best_generation < 0 || r.best_generation > r.generations)
+      bad("best_generation", std::to_string(r.best_generation) + ", outside the run's generations 0 to " +
+                                 std::to_string(r.generations));
+    if (r.lambda < 1) bad("lambda", std::to_string(r.lambda));
+    if (r.grains < 0) bad("grains", std::to_string(r.grains));
+    if (!(r.width > 0) || !(r.height > 0) || !std::isfinite(r.width) || !std::isfinite(r.height))
+      bad("width or height", std::to_string(r.width) + " x " + std::to_string(r.height));
+    if (!std::isfinite(r.best_t) || r.best_t < 0) bad("best_t", std::to_string(r.best_t));
     return r;
   }
 

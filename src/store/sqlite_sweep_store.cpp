@@ -16,15 +16,14 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
  public:
   SqliteSweepStore(const std::string& path, OpenMode mode) : SqliteConnection(path, mode) {}
 
+  std::int64_t find(const std::string& params) override {
+    return guarded([&] { return find_id(params); });
+  }
+
   std::int64_t find_or_create(const std::string& params, const SweepOptions& o) override {
     return guarded([&] {
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
-      std::int64_t id = 0;
-      {
-        SQLite::Statement q(db_, "SELECT id FROM sweeps WHERE params = ?");
-        q.bind(1, params);
-        if (q.executeStep()) id = detail::as_int64(q.getColumn(0));
-      }
+      std::int64_t id = find_id(params);
       if (id == 0) {
         SQLite::Statement q(db_, std::string("INSERT INTO sweeps (created, updated, version, status, params, units) "
                                              "VALUES (") + kNow + ", " + kNow + ", ?, 'running', ?, ?)");
@@ -141,6 +140,12 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       "SELECT s.id, s.created, s.updated, s.version, s.status, s.params, s.units, count(m.sweep_id) "
       "FROM sweeps s LEFT JOIN sweep_media m ON m.sweep_id = s.id";
 
+  std::int64_t find_id(const std::string& params) {
+    SQLite::Statement q(db_, "SELECT id FROM sweeps WHERE params = ?");
+    q.bind(1, params);
+    return q.executeStep() ? detail::as_int64(q.getColumn(0)) : 0;
+  }
+
   bool stored(std::int64_t sweep, const SweepUnit& unit) {
     SQLite::Statement q(db_, "SELECT 1 FROM sweep_media WHERE sweep_id = ? AND porosity_index = ? AND medium_index = ?");
     q.bind(1, sweep);
@@ -154,6 +159,9 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
     detail::read_row_head(q, &r);
     r.units = detail::as_int64(q.getColumn(6));
     r.done = detail::as_int64(q.getColumn(7));
+    if (r.units < 1 || r.done > r.units)
+      throw std::runtime_error("sweep " + std::to_string(r.id) + ": column units holds " + std::to_string(r.units) +
+                               " with " + std::to_string(r.done) + " media stored (damaged or edited file?)");
     return r;
   }
 };

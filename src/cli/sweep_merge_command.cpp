@@ -1,0 +1,102 @@
+// sweep-merge: sweep stores (shards, or copies of one sweep) merged into one, every unit checked
+// against its other copies before anything is written.
+#include <algorithm>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "cli/output.hpp"
+#include "cli/sweep_command.hpp"
+#include "softdrop/history.hpp"
+#include "softdrop/params_json.hpp"
+#include "softdrop/sweep_store.hpp"
+
+namespace softdrop::cli {
+
+namespace {
+
+// A medium stored twice (by two shards, or two runs of one sweep) must be the same record to the
+// bit: determinism makes it so. Only the wall seconds may differ.
+bool same_medium(const SweepMedium& x, const SweepMedium& y) {
+  bool equal = x.target_porosity == y.target_porosity && x.porosity == y.porosity && x.grains == y.grains &&
+               x.medium_seed == y.medium_seed && x.passed == y.passed && x.stuck == y.stuck &&
+               x.timeout == y.timeout && x.diverged == y.diverged && x.mean_t == y.mean_t &&
+               x.standard_error == y.standard_error && x.stuck_fraction == y.stuck_fraction &&
+               x.droplets.size() == y.droplets.size();
+  for (std::size_t i = 0; equal && i < x.droplets.size(); ++i) {
+    const SweepDroplet &p = x.droplets[i], &q = y.droplets[i];
+    equal = p.droplet == q.droplet && p.start_x == q.start_x && p.outcome == q.outcome &&
+            p.tortuosity == q.tortuosity && p.steps == q.steps;
+  }
+  return equal;
+}
+
+// One sweep of one input store, read whole.
+struct MergeSource {
+  std::string path;
+  SweepRecord record;
+  SweepOptions options;
+  std::vector<SweepMedium> media;
+};
+
+}  // namespace
+
+int run_sweep_merge(const SweepMergeArgs& a) {
+  // Every input is read and checked against the others and against the output before anything is
+  // written: a refused merge leaves the output as it was, and creates none.
+  std::vector<MergeSource> sources;
+  for (const std::string& path : a.inputs) {
+    auto in = open_sweep_store(path, OpenMode::read_only);
+    for (const SweepRecord& r : in->sweeps()) {
+      SweepOptions o;
+      try {
+        o = sweep_params_from_json(r.params);
+      } catch (const std::exception& e) {
+        throw std::runtime_error("sweep-merge: '" + path + "' sweep " + std::to_string(r.id) + ": " + e.what());
+      }
+      sources.push_back({path, r, o, in->media(r.id)});
+    }
+  }
+  // Each unit of each sweep (by its parameters) as first found: in the output, then in the inputs.
+  std::map<std::string, std::map<std::pair<int, int>, std::pair<SweepMedium, std::string>>> known;
+  auto check_against_known = [&](const std::string& params, const SweepMedium& m, const std::string& origin,
+                                 std::int64_t sweep) {
+    auto& units = known[params];
+    const auto [at, fresh] = units.try_emplace({m.unit.porosity, m.unit.medium}, m, origin);
+    if (!fresh && !same_medium(at->second.first, m))
+      throw std::runtime_error("sweep-merge: '" + origin + "' sweep " + std::to_string(sweep) + " porosity " +
+                               std::to_string(m.unit.porosity) + " medium " + std::to_string(m.unit.medium) +
+                               " differs from the copy in '" + at->second.second +
+                               "' (made by another build, or edited?); nothing was written");
+  };
+  if (std::filesystem::exists(a.into)) {
+    auto out = open_sweep_store(a.into, OpenMode::read_only);
+    for (const SweepRecord& r : out->sweeps())
+      for (const SweepMedium& m : out->media(r.id)) check_against_known(r.params, m, a.into, r.id);
+  } else {
+    check_database(a.into);
+    check_output_path("--into", a.into);
+  }
+  for (const MergeSource& s : sources)
+    for (const SweepMedium& m : s.media) check_against_known(s.record.params, m, s.path, s.record.id);
+
+  auto out = open_sweep_store(a.into, OpenMode::create);
+  for (const MergeSource& s : sources) {
+    const std::int64_t id = out->find_or_create(s.record.params, s.options);
+    const std::vector<SweepUnit> have = out->done_units(id);
+    long added = 0;
+    for (const SweepMedium& m : s.media)
+      if (std::find(have.begin(), have.end(), m.unit) == have.end() && out->add(id, m)) ++added;
+    const SweepRecord merged = out->sweep(id);
+    out->set_status(id, merged.done == merged.units ? "complete" : "running");
+    std::cerr << "sweep-merge: " << s.path << " sweep " << s.record.id << ": " << added << " media added; sweep "
+              << id << " in " << a.into << " has " << merged.done << " of " << merged.units << "\n";
+  }
+  return 0;
+}
+
+}  // namespace softdrop::cli

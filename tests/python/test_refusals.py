@@ -1,0 +1,75 @@
+"""Arguments the module refuses, by name, before anything is read or written: a database that is
+not a file name, ids below 1, a generation a run does not have, and options whose values a file
+would overwrite."""
+import os
+import sqlite3
+
+import pytest
+
+import softdrop
+
+import balloon
+
+SEARCH = dict(grains=16, width=160, height=120, medium_seed=2, stuck_window=0.1, stuck_distance=1, lambda_=2,
+              quiet=True, **balloon.OPTIONS)
+
+
+@pytest.fixture(scope="module")
+def history(tmp_path_factory):
+    db = tmp_path_factory.mktemp("refusals") / "h.db"
+    softdrop.optimize(db, generations=2, **SEARCH)
+    return db
+
+
+@pytest.mark.parametrize("db", [None, 3, b"h.db", ["h.db"]])
+def test_a_database_must_be_a_file_name(tmp_path, db):
+    os.chdir(tmp_path)
+    with pytest.raises(TypeError, match="db: a file name"):
+        softdrop.optimize(db, generations=1)
+    with pytest.raises(TypeError, match="db: a file name"):
+        softdrop.read_history(db)
+    assert os.listdir(tmp_path) == []  # no file named None
+
+
+def test_an_empty_database_name_is_refused(tmp_path):
+    os.chdir(tmp_path)
+    for call in (lambda: softdrop.optimize("", generations=1), lambda: softdrop.sweep(""),
+                 lambda: softdrop.read_sweep("")):
+        with pytest.raises(ValueError, match="an empty file name"):
+            call()
+    assert os.listdir(tmp_path) == []
+
+
+@pytest.mark.parametrize("sweep", [0, -1, 1.5, True])
+def test_a_sweep_id_is_a_whole_number_from_1(tmp_path, sweep):
+    with pytest.raises(ValueError, match="sweep = "):
+        softdrop.read_sweep(tmp_path / "s.db", sweep=sweep)
+
+
+@pytest.mark.parametrize("generation", [999, -5, 3])
+def test_a_generation_the_run_does_not_have_is_refused(history, generation):
+    with pytest.raises(ValueError, match=f"generation = {generation}: run 1 has stored generations 0 to 2"):
+        softdrop.best_arrangement(history, 1, generation=generation)
+    assert softdrop.best_arrangement(history, 1, generation=2).generation <= 2
+
+
+def test_a_run_id_is_a_whole_number_from_1(history):
+    with pytest.raises(ValueError, match="run = 0"):
+        softdrop.best_arrangement(history, 0)
+
+
+def test_an_output_over_the_database_is_refused(history):
+    before = history.read_bytes()
+    with pytest.raises(ValueError, match="--json .*: the same file as --db"):
+        softdrop.optimize(history, resume=1, generations=3, json=str(history))
+    assert history.read_bytes() == before
+
+
+def test_stored_params_that_are_not_json_raise_store_error_naming_the_file(history, tmp_path):
+    db = tmp_path / "params.db"
+    db.write_bytes(history.read_bytes())
+    with sqlite3.connect(db) as c:
+        c.execute("UPDATE runs SET params = '{not json'")
+    c.close()
+    with pytest.raises(softdrop.StoreError, match=f"'{db}': run 1: its params are not JSON"):
+        softdrop.read_history(db)
