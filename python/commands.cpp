@@ -55,6 +55,9 @@ py::object run_command(const std::vector<std::string>& args, const py::object& c
   cli::Host host;
   host.on_progress = [&](const nlohmann::json& event) {
     py::gil_scoped_acquire gil;
+    // Once the callback has raised (or Ctrl-C came), the media still in flight are committed
+    // without calling it again; the first error is the one raised.
+    if (error.pending()) return false;
     if (PyErr_CheckSignals() != 0) {  // Ctrl-C: stop here; KeyboardInterrupt once the command is done
       error.fetch();
       return false;

@@ -11,6 +11,7 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <type_traits>
 
 #include "bindings.hpp"
@@ -312,10 +313,19 @@ PYBIND11_MODULE(_core, m) {
         cli::check_threads(threads);  // the program's rule and message
         BatchOptions batch;
         batch.droplets = droplets, batch.seed = seed, batch.threads = threads;
+        // Ctrl-C stops the batch: the calling thread, one of its workers, looks for it after each
+        // droplet it finishes (Python runs signal handlers on that thread only); the droplets in
+        // flight end and KeyboardInterrupt is raised.
+        const std::thread::id caller = std::this_thread::get_id();
+        const auto look_for_signals = [caller](int, int) {
+          if (std::this_thread::get_id() != caller) return;
+          py::gil_scoped_acquire gil;
+          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        };
         std::vector<RunSummary> runs;
         {
           py::gil_scoped_release release;
-          runs = run_batch(params, medium, run, batch, {});
+          runs = run_batch(params, medium, run, batch, look_for_signals);
         }
         py::list out;
         for (const RunSummary& s : runs) out.append(summary_dict(s, false));

@@ -89,7 +89,7 @@ TEST(BadWords, MistypedOptionsAndCommandsGetTheNearestName) {
            Case{"optimize --lamda 2", "unknown option '--lamda' (did you mean --lambda?)"},
            Case{"render paths --droplet-color 102030", "(did you mean --droplet-colour?)"},
            Case{"simulat --x0 3", "unknown command 'simulat' (did you mean simulate?)"},
-           Case{"render medum -o m.png", "unknown command 'medum' (did you mean medium?)"},
+           Case{"render medum -o m.png", "unknown command 'medum' of render (did you mean medium?)"},
            Case{"sweep-reprot --db x.db", "(did you mean sweep-report?)"},
            // Nothing close: the parser's own message.
            Case{"simulate --frobnicate", "not expected: --frobnicate"},

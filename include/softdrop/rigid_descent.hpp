@@ -32,8 +32,8 @@ struct RigidDescent {
 /// Drops a rigid disc of `radius` (length units, >= 0; 0 is a point) with its centre at x0 (in
 /// [0, W]) from above the medium. With side walls the centre is kept at least `radius` from each
 /// wall (x0 is moved in if need be). Deterministic: the same inputs give the same bits. Throws
-/// std::invalid_argument naming radius or x0 if it is negative, non-finite, out of the box, or
-/// (with walls) the disc is wider than the box.
+/// std::invalid_argument naming radius or x0 if it is negative, non-finite, out of the box, or the
+/// disc is wider than the box (periodic: its diameter must be < width, as a grain's).
 RigidDescent rigid_descent(const Medium& medium, double radius, double x0,
                            bool record_path = false);
 

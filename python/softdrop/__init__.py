@@ -115,8 +115,14 @@ def _command_line(command, db, options):
             if len(value) == 0:
                 raise ValueError(f"{name}: an empty list")
             args += [flag, ",".join(_number(v) for v in value)]
+        elif isinstance(value, numbers.Number):
+            args += [flag, _number(value)]
+        elif isinstance(value, (str, os.PathLike)):
+            args += [flag, os.fspath(value)]
+        elif isinstance(value, Medium):
+            raise TypeError(f"{name}: a grain file name, not a Medium (save it first: medium.save(path))")
         else:
-            args += [flag, _number(value) if isinstance(value, numbers.Number) else str(value)]
+            raise TypeError(f"{name}: a number, a string, a path or a list of numbers, not {type(value).__name__}")
     return args
 
 

@@ -1,5 +1,7 @@
 #include "cli/cli.hpp"
 
+#include <cerrno>
+#include <cstdlib>
 #include <chrono>
 #include <exception>
 #include <iostream>
@@ -41,15 +43,29 @@ void check_placement(MediumOptions o) {
   }
 }
 
-// An empty value converts to 0 (or "") without a word, and a path of "" means a temporary
-// database to SQLite: every option that takes a value refuses an empty one, on the command line, in
-// a config file and in a comma-separated list.
-void refuse_empty_values(CLI::App& command) {
+// Checks every option's values get before they are converted, since CLI11 converts without a
+// word: an empty value to 0 (or ""; a path of "" means a temporary database to SQLite), and a whole
+// number past the 64-bit range to the range's end. On the command line, in a config file and in
+// each element of a comma-separated list.
+void add_value_checks(CLI::App& command) {
   const CLI::Validator not_empty([](std::string& value) { return value.empty() ? std::string("an empty value") : std::string(); },
                                  "");
-  for (CLI::Option* o : command.get_options())
-    if (o->get_type_size_max() > 0) o->check(not_empty);
-  for (CLI::App* sub : command.get_subcommands([](CLI::App*) { return true; })) refuse_empty_values(*sub);
+  const CLI::Validator in_range(
+      [](std::string& value) {
+        const char* begin = value.c_str();
+        char* end = nullptr;
+        errno = 0;
+        (void)std::strtoll(begin, &end, 10);
+        const bool whole = end != begin && *end == '\0';
+        return whole && errno == ERANGE ? "'" + value + "' is out of range" : std::string();
+      },
+      "");
+  for (CLI::Option* o : command.get_options()) {
+    if (o->get_type_size_max() <= 0) continue;
+    o->check(not_empty);
+    if (o->get_type_name() == "INT") o->check(in_range);
+  }
+  for (CLI::App* sub : command.get_subcommands([](CLI::App*) { return true; })) add_value_checks(*sub);
 }
 
 // The checks of a command line as a whole, for the chosen command and its subcommand.
@@ -82,7 +98,7 @@ Cli::Cli() {
   add_study_commands(app, sweep_, sweep_merge_, sweep_report_, fit_, averagings_);
   render_cmd_ = add_render_command(app, render_);
   calibrate_cmd_ = add_calibrate_command(app, calibrate_);
-  refuse_empty_values(app);
+  add_value_checks(app);
 }
 
 void Cli::parse(int argc, const char* const* argv) {

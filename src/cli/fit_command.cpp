@@ -59,7 +59,14 @@ int run_fit(const FitArgs& a) {
                 << " media with a passed droplet (" << fewest << " at the least), too few for the "
                 << "error itself to be sure (sweep more media, or weigh by --errors droplets)\n";
   }
-  const FitResult power = fit_law(FitLaw::power, points), log = fit_law(FitLaw::log, points);
+  const auto fit = [&](FitLaw law) {
+    try {
+      return fit_law(law, points);
+    } catch (const std::invalid_argument& e) {  // too few points: say where they came from
+      throw std::invalid_argument((a.points.empty() ? "--db '" + a.db + "': " : "--points '" + a.points + "': ") + e.what());
+    }
+  };
+  const FitResult power = fit(FitLaw::power), log = fit(FitLaw::log);
   for (const FitResult* r : {&power, &log})
     if (!r->warning.empty()) std::cerr << "fit: warning: " << r->warning << '\n';
   for (const FitResult* r : {&power, &log})

@@ -39,6 +39,12 @@ std::string nearest(const std::string& word, const std::vector<std::string>& nam
   return best;
 }
 
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
 }  // namespace
 
 std::string suggest_correction(const CLI::App& app, int argc, const char* const* argv) {
@@ -73,7 +79,18 @@ std::string suggest_correction(const CLI::App& app, int argc, const char* const*
     std::vector<std::string> names;
     for (const CLI::App* a : commands) names.push_back(a->get_name());
     const std::string near = nearest(word, names);
-    return near.empty() ? "" : "unknown command '" + word + "' (did you mean " + near + "?)";
+    const std::string of = chain.size() > 1 ? " of " + here->get_name() : "";
+    return near.empty() ? "unknown command '" + word + "'" + of + " (one of " + joined(names) + ")"
+                        : "unknown command '" + word + "'" + of + " (did you mean " + near + "?)";
+  }
+  // A command that needs one of its own, given none: name them.
+  const CLI::App* last = chain.back();
+  if (last->get_require_subcommand_min() > 0 && !options_seen) {
+    std::vector<std::string> names;
+    for (const CLI::App* a : last->get_subcommands([](const CLI::App* a) { return !a->get_name().empty(); }))
+      names.push_back(a->get_name());
+    if (!names.empty())
+      return (chain.size() > 1 ? last->get_name() : std::string("softdrop")) + " needs a command: one of " + joined(names);
   }
   return "";
 }

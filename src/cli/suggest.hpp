@@ -8,7 +8,9 @@ namespace softdrop::cli {
 /// For a command line the parser refused: "unknown option '--porosty' (did you mean --porosity?)"
 /// or "unknown command 'simulat' (did you mean simulate?)" for the first unknown word that is close
 /// (within a third of its length, at least 2 edits) to an option of the commands it follows or to a
-/// command; "" when there is none, and the parser's own message stands.
+/// command; for an unknown command with none close, the commands there are; for a command that
+/// needs one of its own and was given none ("render"), those; "" when there is nothing to say, and
+/// the parser's own message stands.
 std::string suggest_correction(const CLI::App& app, int argc, const char* const* argv);
 
 }  // namespace softdrop::cli

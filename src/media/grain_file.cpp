@@ -72,30 +72,49 @@ std::string trim(std::string s) {
   return s.substr(b, e - b + 1);
 }
 
+// nlohmann's message without its "[json.exception.parse_error.101] " prefix.
+std::string plain(const nlohmann::json::exception& e) {
+  const std::string what = e.what();
+  const auto at = what.find("] ");
+  return what.rfind("[json.exception.", 0) == 0 && at != std::string::npos ? what.substr(at + 2) : what;
+}
+
+// A number field of a JSON object, or a line naming the field and what it holds instead.
+double number_at(const nlohmann::json& object, const char* key, const std::string& path, const std::string& where) {
+  const auto it = object.find(key);
+  if (it == object.end()) bad(path, where + "\"" + key + "\" is missing");
+  if (!it->is_number()) bad(path, where + "\"" + key + "\" must be a number, not " + it->type_name());
+  return it->get<double>();
+}
+
 Medium load_json(const std::string& path, std::istream& in) {
   nlohmann::json j;
   try {
     j = nlohmann::json::parse(in);
   } catch (const nlohmann::json::exception& e) {
-    bad(path, std::string("not valid JSON (") + e.what() + ")");
+    bad(path, "not valid JSON (" + plain(e) + ")");
   }
   if (!j.is_object()) bad(path, "top level must be an object");
   Medium m;
-  try {
-    if (j.value("format", "") != "softdrop-medium") bad(path, "\"format\" must be \"softdrop-medium\"");
-    if (!j.contains("version") || j["version"] != 1) bad(path, "unsupported \"version\" (this program reads 1)");
-    m.width = j.at("width").get<double>();
-    m.height = j.at("height").get<double>();
-    m.periodic = j.value("periodic", true);
-    const auto& grains = j.at("grains");
-    if (!grains.is_array()) bad(path, "\"grains\" must be an array");
-    if (grains.size() > kMaxFileGrains)
-      bad(path, std::to_string(grains.size()) + " grains, more than the limit of " + std::to_string(kMaxFileGrains));
-    m.grains.reserve(grains.size());
-    for (const auto& g : grains)
-      m.grains.push_back({g.at("x").get<double>(), g.at("y").get<double>(), g.at("r").get<double>()});
-  } catch (const nlohmann::json::exception& e) {
-    bad(path, std::string("missing or mistyped field (") + e.what() + ")");
+  if (!j.contains("format") || j["format"] != "softdrop-medium") bad(path, "\"format\" must be \"softdrop-medium\"");
+  if (!j.contains("version") || j["version"] != 1) bad(path, "unsupported \"version\" (this program reads 1)");
+  m.width = number_at(j, "width", path, "");
+  m.height = number_at(j, "height", path, "");
+  if (j.contains("periodic")) {
+    if (!j["periodic"].is_boolean()) bad(path, "\"periodic\" must be true or false, not " + std::string(j["periodic"].type_name()));
+    m.periodic = j["periodic"].get<bool>();
+  }
+  if (!j.contains("grains")) bad(path, "\"grains\" is missing");
+  const auto& grains = j["grains"];
+  if (!grains.is_array()) bad(path, "\"grains\" must be an array");
+  if (grains.size() > kMaxFileGrains)
+    bad(path, std::to_string(grains.size()) + " grains, more than the limit of " + std::to_string(kMaxFileGrains));
+  m.grains.reserve(grains.size());
+  for (std::size_t i = 0; i < grains.size(); ++i) {
+    const auto& g = grains[i];
+    const std::string where = "grain " + std::to_string(i) + ": ";
+    if (!g.is_object()) bad(path, where + "must be an object with \"x\", \"y\" and \"r\", not " + g.type_name());
+    m.grains.push_back({number_at(g, "x", path, where), number_at(g, "y", path, where), number_at(g, "r", path, where)});
   }
   return m;
 }

@@ -212,9 +212,11 @@ void check(const Medium& medium, double radius) {
   if (!medium.IsValid(&why)) throw std::invalid_argument(why);
   if (!(std::isfinite(radius) && radius >= 0))
     throw std::invalid_argument("radius = " + detail::num(radius) + ": must be finite and >= 0");
-  if (!medium.periodic && 2 * radius > medium.width)
-    throw std::invalid_argument("radius = " + detail::num(radius) +
-                                ": the disc is wider than the box");
+  // Between walls the disc must fit; in a periodic box it would overlap its own image, as a grain
+  // may not (Medium::IsValid), and past that its dilated grains lose every digit of the medium.
+  if (medium.periodic ? 2 * radius >= medium.width : 2 * radius > medium.width)
+    throw std::invalid_argument("radius = " + detail::num(radius) + ": the disc is wider than the box" +
+                                (medium.periodic ? " (its diameter must be < width)" : ""));
 }
 
 void check_start(const Medium& medium, double x0) {

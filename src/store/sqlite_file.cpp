@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdint>
 #include <chrono>
 #include <cstring>
 #include <limits>
@@ -75,12 +76,19 @@ bool check_file(const std::string& path, OpenMode mode) {
     if (mode == OpenMode::read_only) throw file_error(path, "empty file, not a softdrop database");
     return false;
   }
+  if (::access(path.c_str(), R_OK) != 0) throw file_error(path, std::string("cannot read it (") + std::strerror(errno) + ")");
   SQLite::Header h{};
   try {
     h = SQLite::Database::getHeaderInfo(path);
   } catch (const std::exception&) {
     throw file_error(path, "not an SQLite database (no SQLite header)");
   }
+  // SQLite opens a file whose write version it does not know as read-only, and refuses one whose
+  // read version it does not know: both are damage here (softdrop writes 2 and 2, WAL).
+  if ((h.fileFormatWriteVersion != 1 && h.fileFormatWriteVersion != 2) ||
+      (h.fileFormatReadVersion != 1 && h.fileFormatReadVersion != 2))
+    throw file_error(path, "damaged SQLite header (file format versions " + std::to_string(h.fileFormatWriteVersion) +
+                               " and " + std::to_string(h.fileFormatReadVersion) + ", bytes 18 and 19, must be 1 or 2)");
   const unsigned long page = h.pageSizeBytes == 1 ? 65536UL : h.pageSizeBytes;
   // A checkpoint copies pages from the WAL into the file, page 1 (with the new size) first, so a
   // kill, a full disk or a power cut inside it leaves a file shorter than its header says. That
@@ -96,6 +104,18 @@ bool check_file(const std::string& path, OpenMode mode) {
                                std::to_string(static_cast<unsigned long long>(page) * h.databaseSizePages) +
                                " bytes, the file has " + std::to_string(st.st_size) + ")");
   return true;
+}
+
+// What an SQLite error met while opening and checking a file says of it: a full disk or a failed
+// read is not damage to the file.
+const char* opening_failure(const SQLite::Exception& e) {
+  switch (e.getErrorCode() & 0xff) {
+    case SQLITE_FULL: return "no space left beside it (SQLite could not write its -wal or -shm file)";
+    case SQLITE_IOERR: return "an input/output error while reading it";
+    case SQLITE_CANTOPEN: return "cannot open it or its -wal or -shm file";
+    case SQLITE_PERM: case SQLITE_AUTH: return "not permitted to open it";
+    default: return "unreadable or corrupted";
+  }
 }
 
 // Checks an open database is ours and readable. Returns false for an empty SQLite database.
@@ -138,7 +158,7 @@ bool check_schema(SQLite::Database& db, const std::string& path) {
     return true;
   } catch (const SQLite::Exception& e) {
     if ((e.getErrorCode() & 0xff) == SQLITE_READONLY) throw;  // validate() retries read-write
-    throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
+    throw file_error(path, std::string(opening_failure(e)) + " (" + e.what() + ")");
   }
 }
 
@@ -229,7 +249,7 @@ void validate(const std::string& path, OpenMode mode) {
     if (!ours && mode == OpenMode::read_only) throw file_error(path, "empty SQLite database, no softdrop data");
   } catch (const SQLite::Exception& e) {
     tidy();
-    throw file_error(path, std::string("unreadable or corrupted (") + e.what() + ")");
+    throw file_error(path, std::string(opening_failure(e)) + " (" + e.what() + ")");
   } catch (...) {
     tidy();
     throw;
@@ -313,9 +333,33 @@ int as_int(const SQLite::Column& c) {
   return static_cast<int>(v);
 }
 
+namespace {
+// Whether `s` is well-formed UTF-8 (no overlong forms, surrogates or code points past U+10FFFF).
+bool utf8(const std::string& s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const auto b = static_cast<unsigned char>(s[i]);
+    const int extra = b < 0x80 ? 0 : (b >> 5) == 0x6 ? 1 : (b >> 4) == 0xe ? 2 : (b >> 3) == 0x1e ? 3 : -1;
+    if (extra < 0 || i + 1 + static_cast<std::size_t>(extra) > s.size()) return false;  // not a lead byte, or cut short
+    std::uint32_t cp = extra == 0 ? b : b & (0x3fu >> extra);
+    for (int k = 1; k <= extra; ++k) {
+      const auto c = static_cast<unsigned char>(s[i + static_cast<std::size_t>(k)]);
+      if ((c >> 6) != 0x2) return false;
+      cp = (cp << 6) | (c & 0x3fu);
+    }
+    static constexpr std::uint32_t kLeast[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < kLeast[extra] || cp > 0x10ffff || (cp >= 0xd800 && cp <= 0xdfff)) return false;
+    i += 1 + static_cast<std::size_t>(extra);
+  }
+  return true;
+}
+}  // namespace
+
 std::string as_text(const SQLite::Column& c) {
   if (!c.isText()) mistyped(c, "text");
-  return c.getString();
+  std::string s = c.getString();
+  if (!utf8(s))
+    throw std::runtime_error(std::string("column ") + c.getName() + " holds text that is not UTF-8 (damaged or edited file?)");
+  return s;
 }
 
 }  // namespace softdrop::detail

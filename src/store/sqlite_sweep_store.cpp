@@ -125,7 +125,10 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       while (d.executeStep()) {
         const SweepUnit u{detail::as_int(d.getColumn(0)), detail::as_int(d.getColumn(1))};
         while (k < out.size() && !(out[k].unit == u)) ++k;
-        if (k == out.size()) throw std::runtime_error("droplet of a missing medium");
+        if (k == out.size())
+          throw std::runtime_error("sweep " + std::to_string(sweep_id) + ": droplets of porosity " +
+                                   std::to_string(u.porosity) + " medium " + std::to_string(u.medium) +
+                                   " without their medium, or out of order (damaged or edited file?)");
         out[k].droplets.push_back({detail::as_int(d.getColumn(2)), detail::as_real(d.getColumn(3)),
                                    parse_outcome(detail::as_text(d.getColumn(4))),
                                    d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)), detail::as_int64(d.getColumn(6))});

@@ -15,6 +15,16 @@
 namespace softdrop {
 using detail::num;
 
+namespace {
+// What makes a point unusable for a fit ("" if nothing).
+std::string point_problem(const FitPoint& q) {
+  if (!std::isfinite(q.phi) || q.phi <= 0 || q.phi > 1) return "phi = " + num(q.phi) + " is not in (0, 1]";
+  if (!std::isfinite(q.t)) return "T is not finite";
+  if (!std::isfinite(q.se) || q.se <= 0) return "se = " + num(q.se) + " must be > 0";
+  return "";
+}
+}  // namespace
+
 std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name, FitErrors errors,
                                       bool* used_errors) {
   std::string line;
@@ -72,6 +82,7 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
     } catch (const std::exception&) {
       throw bad("expected numbers for phi, t and se");
     }
+    if (const std::string why = point_problem(p); !why.empty()) throw bad(why);
     out.push_back(p);
   }
   return out;
@@ -178,14 +189,9 @@ FitResult fit_law(FitLaw law, const std::vector<FitPoint>& points) {
   if (points.size() < k)
     throw std::invalid_argument(std::string("fit ") + to_string(law) + ": needs at least " + std::to_string(k) +
                                 " points, got " + std::to_string(points.size()));
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const FitPoint& q = points[i];
-    if (!std::isfinite(q.phi) || q.phi <= 0 || q.phi > 1)
-      throw std::invalid_argument("point " + std::to_string(i) + ": phi = " + num(q.phi) + " is not in (0, 1]");
-    if (!std::isfinite(q.t)) throw std::invalid_argument("point " + std::to_string(i) + ": T is not finite");
-    if (!std::isfinite(q.se) || q.se <= 0)
-      throw std::invalid_argument("point " + std::to_string(i) + ": se = " + num(q.se) + " must be > 0");
-  }
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (const std::string why = point_problem(points[i]); !why.empty())
+      throw std::invalid_argument("point " + std::to_string(i) + ": " + why);
   FitResult r;
   r.law = law;
   r.names = law == FitLaw::power ? std::vector<std::string>{"a", "b", "c"} : std::vector<std::string>{"p"};

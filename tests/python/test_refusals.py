@@ -2,7 +2,10 @@
 not a file name, ids below 1, a generation a run does not have, and options whose values a file
 would overwrite."""
 import os
+import signal
 import sqlite3
+import threading
+import time
 
 import pytest
 
@@ -73,3 +76,45 @@ def test_stored_params_that_are_not_json_raise_store_error_naming_the_file(histo
     c.close()
     with pytest.raises(softdrop.StoreError, match=f"'{db}': run 1: its params are not JSON"):
         softdrop.read_history(db)
+
+
+def test_ctrl_c_stops_simulate_many_after_the_droplets_in_flight():
+    medium = softdrop.Medium.generate(width=300, height=300)
+    run = softdrop.RunOptions(rest_window=0)  # stuck droplets run their whole stuck test: a long batch
+    t0 = time.perf_counter()
+    softdrop.simulate_many(medium, 4, seed=5, threads=1, run=run)
+    per_droplet = (time.perf_counter() - t0) / 4
+    timer = threading.Timer(2 * per_droplet, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.perf_counter()
+    with pytest.raises(KeyboardInterrupt):
+        softdrop.simulate_many(medium, 40, seed=5, threads=1, run=run)
+    # Stopped after the droplet in flight, not after all 40.
+    assert time.perf_counter() - t0 < 10 * per_droplet
+    timer.join()
+
+
+def test_rigid_descent_refuses_a_disc_wider_than_a_periodic_box():
+    medium = softdrop.Medium.generate(width=300, height=300)
+    with pytest.raises(ValueError, match="radius = 1e\\+308: the disc is wider than the box"):
+        softdrop.rigid_descent(medium, [100], radius=1e308)
+
+
+def test_a_medium_object_for_a_file_option_says_to_save_it(tmp_path):
+    medium = softdrop.Medium.generate(width=300, height=300)
+    with pytest.raises(TypeError, match="medium: a grain file name, not a Medium"):
+        softdrop.optimize(tmp_path / "h.db", medium=medium, generations=1)
+    assert not (tmp_path / "h.db").exists()
+
+
+def test_a_sweep_callback_that_raised_is_not_called_again(tmp_path):
+    calls = []
+
+    def callback(event):
+        calls.append(event["medium_index"])
+        raise RuntimeError("stop here")
+
+    with pytest.raises(RuntimeError, match="stop here"):
+        softdrop.sweep(tmp_path / "s.db", callback=callback, porosities=[0.8], media=6, droplets=2, width=200,
+                       height=200, threads=2, quiet=True)
+    assert len(calls) == 1
