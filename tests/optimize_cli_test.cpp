@@ -306,4 +306,24 @@ TEST(Optimize, HistoryListsCandidatesAndTheStoredOptions) {
   EXPECT_NE(run("history --help").out.find("candidate_t = the best T among"), std::string::npos);
 }
 
+// --preset paper is the paper's algorithm spelled out, to the bit; it fills only the options not
+// given, and a resume under it checks that the stored run is the paper's.
+TEST(Optimize, PresetPaperIsThePapersAlgorithm) {
+  const std::string preset = fresh("preset_paper.db"), spelled = fresh("preset_spelled.db");
+  ASSERT_EQ(run("optimize --db " + preset + kScene + " --generations 6 --preset paper").code, 0);
+  ASSERT_EQ(run("optimize --db " + spelled + kScene + " --generations 6 --strategy paper --lambda 1 --relocate-every 0").code, 0);
+  EXPECT_EQ(dump(preset, 1), dump(spelled, 1));
+  ASSERT_EQ(run("optimize --db " + preset + kScene + " --generations 2 --preset paper --lambda 2").code, 0);
+  const Result p = run("history --db " + preset + " --run 2 --params --format csv");
+  EXPECT_NE(p.out.find("\nlambda,2\n"), std::string::npos) << p.out;
+  EXPECT_NE(p.out.find("\nstrategy,paper\n"), std::string::npos) << p.out;
+  EXPECT_EQ(run("optimize --db " + preset + " --resume 1 --preset paper --generations 8").code, 0);
+  const std::string plain = fresh("preset_plain.db");
+  ASSERT_EQ(run("optimize --db " + plain + kScene + " --generations 2").code, 0);
+  const Result r = run("optimize --db " + plain + " --resume 1 --preset paper --generations 4");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("contradicts the stored run: --lambda 1 (stored 8)"), std::string::npos) << r.err;
+  EXPECT_EQ(run("optimize --db " + plain + " --preset fast").code, 2);
+}
+
 }  // namespace

@@ -111,7 +111,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     for (const auto& [key, value] : read_back.items())
       if (!stored.contains(key)) stored[key] = value;
     stored.erase("island");
-    if (const std::string bad = contradictions(given, stored, cmd); !bad.empty())
+    if (const std::string bad = contradictions(given, stored, cmd, a.preset_keys); !bad.empty())
       throw std::invalid_argument("resume " + std::to_string(a.resume) + ": the command line contradicts the stored run: " + bad);
     const bool target_given = cmd.get_option("--generations")->count() > 0;
     if (!target_given && stored.contains("target-generations")) a.generations = stored["target-generations"].get<std::int64_t>();

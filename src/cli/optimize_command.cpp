@@ -42,6 +42,10 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->capture_default_str();
   g->add_option("--lambda", a.search.lambda, "Candidates per generation, evaluated in parallel (1 with --strategy paper: the paper)")
       ->capture_default_str();
+  g->add_option("--preset", a.preset,
+                "paper: the paper's algorithm (--strategy paper --lambda 1 --relocate-every 0, its two moves at "
+                "their default steps) for every search option not given")
+      ->check(CLI::IsMember({"paper"}));
   g->add_option("--seed", a.search.seed, "Seed of the moves")->capture_default_str()->check(seed_check());
   g->add_option("--single-every", a.search.single_every,
                 "Every this-th generation moves one grain the droplet touched (0: never)")
@@ -115,6 +119,20 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
 
   add_medium_options(s, a.medium, true);
   add_droplet_options(s, a.search.droplet);
+
+  // The preset fills in the options not given, once the command line and config are read, so that
+  // --check, the run and the stored parameters all see the search that runs.
+  s->parse_complete_callback([&a, s] {
+    if (a.preset != "paper") return;
+    const auto fill = [&](const char* key, auto apply) {
+      if (s->get_option(std::string("--") + key)->count() > 0) return;
+      apply();
+      a.preset_keys.emplace_back(key);
+    };
+    fill("strategy", [&] { a.search.strategy.kind = StrategyKind::paper; });
+    fill("lambda", [&] { a.search.lambda = 1; });
+    fill("relocate-every", [&] { a.search.relocate_every = 0; });
+  });
 
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
   o->add_flag("--verbose", a.verbose,
@@ -229,7 +247,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     const nlohmann::json read_back = nlohmann::json::parse(search_params_to_json(a.search));
     for (const auto& [key, value] : read_back.items())
       if (!stored.contains(key)) stored[key] = value;
-    if (const std::string bad = contradictions(given, stored, cmd); !bad.empty())
+    if (const std::string bad = contradictions(given, stored, cmd, a.preset_keys); !bad.empty())
       throw std::invalid_argument("resume " + std::to_string(run) + ": the command line contradicts the stored run: " + bad);
     // Without --generations a resume goes on to the run's own target (runs stored before targets
     // were: the default); a target at or below the last generation leaves the run as it is.

@@ -57,12 +57,13 @@ nlohmann::json params_of(const OptimizeArgs& a) {
 }
 
 // Options given on the command line (or in a config file) that differ from the stored run.
-std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored,
-                           const CLI::App& cmd) {
+std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& cmd,
+                           const std::vector<std::string>& preset_keys) {
   std::string out;
   for (const auto& [key, value] : given.items()) {
     const CLI::Option* opt = cmd.get_option_no_throw("--" + key);
-    if (!opt || opt->count() == 0) continue;
+    const bool preset = std::find(preset_keys.begin(), preset_keys.end(), key) != preset_keys.end();
+    if (!preset && (!opt || opt->count() == 0)) continue;
     const bool differs = !stored.contains(key) || stored.at(key) != value;
     if (differs)
       out += (out.empty() ? "" : ", ") + std::string("--") + key + " " + value.dump() +

@@ -41,6 +41,8 @@ struct OptimizeArgs {
   bool verbose = false;  ///< also print how the speculation went
   std::string format = "table";
   std::string json_file;
+  std::string preset;  ///< "paper": the paper's algorithm for the search options not given
+  std::vector<std::string> preset_keys;  ///< the stored keys the preset set (compared on resume as if given)
   /// Options of one strategy given on the command line, with the strategy that uses each.
   std::vector<std::pair<std::string, StrategyKind>> strategy_options;
 
@@ -52,10 +54,11 @@ const char* island_starts_name(bool own);
 /// The run's parameters as the command line gives them (search options and how the starting
 /// medium was made), stored with the run.
 nlohmann::json params_of(const OptimizeArgs& args);
-/// Options given on the command line (or in a config file) that differ from the stored run's
-/// parameters, as "--key value (stored value)" items; "" when none does.
-std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored,
-                           const CLI::App& command);
+/// Options given on the command line (or in a config file), or set by its --preset (`preset_keys`),
+/// that differ from the stored run's parameters, as "--key value (stored value)" items; "" when
+/// none does.
+std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& command,
+                           const std::vector<std::string>& preset_keys);
 /// Generation 0 of a new run: the loaded medium, or random media until the droplet passes.
 Generation start(const OptimizeArgs& args, Configuration* best);
 /// A stored run as a search that continues it, after checking that this build evaluates its

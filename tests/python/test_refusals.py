@@ -118,3 +118,13 @@ def test_a_sweep_callback_that_raised_is_not_called_again(tmp_path):
         softdrop.sweep(tmp_path / "s.db", callback=callback, porosities=[0.8], media=6, droplets=2, width=200,
                        height=200, threads=2, quiet=True)
     assert len(calls) == 1
+
+
+def test_stored_text_that_is_not_utf8_raises_store_error_naming_the_file(history, tmp_path):
+    db = tmp_path / "utf8.db"
+    db.write_bytes(history.read_bytes())
+    with sqlite3.connect(db) as c:
+        c.execute("UPDATE runs SET params = CAST(x'7bff7d' AS TEXT)")
+    c.close()
+    with pytest.raises(softdrop.StoreError, match=f"'{db}'.*column params holds text that is not UTF-8"):
+        softdrop.read_history(db)
