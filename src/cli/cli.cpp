@@ -98,6 +98,7 @@ Cli::Cli() {
   add_study_commands(app, sweep_, sweep_merge_, sweep_report_, fit_, averagings_);
   render_cmd_ = add_render_command(app, render_);
   calibrate_cmd_ = add_calibrate_command(app, calibrate_);
+  validate_cmd_ = add_validate_command(app, validate_);
   add_value_checks(app);
 }
 
@@ -128,6 +129,7 @@ void Cli::check() {
   }
   if (render_cmd_->parsed()) check_render(render_);
   if (calibrate_cmd_->parsed()) check_calibrate(calibrate_);
+  if (validate_cmd_->parsed()) check_validate(validate_, *validate_cmd_);
 }
 
 int Cli::run() {
@@ -150,6 +152,7 @@ int Cli::run() {
   if (app.got_subcommand("averagings")) return run_averagings(averagings_);
   if (render_cmd_->parsed()) return run_render(render_, *render_cmd_);
   if (calibrate_cmd_->parsed()) return run_calibrate(calibrate_);
+  if (validate_cmd_->parsed()) return run_validate(validate_, *validate_cmd_);
   return 0;
 }
 

@@ -13,6 +13,7 @@
 #include "cli/render_command.hpp"
 #include "cli/simulate_command.hpp"
 #include "cli/sweep_command.hpp"
+#include "cli/validate_command.hpp"
 
 namespace softdrop::cli {
 
@@ -54,12 +55,14 @@ class Cli {
   AveragingArgs averagings_;
   RenderArgs render_;
   CalibrateArgs calibrate_;
+  ValidateArgs validate_;
   CLI::App* simulate_cmd_ = nullptr;
   CLI::App* optimize_cmd_ = nullptr;
   CLI::App* history_cmd_ = nullptr;
   CLI::App* export_cmd_ = nullptr;
   CLI::App* render_cmd_ = nullptr;
   CLI::App* calibrate_cmd_ = nullptr;
+  CLI::App* validate_cmd_ = nullptr;
 };
 
 /// The whole program: parses, runs, and turns every error into one line on stderr. Returns the

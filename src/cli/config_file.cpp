@@ -44,17 +44,18 @@ void collect(const toml::table& table, std::vector<std::string> parents, std::ve
 // What the command line would refuse or misread is refused here, naming the file and the key:
 // an empty array (it would hand the parser an option without a value), an array for an option
 // that takes one value (the parser would keep its last element), and a key no option has.
-void SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string& file) const {
+bool SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string& file) const {
   const std::string where = "config file '" + file + "': " + item.name;
   if (item.inputs.empty()) throw CLI::ConversionError(where + " = []: an empty array (give a value, or leave the key out)");
   const CLI::App* command = &app_;
   for (const std::string& parent : item.parents) {
     const auto named = command->get_subcommands([&](const CLI::App* sub) { return sub->get_name() == parent; });
-    if (named.empty()) return;  // not a command's table: the parser reports it
+    if (named.empty()) return true;  // not a command's table: the parser reports it
     command = named.front();
   }
   const CLI::Option* option = command->get_option_no_throw("--" + item.name);
   if (option == nullptr) option = app_.get_option_no_throw("--" + item.name);  // program-level options
+  if (option == nullptr && shapes_a_medium(item.name)) return false;
   if (option == nullptr) {
     std::string path;
     for (const std::string& parent : item.parents) path += parent + " ";
@@ -64,6 +65,19 @@ void SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string
   if (item.inputs.size() > 1 && option->get_items_expected_max() <= 1)
     throw CLI::ConversionError(where + ": --" + item.name + " takes one value, not an array of " +
                                std::to_string(item.inputs.size()));
+  return true;
+}
+
+// The installed droplet configs name the grains their droplet was calibrated among (r-min, r-max),
+// for the commands that generate media; a command that takes no medium options (validate, which
+// reads its medium) leaves such keys alone, as it does a medium option on the command line.
+bool SubcommandConfig::shapes_a_medium(const std::string& key) const {
+  const auto simulate = app_.get_subcommands([](const CLI::App* s) { return s->get_name() == "simulate"; });
+  if (simulate.empty()) return false;
+  for (const CLI::App* group :
+       simulate.front()->get_subcommands([](const CLI::App* s) { return s->get_name().empty() && s->get_group() == "Medium"; }))
+    if (group->get_option_no_throw("--" + key) != nullptr) return true;
+  return false;
 }
 
 std::vector<CLI::ConfigItem> SubcommandConfig::from_config(std::istream& input) const {
@@ -89,11 +103,12 @@ std::vector<CLI::ConfigItem> SubcommandConfig::from_config(std::istream& input) 
       throw CLI::ConversionError(where.str());
     }
   }
+  std::vector<CLI::ConfigItem> kept;
   for (auto& item : found) {
     if (item.parents.empty()) item.parents = chain;
-    check_item(item, name);
+    if (check_item(item, name)) kept.push_back(std::move(item));
   }
-  return found;
+  return kept;
 }
 
 }  // namespace softdrop::cli

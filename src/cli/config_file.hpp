@@ -21,7 +21,10 @@ class SubcommandConfig : public CLI::ConfigTOML {
   std::vector<CLI::ConfigItem> from_config(std::istream& input) const override;
 
  private:
-  void check_item(const CLI::ConfigItem& item, const std::string& file) const;
+  /// Throws naming the file and key if the item is refused; false: leave it out (a medium's key
+  /// for a command without medium options).
+  bool check_item(const CLI::ConfigItem& item, const std::string& file) const;
+  bool shapes_a_medium(const std::string& key) const;
   const CLI::App& app_;
 };
 
