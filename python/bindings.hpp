@@ -3,6 +3,9 @@
 // bindings to the module.
 #include <pybind11/pybind11.h>
 
+#include <functional>
+#include <thread>
+
 namespace softdrop::python {
 
 namespace py = pybind11;
@@ -10,6 +13,21 @@ namespace py = pybind11;
 /// softdrop.StoreError (a RuntimeError): a database the store refuses. Set up by bind_stores.
 PyObject* store_error();
 
+/// A batch's progress callback that stops it on Ctrl-C: the calling thread, one of the batch's
+/// workers, looks for signals after each droplet it finishes (Python runs signal handlers on that
+/// thread only) and throws KeyboardInterrupt through the batch, which ends the droplets in flight
+/// and rethrows it. Made on the calling thread, which holds the GIL until the batch starts.
+inline std::function<void(int, int)> stop_on_ctrl_c() {
+  const std::thread::id caller = std::this_thread::get_id();
+  return [caller](int, int) {
+    if (std::this_thread::get_id() != caller) return;
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+  };
+}
+
+/// The held-out value of a medium (held_out.hpp).
+void bind_held_out(py::module_& m);
 /// The readers of search histories and sweep stores: read_history, read_sweep, best_arrangement.
 void bind_stores(py::module_& m);
 /// The program's optimize and sweep commands, run in this process: the same options, files and

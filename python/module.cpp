@@ -11,7 +11,6 @@
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 #include <type_traits>
 
 #include "bindings.hpp"
@@ -30,6 +29,8 @@ namespace py = pybind11;
 using namespace softdrop;
 namespace cli = softdrop::cli;
 using softdrop::python::bind_commands;
+using softdrop::python::bind_held_out;
+using softdrop::python::stop_on_ctrl_c;
 using softdrop::python::bind_stores;
 
 namespace {
@@ -262,6 +263,7 @@ PYBIND11_MODULE(_core, m) {
 
   bind_stores(m);
   bind_commands(m);
+  bind_held_out(m);
 
   m.def(
       "_simulate",
@@ -313,19 +315,11 @@ PYBIND11_MODULE(_core, m) {
         cli::check_threads(threads);  // the program's rule and message
         BatchOptions batch;
         batch.droplets = droplets, batch.seed = seed, batch.threads = threads;
-        // Ctrl-C stops the batch: the calling thread, one of its workers, looks for it after each
-        // droplet it finishes (Python runs signal handlers on that thread only); the droplets in
-        // flight end and KeyboardInterrupt is raised.
-        const std::thread::id caller = std::this_thread::get_id();
-        const auto look_for_signals = [caller](int, int) {
-          if (std::this_thread::get_id() != caller) return;
-          py::gil_scoped_acquire gil;
-          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        };
+        const auto progress = stop_on_ctrl_c();
         std::vector<RunSummary> runs;
         {
           py::gil_scoped_release release;
-          runs = run_batch(params, medium, run, batch, look_for_signals);
+          runs = run_batch(params, medium, run, batch, progress);
         }
         py::list out;
         for (const RunSummary& s : runs) out.append(summary_dict(s, false));

@@ -55,6 +55,22 @@ def simulate_many(medium, n, seed=1, threads=0, params=None, run=None):
     return _runs_frame(rows)
 
 
+def held_out(medium, starts=200, seed=1, half_dt=True, threads=0, params=None, run=None):
+    """The held-out value of a medium, as `softdrop validate` gives it: `starts` droplets from random
+    starts across the top (drawn as simulate_many draws them), and with half_dt the same starts at
+    dt / 2 (twice the step budget). Returns a Result with at_dt and at_half_dt (dicts: dt, starts,
+    passed, pass_fraction, mean_t, standard_error, q1, median, q3; None where nothing passed),
+    dt_shift and dt_shift_error (the mean of T(dt/2) - T(dt) over the `paired` starts that passed
+    at both), and runs, a pandas DataFrame with one row a droplet and time step. Ctrl-C stops it
+    after the droplets in flight."""
+    import pandas as pd
+
+    out = _core._held_out(medium, int(starts), int(seed), bool(half_dt), int(threads), params or DropletParams(),
+                          run or RunOptions())
+    out["runs"] = pd.DataFrame(out["runs"])
+    return Result(out)
+
+
 def rigid_descent(medium, x0, radius=0.0, path=False):
     """The geometric limit of passage: a rigid, frictionless disc of `radius` (0: a point) without
     inertia, dropped with its centre at x0 (one start or a sequence) and moved by gravity alone. It

@@ -128,3 +128,18 @@ def test_stored_text_that_is_not_utf8_raises_store_error_naming_the_file(history
     c.close()
     with pytest.raises(softdrop.StoreError, match=f"'{db}'.*column params holds text that is not UTF-8"):
         softdrop.read_history(db)
+
+
+def test_held_out_is_simulate_many_from_the_same_starts():
+    medium = softdrop.Medium.generate(porosity=0.85, width=300, height=300)
+    v = softdrop.held_out(medium, starts=12, seed=4)
+    many = softdrop.simulate_many(medium, 12, seed=4)
+    passed = many[many["outcome"] == "passed"]
+    assert v.at_dt["passed"] == len(passed)
+    assert v.at_dt["mean_t"] == pytest.approx(passed["tortuosity"].mean(), rel=1e-12)
+    assert v.at_dt["median"] == pytest.approx(passed["tortuosity"].quantile(0.5), rel=1e-12)
+    assert v.at_half_dt["dt"] == v.at_dt["dt"] / 2
+    assert list(v.runs.columns) == ["start", "start_x", "dt", "outcome", "tortuosity", "steps"]
+    assert len(v.runs) == 24
+    with pytest.raises(ValueError, match="starts = 0"):
+        softdrop.held_out(medium, starts=0)
