@@ -61,7 +61,23 @@ py::dict history_tables(History& h, bool arrangements) {
                  "steps", "touched", "seconds"});
   Columns grains({"run_id", "generation", "grain", "x", "y", "r", "touched"});
   Columns paths({"run_id", "generation", "point", "x", "y"});
+  Columns held({"run_id", "generation", "seed", "starts", "created", "version", "dt", "passed", "mean_t",
+                "standard_error", "q1", "median", "q3", "half_dt", "half_dt_passed", "half_dt_mean_t",
+                "half_dt_standard_error", "paired", "dt_shift", "dt_shift_error"});
   for (const RunRecord& r : h.runs()) {
+    for (const ValidationRecord& v : h.validations(r.id)) {
+      held["run_id"].append(r.id), held["generation"].append(v.generation), held["seed"].append(v.seed);
+      held["starts"].append(v.starts), held["created"].append(v.created), held["version"].append(v.version);
+      held["dt"].append(v.dt), held["passed"].append(v.passed), held["mean_t"].append(v.mean_t);
+      held["standard_error"].append(v.standard_error), held["q1"].append(v.q1), held["median"].append(v.median);
+      held["q3"].append(v.q3), held["half_dt"].append(v.half_dt);
+      held["half_dt_passed"].append(or_none(v.half_dt, py::int_(v.half_dt_passed)));
+      held["half_dt_mean_t"].append(v.half_dt ? v.half_dt_mean_t : kNaN);
+      held["half_dt_standard_error"].append(v.half_dt ? v.half_dt_standard_error : kNaN);
+      held["paired"].append(or_none(v.half_dt, py::int_(v.paired)));
+      held["dt_shift"].append(v.half_dt ? v.dt_shift : kNaN);
+      held["dt_shift_error"].append(v.half_dt ? v.dt_shift_error : kNaN);
+    }
     runs["id"].append(r.id), runs["created"].append(r.created), runs["updated"].append(r.updated);
     runs["version"].append(r.version), runs["status"].append(r.status), runs["seed"].append(r.seed);
     runs["lambda"].append(r.lambda), runs["grains"].append(r.grains), runs["width"].append(r.width);
@@ -101,7 +117,7 @@ py::dict history_tables(History& h, bool arrangements) {
   }
   py::dict out;
   out["runs"] = runs.dict(), out["generations"] = gens.dict(), out["candidates"] = cands.dict();
-  out["grains"] = grains.dict(), out["paths"] = paths.dict();
+  out["grains"] = grains.dict(), out["paths"] = paths.dict(), out["validations"] = held.dict();
   return out;
 }
 

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
+
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <string>
 #include <vector>
 
@@ -80,6 +82,39 @@ TEST(Validate, AStoredRunIsValidatedWithItsOwnDroplet) {
   EXPECT_EQ(stored["at_half_dt"], file["at_half_dt"]);
   EXPECT_EQ(stored["source"]["run"], 1);
   EXPECT_TRUE(stored["source"]["in_search_t"].is_number());
+}
+
+// The end of a search stores its best's held-out value: what validate computes for it, shown by
+// history --best and export beside the in-search T.
+TEST(Validate, ASearchStoresItsBestsHeldOutValue) {
+  const std::string db = fresh("validate_end.db");
+  const Result r = run("optimize --db " + db + kScene + " --generations 3 --validate-starts 16 --format json");
+  const nlohmann::json end = json_of(r);
+  ASSERT_TRUE(end["held_out"].is_object()) << r.out;
+  EXPECT_EQ(end["held_out"]["starts"], 16);
+  EXPECT_EQ(end["held_out"]["generation"], end["best_generation"]);
+  const nlohmann::json again = json_of(run("validate --db " + db + " --run 1 --starts 16 --format json --quiet"));
+  EXPECT_EQ(end["held_out"]["mean_t"], again["at_dt"]["mean_t"]);
+  EXPECT_EQ(end["held_out"]["half_dt_mean_t"], again["at_half_dt"]["mean_t"]);
+  const nlohmann::json best = json_of(run("history --db " + db + " --run 1 --best --format json"));
+  const nlohmann::json& last = best.back();
+  EXPECT_EQ(last["generation"], end["best_generation"]);
+  EXPECT_EQ(last["held_out_t"], again["at_dt"]["mean_t"]);
+  EXPECT_EQ(last["held_out_starts"], 16);
+  EXPECT_TRUE(best.front()["held_out_t"].is_null() || best.size() == 1);
+  const Result e = run("export --db " + db + " --run 1 -o " + fresh("validate_end.json"));
+  EXPECT_NE(e.err.find("its held-out T is"), std::string::npos) << e.err;
+  // validate stores what it computes for any generation; the same again replaces it.
+  ASSERT_EQ(run("validate --db " + db + " --run 1 --generation 0 --starts 8 --quiet").code, 0);
+  ASSERT_EQ(run("validate --db " + db + " --run 1 --generation 0 --starts 8 --quiet").code, 0);
+  SQLite::Database d(db, SQLite::OPEN_READONLY);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM validations WHERE generation = 0").getInt(), 1);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM validations").getInt(), 2);
+  // --validate-starts 0 asks for none.
+  const std::string none = fresh("validate_none.db");
+  ASSERT_EQ(run("optimize --db " + none + kScene + " --generations 2").code, 0);
+  EXPECT_EQ(SQLite::Database(none, SQLite::OPEN_READONLY).execAndGet("SELECT count(*) FROM validations").getInt(), 0);
+  EXPECT_EQ(run("optimize --db " + none + kScene + " --generations 2 --validate-starts -1").code, 1);
 }
 
 TEST(Validate, BadInputGetsOneLineAndWritesNothing) {

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "softdrop/held_out.hpp"
 #include "softdrop/open_mode.hpp"
 #include "softdrop/search.hpp"
 
@@ -17,8 +18,8 @@ namespace softdrop {
 /// The schema version this build writes (PRAGMA user_version). Files with a higher version are
 /// refused; files with a lower one are read as they are and migrated when opened for writing
 /// (1 -> 2 adds the sweeps, 2 -> 3 the strategies' state of each generation, 3 -> 4 relocation
-/// moves, 4 -> 5 islands).
-constexpr int kHistorySchemaVersion = 5;
+/// moves, 4 -> 5 islands, 5 -> 6 the held-out values of arrangements).
+constexpr int kHistorySchemaVersion = 6;
 /// PRAGMA application_id of a softdrop database: "SDRP".
 constexpr std::int32_t kHistoryApplicationId = 0x53445250;
 
@@ -41,6 +42,27 @@ struct RunRecord {
   int island = -1;                ///< the run's island (islands.hpp); -1: not one of islands
   std::int64_t archipelago = 0;   ///< id of its archipelago's first run (island 0); 0: none
 };
+
+/// A held-out value of a run's arrangement (held_out.hpp), as stored: at dt, and at dt / 2 where
+/// it was asked. NaN where nothing (or one droplet, for an error) passed.
+struct ValidationRecord {
+  std::int64_t generation = 0;  ///< the arrangement kept as of this generation
+  std::string created;          ///< UTC, ISO 8601
+  std::string version;          ///< softdrop version that computed it
+  std::uint64_t seed = 1;       ///< of the starts
+  int starts = 0;
+  double dt = 0;
+  int passed = 0;
+  double mean_t = 0, standard_error = 0, q1 = 0, median = 0, q3 = 0;
+  bool half_dt = false;  ///< the starts were run again at dt / 2
+  int half_dt_passed = 0;
+  double half_dt_mean_t = 0, half_dt_standard_error = 0;
+  int paired = 0;  ///< starts that passed at both time steps
+  double dt_shift = 0, dt_shift_error = 0;
+};
+
+/// The record of a held-out value of the arrangement kept as of `generation`.
+ValidationRecord validation_record(std::int64_t generation, const HeldOutOptions& options, const HeldOutValue& value);
 
 /// A candidate's row.
 struct CandidateRecord {
@@ -107,6 +129,11 @@ class History {
   virtual Configuration configuration(std::int64_t run, std::int64_t generation) = 0;
   /// The strategy state stored with `generation` ("" if none).
   virtual std::string strategy_state(std::int64_t run, std::int64_t generation) = 0;
+  /// Stores a held-out value of the run's arrangement as of v.generation, replacing one of the
+  /// same generation, seed and starts (the numbers are deterministic: the same).
+  virtual void add_validation(std::int64_t run, const ValidationRecord& v) = 0;
+  /// The run's held-out values, by generation, seed and starts.
+  virtual std::vector<ValidationRecord> validations(std::int64_t run) = 0;
 };
 
 /// Opens an SQLite history. A missing file (read_only), a file that is not SQLite, a foreign SQLite

@@ -183,7 +183,8 @@ def read_history(db, arrangements=True):
     """A search history (the SQLite file of `softdrop optimize`), read by the program's own store:
     a dict of pandas DataFrames with the columns of the database's tables (see the README):
     `runs`, `generations`, `candidates`, `grains` and `paths` (the arrangements the search kept:
-    generation 0's and each accepted one; arrangements=False leaves these two empty), and
+    generation 0's and each accepted one; arrangements=False leaves these two empty),
+    `validations` (held-out values of arrangements: `softdrop validate`, and the end of a search), and
     `params` (one row a run: run_id and the options stored with it). A file the store refuses
     raises StoreError naming it."""
     import json
@@ -193,7 +194,7 @@ def read_history(db, arrangements=True):
     tables = _core._read_history(_db_path(db), bool(arrangements))
     frames = {name: pd.DataFrame(columns) for name, columns in tables.items()}
     for name, column in (("generations", "accepted_candidate"), ("candidates", "moved_grain"), ("runs", "island"),
-                         ("runs", "archipelago")):
+                         ("runs", "archipelago"), ("validations", "half_dt_passed"), ("validations", "paired")):
         frames[name][column] = frames[name][column].astype("Int64")  # missing: <NA>
     frames["grains"]["touched"] = frames["grains"]["touched"].astype(bool)
     rows = []

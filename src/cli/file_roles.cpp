@@ -66,7 +66,7 @@ std::vector<NamedFile> named_files(const CLI::App& app) {
     NamedFile f{name, "", false, false};
     if (name == "--db") {  // the commands that create or extend a store write it
       f.database = true;
-      f.written = command == "optimize" || command == "sweep";
+      f.written = command == "optimize" || command == "sweep" || command == "validate";
     } else if (name == "--into") {  // sweep-merge's output store
       f.database = f.written = true;
     } else if (name == "inputs") {  // sweep-merge's input stores

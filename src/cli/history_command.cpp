@@ -3,6 +3,8 @@
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <cmath>
+#include <map>
 #include <sstream>
 #include <stdexcept>
 
@@ -37,7 +39,10 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
       "candidates (empty if none passed); outcomes = each candidate's outcome, in order; best_t = the best T "
       "after it; touched = grains the best arrangement's droplet touched; seconds = wall time; state = the "
       "strategy's state (JSON). Candidates: moved_grain = the grain a single or relocate move moved (empty for all); "
-      "moved = grains moved; t = T if passed; steps = time steps simulated; reason = why its run ended.");
+      "moved = grains moved; t = T if passed; steps = time steps simulated; reason = why its run ended. "
+      "--best: held_out_t, held_out_se = the mean T and its standard error over held_out_starts random starts of "
+      "that generation's arrangement (softdrop validate, or the end of the search; empty where none was "
+      "computed).");
   return s;
 }
 
@@ -101,12 +106,21 @@ int run_history(const HistoryArgs& a) {
                           c.moved_grain >= 0 ? nlohmann::json(c.moved_grain) : nlohmann::json(nullptr), c.moved,
                           c.seconds, c.reason});
   } else if (a.best) {
-    t.header = {"generation", "kind", "best_t", "touched"};
+    // Beside the in-search best T, the held-out value of that generation's arrangement where one
+    // was stored (the latest of its validations).
+    t.header = {"generation", "kind", "best_t", "touched", "held_out_t", "held_out_se", "held_out_starts"};
+    std::map<std::int64_t, ValidationRecord> held_out;
+    for (const ValidationRecord& v : history->validations(a.run)) held_out[v.generation] = v;
+    const auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
     double best = 0;
     for (const GenerationRecord& g : history->generations(a.run))
       if (g.generation == 0 || g.best_t > best) {  // the generations that raised the best
         best = g.best_t;
-        t.rows.push_back({g.generation, g.kind, g.best_t, g.touched});
+        const auto v = held_out.find(g.generation);
+        const bool has = v != held_out.end();
+        t.rows.push_back({g.generation, g.kind, g.best_t, g.touched, has ? number(v->second.mean_t) : nlohmann::json(),
+                          has ? number(v->second.standard_error) : nlohmann::json(),
+                          has ? nlohmann::json(v->second.starts) : nlohmann::json()});
       }
   } else {
     t.header = {"generation", "kind", "accepted", "candidate_t", "outcomes", "best_t", "touched", "seconds", "state"};
@@ -160,6 +174,10 @@ int run_export(const ExportArgs& a) {
   std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation << " (T = "
             << fmt(c.eval.tortuosity) << ", " << c.medium.grains.size() << " grains) written to " << a.output
             << "\n";
+  for (const ValidationRecord& v : history->validations(a.run))
+    if (v.generation == c.generation && std::isfinite(v.mean_t))
+      std::cerr << "export: its held-out T is " << fmt(v.mean_t, 6) << " over " << v.starts << " random starts ("
+                << v.passed << " passed; softdrop validate)\n";
   return 0;
 }
 

@@ -112,6 +112,10 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
                 "Candidates each thread steps together, in [0, 64] (0: chosen for this processor, see "
                 "docs/search.md); a matter of speed only: results do not depend on it")
       ->capture_default_str();
+  g->add_option("--validate-starts", a.validate_starts,
+                "At the end, the best arrangement's held-out <T> over this many random starts, at dt and dt/2, "
+                "stored in the history (as softdrop validate; 0: none)")
+      ->capture_default_str();
   g->add_option("--start-attempts", a.start_attempts,
                 "Random starting media to try until the droplet passes (generated media only)")
       ->capture_default_str();
@@ -184,6 +188,8 @@ void check_optimize(OptimizeArgs& a) {
   DriveOptions drive;
   drive.lanes = a.lanes;
   if (std::string why; !drive.IsValid(&why)) throw std::invalid_argument(why);
+  if (a.validate_starts < 0 || a.validate_starts > kMaxHeldOutStarts)
+    throw std::invalid_argument("validate-starts = " + std::to_string(a.validate_starts) + ": must be in [0, 1e6]");
   if (a.start_attempts < 1)
     throw std::invalid_argument("start-attempts = " + std::to_string(a.start_attempts) + ": must be >= 1");
   if (a.resume < 0) throw std::invalid_argument("resume = " + std::to_string(a.resume) + ": not a run id");
@@ -311,6 +317,10 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   history->set_status(run, summary.termination == Termination::generations ? "finished" : "interrupted");
 
   const Configuration& best = search->best();
+  // A run that reached its target gets its best's held-out value; a stopped one is left to
+  // `softdrop validate`, so that Ctrl-C and --time-limit stop at once.
+  const nlohmann::json held_out =
+      summary.termination == Termination::generations ? validate_best(a, *history, run, best) : nlohmann::json();
   nlohmann::json j;
   j["version"] = kVersion;
   j["db"] = a.db;
@@ -326,6 +336,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   j["best_generation"] = best.generation;
   j["grains"] = best.medium.grains.size();
   j["touched"] = best.eval.touched.size();
+  j["held_out"] = held_out;
   j["wall_seconds"] = summary.seconds;
   j["evaluations_per_second"] = summary.evaluations_per_second();
   j["speculation"] = {{"threads", summary.speculation.threads},
@@ -344,6 +355,14 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
               << "this session " << summary.generations_run << " generations, " << summary.accepted
               << " accepted, " << summary.evaluations + initial_evaluations << " evaluations, "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
+    if (held_out.is_object() && held_out["mean_t"].is_number())
+      std::cout << "held-out T   " << fmt(held_out["mean_t"].get<double>(), 6)
+                << (held_out["standard_error"].is_number() ? " +- " + fmt(held_out["standard_error"].get<double>(), 2) : "")
+                << " over " << held_out["starts"] << " random starts (" << held_out["passed"] << " passed)"
+                << (held_out["half_dt_mean_t"].is_number() ? "; at dt/2 " + fmt(held_out["half_dt_mean_t"].get<double>(), 6) : "")
+                << " (softdrop validate)\n";
+    else if (held_out.is_object())
+      std::cout << "held-out T   none of " << held_out["starts"] << " random starts passed\n";
     if (a.verbose) {  // for those who tune --lanes and --threads
       const SpeculationStats& sp = summary.speculation;
       const double dropped_share =

@@ -2,6 +2,7 @@
 #include "cli/search_setup.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <stdexcept>
 
@@ -71,6 +72,26 @@ std::string contradictions(const nlohmann::json& given, const nlohmann::json& st
              ")";
   }
   return out;
+}
+
+nlohmann::json validate_best(const OptimizeArgs& a, History& history, std::int64_t run, const Configuration& best) {
+  if (a.validate_starts <= 0) return nullptr;
+  HeldOutOptions o;
+  o.starts = a.validate_starts;
+  o.threads = a.threads;
+  Progress progress("optimize: held-out droplets");
+  RunOptions runs = a.search.run;
+  runs.path_interval = 0;
+  const HeldOutValue v = held_out_value(a.search.droplet, best.medium, runs, o, [&](int done, int total) {
+    if (!a.quiet) progress.update(done, total);
+  });
+  const ValidationRecord r = validation_record(best.generation, o, v);
+  history.add_validation(run, r);
+  const auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
+  return {{"generation", r.generation}, {"starts", r.starts}, {"seed", r.seed}, {"passed", r.passed},
+          {"mean_t", number(r.mean_t)}, {"standard_error", number(r.standard_error)},
+          {"half_dt_mean_t", number(r.half_dt_mean_t)}, {"half_dt_standard_error", number(r.half_dt_standard_error)},
+          {"dt_shift", number(r.dt_shift)}, {"dt_shift_error", number(r.dt_shift_error)}};
 }
 
 // Generation 0 of a new run: the loaded medium, or random media until the droplet passes. A medium

@@ -42,6 +42,7 @@ struct OptimizeArgs {
   std::string format = "table";
   std::string json_file;
   std::string preset;  ///< "paper": the paper's algorithm for the search options not given
+  int validate_starts = 200;  ///< at the end, the best's held-out value over this many starts (0: none)
   std::vector<std::string> preset_keys;  ///< the stored keys the preset set (compared on resume as if given)
   /// Options of one strategy given on the command line, with the strategy that uses each.
   std::vector<std::pair<std::string, StrategyKind>> strategy_options;
@@ -59,6 +60,9 @@ nlohmann::json params_of(const OptimizeArgs& args);
 /// none does.
 std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& command,
                            const std::vector<std::string>& preset_keys);
+/// The held-out value of the run's best as of `best.generation` (args.validate_starts > 0): run,
+/// stored in the history, and returned as the summary's JSON (null when not asked).
+nlohmann::json validate_best(const OptimizeArgs& args, History& history, std::int64_t run, const Configuration& best);
 /// Generation 0 of a new run: the loaded medium, or random media until the droplet passes.
 Generation start(const OptimizeArgs& args, Configuration* best);
 /// A stored run as a search that continues it, after checking that this build evaluates its

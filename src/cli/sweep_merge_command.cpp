@@ -43,24 +43,37 @@ struct MergeSource {
   std::vector<SweepMedium> media;
 };
 
+// Runs f, naming a store the store's errors call "--db 'PATH'" as the merge's option names it
+// (an input, or --into).
+template <class F>
+auto naming(const std::string& option, F&& f) -> decltype(f()) {
+  try {
+    return f();
+  } catch (const DatabaseError& e) {
+    const std::string what = e.what();
+    throw DatabaseError(what.rfind("--db '", 0) == 0 ? option + what.substr(4) : what);
+  }
+}
+
 }  // namespace
 
 int run_sweep_merge(const SweepMergeArgs& a) {
   // Every input is read and checked against the others and against the output before anything is
   // written: a refused merge leaves the output as it was, and creates none.
   std::vector<MergeSource> sources;
-  for (const std::string& path : a.inputs) {
-    auto in = open_sweep_store(path, OpenMode::read_only);
-    for (const SweepRecord& r : in->sweeps()) {
-      SweepOptions o;
-      try {
-        o = sweep_params_from_json(r.params);
-      } catch (const std::exception& e) {
-        throw std::runtime_error("sweep-merge: '" + path + "' sweep " + std::to_string(r.id) + ": " + e.what());
+  for (const std::string& path : a.inputs)
+    naming("input", [&] {
+      auto in = open_sweep_store(path, OpenMode::read_only);
+      for (const SweepRecord& r : in->sweeps()) {
+        SweepOptions o;
+        try {
+          o = sweep_params_from_json(r.params);
+        } catch (const std::exception& e) {
+          throw std::runtime_error("sweep-merge: '" + path + "' sweep " + std::to_string(r.id) + ": " + e.what());
+        }
+        sources.push_back({path, r, o, in->media(r.id)});
       }
-      sources.push_back({path, r, o, in->media(r.id)});
-    }
-  }
+    });
   // Each unit of each sweep (by its parameters) as first found: in the output, then in the inputs.
   std::map<std::string, std::map<std::pair<int, int>, std::pair<SweepMedium, std::string>>> known;
   auto check_against_known = [&](const std::string& params, const SweepMedium& m, const std::string& origin,
@@ -74,11 +87,13 @@ int run_sweep_merge(const SweepMergeArgs& a) {
                                "' (made by another build, or edited?); nothing was written");
   };
   if (std::filesystem::exists(a.into)) {
-    auto out = open_sweep_store(a.into, OpenMode::read_only);
-    for (const SweepRecord& r : out->sweeps())
-      for (const SweepMedium& m : out->media(r.id)) check_against_known(r.params, m, a.into, r.id);
+    naming("--into", [&] {
+      auto out = open_sweep_store(a.into, OpenMode::read_only);
+      for (const SweepRecord& r : out->sweeps())
+        for (const SweepMedium& m : out->media(r.id)) check_against_known(r.params, m, a.into, r.id);
+    });
   } else {
-    check_database(a.into);
+    naming("--into", [&] { check_database(a.into); });
     check_output_path("--into", a.into);
   }
   for (const MergeSource& s : sources)

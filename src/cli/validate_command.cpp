@@ -22,7 +22,9 @@ CLI::App* add_validate_command(CLI::App& app, ValidateArgs& a) {
   s->fallthrough();
   auto* what = s->add_option_group("Source", "a grain file, or a search's stored arrangement");
   what->add_option("--medium", a.medium, "Grain file to validate (.json or .csv), with the droplet options below");
-  what->add_option("--db", a.db, "Or a search history: the run's arrangement with the run's own droplet");
+  what->add_option("--db", a.db,
+                   "Or a search history: the run's arrangement with the run's own droplet (the value is stored "
+                   "in the history)");
   what->add_option("--run", a.run, "With --db: the run")->check(id_check());
   what->add_option("--generation", a.generation, "With --db: the arrangement kept as of this generation (default: the best)")
       ->check(index_check());
@@ -127,6 +129,10 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
   if (a.held_out.half_dt)
     j["at_half_dt"] = runs_json(v.at_half_dt), j["dt_shift"] = {{"paired", v.paired}, {"mean", or_null(v.dt_shift)},
                                                                {"standard_error", or_null(v.dt_shift_error)}};
+  if (!a.db.empty()) {  // stored beside the run, for history --best, export and read_history
+    auto history = open_history(a.db, OpenMode::create);
+    history->add_validation(a.run, validation_record(source["generation"].get<std::int64_t>(), a.held_out, v));
+  }
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (!a.runs_csv.empty()) {
     std::ostringstream out;

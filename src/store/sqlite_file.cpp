@@ -50,9 +50,9 @@ void add_island_columns(SQLite::Database& db) {
       db.exec(std::string("ALTER TABLE runs ADD COLUMN ") + column + " INTEGER");
 }
 
-// The tables of the current schema; those starting "sweep" came with version 2.
-constexpr const char* kTables[] = {"runs",   "generations", "candidates",    "grains",
-                                   "paths",  "sweeps",      "sweep_media",   "sweep_droplets"};
+// The tables of the current schema; those starting "sweep" came with version 2, validations with 6.
+constexpr const char* kTables[] = {"runs",   "generations", "candidates",     "grains",     "paths",
+                                   "sweeps", "sweep_media", "sweep_droplets", "validations"};
 
 // A WAL file's header; frames follow it.
 constexpr off_t kWalHeaderBytes = 32;
@@ -141,6 +141,7 @@ bool check_schema(SQLite::Database& db, const std::string& path) {
     // but not our tables would otherwise be switched to WAL and then fail on the first query).
     for (const char* table : kTables) {
       if (version < 2 && std::string(table).rfind("sweep", 0) == 0) continue;  // version 2's tables
+      if (version < 6 && std::string(table) == "validations") continue;        // version 6's
       SQLite::Statement t(db, "SELECT count(*) FROM sqlite_master WHERE type = 'table' AND name = ?");
       t.bind(1, table);
       t.executeStep();
@@ -301,6 +302,7 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
       widen_generation_kinds(*db);
       add_island_columns(*db);
     }
+    if (version < 6) db->exec(kSchemaV6);  // migration 5 -> 6: the held-out values
     if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
     t.commit();
     return db;

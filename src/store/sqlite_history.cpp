@@ -10,6 +10,7 @@
 #include "softdrop/history.hpp"
 #include "softdrop/version.hpp"
 #include "sqlite_file.hpp"
+#include "validation_rows.hpp"
 
 namespace softdrop {
 namespace {
@@ -215,6 +216,26 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       if (!q.executeStep())
         throw std::runtime_error("run " + std::to_string(run_id) + ": no generation " + std::to_string(generation));
       return q.getColumn(0).isNull() ? std::string() : detail::as_text(q.getColumn(0));
+    });
+  }
+
+  void add_validation(std::int64_t run_id, const ValidationRecord& v) override {
+    guarded([&] {
+      SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
+      const RunRecord r = run(run_id);
+      if (v.generation < 0 || v.generation > r.generations)
+        throw std::invalid_argument("generation = " + std::to_string(v.generation) + ": run " + std::to_string(run_id) +
+                                    " has stored generations 0 to " + std::to_string(r.generations));
+      detail::insert_validation(db_, run_id, v);
+      t.commit();
+      return 0;
+    });
+  }
+
+  std::vector<ValidationRecord> validations(std::int64_t run_id) override {
+    return guarded([&] {
+      run(run_id);
+      return detail::read_validations(db_, run_id);
     });
   }
 

@@ -124,4 +124,31 @@ CREATE TABLE IF NOT EXISTS sweep_droplets (
 // Version 3 stores a search strategy's state with each generation (NULL: none, as before).
 inline constexpr const char* kSchemaV3 = "ALTER TABLE generations ADD COLUMN state TEXT";
 
+// Version 6: the held-out values of runs' arrangements (softdrop validate, and the end of a search).
+inline constexpr const char* kSchemaV6 = R"sql(
+CREATE TABLE IF NOT EXISTS validations (
+  run_id                 INTEGER NOT NULL REFERENCES runs(id),
+  generation             INTEGER NOT NULL,
+  seed                   INTEGER NOT NULL,
+  starts                 INTEGER NOT NULL CHECK (starts >= 1),
+  created                TEXT NOT NULL,
+  version                TEXT NOT NULL,
+  dt                     REAL NOT NULL,
+  passed                 INTEGER NOT NULL,
+  mean_t                 REAL,
+  standard_error         REAL,
+  q1                     REAL,
+  median                 REAL,
+  q3                     REAL,
+  half_dt                INTEGER NOT NULL,
+  half_dt_passed         INTEGER,
+  half_dt_mean_t         REAL,
+  half_dt_standard_error REAL,
+  paired                 INTEGER,
+  dt_shift               REAL,
+  dt_shift_error         REAL,
+  PRIMARY KEY (run_id, generation, seed, starts)
+);
+)sql";
+
 }  // namespace softdrop::detail

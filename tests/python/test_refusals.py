@@ -14,7 +14,7 @@ import softdrop
 import balloon
 
 SEARCH = dict(grains=16, width=160, height=120, medium_seed=2, stuck_window=0.1, stuck_distance=1, lambda_=2,
-              quiet=True, **balloon.OPTIONS)
+              quiet=True, validate_starts=0, **balloon.OPTIONS)
 
 
 @pytest.fixture(scope="module")
@@ -143,3 +143,12 @@ def test_held_out_is_simulate_many_from_the_same_starts():
     assert len(v.runs) == 24
     with pytest.raises(ValueError, match="starts = 0"):
         softdrop.held_out(medium, starts=0)
+
+
+def test_read_history_has_the_held_out_values(tmp_path):
+    db = tmp_path / "h.db"
+    end = softdrop.optimize(db, generations=2, **{**SEARCH, "validate_starts": 8})
+    v = softdrop.read_history(db)["validations"]
+    assert len(v) == 1 and v["starts"][0] == 8 and v["generation"][0] == end["best_generation"]
+    assert v["mean_t"][0] == end["held_out"]["mean_t"]
+    assert str(v["paired"].dtype) == "Int64"
