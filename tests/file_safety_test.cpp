@@ -115,6 +115,11 @@ TEST_F(FileSafety, AnOutputIsNeverTheDatabaseAnInputOrAnotherOutput) {
   expect_refused("render trace --csv o.png -o o.png", "'o.png': the same file as");
   expect_refused("render search --db h.db --run 1 -o c.png --curve c.png", clash);
   expect_refused("render medium --medium m.json -o m.json", "--output 'm.json'");
+  expect_refused("render paths --medium m.json --droplets 2 -o ./m.json", "--output './m.json'");
+  expect_refused("render snapshots --medium m.json --times 0.01 -o c.toml", "'c.toml'");
+  expect_refused("render animation --medium m.json -o hard.db", "'hard.db'");
+  expect_refused("render curves --db h.db -o link.db", "--output 'link.db'");
+  expect_refused("validate --db h.db --run 1 --starts 2 --json hard.db", "--json 'hard.db'");
   expect_refused("calibrate --csv c.csv --points c.csv --quiet", "--points 'c.csv'");
 }
 

@@ -111,7 +111,7 @@ bool check_file(const std::string& path, OpenMode mode) {
 const char* opening_failure(const SQLite::Exception& e) {
   switch (e.getErrorCode() & 0xff) {
     case SQLITE_FULL: return "no space left beside it (SQLite could not write its -wal or -shm file)";
-    case SQLITE_IOERR: return "an input/output error while reading it";
+    case SQLITE_IOERR: return "an input/output error on it or its -wal or -shm file (a full or failing disk?)";
     case SQLITE_CANTOPEN: return "cannot open it or its -wal or -shm file";
     case SQLITE_PERM: case SQLITE_AUTH: return "not permitted to open it";
     default: return "unreadable or corrupted";
