@@ -110,6 +110,14 @@ TEST(Validate, ASearchStoresItsBestsHeldOutValue) {
   SQLite::Database d(db, SQLite::OPEN_READONLY);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM validations WHERE generation = 0").getInt(), 1);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM validations").getInt(), 2);
+  // Islands: the best island's best, stored with its run.
+  const std::string islands = fresh("validate_islands.db");
+  const nlohmann::json isl =
+      json_of(run("optimize --db " + islands + kScene + " --islands 2 --generations 3 --validate-starts 8 --format json"));
+  ASSERT_TRUE(isl["held_out"].is_object());
+  SQLite::Database di(islands, SQLite::OPEN_READONLY);
+  EXPECT_EQ(di.execAndGet("SELECT count(*) FROM validations").getInt(), 1);
+  EXPECT_EQ(di.execAndGet("SELECT run_id FROM validations").getInt64(), isl["best_run"].get<std::int64_t>());
   // --validate-starts 0 asks for none.
   const std::string none = fresh("validate_none.db");
   ASSERT_EQ(run("optimize --db " + none + kScene + " --generations 2").code, 0);

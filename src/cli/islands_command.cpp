@@ -204,13 +204,18 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     per_island.push_back({{"island", i}, {"run", runs[i]}, {"last_generation", last[i]},
                           {"best_tortuosity", best_of[i].eval.tortuosity}, {"best_generation", best_of[i].generation}});
   }
+  // The best island's best gets its held-out value, stored with that island's run, when every
+  // island reached the target (a stopped search leaves it to `softdrop validate`).
+  const nlohmann::json held_out = summary.termination == Termination::generations
+                                      ? validate_best(a, *history, runs[top], best_of[top])
+                                      : nlohmann::json();
   nlohmann::json j{{"version", kVersion}, {"db", a.db}, {"run", runs.front()}, {"strategy", to_string(a.search.strategy.kind)},
                    {"islands", per_island}, {"migrate_every", a.islands.migrate_every},
                    {"migration", to_string(a.islands.migration)}, {"termination", to_string(summary.termination)},
                    {"message", summary.message}, {"last_generation", summary.last_generation},
                    {"generations_run", summary.generations_run}, {"evaluations", summary.evaluations + initial_evaluations},
                    {"accepted", summary.accepted}, {"best_tortuosity", summary.best_t}, {"best_island", top},
-                   {"best_run", runs[top]}, {"wall_seconds", summary.seconds},
+                   {"best_run", runs[top]}, {"held_out", held_out}, {"wall_seconds", summary.seconds},
                    {"evaluations_per_second", summary.evaluations_per_second()}};
   if (!deliver_summary(a, j, host)) {
     std::cout << "runs         " << runs.front() << " to " << runs.back() << " in " << a.db << " (" << runs.size()
@@ -225,6 +230,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
               << "this session " << summary.generations_run << " generations, " << summary.accepted << " accepted, "
               << summary.evaluations + initial_evaluations << " evaluations, "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
+    print_held_out(std::cout, held_out);
   }
   return summary.termination == Termination::interrupted && stop ? stop->exit_code() : 0;
 }

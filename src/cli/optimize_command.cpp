@@ -355,14 +355,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
               << "this session " << summary.generations_run << " generations, " << summary.accepted
               << " accepted, " << summary.evaluations + initial_evaluations << " evaluations, "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
-    if (held_out.is_object() && held_out["mean_t"].is_number())
-      std::cout << "held-out T   " << fmt(held_out["mean_t"].get<double>(), 6)
-                << (held_out["standard_error"].is_number() ? " +- " + fmt(held_out["standard_error"].get<double>(), 2) : "")
-                << " over " << held_out["starts"] << " random starts (" << held_out["passed"] << " passed)"
-                << (held_out["half_dt_mean_t"].is_number() ? "; at dt/2 " + fmt(held_out["half_dt_mean_t"].get<double>(), 6) : "")
-                << " (softdrop validate)\n";
-    else if (held_out.is_object())
-      std::cout << "held-out T   none of " << held_out["starts"] << " random starts passed\n";
+    print_held_out(std::cout, held_out);
     if (a.verbose) {  // for those who tune --lanes and --threads
       const SpeculationStats& sp = summary.speculation;
       const double dropped_share =

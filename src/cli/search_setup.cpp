@@ -94,6 +94,19 @@ nlohmann::json validate_best(const OptimizeArgs& a, History& history, std::int64
           {"dt_shift", number(r.dt_shift)}, {"dt_shift_error", number(r.dt_shift_error)}};
 }
 
+void print_held_out(std::ostream& out, const nlohmann::json& held_out) {
+  if (!held_out.is_object()) return;
+  if (!held_out["mean_t"].is_number()) {
+    out << "held-out T   none of " << held_out["starts"] << " random starts passed\n";
+    return;
+  }
+  out << "held-out T   " << fmt(held_out["mean_t"].get<double>(), 6)
+      << (held_out["standard_error"].is_number() ? " +- " + fmt(held_out["standard_error"].get<double>(), 2) : "")
+      << " over " << held_out["starts"] << " random starts (" << held_out["passed"] << " passed)"
+      << (held_out["half_dt_mean_t"].is_number() ? "; at dt/2 " + fmt(held_out["half_dt_mean_t"].get<double>(), 6) : "")
+      << " (softdrop validate)\n";
+}
+
 // Generation 0 of a new run: the loaded medium, or random media until the droplet passes. A medium
 // that cannot be generated at all (e.g. too many grains for the box) is an error, not a retry.
 Generation start(const OptimizeArgs& a, Configuration* best) {

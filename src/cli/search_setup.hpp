@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,6 +64,8 @@ std::string contradictions(const nlohmann::json& given, const nlohmann::json& st
 /// The held-out value of the run's best as of `best.generation` (args.validate_starts > 0): run,
 /// stored in the history, and returned as the summary's JSON (null when not asked).
 nlohmann::json validate_best(const OptimizeArgs& args, History& history, std::int64_t run, const Configuration& best);
+/// The summary's line for validate_best's JSON (nothing for null).
+void print_held_out(std::ostream& out, const nlohmann::json& held_out);
 /// Generation 0 of a new run: the loaded medium, or random media until the droplet passes.
 Generation start(const OptimizeArgs& args, Configuration* best);
 /// A stored run as a search that continues it, after checking that this build evaluates its
