@@ -5,9 +5,11 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -224,7 +226,11 @@ PYBIND11_MODULE(_core, m) {
             std::string why;
             if (!o.IsValid(&why)) throw std::invalid_argument(why);
             py::gil_scoped_release release;
-            return generate_medium(o);
+            try {
+              return generate_medium(o);
+            } catch (const std::runtime_error& e) {  // a target random placement cannot reach: a bad argument
+              throw std::invalid_argument(e.what());
+            }
           },
           py::arg("kind") = "overlapping", py::arg("porosity") = kMedium.porosity, py::arg("width") = kMedium.width,
           py::arg("height") = kMedium.height, py::arg("r_min") = kMedium.r_min, py::arg("r_max") = kMedium.r_max,
@@ -245,9 +251,20 @@ PYBIND11_MODULE(_core, m) {
             return med;
           },
           py::arg("x"), py::arg("y"), py::arg("r"), py::arg("width"), py::arg("height"), py::arg("periodic") = true)
-      .def_static("load", [](const std::string& path) { return load_medium(path); }, py::arg("path"),
-                  "Reads a grain file (.json, or CSV)")
-      .def("save", [](const Medium& med, const std::string& path) { save_medium(path, med); }, py::arg("path"))
+      .def_static(
+          "load",
+          [](const std::filesystem::path& path) {
+            std::error_code ec;
+            if (!std::filesystem::exists(path, ec)) {  // as open() says it
+              PyErr_SetString(PyExc_FileNotFoundError, ("grain file '" + path.string() + "': no such file").c_str());
+              throw py::error_already_set();
+            }
+            return load_medium(path.string());
+          },
+          py::arg("path"), "Reads a grain file (.json, or CSV); path: str or os.PathLike")
+      .def(
+          "save", [](const Medium& med, const std::filesystem::path& path) { save_medium(path.string(), med); },
+          py::arg("path"), "Writes a grain file (.json, or CSV); path: str or os.PathLike")
       .def_readonly("width", &Medium::width)
       .def_readonly("height", &Medium::height)
       .def_readonly("periodic", &Medium::periodic)

@@ -40,6 +40,7 @@ def simulate(medium, x0=None, params=None, run=None, path=False, trace=False, tr
     reached and left the medium, NaN: never), `s0`, and `inside_min_area_ratio`,
     `inside_max_area_ratio` (over every step inside the medium). Releases the GIL while it runs;
     Ctrl-C raises KeyboardInterrupt."""
+    medium = _medium(medium)
     x0 = 0.5 * medium.width if x0 is None else float(x0)
     interval = int(trace_interval) if trace else 0
     if trace and interval < 1:
@@ -51,7 +52,8 @@ def simulate_many(medium, n, seed=1, threads=0, params=None, run=None):
     """n droplets from random starts (drawn from `seed` as `softdrop simulate --droplets n --seed`
     draws them), on `threads` threads (0: all). Returns a pandas DataFrame, one row a droplet, with
     the columns of the program's --runs CSV plus the reason."""
-    rows = _core._simulate_many(medium, int(n), int(seed), int(threads), params or DropletParams(), run or RunOptions())
+    rows = _core._simulate_many(_medium(medium), _whole(n, "n"), _whole(seed, "seed", 0), _whole(threads, "threads"),
+                                params or DropletParams(), run or RunOptions())
     return _runs_frame(rows)
 
 
@@ -65,8 +67,8 @@ def held_out(medium, starts=200, seed=1, half_dt=True, threads=0, params=None, r
     after the droplets in flight."""
     import pandas as pd
 
-    out = _core._held_out(medium, int(starts), int(seed), bool(half_dt), int(threads), params or DropletParams(),
-                          run or RunOptions())
+    out = _core._held_out(_medium(medium), _whole(starts, "starts"), _whole(seed, "seed", 0), bool(half_dt),
+                          _whole(threads, "threads"), params or DropletParams(), run or RunOptions())
     out["runs"] = pd.DataFrame(out["runs"])
     return Result(out)
 
@@ -103,6 +105,24 @@ def _runs_frame(rows):
     frame["touched"] = frame["touched"].map(len)
     return frame[["droplet", "start_x", "outcome", "tortuosity", "steps", "touched", "min_area_ratio",
                   "max_penetration", "reason"]]
+
+
+def _medium(medium):
+    """A Medium, or a grain file's name (str or os.PathLike) read into one."""
+    if isinstance(medium, Medium):
+        return medium
+    if isinstance(medium, (str, os.PathLike)):
+        return Medium.load(medium)
+    raise TypeError(f"medium: a Medium or a grain file name, not {type(medium).__name__}")
+
+
+def _whole(value, name, least=None):
+    """An integer argument: a float such as 2.5 is refused rather than cut to 2."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise TypeError(f"{name}: a whole number, not {value!r}")
+    if least is not None and value < least:
+        raise ValueError(f"{name} = {value}: must be >= {least}")
+    return int(value)
 
 
 def _db_path(db, name="db"):

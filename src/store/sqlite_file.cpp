@@ -69,6 +69,13 @@ bool check_file(const std::string& path, OpenMode mode) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) {
     if (mode == OpenMode::read_only) throw file_error(path, "no such file");
+    // A new file: its folder must be there to hold it (and its -wal and -shm).
+    const std::string::size_type slash = path.rfind('/');
+    const std::string folder = slash == std::string::npos ? "." : slash == 0 ? "/" : path.substr(0, slash);
+    struct stat dir {};
+    if (::stat(folder.c_str(), &dir) != 0 || !S_ISDIR(dir.st_mode))
+      throw file_error(path, "folder '" + folder + "' does not exist");
+    if (::access(folder.c_str(), W_OK) != 0) throw file_error(path, "folder '" + folder + "' is not writable");
     return false;
   }
   if (!S_ISREG(st.st_mode)) throw file_error(path, "not a regular file");

@@ -146,3 +146,25 @@ def test_read_history_has_the_held_out_values(tmp_path):
     assert len(v) == 1 and v["starts"][0] == 8 and v["generation"][0] == end["best_generation"]
     assert v["mean_t"][0] == end["held_out"]["mean_t"]
     assert str(v["paired"].dtype) == "Int64"
+
+
+def test_python_types_and_exceptions(tmp_path):
+    import pathlib
+
+    medium = softdrop.Medium.generate(porosity=0.85, width=300, height=300)
+    path = pathlib.Path(tmp_path) / "m.json"
+    medium.save(path)
+    assert softdrop.Medium.load(path).grains.tolist() == medium.grains.tolist()
+    assert softdrop.simulate(path, x0=150).outcome == softdrop.simulate(medium, x0=150).outcome
+    with pytest.raises(FileNotFoundError, match="no such file"):
+        softdrop.Medium.load(tmp_path / "nonexistent.json")
+    with pytest.raises(TypeError, match="medium: a Medium or a grain file name, not NoneType"):
+        softdrop.simulate(None)
+    with pytest.raises(TypeError, match="n: a whole number, not 2.5"):
+        softdrop.simulate_many(medium, 2.5)
+    with pytest.raises(ValueError, match="seed = -1: must be >= 0"):
+        softdrop.simulate_many(medium, 2, seed=-1)
+    with pytest.raises(ValueError, match="porosity = 0.3: unreachable"):
+        softdrop.Medium.generate("non-overlapping", porosity=0.3)
+    with pytest.raises(softdrop.StoreError, match="folder '.*' does not exist"):
+        softdrop.optimize(tmp_path / "nonexistent" / "x.db", generations=1)
