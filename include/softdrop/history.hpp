@@ -141,8 +141,9 @@ class History {
 /// one line naming the file, and the file is not modified.
 std::unique_ptr<History> open_history(const std::string& path, OpenMode mode);
 
-/// The checks open_history(path, OpenMode::create) makes, without creating or writing anything:
-/// lets a command refuse a bad file before long work, and create a new one only afterwards.
+/// The checks open_history(path, OpenMode::create) makes, without creating or writing anything
+/// (for a new file: that its folder exists and is writable): lets a command refuse a bad file
+/// before long work, and create a new one only afterwards.
 void check_database(const std::string& path);
 
 }  // namespace softdrop

@@ -97,8 +97,6 @@ bool same_file(const std::string& a, const std::string& b) {
 void check_distinct_files(std::vector<NamedFile> files) {
   // A clash is named by the plain output in it, not by the database it would destroy.
   std::stable_partition(files.begin(), files.end(), [](const NamedFile& f) { return !f.database; });
-  for (const NamedFile& f : files)
-    if (f.path.empty()) throw std::invalid_argument(f.option + " '': an empty file name");
   for (std::size_t i = 0; i < files.size(); ++i)
     for (std::size_t j = 0; j < files.size(); ++j) {
       const NamedFile &out = files[i], &other = files[j];

@@ -25,7 +25,8 @@ std::vector<NamedFile> named_files(const CLI::App& app);
 bool same_file(const std::string& a, const std::string& b);
 
 /// Throws std::invalid_argument, one line naming both options, if a written file is the same file
-/// as any other named file (or one of a database's side files). An empty path is refused too.
+/// as any other named file (or one of a database's side files). (An empty path never reaches it:
+/// every option refuses an empty value when the command line is parsed.)
 void check_distinct_files(std::vector<NamedFile> files);
 
 }  // namespace softdrop::cli

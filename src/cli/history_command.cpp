@@ -111,15 +111,14 @@ int run_history(const HistoryArgs& a) {
     t.header = {"generation", "kind", "best_t", "touched", "held_out_t", "held_out_se", "held_out_starts"};
     std::map<std::int64_t, ValidationRecord> held_out;
     for (const ValidationRecord& v : history->validations(a.run)) held_out[v.generation] = v;
-    const auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
     double best = 0;
     for (const GenerationRecord& g : history->generations(a.run))
       if (g.generation == 0 || g.best_t > best) {  // the generations that raised the best
         best = g.best_t;
         const auto v = held_out.find(g.generation);
         const bool has = v != held_out.end();
-        t.rows.push_back({g.generation, g.kind, g.best_t, g.touched, has ? number(v->second.mean_t) : nlohmann::json(),
-                          has ? number(v->second.standard_error) : nlohmann::json(),
+        t.rows.push_back({g.generation, g.kind, g.best_t, g.touched, has ? finite_or_null(v->second.mean_t) : nlohmann::json(),
+                          has ? finite_or_null(v->second.standard_error) : nlohmann::json(),
                           has ? nlohmann::json(v->second.starts) : nlohmann::json()});
       }
   } else {

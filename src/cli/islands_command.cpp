@@ -126,8 +126,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     if (!a.quiet)
       std::cerr << "optimize: resuming the " << runs.size() << " islands of run " << runs.front() << " in " << a.db << "\n";
   } else {
-    check_database(a.db);
-    if (!std::filesystem::exists(a.db)) check_output_path("--db", a.db);
+    check_database(a.db);  // (a new file: its folder must exist and be writable)
     // Every island starts from one medium (its evaluation takes no seed), or each from its own,
     // all made before the history is touched.
     const std::size_t starts = a.own_island_starts ? static_cast<std::size_t>(a.islands.islands) : 1;

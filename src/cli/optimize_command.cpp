@@ -6,7 +6,6 @@
 #include <atomic>
 #include <chrono>
 #include <cstring>
-#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -288,8 +287,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   } else {
     // An existing file is checked first; a new one is created only once generation 0 exists, so
     // a start that fails leaves no file behind.
-    check_database(a.db);
-    if (!std::filesystem::exists(a.db)) check_output_path("--db", a.db);
+    check_database(a.db);  // (a new file: its folder must exist and be writable)
     Configuration best;
     const Generation g0 = start(a, &best);
     initial_evaluations = static_cast<std::int64_t>(g0.candidates.size());

@@ -32,6 +32,8 @@ void check_output_path(const std::string& option, const std::string& path) {
     throw std::runtime_error(option + " '" + path + "': directory is not writable");
 }
 
+nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
+
 void check_picture_path(const std::string& option, const std::string& path) {
   image_format_for(path);
   check_output_path(option, path);

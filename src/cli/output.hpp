@@ -75,6 +75,9 @@ struct Table {
 /// mass left y = 0). Droplet i is traces[i].
 void write_area_traces(const std::string& path, const std::vector<AreaTrace>& traces);
 
+/// A JSON number, or null where `v` is not finite (a mean or error of nothing that passed).
+nlohmann::json finite_or_null(double v);
+
 /// Formats a double with the given significant digits (17 = round trip).
 std::string fmt(double v, int digits = 17);  // 17 and more: the shortest that reads back the same
 

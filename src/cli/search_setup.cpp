@@ -87,11 +87,10 @@ nlohmann::json validate_best(const OptimizeArgs& a, History& history, std::int64
   });
   const ValidationRecord r = validation_record(best.generation, o, v);
   history.add_validation(run, r);
-  const auto number = [](double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(); };
   return {{"generation", r.generation}, {"starts", r.starts}, {"seed", r.seed}, {"passed", r.passed},
-          {"mean_t", number(r.mean_t)}, {"standard_error", number(r.standard_error)},
-          {"half_dt_mean_t", number(r.half_dt_mean_t)}, {"half_dt_standard_error", number(r.half_dt_standard_error)},
-          {"dt_shift", number(r.dt_shift)}, {"dt_shift_error", number(r.dt_shift_error)}};
+          {"mean_t", finite_or_null(r.mean_t)}, {"standard_error", finite_or_null(r.standard_error)},
+          {"half_dt_mean_t", finite_or_null(r.half_dt_mean_t)}, {"half_dt_standard_error", finite_or_null(r.half_dt_standard_error)},
+          {"dt_shift", finite_or_null(r.dt_shift)}, {"dt_shift_error", finite_or_null(r.dt_shift_error)}};
 }
 
 void print_held_out(std::ostream& out, const nlohmann::json& held_out) {

@@ -224,13 +224,10 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     store = open_sweep_store(a.db, OpenMode::create);
     if (!a.quiet) say_how_it_differs(*store, a.db, params);
     id = store->find(params);
-    if (id > 0) {
-      (void)store->media(id);  // every stored row read now: a damaged one refuses the sweep here
-      done = store->done_units(id);
-    }
+    if (id > 0)  // every stored row read now: a damaged one refuses the sweep here
+      for (const SweepMedium& m : store->media(id)) done.push_back(m.unit);
   } else {
-    check_database(a.db);
-    check_output_path("--db", a.db);
+    check_database(a.db);  // a new file: its folder must exist and be writable
   }
   const auto sweep_id = [&] {  // the store and the sweep's record, made when first needed
     if (!store) store = open_sweep_store(a.db, OpenMode::create);

@@ -93,8 +93,7 @@ int run_sweep_merge(const SweepMergeArgs& a) {
         for (const SweepMedium& m : out->media(r.id)) check_against_known(r.params, m, a.into, r.id);
     });
   } else {
-    naming("--into", [&] { check_database(a.into); });
-    check_output_path("--into", a.into);
+    naming("--into", [&] { check_database(a.into); });  // a new file: its folder must exist and be writable
   }
   for (const MergeSource& s : sources)
     for (const SweepMedium& m : s.media) check_against_known(s.record.params, m, s.path, s.record.id);

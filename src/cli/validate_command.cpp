@@ -65,14 +65,12 @@ void check_validate(ValidateArgs& a, const CLI::App& cmd) {
 
 namespace {
 
-nlohmann::json or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
-
 nlohmann::json runs_json(const HeldOutRuns& r) {
   return {{"dt", r.dt},         {"starts", r.starts},       {"passed", r.passed},
           {"stuck", r.stuck},   {"timeout", r.timeout},     {"diverged", r.diverged},
-          {"pass_fraction", r.pass_fraction}, {"mean_t", or_null(r.mean_t)},
-          {"standard_error", or_null(r.standard_error)},    {"q1", or_null(r.q1)},
-          {"median", or_null(r.median)}, {"q3", or_null(r.q3)}};
+          {"pass_fraction", r.pass_fraction}, {"mean_t", finite_or_null(r.mean_t)},
+          {"standard_error", finite_or_null(r.standard_error)},    {"q1", finite_or_null(r.q1)},
+          {"median", finite_or_null(r.median)}, {"q3", finite_or_null(r.q3)}};
 }
 
 std::string runs_line(const char* label, const HeldOutRuns& r) {
@@ -127,8 +125,8 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
                    {"grains", medium.grains.size()}, {"porosity", exact_porosity(medium)},
                    {"at_dt", runs_json(v.at_dt)}};
   if (a.held_out.half_dt)
-    j["at_half_dt"] = runs_json(v.at_half_dt), j["dt_shift"] = {{"paired", v.paired}, {"mean", or_null(v.dt_shift)},
-                                                               {"standard_error", or_null(v.dt_shift_error)}};
+    j["at_half_dt"] = runs_json(v.at_half_dt), j["dt_shift"] = {{"paired", v.paired}, {"mean", finite_or_null(v.dt_shift)},
+                                                               {"standard_error", finite_or_null(v.dt_shift_error)}};
   if (!a.db.empty()) {  // stored beside the run, for history --best, export and read_history
     auto history = open_history(a.db, OpenMode::create);
     history->add_validation(a.run, validation_record(source["generation"].get<std::int64_t>(), a.held_out, v));
