@@ -84,7 +84,9 @@ class FileSafety : public ::testing::Test {
     for (const auto& [name, bytes] : after) {
       const auto was = before.find(name);
       EXPECT_TRUE(was != before.end()) << "created " << name;
-      if (was != before.end()) EXPECT_TRUE(was->second == bytes) << "changed " << name;
+      if (was != before.end()) {
+        EXPECT_TRUE(was->second == bytes) << "changed " << name;
+      }
     }
     for (const auto& [name, bytes] : before) EXPECT_TRUE(after.count(name)) << "removed " << name;
     fs::remove_all(dir);
@@ -146,7 +148,7 @@ TEST_F(FileSafety, ABadOptionWritesNothing) {
 
 // An empty array reached CLI11 as an option without a value, and crashed every command.
 TEST_F(FileSafety, ConfigArraysAreCheckedAgainstTheirOptions) {
-  for (const std::string& key : {"porosity", "gravity", "x0", "droplets", "kind", "width", "seed", "medium",
+  for (const std::string key : {"porosity", "gravity", "x0", "droplets", "kind", "width", "seed", "medium",
                                  "runs", "format"}) {
     write(seed_ / "empty.toml", key + " = []\n");
     expect_refused("simulate --config empty.toml", "config file 'empty.toml': " + key + " = []: an empty array");

@@ -67,13 +67,14 @@ grep -q "this session $((24 - before)) media" again.err || { cat again.err; fail
 [[ "$(cells killed.db)" == "$(cells whole.db)" ]] || fail "killed and run again differs from uninterrupted"
 echo "ok: a rank killed after $before media, the command run again did the other $((24 - before))"
 
-# Islands: the same history on threads and on ranks; a rank killed, then resumed.
+# Islands: the same history on threads and on ranks; a rank killed, then resumed. (The robust
+# objective: a migration re-runs both arrangements on the generation's starts.)
 scene=(--grains 16 --width 160 --height 120 --medium-seed 2 --stuck-window 0.1 --stuck-distance 1 --lambda 2 --quiet
-  "${balloon[@]}")
+  --objective mean --starts 4 "${balloon[@]}")
 history() {
-  sqlite3 "$1" "SELECT id, island, archipelago, status, params, seed, generations, evaluations, best_t, best_generation FROM runs ORDER BY id;
-    SELECT run_id, generation, kind, accepted_candidate, best_t, touched, state FROM generations ORDER BY 1, 2;
-    SELECT run_id, generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched FROM candidates ORDER BY 1, 2, 3;
+  sqlite3 "$1" "SELECT id, island, archipelago, status, params, seed, generations, evaluations, droplets, best_t, best_generation FROM runs ORDER BY id;
+    SELECT run_id, generation, kind, accepted_candidate, best_t, touched, state, parent_t, parent_passed FROM generations ORDER BY 1, 2;
+    SELECT run_id, generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched, droplets, passed FROM candidates ORDER BY 1, 2, 3;
     SELECT * FROM grains ORDER BY 1, 2, 3; SELECT * FROM paths ORDER BY 1, 2, 3;"
 }
 islands=(--islands 3 --migrate-every 5 --generations 16 --strategy lahc)

@@ -275,7 +275,7 @@ TEST(Optimize, HistoryListsCandidatesAndTheStoredOptions) {
   std::istringstream lines(c.out);
   std::string line;
   std::getline(lines, line);
-  EXPECT_EQ(line, "generation,candidate,accepted,outcome,t,steps,touched,moved_grain,moved,seconds,reason");
+  EXPECT_EQ(line, "generation,candidate,accepted,outcome,t,steps,touched,moved_grain,moved,seconds,reason,droplets,passed");
   int rows = 0, accepted = 0;
   while (std::getline(lines, line)) {
     ++rows;

@@ -24,7 +24,9 @@ namespace softdrop::test {
 
 // The small scene of search_fixtures.hpp, on the command line.
 // (without the held-out value at the end: the tests of it ask for it)
-inline const std::string kScene = kSmallScene + " --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet --validate-starts 0 ";
+// (the paper's single objective: these tests are of the search's machinery, which it runs fastest)
+inline const std::string kScene =
+    kSmallScene + " --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet --validate-starts 0 --objective single ";
 
 inline std::string fresh(const std::string& name) { return fresh_path(name); }
 
@@ -44,12 +46,12 @@ inline std::string dump(const std::string& db_path, int run, std::int64_t upto =
     }
   };
   if (upto < 0)
-    table("SELECT status, params, seed, lambda, grains, width, height, periodic, generations, evaluations, best_t, "
-          "best_generation FROM runs WHERE id = ?");
-  table("SELECT generation, kind, accepted_candidate, best_t, touched FROM generations WHERE run_id = ?" + limit +
-        " ORDER BY generation");
-  table("SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched "
-        "FROM candidates WHERE run_id = ?" + limit + " ORDER BY generation, candidate");
+    table("SELECT status, params, seed, lambda, grains, width, height, periodic, generations, evaluations, droplets, "
+          "best_t, best_generation FROM runs WHERE id = ?");
+  table("SELECT generation, kind, accepted_candidate, best_t, touched, parent_t, parent_passed FROM generations "
+        "WHERE run_id = ?" + limit + " ORDER BY generation");
+  table("SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched, droplets, "
+        "passed FROM candidates WHERE run_id = ?" + limit + " ORDER BY generation, candidate");
   table("SELECT generation, grain, x, y, r, touched FROM grains WHERE run_id = ?" + limit +
         " ORDER BY generation, grain");
   table("SELECT generation, point, x, y FROM paths WHERE run_id = ?" + limit + " ORDER BY generation, point");

@@ -5,6 +5,7 @@
 /// killed at any instant loses at most the generation in flight.
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,8 +19,9 @@ namespace softdrop {
 /// The schema version this build writes (PRAGMA user_version). Files with a higher version are
 /// refused; files with a lower one are read as they are and migrated when opened for writing
 /// (1 -> 2 adds the sweeps, 2 -> 3 the strategies' state of each generation, 3 -> 4 relocation
-/// moves, 4 -> 5 islands, 5 -> 6 the held-out values of arrangements).
-constexpr int kHistorySchemaVersion = 6;
+/// moves, 4 -> 5 islands, 5 -> 6 the held-out values of arrangements, 6 -> 7 the robust
+/// objectives' droplet counts and re-runs).
+constexpr int kHistorySchemaVersion = 7;
 /// PRAGMA application_id of a softdrop database: "SDRP".
 constexpr std::int32_t kHistoryApplicationId = 0x53445250;
 
@@ -36,7 +38,8 @@ struct RunRecord {
   double width = 0, height = 0;
   bool periodic = true;
   std::int64_t generations = 0;  ///< last stored generation number
-  std::int64_t evaluations = 0;  ///< droplets pushed so far
+  std::int64_t evaluations = 0;  ///< candidates evaluated so far
+  std::int64_t droplets = 0;     ///< droplet runs so far (evaluations x starts, and the parents' re-runs)
   double best_t = 0;
   std::int64_t best_generation = 0;
   int island = -1;                ///< the run's island (islands.hpp); -1: not one of islands
@@ -71,7 +74,9 @@ struct CandidateRecord {
   int moved = 0;
   std::string outcome;
   std::string reason;
-  double tortuosity = 0;  ///< 0 unless passed
+  double tortuosity = 0;  ///< the objective's value (Evaluation::tortuosity); 0 unless passed
+  int droplets = 1;       ///< droplets pushed
+  int passed = 0;         ///< droplets that passed
   std::int64_t steps = 0;
   int touched = 0;
   double seconds = 0;
@@ -87,8 +92,22 @@ struct GenerationRecord {
   double seconds = 0;
   std::string finished;  ///< UTC time it was written
   std::string state;     ///< the strategy's state after it (JSON; empty: none)
+  /// Robust objectives: the value of the arrangement the candidates were made from, re-run on this
+  /// generation's starts, and how many of its droplets passed (NaN and 0: not re-run).
+  double parent_t = std::numeric_limits<double>::quiet_NaN();
+  int parent_passed = 0;
   std::vector<CandidateRecord> candidates;
 };
+
+/// A robust objective's in-search value of the arrangement kept in generation `kept` (see
+/// Configuration): the best_t of the last generation before another arrangement was kept, the
+/// mean of its re-runs on fresh starts, and how many re-runs that is (0: the value it was kept
+/// with). Throws std::invalid_argument if `generations` does not hold `kept`.
+struct KeptValue {
+  double value = 0;
+  std::int64_t re_runs = 0;
+};
+KeptValue kept_value(const std::vector<GenerationRecord>& generations, std::int64_t kept);
 
 /// Storage of search runs. Implementations must make each call atomic.
 class History {

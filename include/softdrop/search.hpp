@@ -20,6 +20,7 @@
 
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"
+#include "softdrop/objective.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace softdrop {
@@ -84,6 +85,9 @@ struct SearchOptions {
   int max_redraws = 20;
   double gap = 0.13;        ///< spacing rule: surface gap >= gap x the larger radius
   StrategyOptions strategy; ///< how candidates are chosen and kept
+  /// What a candidate's evaluation measures (objective.hpp): the paper's one droplet from the
+  /// middle of the top, or K droplets from fresh starts each generation.
+  ObjectiveOptions objective;
   DropletParams droplet;    ///< the droplet pushed through every candidate
   /// Exit conditions of each evaluation. path_interval is the sampling of the stored best path
   /// (steps); traces and snapshots are not used.
@@ -93,19 +97,32 @@ struct SearchOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// The droplet's run through one arrangement, reduced to what the search keeps.
+/// The droplets' runs through one arrangement, reduced to what the search keeps.
 struct Evaluation {
+  /// passed when at least one droplet passed; otherwise the first droplet's outcome.
   Outcome outcome = Outcome::timeout;
   std::string reason;
-  double tortuosity = 0;             ///< fitness, meaningful when outcome == passed
-  std::int64_t steps = 0;
-  std::vector<std::int32_t> touched; ///< grains the droplet touched, ascending
-  std::vector<double> path_x, path_y;  ///< centre-of-mass path every run.path_interval steps
+  /// The objective's value (objective_value), meaningful when outcome == passed; for the single
+  /// objective, the droplet's T.
+  double tortuosity = 0;
+  std::int64_t steps = 0;            ///< summed over the droplets
+  std::vector<std::int32_t> touched; ///< grains any droplet touched, ascending
+  /// The first droplet's centre-of-mass path every run.path_interval steps.
+  std::vector<double> path_x, path_y;
+  int droplets = 0;                  ///< droplets pushed (0: not evaluated)
+  /// Robust objectives: each droplet's T in start order, 1 where it did not pass (not stored).
+  std::vector<double> values;
+  int passed = 0;                    ///< droplets that passed
   double seconds = 0;                ///< wall time (not part of the deterministic result)
 };
 
-/// Pushes the droplet from the middle of the top (x = W/2, just above the highest grain).
+/// Pushes the droplet from the middle of the top (x = W/2, just above the highest grain): the
+/// single objective, whatever options.objective says.
 Evaluation evaluate(const Medium& medium, const SearchOptions& options);
+/// The evaluation generation `generation` of the search makes of `medium`: the objective's
+/// droplets from objective_starts(options.objective, options.seed, generation, ...). For the
+/// single objective, evaluate(medium, options).
+Evaluation evaluate(const Medium& medium, const SearchOptions& options, std::int64_t generation);
 
 /// One candidate arrangement of a generation and its evaluation.
 struct Candidate {
@@ -118,6 +135,12 @@ struct Candidate {
 };
 
 /// The best arrangement so far and the generation that found it.
+///
+/// With a robust objective, values of different generations come from different starts and
+/// cannot be compared, and the largest of them is the luckiest. The best is then the arrangement
+/// the strategy stands on, kept in `generation`; its eval.tortuosity is the mean of its values
+/// in the generations since then, each a re-run on fresh starts (until the first, the value it
+/// was kept with).
 struct Configuration {
   std::int64_t generation = 0;
   Medium medium;
@@ -134,6 +157,10 @@ struct Generation {
   int touched = 0;         ///< grains touched in the best's run after this generation
   double seconds = 0;      ///< wall time of the generation
   std::string state;       ///< the strategy's state after it (JSON object; empty: none)
+  /// Robust objectives: the arrangement the candidates were made from, run again on this
+  /// generation's starts; the candidates were compared with this value (droplets 0: not run, the
+  /// single objective). It is a fresh measurement, taken before anything was chosen on it.
+  Evaluation parent;
 };
 
 /// The move kind of generation g >= 1.
@@ -166,7 +193,8 @@ class Search {
   /// Throws std::invalid_argument for invalid options or a best that did not pass.
   Search(const SearchOptions& options, Configuration best, std::int64_t last_generation);
   /// A resumed search whose strategy moves on from `current` with the stored `state` (see
-  /// Strategy::state), and whose best so far is `best`.
+  /// Strategy::state), and whose best so far is `best`. Robust objectives: `best` is `current`
+  /// with its stored mean of re-runs as T (see Configuration).
   Search(const SearchOptions& options, Configuration best, Configuration current, const std::string& state,
          std::int64_t last_generation);
   ~Search();
@@ -179,12 +207,15 @@ class Search {
   Generation next(int threads = 0, int lanes = 0);
   /// Completes generation last_generation() + 1 from its evaluated candidates (all lambda of them,
   /// in index order): the strategy keeps one or none, and the best is updated. next() and the
-  /// pipelined drive both end here.
-  Generation complete(std::vector<Candidate> candidates, double seconds);
+  /// pipelined drive both end here. Robust objectives: `parent` is the current arrangement
+  /// evaluated on the generation's starts, and the candidates are compared with it.
+  Generation complete(std::vector<Candidate> candidates, double seconds, Evaluation parent = {});
   /// Generation last_generation() + 1 as a migration (islands.hpp): its one candidate is
   /// `immigrant` (an arrangement another island evaluated with the same options), kept, as best
   /// and as the arrangement the strategy moves on from (its state otherwise unchanged), if its T
-  /// beats this search's best.
+  /// beats this search's best. Robust objectives: the immigrant and the current arrangement run
+  /// again on the generation's starts (its parent), and the immigrant must beat it there, as a
+  /// candidate must.
   Generation immigrate(const Configuration& immigrant);
 
   const Configuration& best() const { return best_; }
@@ -193,10 +224,12 @@ class Search {
   const SearchOptions& options() const { return options_; }
 
  private:
+  Generation complete_robust(std::vector<Candidate> candidates, double seconds, Evaluation parent);
   SearchOptions options_;
   Configuration best_;
   std::unique_ptr<Strategy> strategy_;
   std::int64_t last_;
+  std::int64_t remeasured_ = 0;  // robust: the generations since best_ was kept, each re-running it
 };
 
 /// Why `drive` stopped.
@@ -262,6 +295,7 @@ struct SearchSummary {
   std::int64_t last_generation = 0;
   std::int64_t generations_run = 0;
   std::int64_t evaluations = 0;
+  std::int64_t droplets = 0;  ///< droplet runs: evaluations x the objective's droplets, and the re-runs
   std::int64_t accepted = 0;
   double seconds = 0;
   double best_t = 0;

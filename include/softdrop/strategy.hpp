@@ -35,6 +35,9 @@ class Strategy {
   /// whose T beats every arrangement kept before must be kept, so the best of a search is always
   /// an arrangement its history stores.
   int tell(std::int64_t generation, const std::vector<Candidate>& candidates);
+  /// Robust objectives: the current arrangement's value on this generation's starts and its
+  /// droplets' T, told before the candidates, which are compared with them.
+  virtual void remeasure(double value, const std::vector<double>& values) = 0;
   /// The state beyond the current arrangement, as a JSON object; "" when there is none. Stored
   /// with every generation and handed back to make_strategy on resume.
   virtual std::string state() const = 0;

@@ -31,18 +31,24 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
       ->check(CLI::IsMember({"table", "csv", "json"}));
   s->footer(
       "Columns. Runs: island = I of R for island I of the islands whose first run is R (optimize --islands; "
-      "empty otherwise); evaluations = droplets pushed so far (generation 0's included); best_generation = where "
-      "the best T was found. Generations: kind = all (every grain moved), single (one touched grain), relocate "
+      "empty otherwise); evaluations = candidates evaluated so far (generation 0's included); droplets = droplet "
+      "runs so far (evaluations x --starts, and the parents' re-runs); objective = what a candidate scores "
+      "(optimize --objective); best_generation = where the best was found. With a robust objective (mean, "
+      "quantile, lower-bound) every T below is the objective's value over the evaluation's droplets, and the "
+      "best is the arrangement the search stands on, its best_t the mean of its re-runs on fresh starts. Generations: kind = all (every grain moved), single (one touched grain), relocate "
       "(one untouched grain put next to the path) or migrate (another island's best, accepted if it beat this "
       "island's); "
       "accepted = 1 if the strategy kept a candidate; candidate_t = the best T among the generation's passing "
       "candidates (empty if none passed); outcomes = each candidate's outcome, in order; best_t = the best T "
       "after it; touched = grains the best arrangement's droplet touched; seconds = wall time; state = the "
-      "strategy's state (JSON). Candidates: moved_grain = the grain a single or relocate move moved (empty for all); "
-      "moved = grains moved; t = T if passed; steps = time steps simulated; reason = why its run ended. "
+      "strategy's state (JSON); parent_t = the value of the arrangement the candidates were made from, re-run on "
+      "their starts (robust objectives). Candidates: moved_grain = the grain a single or relocate move moved (empty for all); "
+      "moved = grains moved; t = T if passed; steps = time steps simulated; reason = why its run ended; droplets, "
+      "passed = its droplets and how many passed. "
       "--best: held_out_t, held_out_se = the mean T and its standard error over held_out_starts random starts of "
       "that generation's arrangement (softdrop validate, or the end of the search; empty where none was "
-      "computed).");
+      "computed); re_runs = robust objectives: the re-runs on fresh starts that its best_t is the mean of (0: the "
+      "value it was kept with).");
   return s;
 }
 
@@ -80,14 +86,15 @@ int run_history(const HistoryArgs& a) {
   Table t;
   if (a.run == 0) {
     t.header = {"run", "created", "status", "strategy", "island", "grains", "generations", "evaluations", "best_t",
-                "best_generation", "lambda", "seed", "version"};
+                "best_generation", "lambda", "seed", "version", "objective", "droplets"};
     for (const RunRecord& r : history->runs()) {
       const auto params = nlohmann::json::parse(r.params, nullptr, false);
       const std::string strategy = params.is_object() ? params.value("strategy", "paper") : "?";
       const nlohmann::json island = r.island >= 0 ? nlohmann::json(std::to_string(r.island) + " of " + std::to_string(r.archipelago))
                                                   : nlohmann::json();
+      const std::string objective = params.is_object() ? params.value("objective", "single") : "?";
       t.rows.push_back({r.id, r.created, r.status, strategy, island, r.grains, r.generations, r.evaluations, r.best_t,
-                        r.best_generation, r.lambda, r.seed, r.version});
+                        r.best_generation, r.lambda, r.seed, r.version, objective, r.droplets});
     }
   } else if (a.params) {
     t.header = {"option", "value"};
@@ -98,31 +105,44 @@ int run_history(const HistoryArgs& a) {
       t.rows.push_back({key, value.is_string() ? value.get<std::string>() : value.dump()});
   } else if (a.candidates) {
     t.header = {"generation", "candidate", "accepted", "outcome", "t", "steps", "touched", "moved_grain", "moved",
-                "seconds", "reason"};
+                "seconds", "reason", "droplets", "passed"};
     for (const GenerationRecord& g : history->generations(a.run))
       for (const CandidateRecord& c : g.candidates)
         t.rows.push_back({g.generation, c.index, c.index == g.accepted ? 1 : 0, c.outcome,
                           or_null(c.outcome == "passed", c.tortuosity), c.steps, c.touched,
                           c.moved_grain >= 0 ? nlohmann::json(c.moved_grain) : nlohmann::json(nullptr), c.moved,
-                          c.seconds, c.reason});
+                          c.seconds, c.reason, c.droplets, c.passed});
   } else if (a.best) {
     // Beside the in-search best T, the held-out value of that generation's arrangement where one
-    // was stored (the latest of its validations).
-    t.header = {"generation", "kind", "best_t", "touched", "held_out_t", "held_out_se", "held_out_starts"};
+    // was stored (the latest of its validations). A robust objective's best is the arrangement
+    // the search stands on: one row for each arrangement kept, with its value where its tenure
+    // ended (the mean of its re-runs on fresh starts) and how many re-runs that mean holds.
+    t.header = {"generation", "kind", "best_t", "touched", "held_out_t", "held_out_se", "held_out_starts", "re_runs"};
     std::map<std::int64_t, ValidationRecord> held_out;
     for (const ValidationRecord& v : history->validations(a.run)) held_out[v.generation] = v;
+    const auto params = nlohmann::json::parse(history->run(a.run).params, nullptr, false);
+    const bool robust = params.is_object() && params.value("objective", "single") != "single";
+    const std::vector<GenerationRecord> gs = history->generations(a.run);
+    const auto row = [&](const GenerationRecord& g, double best_t, const nlohmann::json& re_runs) {
+      const auto v = held_out.find(g.generation);
+      const bool has = v != held_out.end();
+      t.rows.push_back({g.generation, g.kind, best_t, g.touched, has ? finite_or_null(v->second.mean_t) : nlohmann::json(),
+                        has ? finite_or_null(v->second.standard_error) : nlohmann::json(),
+                        has ? nlohmann::json(v->second.starts) : nlohmann::json(), re_runs});
+    };
     double best = 0;
-    for (const GenerationRecord& g : history->generations(a.run))
-      if (g.generation == 0 || g.best_t > best) {  // the generations that raised the best
+    for (const GenerationRecord& g : gs) {
+      if (robust && (g.generation == 0 || g.accepted >= 0)) {
+        const KeptValue kept = kept_value(gs, g.generation);
+        row(g, kept.value, kept.re_runs);
+      } else if (!robust && (g.generation == 0 || g.best_t > best)) {  // the generations that raised the best
         best = g.best_t;
-        const auto v = held_out.find(g.generation);
-        const bool has = v != held_out.end();
-        t.rows.push_back({g.generation, g.kind, g.best_t, g.touched, has ? finite_or_null(v->second.mean_t) : nlohmann::json(),
-                          has ? finite_or_null(v->second.standard_error) : nlohmann::json(),
-                          has ? nlohmann::json(v->second.starts) : nlohmann::json()});
+        row(g, g.best_t, nlohmann::json());
       }
+    }
   } else {
-    t.header = {"generation", "kind", "accepted", "candidate_t", "outcomes", "best_t", "touched", "seconds", "state"};
+    t.header = {"generation", "kind", "accepted", "candidate_t", "outcomes", "best_t", "touched", "seconds", "state",
+                "parent_t"};
     for (const GenerationRecord& g : history->generations(a.run)) {
       // The generation's best passing candidate, and every candidate's outcome.
       bool any = false;
@@ -133,7 +153,7 @@ int run_history(const HistoryArgs& a) {
         outcomes += (outcomes.empty() ? "" : ";") + c.outcome;
       }
       t.rows.push_back({g.generation, g.kind, g.accepted >= 0 ? 1 : 0, or_null(any, top), outcomes, g.best_t,
-                        g.touched, g.seconds, g.state});
+                        g.touched, g.seconds, g.state, finite_or_null(g.parent_t)});
     }
   }
   t.print(std::cout, a.format);

@@ -127,14 +127,17 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
       std::cerr << "optimize: resuming the " << runs.size() << " islands of run " << runs.front() << " in " << a.db << "\n";
   } else {
     check_database(a.db);  // (a new file: its folder must exist and be writable)
-    // Every island starts from one medium (its evaluation takes no seed), or each from its own,
-    // all made before the history is touched.
-    const std::size_t starts = a.own_island_starts ? static_cast<std::size_t>(a.islands.islands) : 1;
+    // Every island starts from one medium, or each from its own, all made before the history is
+    // touched. The single objective's evaluation takes no seed, so one evaluation serves every
+    // island; a robust objective's starts come from the island's seed, so each evaluates its own.
+    const bool each = a.own_island_starts || a.search.objective.robust();
+    const std::size_t starts = each ? static_cast<std::size_t>(a.islands.islands) : 1;
     std::vector<Generation> g0(starts);
     std::vector<Configuration> start_of(starts);
     for (std::size_t s = 0; s < starts; ++s) {
       OptimizeArgs from = a;
       if (a.own_island_starts) from.medium.options.seed = derive_seed(a.medium.options.seed, s);
+      from.search = island_search_options(a.search, static_cast<int>(s));
       g0[s] = start(from, &start_of[s]);
       initial_evaluations += static_cast<std::int64_t>(g0[s].candidates.size());
     }
@@ -142,7 +145,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     nlohmann::json params = given;
     params["target-generations"] = a.generations;
     for (int i = 0; i < a.islands.islands; ++i) {
-      const std::size_t s = a.own_island_starts ? static_cast<std::size_t>(i) : 0;
+      const std::size_t s = each ? static_cast<std::size_t>(i) : 0;
       params["island"] = i;
       const SearchOptions options = island_search_options(a.search, i);
       const std::int64_t id = history->create_run(params.dump(), options, g0[s], start_of[s]);
@@ -152,7 +155,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     }
     if (!a.quiet)
       for (std::size_t s = 0; s < start_of.size(); ++s)
-        std::cerr << "optimize: " << (a.own_island_starts ? "island " + std::to_string(s) + " of " : std::string())
+        std::cerr << "optimize: " << (each ? "island " + std::to_string(s) + " of " : std::string())
                   << runs.size() << " islands, runs " << runs.front() << " to " << runs.back() << " in " << a.db
                   << ": " << start_of[s].medium.grains.size() << " grains, porosity "
                   << fmt(exact_porosity(start_of[s].medium), 6) << ", T0 = " << fmt(start_of[s].eval.tortuosity, 8)

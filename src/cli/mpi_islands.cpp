@@ -35,6 +35,7 @@ Medium get_medium(ByteReader& r) {
 void put(ByteWriter& w, const Evaluation& e) {
   w.put(static_cast<std::int32_t>(e.outcome)), w.put_string(e.reason), w.put(e.tortuosity), w.put(e.steps);
   w.put_vector(e.touched), w.put_vector(e.path_x), w.put_vector(e.path_y), w.put(e.seconds);
+  w.put(e.droplets), w.put(e.passed), w.put_vector(e.values);
 }
 Evaluation get_evaluation(ByteReader& r) {
   Evaluation e;
@@ -44,6 +45,7 @@ Evaluation get_evaluation(ByteReader& r) {
   e.reason = r.get_string(), e.tortuosity = r.get<double>(), e.steps = r.get<std::int64_t>();
   e.touched = r.get_vector<std::int32_t>(), e.path_x = r.get_vector<double>(), e.path_y = r.get_vector<double>();
   e.seconds = r.get<double>();
+  e.droplets = r.get<int>(), e.passed = r.get<int>(), e.values = r.get_vector<double>();
   return e;
 }
 void put(ByteWriter& w, const Configuration& c) { w.put(c.generation), put(w, c.medium), put(w, c.eval); }
@@ -66,6 +68,7 @@ void put(ByteWriter& w, const Generation& g) {
     put(w, c.medium), put(w, c.eval);
   }
   w.put(g.accepted), w.put(g.best_t), w.put(g.touched), w.put(g.seconds), w.put_string(g.state);
+  put(w, g.parent);
 }
 Generation get_generation(ByteReader& r) {
   Generation g;
@@ -81,6 +84,7 @@ Generation get_generation(ByteReader& r) {
   }
   g.accepted = r.get<int>(), g.best_t = r.get<double>(), g.touched = r.get<int>(), g.seconds = r.get<double>();
   g.state = r.get_string();
+  g.parent = get_evaluation(r);
   return g;
 }
 

@@ -78,6 +78,33 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_option("--half-life", a.search.strategy.half_life, "anneal: generations in which the temperature halves")
       ->capture_default_str()
       ->each([&a](const std::string&) { a.strategy_options.emplace_back("--half-life", StrategyKind::anneal); });
+  g->add_option_function<std::string>(
+       "--objective", [&a](const std::string& v) { a.search.objective.kind = parse_objective(v); },
+       "What a candidate scores. single: T of one droplet from the middle of the top (the paper's; one path, "
+       "chaotic in its start). mean: <T> of --starts droplets from fresh starts each generation, the "
+       "candidates and their parent on the same starts. quantile: the --quantile of their T. lower-bound: "
+       "<T> - --se-factor x its standard error. A droplet that does not pass counts as T = 1")
+      ->check(CLI::IsMember(objective_names()))
+      ->default_str(to_string(a.search.objective.kind));
+  const auto of_objectives = [&a](const char* option, std::vector<ObjectiveKind> kinds) {
+    return [&a, option, kinds](const std::string&) { a.objective_options.emplace_back(option, kinds); };
+  };
+  g->add_option("--starts", a.search.objective.starts,
+                "mean, quantile, lower-bound: droplets per evaluation, in [1, 4096], stratified over the top and "
+                "drawn afresh each generation")
+      ->capture_default_str()
+      ->each(of_objectives("--starts", {ObjectiveKind::mean, ObjectiveKind::quantile, ObjectiveKind::lower_bound}));
+  g->add_option("--quantile", a.search.objective.quantile, "quantile: the quantile of the droplets' T, in (0, 1)")
+      ->capture_default_str()
+      ->each(of_objectives("--quantile", {ObjectiveKind::quantile}));
+  g->add_option("--se-factor", a.search.objective.se_factor, "lower-bound: k in <T> - k x standard error")
+      ->capture_default_str()
+      ->each(of_objectives("--se-factor", {ObjectiveKind::lower_bound}));
+  g->add_option("--margin", a.search.objective.margin,
+                "mean, quantile, lower-bound: a candidate beats its parent only by more than this many standard "
+                "errors of their droplets' paired differences (0: any gain)")
+      ->capture_default_str()
+      ->each(of_objectives("--margin", {ObjectiveKind::mean, ObjectiveKind::quantile, ObjectiveKind::lower_bound}));
   g->add_option("--islands", a.islands.islands,
                 "Island model: this many searches with seeds of their own, run side by side, each a run of the "
                 "history; every --migrate-every generations each takes another's best (1: one search)")
@@ -135,6 +162,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
     fill("strategy", [&] { a.search.strategy.kind = StrategyKind::paper; });
     fill("lambda", [&] { a.search.lambda = 1; });
     fill("relocate-every", [&] { a.search.relocate_every = 0; });
+    fill("objective", [&] { a.search.objective.kind = ObjectiveKind::single; });
   });
 
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
@@ -197,6 +225,11 @@ void check_optimize(OptimizeArgs& a) {
       if (kind != a.search.strategy.kind)
         throw std::invalid_argument(option.substr(2) + ": an option of --strategy " + to_string(kind) +
                                     ", not used by --strategy " + to_string(a.search.strategy.kind));
+  if (a.resume == 0)
+    for (const auto& [option, kinds] : a.objective_options)
+      if (std::find(kinds.begin(), kinds.end(), a.search.objective.kind) == kinds.end())
+        throw std::invalid_argument(option.substr(2) + ": not an option of --objective " +
+                                    to_string(a.search.objective.kind));
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   if (std::string why; !a.islands.IsValid(&why)) throw std::invalid_argument(why);
   if (a.own_island_starts && a.resume == 0 && a.islands.islands < 2)
@@ -232,6 +265,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   std::int64_t run = a.resume;
   std::unique_ptr<Search> search;
   std::int64_t initial_evaluations = 0;  // generation 0's, counted with this session's when it made them
+  std::int64_t initial_droplets = 0;
   if (run > 0) {
     history = open_history(a.db, OpenMode::read_only);  // checks the file before any write
     history.reset();
@@ -291,6 +325,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     Configuration best;
     const Generation g0 = start(a, &best);
     initial_evaluations = static_cast<std::int64_t>(g0.candidates.size());
+    initial_droplets = g0.candidates.front().eval.droplets;
     history = open_history(a.db, OpenMode::create);
     nlohmann::json params = given;
     params["target-generations"] = a.generations;  // where a resume without --generations goes on to
@@ -324,11 +359,14 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   j["db"] = a.db;
   j["run"] = run;
   j["strategy"] = to_string(a.search.strategy.kind);
+  j["objective"] = to_string(a.search.objective.kind);
+  j["starts"] = a.search.objective.droplets();
   j["termination"] = to_string(summary.termination);
   j["message"] = summary.message;
   j["last_generation"] = summary.last_generation;
   j["generations_run"] = summary.generations_run;
   j["evaluations"] = summary.evaluations + initial_evaluations;
+  j["droplets"] = summary.droplets + initial_droplets;
   j["accepted"] = summary.accepted;
   j["best_tortuosity"] = best.eval.tortuosity;
   j["best_generation"] = best.generation;
@@ -349,9 +387,16 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     std::cout << "run          " << run << " in " << a.db << "\n"
               << "stopped      " << summary.message << "\n"
               << "best T       " << fmt(best.eval.tortuosity, 10) << " (generation " << best.generation << ", "
-              << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n"
-              << "this session " << summary.generations_run << " generations, " << summary.accepted
-              << " accepted, " << summary.evaluations + initial_evaluations << " evaluations, "
+              << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n";
+    if (a.search.objective.robust())
+      std::cout << "objective    " << to_string(a.search.objective.kind) << " over " << a.search.objective.starts
+                << " fresh starts a generation; the best T is the mean of the best's "
+                << summary.last_generation - best.generation << " re-runs"
+                << (summary.last_generation == best.generation ? " (none yet: the value it was kept with)" : "")
+                << "\n";
+    std::cout << "this session " << summary.generations_run << " generations, " << summary.accepted << " accepted, "
+              << summary.evaluations + initial_evaluations << " evaluations ("
+              << summary.droplets + initial_droplets << " droplets), "
               << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
     print_held_out(std::cout, held_out);
     if (a.verbose) {  // for those who tune --lanes and --threads

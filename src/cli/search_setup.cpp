@@ -27,6 +27,10 @@ OptimizeArgs::OptimizeArgs() {
   search.strategy.kind = StrategyKind::es;
   search.relocate_every = 3;
   search.lambda = 8;
+  // The paper's objective, one droplet from the middle of the top, tunes that one chaotic path
+  // (results/search/README.md): the default scores a medium by the mean T of droplets from fresh
+  // starts, compared on common starts.
+  search.objective.kind = ObjectiveKind::mean;
 }
 
 // The command line's view of the run: search options plus how the starting medium was made.
@@ -87,7 +91,10 @@ nlohmann::json validate_best(const OptimizeArgs& a, History& history, std::int64
   });
   const ValidationRecord r = validation_record(best.generation, o, v);
   history.add_validation(run, r);
-  return {{"generation", r.generation}, {"starts", r.starts}, {"seed", r.seed}, {"passed", r.passed},
+  // A robust objective over the held-out starts: the counterpart of the best's in-search value.
+  const nlohmann::json objective =
+      a.search.objective.robust() ? nlohmann::json(objective_value(a.search.objective, v.at_dt.runs)) : nlohmann::json();
+  return {{"objective_value", objective}, {"generation", r.generation}, {"starts", r.starts}, {"seed", r.seed}, {"passed", r.passed},
           {"mean_t", finite_or_null(r.mean_t)}, {"standard_error", finite_or_null(r.standard_error)},
           {"half_dt_mean_t", finite_or_null(r.half_dt_mean_t)}, {"half_dt_standard_error", finite_or_null(r.half_dt_standard_error)},
           {"dt_shift", finite_or_null(r.dt_shift)}, {"dt_shift_error", finite_or_null(r.dt_shift_error)}};
@@ -104,6 +111,9 @@ void print_held_out(std::ostream& out, const nlohmann::json& held_out) {
       << " over " << held_out["starts"] << " random starts (" << held_out["passed"] << " passed)"
       << (held_out["half_dt_mean_t"].is_number() ? "; at dt/2 " + fmt(held_out["half_dt_mean_t"].get<double>(), 6) : "")
       << " (softdrop validate)\n";
+  if (held_out["objective_value"].is_number())
+    out << "held-out obj " << fmt(held_out["objective_value"].get<double>(), 6)
+        << " (the objective over those starts, a droplet that did not pass as T = 1; beside the best T)\n";
 }
 
 // Generation 0 of a new run: the loaded medium, or random media until the droplet passes. A medium
@@ -165,14 +175,17 @@ bool deliver_summary(const OptimizeArgs& a, const nlohmann::json& j, Host* host)
 }
 
 Search resumed_search(History& history, const RunRecord& rec, const SearchOptions& options) {
-  // The strategy moves on from the last kept arrangement; the best may be an earlier one.
+  // The strategy moves on from the last kept arrangement; the best may be an earlier one (with a
+  // robust objective it is that arrangement, with the mean of its re-runs stored as the run's best).
   Configuration current = history.configuration(rec.id, -1);
-  Configuration best = rec.best_generation == current.generation
+  const bool robust = options.objective.robust();
+  Configuration best = robust || rec.best_generation == current.generation
                            ? current
                            : history.configuration(rec.id, rec.best_generation);
-  // Both must come out the same with this build, or the history would fork.
+  // Both must come out the same with this build (on the starts they were kept on), or the history
+  // would fork.
   for (Configuration* c : {&current, &best}) {
-    const Evaluation check = evaluate(c->medium, options);
+    const Evaluation check = evaluate(c->medium, options, c->generation);
     if (check.outcome != Outcome::passed || check.tortuosity != c->eval.tortuosity ||
         check.touched != c->eval.touched)
       throw std::runtime_error(
@@ -181,6 +194,14 @@ Search resumed_search(History& history, const RunRecord& rec, const SearchOption
           ", the run stored " + fmt(c->eval.tortuosity) +
           " (built with other numerics? resuming would not continue the same history)");
     c->eval = check;
+  }
+  if (robust) {
+    if (rec.best_generation != current.generation)
+      throw std::runtime_error("resume " + std::to_string(rec.id) + ": the stored best (generation " +
+                               std::to_string(rec.best_generation) + ") is not the last kept arrangement (generation " +
+                               std::to_string(current.generation) + "), as the " +
+                               to_string(options.objective.kind) + " objective keeps it");
+    best.eval.tortuosity = rec.best_t;
   }
   return Search(options, std::move(best), std::move(current),
                 history.strategy_state(rec.id, rec.generations), rec.generations);

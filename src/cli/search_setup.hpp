@@ -47,6 +47,8 @@ struct OptimizeArgs {
   std::vector<std::string> preset_keys;  ///< the stored keys the preset set (compared on resume as if given)
   /// Options of one strategy given on the command line, with the strategy that uses each.
   std::vector<std::pair<std::string, StrategyKind>> strategy_options;
+  /// Options of one objective given on the command line, with the objectives that use each.
+  std::vector<std::pair<std::string, std::vector<ObjectiveKind>>> objective_options;
 
   OptimizeArgs();
 };

@@ -95,6 +95,7 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
   Medium medium;
   nlohmann::json source;
   std::string in_search;  // the run's own value, beside the held-out one
+  ObjectiveOptions objective;  // the run's (with --db): its value over the held-out starts too
   if (!a.db.empty()) {
     auto history = open_history(a.db, OpenMode::read_only);
     const RunRecord run = history->run(a.run);
@@ -109,9 +110,23 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
     a.run_options = stored.run;
     a.run_options.path_interval = 0;
     medium = c.medium;
-    source = {{"db", a.db}, {"run", a.run}, {"generation", c.generation}, {"in_search_t", c.eval.tortuosity}};
-    in_search = "in-search T  " + fmt(c.eval.tortuosity, 6) + " (one droplet from x0 = W/2, generation " +
-                std::to_string(c.generation) + ")\n";
+    objective = stored.objective;
+    source = {{"db", a.db}, {"run", a.run}, {"generation", c.generation}, {"objective", to_string(objective.kind)}};
+    if (objective.robust()) {
+      // Its value in the search: the mean of its re-runs on fresh starts (objective.hpp).
+      const KeptValue kept = kept_value(history->generations(a.run), c.generation);
+      source["in_search_t"] = kept.value;
+      source["re_runs"] = kept.re_runs;
+      in_search = "in-search    " + fmt(kept.value, 6) + " (" + to_string(objective.kind) + " over " +
+                  std::to_string(objective.starts) + " starts, a droplet that did not pass counted as T = 1; " +
+                  (kept.re_runs > 0 ? "the mean of " + std::to_string(kept.re_runs) + " re-runs on fresh starts"
+                                    : std::string("the value it was kept with")) +
+                  ", generation " + std::to_string(c.generation) + ")\n";
+    } else {
+      source["in_search_t"] = c.eval.tortuosity;
+      in_search = "in-search T  " + fmt(c.eval.tortuosity, 6) + " (one droplet from x0 = W/2, generation " +
+                  std::to_string(c.generation) + ")\n";
+    }
   } else {
     medium = load_medium(a.medium);
     source = {{"medium", a.medium}};
@@ -124,6 +139,9 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
   nlohmann::json j{{"version", kVersion}, {"source", source}, {"seed", a.held_out.seed},
                    {"grains", medium.grains.size()}, {"porosity", exact_porosity(medium)},
                    {"at_dt", runs_json(v.at_dt)}};
+  // The run's robust objective over the held-out starts: the in-search value's counterpart.
+  const double held_out_objective = objective.robust() ? objective_value(objective, v.at_dt.runs) : 0.0;
+  if (objective.robust()) j["at_dt"]["objective_value"] = held_out_objective;
   if (a.held_out.half_dt)
     j["at_half_dt"] = runs_json(v.at_half_dt), j["dt_shift"] = {{"paired", v.paired}, {"mean", finite_or_null(v.dt_shift)},
                                                                {"standard_error", finite_or_null(v.dt_shift_error)}};
@@ -152,6 +170,9 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
             << "\n"
             << in_search << "starts       " << a.held_out.starts << " across the top (seed " << a.held_out.seed << ")\n"
             << runs_line("at dt        ", v.at_dt) << "\n";
+  if (objective.robust())
+    std::cout << "objective    " << fmt(held_out_objective, 6) << " over these starts (" << to_string(objective.kind)
+              << ", a droplet that did not pass counted as T = 1): the in-search value's counterpart\n";
   if (a.held_out.half_dt) {
     std::cout << runs_line("at dt/2      ", v.at_half_dt) << "\n";
     std::cout << "dt/2 - dt     ";

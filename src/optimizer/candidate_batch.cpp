@@ -1,6 +1,7 @@
-// Evaluating one generation's candidates together: on up to `threads` threads, each stepping up to
-// `lanes` candidates at once (run_interleaved), the lane exchange spreading the last ones over
-// the threads. Each candidate's evaluation has the bits of evaluate() on its own.
+// Evaluating one generation's candidates together: every (candidate, start) droplet is a job, on
+// up to `threads` threads, each stepping up to `lanes` droplets at once (run_interleaved), the
+// lane exchange spreading the last ones over the threads. Each candidate's evaluation has the
+// bits of evaluate() on its own: a droplet's run depends only on its medium and start.
 #include <atomic>
 #include <chrono>
 #include <exception>
@@ -14,14 +15,22 @@
 
 namespace softdrop::detail {
 
-void evaluate_candidates(std::vector<Candidate>& candidates, const SearchOptions& options, int threads, int lanes) {
-  const int k = static_cast<int>(candidates.size());
-  if (k == 0) return;
-  const int workers = std::min(k, worker_threads(threads));
-  if (lanes <= 0) lanes = std::max(1, std::min(interleaved_lanes(), (k + workers - 1) / workers));
+void evaluate_candidates(std::vector<Candidate>& candidates, const SearchOptions& options, std::int64_t generation,
+                         int threads, int lanes) {
+  const int n = static_cast<int>(candidates.size());
+  if (n == 0) return;
+  // Common random numbers: every candidate's droplets start where the others' do.
+  const std::vector<double> starts =
+      objective_starts(options.objective, options.seed, generation, candidates.front().medium, options.droplet);
+  const int per = static_cast<int>(starts.size());
+  const int jobs = n * per;
+  const int workers = std::min(jobs, worker_threads(threads));
+  if (lanes <= 0) lanes = std::max(1, std::min(interleaved_lanes(), (jobs + workers - 1) / workers));
   const RunOptions run = evaluation_run(options.run);
-  std::vector<std::unique_ptr<Simulation>> sims(static_cast<std::size_t>(k));
-  std::vector<std::chrono::steady_clock::time_point> started(static_cast<std::size_t>(k));
+  std::vector<std::unique_ptr<Simulation>> sims(static_cast<std::size_t>(jobs));
+  std::vector<RunSummary> runs(static_cast<std::size_t>(jobs));
+  std::vector<int> left(static_cast<std::size_t>(n), per);  // droplets of each candidate not yet done
+  std::vector<std::chrono::steady_clock::time_point> started(static_cast<std::size_t>(n));
   std::atomic<int> next{0};
   LaneExchange exchange;
   std::mutex m;
@@ -29,28 +38,39 @@ void evaluate_candidates(std::vector<Candidate>& candidates, const SearchOptions
   auto worker = [&] {
     try {
       auto take = [&](DropletJob* job, bool) {
-        if (next.load(std::memory_order_relaxed) >= k) return false;
+        if (next.load(std::memory_order_relaxed) >= jobs) return false;
         const int i = next.fetch_add(1);
-        if (i >= k) return false;
+        if (i >= jobs) return false;
         const auto u = static_cast<std::size_t>(i);
-        sims[u] = std::make_unique<Simulation>(options.droplet, candidates[u].medium);
-        started[u] = std::chrono::steady_clock::now();
+        const auto c = static_cast<std::size_t>(i / per);
+        sims[u] = std::make_unique<Simulation>(options.droplet, candidates[c].medium);
+        if (i % per == 0) started[c] = std::chrono::steady_clock::now();
         job->sim = sims[u].get();
-        job->x0 = 0.5 * candidates[u].medium.width;  // as evaluate(): the middle of the top
+        job->x0 = starts[static_cast<std::size_t>(i % per)];
         job->options = &run;
         job->id = i;
         return true;
       };
       auto done = [&](std::int64_t id, RunSummary&& summary) {
         const auto u = static_cast<std::size_t>(id);
-        candidates[u].eval = as_evaluation(std::move(summary), started[u]);
+        const auto c = static_cast<std::size_t>(id / per);
+        runs[u] = std::move(summary);
         sims[u].reset();
+        bool last = false;
+        {
+          std::lock_guard lock(m);
+          last = --left[c] == 0;
+        }
+        if (!last) return;
+        std::vector<RunSummary> mine(std::make_move_iterator(runs.begin() + static_cast<std::ptrdiff_t>(c) * per),
+                                     std::make_move_iterator(runs.begin() + static_cast<std::ptrdiff_t>(c + 1) * per));
+        candidates[c].eval = as_evaluation(options.objective, std::move(mine), started[c]);
       };
       run_interleaved(lanes, take, done, nullptr, &exchange);
     } catch (...) {
       std::lock_guard lock(m);
       if (!error) error = std::current_exception();
-      next.store(k);  // the others start no new candidate
+      next.store(jobs);  // the others start no new droplet
     }
   };
   std::vector<std::thread> pool;

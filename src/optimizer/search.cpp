@@ -3,6 +3,7 @@
 // speculative_drive.cpp.
 #include "softdrop/search.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -72,6 +73,7 @@ bool SearchOptions::IsValid(std::string* why) const {
     return fail(why, "max-redraws = " + std::to_string(max_redraws) + ": must be in [0, 1e6]");
   if (!std::isfinite(gap) || gap < 0) return fail(why, "gap = " + num(gap) + ": must be >= 0");
   if (!strategy.IsValid(why)) return false;
+  if (!objective.IsValid(why)) return false;
   if (!droplet.IsValid(why)) return false;
   if (!run.IsValid(why)) return false;
   if (run.path_interval < 1) return fail(why, "path-interval = " + std::to_string(run.path_interval) + ": must be >= 1");
@@ -80,6 +82,32 @@ bool SearchOptions::IsValid(std::string* why) const {
 
 
 namespace detail {
+bool improves(const Evaluation& e, const Evaluation& parent, const ObjectiveOptions& objective) {
+  if (!objective.robust() || parent.values.size() != e.values.size()) return improves(e, parent.tortuosity);
+  if (!improves(e, parent.tortuosity)) return false;
+  const double n = static_cast<double>(e.values.size());
+  double mean = 0;
+  for (std::size_t j = 0; j < e.values.size(); ++j) mean += e.values[j] - parent.values[j];
+  mean /= n;
+  double ss = 0;
+  for (std::size_t j = 0; j < e.values.size(); ++j) {
+    const double d = e.values[j] - parent.values[j] - mean;
+    ss += d * d;
+  }
+  const double se = n > 1 ? std::sqrt(ss / (n - 1) / n) : 0.0;
+  return e.tortuosity - parent.tortuosity > objective.margin * se;
+}
+
+int best_improvement(const std::vector<const Candidate*>& candidates, const Evaluation& parent,
+                     const ObjectiveOptions& objective) {
+  int best = -1;
+  for (const Candidate* c : candidates)
+    if (c && improves(c->eval, parent, objective) &&
+        (best < 0 || c->eval.tortuosity > candidates[static_cast<std::size_t>(best)]->eval.tortuosity))
+      best = c->index;
+  return best;
+}
+
 RunOptions evaluation_run(const RunOptions& run) {
   RunOptions r = run;
   r.area_interval = 0;
@@ -96,6 +124,34 @@ Evaluation as_evaluation(RunSummary&& s, std::chrono::steady_clock::time_point t
   e.touched = std::move(s.touched);
   e.path_x = std::move(s.path_x);
   e.path_y = std::move(s.path_y);
+  e.droplets = 1;
+  e.passed = e.outcome == Outcome::passed ? 1 : 0;
+  e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return e;
+}
+
+Evaluation as_evaluation(const ObjectiveOptions& objective, std::vector<RunSummary>&& runs,
+                         std::chrono::steady_clock::time_point t0) {
+  if (!objective.robust()) return as_evaluation(std::move(runs.at(0)), t0);
+  Evaluation e;
+  e.droplets = static_cast<int>(runs.size());
+  const RunSummary* failed = nullptr;
+  for (const RunSummary& r : runs) {
+    e.steps += r.steps;
+    e.touched.insert(e.touched.end(), r.touched.begin(), r.touched.end());
+    if (r.outcome == Outcome::passed) ++e.passed;
+    else if (!failed) failed = &r;
+  }
+  std::sort(e.touched.begin(), e.touched.end());
+  e.touched.erase(std::unique(e.touched.begin(), e.touched.end()), e.touched.end());
+  e.outcome = e.passed > 0 ? Outcome::passed : runs.front().outcome;
+  if (failed)
+    e.reason = std::to_string(e.droplets - e.passed) + " of " + std::to_string(e.droplets) +
+               " droplets did not pass (the first: " + to_string(failed->outcome) + ", " + failed->reason + ")";
+  e.tortuosity = objective_value(objective, runs);
+  for (const RunSummary& r : runs) e.values.push_back(r.outcome == Outcome::passed ? r.tortuosity : 1.0);
+  e.path_x = std::move(runs.front().path_x);
+  e.path_y = std::move(runs.front().path_y);
   e.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return e;
 }
@@ -105,6 +161,14 @@ Evaluation evaluate(const Medium& medium, const SearchOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   Simulation sim(options.droplet, medium);
   return as_evaluation(sim.run(0.5 * medium.width, evaluation_run(options.run)), t0);
+}
+
+Evaluation evaluate(const Medium& medium, const SearchOptions& options, std::int64_t generation) {
+  if (!options.objective.robust()) return evaluate(medium, options);
+  std::vector<Candidate> one(1);
+  one[0].medium = medium;
+  detail::evaluate_candidates(one, options, generation, 1, 0);
+  return std::move(one[0].eval);
 }
 
 namespace {
@@ -136,7 +200,7 @@ Generation initial_generation(const Medium& medium, const SearchOptions& options
   Candidate c;
   c.kind = MoveKind::initial;
   c.medium = medium;
-  c.eval = evaluate(medium, options);
+  c.eval = evaluate(medium, options, 0);
   if (c.eval.outcome != Outcome::passed)
     throw std::runtime_error(std::string("the droplet does not pass through the starting medium: ") +
                              to_string(c.eval.outcome) + " (" + c.eval.reason + ")");
@@ -163,6 +227,14 @@ Search::Search(const SearchOptions& options, Configuration best, Configuration c
   if (current.eval.outcome != Outcome::passed)
     throw std::invalid_argument("search: the current configuration's droplet did not pass");
   if (last_ < 0) throw std::invalid_argument("search: last generation " + std::to_string(last_) + " < 0");
+  if (options_.objective.robust()) {
+    if (best_.generation != current.generation || best_.generation > last_)
+      throw std::invalid_argument("search: with the " + std::string(to_string(options_.objective.kind)) +
+                                  " objective the best is the current arrangement (generation " +
+                                  std::to_string(current.generation) + "), not generation " +
+                                  std::to_string(best_.generation));
+    remeasured_ = last_ - best_.generation;
+  }
   strategy_ = make_strategy(options_, std::move(current), state);
 }
 
@@ -173,11 +245,25 @@ Search& Search::operator=(Search&&) noexcept = default;
 Generation Search::next(int threads, int lanes) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<Candidate> candidates = strategy_->propose(last_ + 1);
-  detail::evaluate_candidates(candidates, options_, threads, lanes);
-  return complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  const bool robust = options_.objective.robust();
+  if (robust) {  // the parent runs on the candidates' starts, in the same batch
+    Candidate parent;
+    parent.index = options_.lambda;
+    parent.medium = strategy_->current().medium;
+    candidates.push_back(std::move(parent));
+  }
+  detail::evaluate_candidates(candidates, options_, last_ + 1, threads, lanes);
+  Evaluation parent;
+  if (robust) {
+    parent = std::move(candidates.back().eval);
+    candidates.pop_back();
+  }
+  return complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+                  std::move(parent));
 }
 
-Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
+Generation Search::complete(std::vector<Candidate> candidates, double seconds, Evaluation parent) {
+  if (options_.objective.robust()) return complete_robust(std::move(candidates), seconds, std::move(parent));
   Generation g;
   g.number = last_ + 1;
   g.kind = move_kind(g.number, options_);
@@ -207,6 +293,38 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds) {
   return g;
 }
 
+Generation Search::complete_robust(std::vector<Candidate> candidates, double seconds, Evaluation parent) {
+  Generation g;
+  g.number = last_ + 1;
+  g.kind = move_kind(g.number, options_);
+  g.candidates = std::move(candidates);
+  if (static_cast<int>(g.candidates.size()) != options_.lambda)
+    throw std::logic_error("Search::complete: " + std::to_string(g.candidates.size()) + " candidates for lambda " +
+                           std::to_string(options_.lambda));
+  if (parent.droplets != options_.objective.starts)
+    throw std::logic_error("Search::complete: the parent was not run on the generation's starts");
+  // Every value of this generation is on the same starts: the candidates compete with the parent's
+  // value here, not with the value it was kept with (which won a draw on other starts).
+  const double fresh = parent.tortuosity;
+  strategy_->remeasure(fresh, parent.values);
+  g.accepted = strategy_->tell(g.number, g.candidates);
+  if (g.accepted >= 0) {
+    const Candidate& c = g.candidates[static_cast<std::size_t>(g.accepted)];
+    best_ = Configuration{g.number, c.medium, c.eval};
+    remeasured_ = 0;
+  } else {  // the running mean of the re-runs, the value it was kept with dropped at the first
+    ++remeasured_;
+    best_.eval.tortuosity += (fresh - best_.eval.tortuosity) / static_cast<double>(remeasured_);
+  }
+  last_ = g.number;
+  g.best_t = best_.eval.tortuosity;
+  g.touched = static_cast<int>(best_.eval.touched.size());
+  g.seconds = seconds;
+  g.state = strategy_->state();
+  g.parent = std::move(parent);
+  return g;
+}
+
 Generation Search::immigrate(const Configuration& immigrant) {
   Generation g;
   g.number = last_ + 1;
@@ -218,10 +336,30 @@ Generation Search::immigrate(const Configuration& immigrant) {
   const Medium& own = strategy_->current().medium;
   for (std::size_t i = 0; i < c.medium.grains.size(); ++i)
     if (i >= own.grains.size() || !(c.medium.grains[i] == own.grains[i])) ++c.moved;
-  const bool better = immigrant.eval.outcome == Outcome::passed && immigrant.eval.tortuosity > best_.eval.tortuosity;
+  bool better = false;
+  if (options_.objective.robust()) {
+    // Two islands' values come from different starts: the immigrant and this island's arrangement
+    // run again on this generation's starts, and the immigrant must beat it there.
+    std::vector<Candidate> both(2);
+    both[0].medium = c.medium;
+    both[1].index = 1;
+    both[1].medium = own;
+    detail::evaluate_candidates(both, options_, g.number, 1, 0);
+    c.eval = std::move(both[0].eval);
+    g.parent = std::move(both[1].eval);
+    strategy_->remeasure(g.parent.tortuosity, g.parent.values);
+    better = detail::improves(c.eval, strategy_->current().eval, options_.objective);
+    if (!better) {
+      ++remeasured_;
+      best_.eval.tortuosity += (g.parent.tortuosity - best_.eval.tortuosity) / static_cast<double>(remeasured_);
+    }
+  } else {
+    better = immigrant.eval.outcome == Outcome::passed && immigrant.eval.tortuosity > best_.eval.tortuosity;
+  }
   if (better) {
     g.accepted = 0;
-    best_ = Configuration{g.number, immigrant.medium, immigrant.eval};
+    best_ = Configuration{g.number, c.medium, c.eval};
+    remeasured_ = 0;
     strategy_ = make_strategy(options_, best_, strategy_->state());
   }
   g.candidates.push_back(std::move(c));

@@ -367,7 +367,9 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   std::unique_ptr<Pipeline> pipeline;
   // Speculation assumes the paper's rule (a generation that keeps nothing changes nothing); other
   // strategies evaluate one generation at a time, its candidates on every thread and lane.
-  if (options.speculate && search.strategy().speculative() && (workers > 1 || lanes > 1) &&
+  // A robust objective has K droplets a candidate to fill the threads, and re-runs the parent on
+  // every generation's starts, which a generation ahead cannot know.
+  if (options.speculate && search.strategy().speculative() && !so.objective.robust() && (workers > 1 || lanes > 1) &&
       search.last_generation() < options.generations)
     pipeline = std::make_unique<Pipeline>(search, workers, lanes, options.generations);
   for (;;) {
@@ -390,6 +392,8 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
     const Generation g = pipeline ? pipeline->next() : search.next(options.threads, options.lanes);
     ++s.generations_run;
     s.evaluations += static_cast<std::int64_t>(g.candidates.size());
+    for (const Candidate& c : g.candidates) s.droplets += c.eval.droplets;
+    s.droplets += g.parent.droplets;
     if (g.accepted >= 0) ++s.accepted;
     if (callback && !callback(g, search.best())) {
       s.termination = Termination::callback;

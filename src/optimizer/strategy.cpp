@@ -38,6 +38,10 @@ class Base : public Strategy {
   Base(const SearchOptions& o, Configuration current) : o_(o), current_(std::move(current)) {}
   const SearchOptions& options() const override { return o_; }
   const Configuration& current() const override { return current_; }
+  void remeasure(double value, const std::vector<double>& values) override {
+    current_.eval.tortuosity = value;
+    current_.eval.values = values;
+  }
   using Strategy::propose;
   // The paper's candidates: its move kinds, steps and streams (the strategies that override this
   // have moves of their own).
@@ -54,7 +58,7 @@ class Base : public Strategy {
   }
   // The best strict improvement of the current arrangement, -1 if none.
   int best_improvement(const std::vector<const Candidate*>& candidates) const {
-    return detail::best_improvement(candidates, current_.eval.tortuosity);
+    return detail::best_improvement(candidates, current_.eval, o_.objective);
   }
 
   SearchOptions o_;
@@ -113,7 +117,7 @@ class Evolution final : public Base {
       if (kind == MoveKind::relocate) continue;      // no step: the grain goes next to the path
       const Candidate* c = candidates[static_cast<std::size_t>(k)];
       double& s = steps_[kind == MoveKind::single];
-      s *= c && improves(c->eval, current_.eval.tortuosity) ? up : down;
+      s *= c && improves(c->eval, current_.eval, o_.objective) ? up : down;
       // Below the smallest step a jump barely changes the path; above a quarter of the box a
       // jump is a new arrangement, not a move.
       s = std::clamp(s, kMinStep, 0.25 * current_.medium.width);

@@ -15,7 +15,8 @@ bool optional_key(const std::string& key) {
   return key == "constraint-order" || key == "rest-window" || key == "rest-distance" ||
          key == "strategy" || key == "target-success" || key == "history-length" ||
          key == "temperature" || key == "half-life" || key == "relocate-every" ||
-         key == "viscosity-dilation" || key == "viscosity-step";
+         key == "viscosity-dilation" || key == "viscosity-step" || key == "objective" || key == "starts" ||
+         key == "quantile" || key == "se-factor" || key == "margin";
 }
 // The stored enums go through the same names as the command line (their to_string and parse), so
 // an unknown stored name is refused in the parse's words instead of read as the first value.
@@ -24,6 +25,7 @@ void parse_stored(const std::string& name, DropletEnum* value) {
   parse_name(name, value);
 }
 void parse_stored(const std::string& name, StrategyKind* kind) { *kind = parse_strategy(name); }
+void parse_stored(const std::string& name, ObjectiveKind* kind) { *kind = parse_objective(name); }
 
 template <class T>
 void set_legacy(const std::string& key, T& value) {
@@ -66,6 +68,11 @@ void visit_search(Options& o, F&& f) {
   f("history-length", o.strategy.history_length);
   f("temperature", o.strategy.temperature);
   f("half-life", o.strategy.half_life);
+  f("objective", o.objective.kind);
+  f("starts", o.objective.starts);
+  f("quantile", o.objective.quantile);
+  f("se-factor", o.objective.se_factor);
+  f("margin", o.objective.margin);
   visit_droplet(o.droplet, f);
   visit_exit(o.run, f);
   f("path-interval", o.run.path_interval);

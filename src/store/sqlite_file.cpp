@@ -43,11 +43,17 @@ void widen_generation_kinds(SQLite::Database& db) {
 
 // Version 5 also gives each run its island (NULL: not one of islands) and the id of its
 // archipelago's first run.
+// Adds a column where it is not already (a file whose version was set back, or a migration a
+// crash interrupted before it set the version, may have it).
+void add_column(SQLite::Database& db, const AddedColumn& c) {
+  if (db.execAndGet(std::string("SELECT count(*) FROM pragma_table_info('") + c.table + "') WHERE name = '" +
+                    c.column + "'")
+          .getInt() == 0)
+    db.exec(std::string("ALTER TABLE ") + c.table + " ADD COLUMN " + c.column + " " + c.type);
+}
+
 void add_island_columns(SQLite::Database& db) {
-  for (const char* column : {"island", "archipelago"})
-    if (db.execAndGet(std::string("SELECT count(*) FROM pragma_table_info('runs') WHERE name = '") + column + "'")
-            .getInt() == 0)
-      db.exec(std::string("ALTER TABLE runs ADD COLUMN ") + column + " INTEGER");
+  for (const char* column : {"island", "archipelago"}) add_column(db, {"runs", column, "INTEGER"});
 }
 
 // The tables of the current schema; those starting "sweep" came with version 2, validations with 6.
@@ -310,6 +316,8 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
       add_island_columns(*db);
     }
     if (version < 6) db->exec(kSchemaV6);  // migration 5 -> 6: the held-out values
+    if (version < 7)  // migration 6 -> 7: the robust objectives' counts
+      for (const AddedColumn& c : kSchemaV7) add_column(*db, c);
     if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
     t.commit();
     return db;

@@ -28,12 +28,12 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
       SQLite::Statement q(db_, std::string("INSERT INTO runs (created, updated, version, status, params, "
                                            "seed, lambda, grains, width, height, periodic, generations, "
-                                           "evaluations, best_t, best_generation) VALUES (") +
-                                   kNow + ", " + kNow + ", ?, 'running', ?, ?, ?, ?, ?, ?, ?, 0, ?, ?, 0)");
+                                           "evaluations, droplets, best_t, best_generation) VALUES (") +
+                                   kNow + ", " + kNow + ", ?, 'running', ?, ?, ?, ?, ?, ?, ?, 0, ?, ?, ?, 0)");
       detail::insert_row(q, kVersion, params_json, to_i64(o.seed), o.lambda,
                          static_cast<std::int64_t>(best.medium.grains.size()), best.medium.width, best.medium.height,
                          best.medium.periodic ? 1 : 0, static_cast<std::int64_t>(g0.candidates.size()),
-                         best.eval.tortuosity);
+                         droplets_of(g0), best.eval.tortuosity);
       const std::int64_t run = db_.getLastInsertRowid();
       write_generation(run, g0);
       t.commit();
@@ -105,9 +105,10 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       // One read transaction, so a writer in another process cannot slip a generation in between.
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);
       std::vector<GenerationRecord> out;
-      const bool has_state = schema_version() >= 3;
+      const int version = schema_version();
       SQLite::Statement q(db_, std::string("SELECT generation, kind, accepted_candidate, best_t, touched, seconds, "
-                                           "finished, ") + (has_state ? "state" : "NULL") +
+                                           "finished, ") + (version >= 3 ? "state" : "NULL") +
+                                   (version >= 7 ? ", parent_t, parent_passed" : ", NULL, NULL") +
                                    " FROM generations WHERE run_id = ? ORDER BY generation");
       q.bind(1, run_id);
       while (q.executeStep()) {
@@ -120,14 +121,17 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
         g.seconds = detail::as_real(q.getColumn(5));
         g.finished = detail::as_text(q.getColumn(6));
         g.state = q.getColumn(7).isNull() ? "" : detail::as_text(q.getColumn(7));
+        if (!q.getColumn(8).isNull()) g.parent_t = detail::as_real(q.getColumn(8));
+        if (!q.getColumn(9).isNull()) g.parent_passed = detail::as_int(q.getColumn(9));
         if (g.generation != static_cast<std::int64_t>(out.size()))
           throw std::runtime_error("run " + std::to_string(run_id) + ": generation " + std::to_string(out.size()) +
                                    " is missing (damaged or edited file?)");
         out.push_back(std::move(g));
       }
-      SQLite::Statement c(db_, "SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, "
-                               "steps, touched, seconds FROM candidates WHERE run_id = ? "
-                               "ORDER BY generation, candidate");
+      SQLite::Statement c(db_, std::string("SELECT generation, candidate, moved_grain, moved, outcome, reason, "
+                                           "tortuosity, steps, touched, seconds, ") +
+                                   (version >= 7 ? "droplets, passed" : "NULL, NULL") +
+                                   " FROM candidates WHERE run_id = ? ORDER BY generation, candidate");
       c.bind(1, run_id);
       std::size_t k = 0;
       while (c.executeStep()) {
@@ -145,6 +149,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
         r.steps = detail::as_int64(c.getColumn(7));
         r.touched = detail::as_int(c.getColumn(8));
         r.seconds = detail::as_real(c.getColumn(9));
+        r.droplets = c.getColumn(10).isNull() ? 1 : detail::as_int(c.getColumn(10));
+        r.passed = c.getColumn(11).isNull() ? (r.outcome == "passed" ? 1 : 0) : detail::as_int(c.getColumn(11));
         out[k].candidates.push_back(std::move(r));
       }
       for (const GenerationRecord& g : out)
@@ -309,7 +315,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   std::string run_columns() {
     return std::string("SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, "
                        "periodic, generations, evaluations, best_t, best_generation, ") +
-           (schema_version() >= 5 ? "island, archipelago" : "NULL, NULL") + " FROM runs";
+           (schema_version() >= 5 ? "island, archipelago" : "NULL, NULL") +
+           (schema_version() >= 7 ? ", coalesce(droplets, evaluations)" : ", evaluations") + " FROM runs";
   }
 
   // A version-2 file opened for reading is read as it is (no state column).
@@ -330,6 +337,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     r.best_generation = detail::as_int64(q.getColumn(15));
     if (!q.getColumn(16).isNull()) r.island = detail::as_int(q.getColumn(16));
     if (!q.getColumn(17).isNull()) r.archipelago = detail::as_int64(q.getColumn(17));
+    r.droplets = detail::as_int64(q.getColumn(18));
     // What no run of softdrop stores: a damaged or edited row is refused, not shown or resumed from.
     const auto bad = [&](const char* column, const std::string& value) {
       throw std::runtime_error("run " + std::to_string(r.id) + ": column " + column + " holds " + value +
@@ -337,6 +345,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     };
     if (r.generations < 0) bad("generations", std::to_string(r.generations));
     if (r.evaluations < 0) bad("evaluations", std::to_string(r.evaluations));
+    if (r.droplets < r.evaluations) bad("droplets", std::to_string(r.droplets) + ", fewer than its evaluations");
     if (r.best_generation < 0 || r.best_generation > r.generations)
       bad("best_generation", std::to_string(r.best_generation) + ", outside the run's generations 0 to " +
                                  std::to_string(r.generations));
@@ -364,33 +373,45 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
                                " (is another process writing this run?)");
     write_generation(run, g);
     SQLite::Statement u(db_, std::string("UPDATE runs SET generations = ?, evaluations = evaluations + ?, "
+                                         "droplets = coalesce(droplets, evaluations) + ?, "
                                          "best_t = ?, best_generation = ?, status = 'running', updated = ") +
                                  kNow + " WHERE id = ?");
-    u.bind(1, static_cast<std::int64_t>(g.number));
-    u.bind(2, g.kind == MoveKind::migrate ? std::int64_t{0} : static_cast<std::int64_t>(g.candidates.size()));
-    u.bind(3, best.eval.tortuosity);
-    u.bind(4, static_cast<std::int64_t>(best.generation));
-    u.bind(5, run);
-    u.exec();
+    const bool migration = g.kind == MoveKind::migrate;
+    detail::insert_row(u, static_cast<std::int64_t>(g.number),
+                       migration ? std::int64_t{0} : static_cast<std::int64_t>(g.candidates.size()),
+                       migration ? std::int64_t{0} : droplets_of(g), best.eval.tortuosity,
+                       static_cast<std::int64_t>(best.generation), run);
+  }
+
+  // The droplet runs of a generation: its candidates' and the parent's re-run.
+  static std::int64_t droplets_of(const Generation& g) {
+    std::int64_t n = g.parent.droplets;
+    for (const Candidate& c : g.candidates) n += c.eval.droplets;
+    return n;
   }
 
   // Inside a transaction: the generation, its candidates and, if it kept one, that candidate's
   // grains (with the touched flag) and path.
   void write_generation(std::int64_t run, const Generation& g) {
     const std::int64_t rid = run, gen = g.number;
+    const bool rerun = g.parent.droplets > 0;
     SQLite::Statement q(db_, std::string("INSERT INTO generations (run_id, generation, kind, accepted_candidate, "
-                                         "best_t, touched, seconds, state, finished) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ") +
+                                         "best_t, touched, seconds, state, parent_t, parent_passed, finished) "
+                                         "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ") +
                                  kNow + ")");
     detail::insert_row(q, rid, gen, to_string(g.kind), detail::value_if(g.accepted >= 0, g.accepted), g.best_t,
-                       g.touched, g.seconds, detail::value_if(!g.state.empty(), g.state));
+                       g.touched, g.seconds, detail::value_if(!g.state.empty(), g.state),
+                       detail::value_if(rerun && g.parent.passed > 0, g.parent.tortuosity),
+                       detail::value_if(rerun, g.parent.passed));
     SQLite::Statement c(db_, "INSERT INTO candidates (run_id, generation, candidate, moved_grain, moved, outcome, "
-                             "reason, tortuosity, steps, touched, seconds) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                             "reason, tortuosity, steps, touched, seconds, droplets, passed) "
+                             "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     for (const Candidate& k : g.candidates)
       detail::insert_row(c, rid, gen, k.index, detail::value_if(k.moved_grain >= 0, k.moved_grain), k.moved,
                          to_string(k.eval.outcome), k.eval.reason,
                          detail::value_if(k.eval.outcome == Outcome::passed, k.eval.tortuosity),
                          static_cast<std::int64_t>(k.eval.steps), static_cast<int>(k.eval.touched.size()),
-                         k.eval.seconds);
+                         k.eval.seconds, k.eval.droplets, k.eval.passed);
     if (g.accepted < 0) return;
     const Candidate& kept = g.candidates.at(static_cast<std::size_t>(g.accepted));
     if (kept.eval.outcome != Outcome::passed) throw std::logic_error("append: the kept candidate did not pass");

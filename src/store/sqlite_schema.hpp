@@ -151,4 +151,18 @@ CREATE TABLE IF NOT EXISTS validations (
 );
 )sql";
 
+// Version 7: the robust objectives. A run's droplet runs (NULL before: one per evaluation); a
+// generation's re-run of the arrangement its candidates were made from (NULL: none, the single
+// objective); a candidate's droplets and how many passed (NULL before: one).
+struct AddedColumn {
+  const char* table;
+  const char* column;
+  const char* type;
+};
+inline constexpr AddedColumn kSchemaV7[] = {{"runs", "droplets", "INTEGER"},
+                                            {"generations", "parent_t", "REAL"},
+                                            {"generations", "parent_passed", "INTEGER"},
+                                            {"candidates", "droplets", "INTEGER"},
+                                            {"candidates", "passed", "INTEGER"}};
+
 }  // namespace softdrop::detail

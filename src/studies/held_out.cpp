@@ -6,21 +6,13 @@
 #include <stdexcept>
 
 #include "softdrop/batch.hpp"
+#include "util/quantile.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// The q-quantile of sorted values, interpolating linearly between order statistics (numpy's
-// default, "linear": h = (n - 1) q).
-double quantile(const std::vector<double>& sorted, double q) {
-  const double h = static_cast<double>(sorted.size() - 1) * q;
-  const auto lo = static_cast<std::size_t>(std::floor(h));
-  const std::size_t hi = std::min(lo + 1, sorted.size() - 1);
-  return sorted[lo] + (h - static_cast<double>(lo)) * (sorted[hi] - sorted[lo]);
-}
 
 HeldOutRuns describe(double dt, std::vector<RunSummary> runs) {
   HeldOutRuns r;
@@ -34,9 +26,9 @@ HeldOutRuns describe(double dt, std::vector<RunSummary> runs) {
   for (const RunSummary& run : runs)
     if (run.outcome == Outcome::passed) t.push_back(run.tortuosity);
   std::sort(t.begin(), t.end());
-  r.q1 = t.empty() ? kNaN : quantile(t, 0.25);
-  r.median = t.empty() ? kNaN : quantile(t, 0.5);
-  r.q3 = t.empty() ? kNaN : quantile(t, 0.75);
+  r.q1 = t.empty() ? kNaN : detail::linear_quantile(t, 0.25);
+  r.median = t.empty() ? kNaN : detail::linear_quantile(t, 0.5);
+  r.q3 = t.empty() ? kNaN : detail::linear_quantile(t, 0.75);
   r.runs = std::move(runs);
   return r;
 }

@@ -19,10 +19,10 @@ import balloon
 CLI = os.environ["SOFTDROP_CLI"]
 
 # A small search scene (seconds) and a small sweep.
-SEARCH = dict(grains=16, width=160, height=120, medium_seed=2, stuck_window=0.1, stuck_distance=1, lambda_=2,
+SEARCH = dict(objective="single", grains=16, width=160, height=120, medium_seed=2, stuck_window=0.1, stuck_distance=1, lambda_=2,
               quiet=True, validate_starts=0, **balloon.OPTIONS)
 SEARCH_ARGS = ["--grains", "16", "--width", "160", "--height", "120", "--medium-seed", "2", "--stuck-window", "0.1",
-               "--stuck-distance", "1", "--lambda", "2", "--quiet", "--validate-starts", "0"] + balloon.ARGS
+               "--stuck-distance", "1", "--lambda", "2", "--quiet", "--validate-starts", "0", "--objective", "single"] + balloon.ARGS
 SWEEP = dict(porosities=[0.8, 0.9], media=2, droplets=4, width=200, height=200, quiet=True)
 SWEEP_ARGS = ["--porosities", "0.8,0.9", "--media", "2", "--droplets", "4", "--width", "200", "--height", "200",
               "--quiet"]

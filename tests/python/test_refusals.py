@@ -13,7 +13,7 @@ import softdrop
 
 import balloon
 
-SEARCH = dict(grains=16, width=160, height=120, medium_seed=2, stuck_window=0.1, stuck_distance=1, lambda_=2,
+SEARCH = dict(objective="single", grains=16, width=160, height=120, medium_seed=2, stuck_window=0.1, stuck_distance=1, lambda_=2,
               quiet=True, validate_starts=0, **balloon.OPTIONS)
 
 

@@ -200,7 +200,8 @@ def test_run_options_end_runs_as_the_program_does():
 def test_a_search_history_reads_as_the_program_reads_it(tmp_path):
     db = tmp_path / "search.db"
     cli("optimize", "--db", str(db), "--grains", "16", "--width", "160", "--height", "120", "--medium-seed", "2",
-        "--stuck-window", "0.1", "--stuck-distance", "1", "--generations", "6", "--lambda", "2", "--quiet", *balloon.ARGS)
+        "--stuck-window", "0.1", "--stuck-distance", "1", "--generations", "6", "--lambda", "2", "--quiet",
+        "--objective", "single", *balloon.ARGS)
     h = softdrop.read_history(db)
     theirs = json.loads(cli("history", "--db", str(db), "--run", "1", "--format", "json"))
     assert len(h["runs"]) == 1 and h["runs"].loc[0, "generations"] == 6
