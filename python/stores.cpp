@@ -1,5 +1,6 @@
 // Search histories and sweep stores read into columns (a dict of equal-length lists per table,
 // which pandas takes as a DataFrame), through the store interfaces the program reads them with.
+#include <cmath>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
@@ -53,12 +54,12 @@ auto in_store(Read&& read) {
 
 py::dict history_tables(History& h, bool arrangements) {
   Columns runs({"id", "created", "updated", "version", "status", "seed", "lambda", "grains", "width", "height",
-                "periodic", "generations", "evaluations", "best_t", "best_generation", "island", "archipelago",
-                "params"});
+                "periodic", "generations", "evaluations", "droplets", "best_t", "best_generation", "island",
+                "archipelago", "params"});
   Columns gens({"run_id", "generation", "kind", "accepted_candidate", "best_t", "touched", "seconds", "finished",
-                "state"});
+                "state", "parent_t", "parent_passed"});
   Columns cands({"run_id", "generation", "candidate", "moved_grain", "moved", "outcome", "reason", "tortuosity",
-                 "steps", "touched", "seconds"});
+                 "steps", "touched", "seconds", "droplets", "passed"});
   Columns grains({"run_id", "generation", "grain", "x", "y", "r", "touched"});
   Columns paths({"run_id", "generation", "point", "x", "y"});
   Columns held({"run_id", "generation", "seed", "starts", "created", "version", "dt", "passed", "mean_t",
@@ -82,7 +83,7 @@ py::dict history_tables(History& h, bool arrangements) {
     runs["version"].append(r.version), runs["status"].append(r.status), runs["seed"].append(r.seed);
     runs["lambda"].append(r.lambda), runs["grains"].append(r.grains), runs["width"].append(r.width);
     runs["height"].append(r.height), runs["periodic"].append(r.periodic), runs["generations"].append(r.generations);
-    runs["evaluations"].append(r.evaluations), runs["best_t"].append(r.best_t);
+    runs["evaluations"].append(r.evaluations), runs["droplets"].append(r.droplets), runs["best_t"].append(r.best_t);
     runs["best_generation"].append(r.best_generation), runs["params"].append(r.params);
     runs["island"].append(or_none(r.island >= 0, py::int_(r.island)));
     runs["archipelago"].append(or_none(r.archipelago > 0, py::int_(r.archipelago)));
@@ -91,12 +92,16 @@ py::dict history_tables(History& h, bool arrangements) {
       gens["accepted_candidate"].append(or_none(g.accepted >= 0, py::int_(g.accepted)));
       gens["best_t"].append(g.best_t), gens["touched"].append(g.touched), gens["seconds"].append(g.seconds);
       gens["finished"].append(g.finished), gens["state"].append(g.state);
+      const bool rerun = g.parent_passed > 0 || !std::isnan(g.parent_t);
+      gens["parent_t"].append(g.parent_t);
+      gens["parent_passed"].append(or_none(rerun, py::int_(g.parent_passed)));
       for (const CandidateRecord& c : g.candidates) {
         cands["run_id"].append(r.id), cands["generation"].append(g.generation), cands["candidate"].append(c.index);
         cands["moved_grain"].append(or_none(c.moved_grain >= 0, py::int_(c.moved_grain)));
         cands["moved"].append(c.moved), cands["outcome"].append(c.outcome), cands["reason"].append(c.reason);
         cands["tortuosity"].append(c.outcome == "passed" ? c.tortuosity : kNaN);
         cands["steps"].append(c.steps), cands["touched"].append(c.touched), cands["seconds"].append(c.seconds);
+        cands["droplets"].append(c.droplets), cands["passed"].append(c.passed);
       }
       // The stored arrangements: generation 0's and each one a generation kept.
       if (!arrangements || (g.generation != 0 && g.accepted < 0)) continue;

@@ -31,3 +31,14 @@ config_is() {
 }
 config_is explicit.toml --viscosity-step explicit --viscosity 1.37e5 --dt 3.5e-6
 config_is passage.toml --r-min 26 --r-max 50 --radius 5 --nrt 1.59e9 --kc 2.5e8 --viscosity 1e6  # the grains as well as the droplet
+# The Python package, where the prefix's python3 finds it (when the module was built).
+if [[ -f $build/python/softdrop/__init__.py ]]; then
+  site=$(dirname "$(find "$prefix/lib" -path '*/softdrop/__init__.py' -print -quit)")
+  [[ -x $site/bin/softdrop && -n $(find "$site" -name '_core*.so' -print -quit) ]] ||
+    { echo "install_test: the Python package was not installed whole ($site)"; exit 1; }
+  py=$(PYTHONPATH=$(dirname "$site") /usr/bin/python3 -c "
+import softdrop
+print(repr(softdrop.simulate(softdrop.Medium.generate(), x0=250).tortuosity))")
+  echo "installed Python package: T = $py"
+  [[ $(printf '%.17g' "$py") == $(printf '%.17g' "$theirs") ]]
+fi

@@ -206,6 +206,8 @@ def test_a_search_history_reads_as_the_program_reads_it(tmp_path):
     theirs = json.loads(cli("history", "--db", str(db), "--run", "1", "--format", "json"))
     assert len(h["runs"]) == 1 and h["runs"].loc[0, "generations"] == 6
     assert h["runs"].loc[0, "evaluations"] == len(h["candidates"]) == 1 + 6 * 2
+    assert h["runs"].loc[0, "droplets"] == 1 + 6 * 2 and (h["candidates"]["droplets"] == 1).all()
+    assert h["generations"]["parent_t"].isna().all() and h["generations"]["parent_passed"].isna().all()
     assert h["generations"]["best_t"].tolist() == [g["best_t"] for g in theirs]
     assert h["generations"].dtypes["accepted_candidate"] == "Int64"
     passed = h["candidates"]["outcome"] == "passed"
@@ -255,3 +257,16 @@ def test_ctrl_c_stops_a_long_run(tmp_path):
     child.send_signal(signal.SIGINT)
     out, _ = child.communicate(timeout=60)
     assert "interrupted" in out
+
+
+def test_a_robust_search_reads_with_its_droplets_and_re_runs(tmp_path):
+    db = tmp_path / "robust.db"
+    cli("optimize", "--db", str(db), "--grains", "16", "--width", "160", "--height", "120", "--medium-seed", "2",
+        "--stuck-window", "0.1", "--stuck-distance", "1", "--generations", "3", "--lambda", "2", "--quiet",
+        "--validate-starts", "0", "--objective", "mean", "--starts", "4", *balloon.ARGS)
+    h = softdrop.read_history(db, arrangements=False)
+    assert h["runs"].loc[0, "droplets"] == 4 + 3 * (2 * 4 + 4)
+    assert (h["candidates"]["droplets"] == 4).all()
+    later = h["generations"]["generation"] > 0
+    assert h["generations"].loc[later, "parent_passed"].between(0, 4).all()
+    assert h["generations"].loc[~later, "parent_t"].isna().all()

@@ -1,0 +1,63 @@
+#!/usr/bin/env bash
+# The objectives compared on what a user means: the held-out value of each search's best.
+#   bash results/search/objectives.sh ["SEEDS"] ["OBJECTIVE:GENERATIONS ..."]
+# For each seed and run, a search of the program's default problem and strategy with that
+# objective (seed = medium seed), whose best gets its held-out value at the end (200 random
+# starts, seed 1, at dt and dt/2); then results/search/objectives/runs.csv and summary.csv.
+# A search already in objectives/db/ is not run again.
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+S=${SOFTDROP:-./build/softdrop}
+SEEDS=${1:-"1 2 3 4 5"}
+RUNS=${2:-"mean:200 single:200 single:3600 mean:600"}
+OUT=results/search/objectives
+mkdir -p "$OUT/db"
+for run in $RUNS; do
+  objective=${run%%:*} generations=${run##*:}
+  for seed in $SEEDS; do
+    name="$OUT/db/default-$objective-$generations-$seed"
+    [[ -f $name.json ]] && continue
+    echo "objectives: $objective, $generations generations, seed $seed" >&2
+    rm -f "$name.db" "$name.db-wal" "$name.db-shm"
+    "$S" optimize --db "$name.db" --objective "$objective" --seed "$seed" --medium-seed "$seed" \
+      --generations "$generations" --quiet --json "$name.json" > /dev/null
+  done
+done
+python3 - "$OUT" <<'PY'
+import csv, glob, json, os, statistics, sys
+out = sys.argv[1]
+rows = []
+for path in sorted(glob.glob(f"{out}/db/*.json")):
+    j = json.load(open(path))
+    _, objective, generations, seed = os.path.basename(path)[:-5].split("-")
+    h = j["held_out"] or {}
+    rows.append(dict(problem="default", objective=objective, strategy=j["strategy"], generations=int(generations),
+                     seed=int(seed), droplets=j["droplets"], in_search_t=j["best_tortuosity"],
+                     best_generation=j["best_generation"], held_out_t=h.get("mean_t"),
+                     held_out_se=h.get("standard_error"), held_out_passed=h.get("passed"),
+                     held_out_objective=h.get("objective_value"), half_dt_t=h.get("half_dt_mean_t"),
+                     wall_seconds=round(j["wall_seconds"], 1)))
+with open(f"{out}/runs.csv", "w", newline="") as f:
+    w = csv.DictWriter(f, fieldnames=list(rows[0]))
+    w.writeheader()
+    w.writerows(rows)
+groups = {}
+for r in rows:
+    groups.setdefault((r["objective"], r["generations"]), []).append(r)
+with open(f"{out}/summary.csv", "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["objective", "generations", "seeds", "droplets", "median_in_search_t", "median_held_out_t",
+                "min_held_out_t", "max_held_out_t", "median_gap", "max_gap_in_se", "median_wall_seconds"])
+    for (objective, generations), rs in sorted(groups.items()):
+        held = [r["held_out_t"] for r in rs]
+        # The in-search value against its held-out counterpart: the objective over the held-out
+        # starts (a robust objective), or the held-out <T> (single).
+        ref = [r["held_out_objective"] if r["held_out_objective"] is not None else r["held_out_t"] for r in rs]
+        gaps = [r["in_search_t"] - x for r, x in zip(rs, ref)]
+        w.writerow([objective, generations, len(rs), statistics.median(r["droplets"] for r in rs),
+                    round(statistics.median(r["in_search_t"] for r in rs), 4), round(statistics.median(held), 4),
+                    round(min(held), 4), round(max(held), 4), round(statistics.median(gaps), 4),
+                    round(max(abs(g) / r["held_out_se"] for g, r in zip(gaps, rs)), 1),
+                    statistics.median(r["wall_seconds"] for r in rs)])
+print(open(f"{out}/summary.csv").read(), end="")
+PY
