@@ -13,7 +13,7 @@ cd "$work"
 where=$("$work/venv/bin/python" -c "import softdrop; print(softdrop.__file__)")
 [[ $where == "$work/venv/"* ]] || { echo "pip_install_test: imported $where, not the installed package"; exit 1; }
 t=$("$work/venv/bin/python" -c "
-import softdrop
+import softdrop, softdrop.plot
 m = softdrop.Medium.generate('non-overlapping', porosity=0.8, seed=1)
 print(repr(softdrop.simulate(m, x0=200).tortuosity))")
 version=$("$work/venv/bin/python" -c "import softdrop; print(softdrop.__version__)")

@@ -1,0 +1,153 @@
+"""Pictures of media, droplets' paths, searches and studies, with matplotlib (optional: Debian
+python3-matplotlib).
+
+Every function draws into `ax` when given one, or into a new figure, and returns the Figure, as
+PoreSpy's and Optuna's plotting functions do:
+
+    import softdrop, softdrop.plot
+    m = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
+    runs = [softdrop.simulate(m, x0=x, path=True) for x in (100, 250, 400)]
+    softdrop.plot.paths(m, runs).savefig("paths.png")
+    softdrop.plot.best_curve("search.db", run=1)
+    softdrop.plot.porosity(softdrop.read_sweep("sweep.db")["points"])
+
+Lengths are the model's units, y up, as the program's own pictures (`softdrop render`) draw them.
+"""
+import numpy as np
+
+# The paper's least-squares fit of T against porosity (Matyka, Fig. 5): f(phi) = a - c phi^b.
+PAPER_FIT = {"a": 1.58, "b": 3.87, "c": 0.58}
+
+
+def paper_fit(phi):
+    """The paper's fit of T against porosity at `phi` (a number or an array)."""
+    return PAPER_FIT["a"] - PAPER_FIT["c"] * np.asarray(phi, dtype=float) ** PAPER_FIT["b"]
+
+
+def _axes(ax):
+    if ax is not None:
+        return ax
+    import matplotlib.pyplot as plt
+
+    return plt.figure().add_subplot()
+
+
+def _grain_copies(medium):
+    """(x, y, r, index) of every grain and, in a periodic box, of its copy across the side it
+    crosses, so that the picture shows what the droplet meets."""
+    grains = np.asarray(medium.grains)
+    out = []
+    for i, (x, y, r) in enumerate(grains):
+        out.append((x, y, r, i))
+        if medium.periodic:
+            if x - r < 0:
+                out.append((x + medium.width, y, r, i))
+            if x + r > medium.width:
+                out.append((x - medium.width, y, r, i))
+    return out
+
+
+def medium(m, ax=None, touched=(), color="0.55", touched_color="0.25"):
+    """The grains of medium `m` in its box (periodic copies included); grains whose indices are in
+    `touched` are darker. Returns the Figure."""
+    from matplotlib.patches import Circle, Rectangle
+
+    ax = _axes(ax)
+    touched = set(int(i) for i in touched)
+    for x, y, r, i in _grain_copies(m):
+        ax.add_patch(Circle((x, y), r, facecolor=touched_color if i in touched else color, edgecolor="none"))
+    ax.add_patch(Rectangle((0, 0), m.width, m.height, fill=False, edgecolor="black", linewidth=0.8))
+    ax.set_xlim(0, m.width)
+    ax.set_ylim(0, m.height)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x")
+    ax.set_ylabel("y")
+    return ax.figure
+
+
+def _xy(path):
+    """x and y columns of a path: rows of t, x, y (simulate) or x, y (best_arrangement)."""
+    p = np.asarray(path, dtype=float)
+    if p.ndim != 2 or p.shape[1] not in (2, 3):
+        raise ValueError(f"path: rows of (t, x, y) or (x, y) expected, not an array of shape {p.shape}")
+    return p[:, -2], p[:, -1]
+
+
+def _pieces(x, y, width):
+    """A periodic path cut where it wraps across the side (a jump of more than half the box)."""
+    cuts = np.nonzero(np.abs(np.diff(x)) > 0.5 * width)[0] + 1
+    return zip(np.split(x, cuts), np.split(y, cuts))
+
+
+def paths(m, runs, ax=None, color="tab:blue", linewidth=0.8, alpha=0.7):
+    """Medium `m` with the centre-of-mass paths of `runs`: results of simulate(..., path=True),
+    or path arrays (rows of t, x, y or x, y). A path that wraps across a periodic side is drawn
+    in pieces. Returns the Figure."""
+    ax = _axes(ax)
+    medium(m, ax=ax)
+    for run in runs:
+        path = run["path"] if isinstance(run, dict) else run
+        x, y = _xy(path)
+        for px, py in _pieces(x, y, m.width) if m.periodic else [(x, y)]:
+            ax.plot(px, py, color=color, linewidth=linewidth, alpha=alpha)
+    return ax.figure
+
+
+def best_curve(history, run=1, ax=None):
+    """A search's best T against generation, from read_history's frames or a database path; with a
+    robust objective also each generation's re-run of the arrangement it stood on (parent_t), and
+    any held-out values (validations) with their standard errors. Returns the Figure."""
+    if not isinstance(history, dict):
+        from . import read_history
+
+        history = read_history(history, arrangements=False)
+    g = history["generations"]
+    g = g[g["run_id"] == run]
+    if g.empty:
+        raise ValueError(f"run = {run}: no such run in the history")
+    ax = _axes(ax)
+    ax.step(g["generation"], g["best_t"], where="post", color="black", label="best T (in search)")
+    if "parent_t" in g and g["parent_t"].notna().any():
+        ax.plot(g["generation"], g["parent_t"], ".", color="0.6", markersize=2, label="re-run on fresh starts")
+    v = history.get("validations")
+    if v is not None and not v.empty:
+        v = v[v["run_id"] == run]
+        ax.errorbar(v["generation"], v["mean_t"], yerr=v["standard_error"], fmt="o", color="tab:red",
+                    label="held-out <T>")
+    ax.set_xlabel("generation")
+    ax.set_ylabel("T")
+    ax.legend(loc="best", frameon=False)
+    return ax.figure
+
+
+def porosity(points, ax=None, paper=True):
+    """<T> against porosity: read_sweep's `points` (phi, mean_t, standard_error) with error bars,
+    and the paper's fit (paper=True). Returns the Figure."""
+    ax = _axes(ax)
+    ax.errorbar(points["phi"], points["mean_t"], yerr=points["standard_error"], fmt="o", color="black",
+                label="softdrop")
+    if paper:
+        phi = np.linspace(min(points["phi"].min(), 0.4), 1.0, 200)
+        ax.plot(phi, paper_fit(phi), color="tab:red", label="paper's fit 1.58 - 0.58 φ^3.87")
+    ax.set_xlabel("porosity φ")
+    ax.set_ylabel("<T>")
+    ax.legend(loc="best", frameon=False)
+    return ax.figure
+
+
+def area_trace(run, ax=None):
+    """A droplet's area over its area before the medium, against time: a result of
+    simulate(..., trace=True), with the times it entered and left the medium. Returns the Figure."""
+    if "trace" not in run:
+        raise ValueError("run: no area trace (simulate(..., trace=True) records one)")
+    trace = np.asarray(run["trace"], dtype=float)
+    ax = _axes(ax)
+    ax.plot(trace[:, 0], trace[:, 2], color="black")
+    for key, style in (("enter", "--"), ("leave", ":")):
+        if key in run and np.isfinite(run[key]):
+            ax.axvline(run[key], color="0.5", linestyle=style, label=f"{key}s the medium")
+    ax.set_xlabel("t")
+    ax.set_ylabel("S / S0")
+    if ax.get_legend_handles_labels()[0]:
+        ax.legend(loc="best", frameon=False)
+    return ax.figure

@@ -1,0 +1,85 @@
+"""softdrop.plot: each picture draws what it is given, into a new figure or the caller's axes."""
+import os
+import subprocess
+
+import matplotlib
+
+matplotlib.use("Agg")  # (no display in the tests)
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+import pytest  # noqa: E402
+
+import softdrop  # noqa: E402
+import softdrop.plot  # noqa: E402
+
+import balloon  # noqa: E402
+
+
+def grain_circles(ax):
+    return [p for p in ax.patches if isinstance(p, matplotlib.patches.Circle)]
+
+
+def test_a_medium_is_drawn_with_the_periodic_copies_of_grains_that_cross_a_side():
+    m = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
+    g = np.asarray(m.grains)
+    crossing = int(np.sum(g[:, 0] - g[:, 2] < 0) + np.sum(g[:, 0] + g[:, 2] > m.width))
+    fig = softdrop.plot.medium(m, touched=[0])
+    circles = grain_circles(fig.axes[0])
+    assert len(circles) == len(g) + crossing
+    assert circles[0].center == pytest.approx((g[0, 0], g[0, 1])) and circles[0].radius == pytest.approx(g[0, 2])
+    assert circles[0].get_facecolor() != circles[-1].get_facecolor() or len(g) == 1  # touched grain 0 is darker
+    plt.close(fig)
+
+
+def test_paths_are_cut_where_they_wrap_and_drawn_into_the_callers_axes():
+    m = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
+    run = softdrop.simulate(m, x0=20, path=True)
+    x = run.path[:, 1]
+    wraps = int(np.sum(np.abs(np.diff(x)) > 0.5 * m.width))
+    fig, ax = plt.subplots()
+    assert softdrop.plot.paths(m, [run, run.path[:, 1:]], ax=ax) is fig
+    assert len(ax.lines) == 2 * (wraps + 1)
+    drawn = np.concatenate([line.get_xdata() for line in ax.lines[: wraps + 1]])
+    assert np.array_equal(drawn, x)
+    with pytest.raises(ValueError, match="rows of"):
+        softdrop.plot.paths(m, [np.zeros((3, 4))])
+    plt.close(fig)
+
+
+def test_the_best_curve_is_the_stored_best_t_with_the_re_runs_and_held_out_values(tmp_path):
+    db = tmp_path / "search.db"
+    cli = os.environ.get("SOFTDROP_CLI", "softdrop")
+    subprocess.run([cli, "optimize", "--db", str(db), "--grains", "16", "--width", "160", "--height", "120",
+                    "--medium-seed", "2", "--stuck-window", "0.1", "--stuck-distance", "1", "--generations", "3",
+                    "--lambda", "2", "--quiet", "--objective", "mean", "--starts", "4", "--validate-starts", "8",
+                    *balloon.ARGS], check=True, capture_output=True)
+    h = softdrop.read_history(db, arrangements=False)
+    fig = softdrop.plot.best_curve(db, run=1)
+    ax = fig.axes[0]
+    best, reruns = ax.lines[0], ax.lines[1]
+    assert np.array_equal(best.get_ydata(), h["generations"]["best_t"].to_numpy())
+    assert np.array_equal(reruns.get_ydata(), h["generations"]["parent_t"].to_numpy(), equal_nan=True)
+    assert len(ax.containers) == 1  # the held-out value, with its error bar
+    with pytest.raises(ValueError, match="run = 2"):
+        softdrop.plot.best_curve(h, run=2)
+    plt.close("all")
+
+
+def test_porosity_has_the_points_and_the_papers_fit():
+    points = pd.DataFrame({"phi": [0.6, 0.8], "mean_t": [1.4, 1.2], "standard_error": [0.02, 0.01]})
+    fig = softdrop.plot.porosity(points)
+    fit = fig.axes[0].lines[-1]
+    assert np.allclose(fit.get_ydata(), 1.58 - 0.58 * fit.get_xdata() ** 3.87)
+    assert softdrop.plot.paper_fit(1.0) == pytest.approx(1.0)
+    plt.close(fig)
+
+
+def test_the_area_trace_is_the_runs_area_ratio():
+    m = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
+    run = softdrop.simulate(m, x0=200, trace=True)
+    fig = softdrop.plot.area_trace(run)
+    assert np.array_equal(fig.axes[0].lines[0].get_ydata(), run.trace[:, 2])
+    with pytest.raises(ValueError, match="trace=True"):
+        softdrop.plot.area_trace(softdrop.simulate(m, x0=200))
+    plt.close(fig)
