@@ -77,6 +77,16 @@ TEST(Check, CatchesGrainCountsAndPorositiesTheRunCannotPlace) {
   EXPECT_FALSE(std::filesystem::exists(db));
   EXPECT_EQ(run("--check optimize --db " + db + " --grains 60").code, 0);
   EXPECT_EQ(run("--check simulate --kind non-overlapping --porosity 0.75").code, 0);
+  EXPECT_FALSE(std::filesystem::exists(db));  // a check writes nothing
+}
+
+// --check refuses a database the run would refuse: here, one in a folder that does not exist.
+TEST(Check, RefusesTheDatabaseTheRunWouldRefuse) {
+  for (const std::string command : {"optimize", "sweep"}) {
+    const Result r = run("--check " + command + " --db /nonexistent/x.db");
+    EXPECT_EQ(r.code, 1) << command;
+    EXPECT_NE(r.err.find("--db '/nonexistent/x.db': folder '/nonexistent' does not exist"), std::string::npos) << r.err;
+  }
 }
 
 TEST(BadWords, MistypedOptionsAndCommandsGetTheNearestName) {

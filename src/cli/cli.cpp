@@ -17,6 +17,7 @@
 #include "cli/mpi_job.hpp"
 #include "cli/output.hpp"
 #include "cli/suggest.hpp"
+#include "softdrop/history.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/sweep.hpp"
 #include "softdrop/version.hpp"
@@ -114,12 +115,16 @@ void Cli::check() {
     check_simulate(simulate_);
     if (simulate_.medium.file.empty()) check_placement(simulate_.medium.options);
   }
+  // A database the run would refuse (a missing or read-only folder, a foreign or damaged file) is
+  // refused here too; the check reads it and writes nothing.
   if (optimize_cmd_->parsed()) {
     check_optimize(optimize_);
     if (optimize_.medium.file.empty() && optimize_.resume == 0) check_placement(optimize_.medium.options);
+    check_database(optimize_.db);
   }
   if (app.got_subcommand("sweep")) {
     check_sweep(sweep_, *app.get_subcommand("sweep"));
+    check_database(sweep_.db);
     for (int p = 0; p < static_cast<int>(sweep_.sweep.porosities.size()); ++p) {  // each porosity's first medium
       MediumOptions o = sweep_.sweep.medium;
       o.porosity = sweep_.sweep.porosities[static_cast<std::size_t>(p)];
