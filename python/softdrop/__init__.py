@@ -169,7 +169,58 @@ def _number(value):
     return repr(float(value))
 
 
-def optimize(db="softdrop.db", callback=None, **options):
+def _with_progress(callback, progress, unit, done_and_total):
+    """The callback, with a progress bar in Python (tqdm when it is installed, else a logging line
+    each tenth of the way) fed by its events: what a notebook shows, where the program's own
+    progress on the C-level stderr does not reach. done_and_total(event) -> (done, total)."""
+    if not progress:
+        return callback, lambda: None
+    import logging
+
+    try:
+        from tqdm.auto import tqdm
+    except ImportError:
+        tqdm = None
+    log = logging.getLogger("softdrop")
+    state = {"bar": None, "logged": -1}
+
+    def step(event):
+        done, total = done_and_total(event)
+        if tqdm is not None:
+            if state["bar"] is None:
+                state["bar"] = tqdm(total=total, initial=done - 1, unit=unit)
+            state["bar"].update(done - state["bar"].n)
+            state["bar"].set_postfix_str(_postfix(event), refresh=False)
+        elif total > 0 and (10 * done) // total > state["logged"]:
+            state["logged"] = (10 * done) // total
+            log.info("%s %d/%d (%s)", unit, done, total, _postfix(event))
+        return callback(event) if callback else True
+
+    def close():
+        if state["bar"] is not None:
+            state["bar"].close()
+
+    return step, close
+
+
+def _postfix(event):
+    if "best_t" in event:
+        return f"best T {event['best_t']:.4f}"
+    mean = event.get("mean_t")
+    return f"<T> {mean:.4f}" if isinstance(mean, float) and mean == mean else ""
+
+
+def _run_with_progress(command, db, callback, progress, options, unit, done_and_total):
+    if progress:
+        options = dict(options, quiet=True)  # the bar instead of the program's line on the C-level stderr
+    step, close = _with_progress(callback, progress, unit, done_and_total)
+    try:
+        return Result(_core._run_command(_command_line(command, db, options), step if (callback or progress) else None))
+    finally:
+        close()
+
+
+def optimize(db="softdrop.db", callback=None, progress=False, **options):
     """Runs `softdrop optimize` in this process: the options are the program's long options as
     keywords (generations=500, lambda_=4, strategy="es", relocate_every=3, resume=1, quiet=True,
     ...), with the same defaults and checks, and the history file is the one the program writes.
@@ -180,13 +231,17 @@ def optimize(db="softdrop.db", callback=None, **options):
     interrupted and `optimize(db, resume=run)` continues it exactly. Ctrl-C stops it the same way,
     then raises KeyboardInterrupt; an exception in the callback stops it and is raised again.
 
+    progress=True shows a progress bar in Python (tqdm, as in a notebook; without tqdm, a
+    `logging` line on the "softdrop" logger each tenth of the way) instead of the program's line.
+
     Returns the summary `softdrop optimize --format json` prints (run, termination, best_tortuosity,
     evaluations, ...). Bad options raise ValueError with the program's message; a database the
     store refuses raises StoreError naming it."""
-    return Result(_core._run_command(_command_line("optimize", db, options), callback))
+    return _run_with_progress("optimize", db, callback, progress, options, "generation",
+                              lambda e: (e["generation"], e["target_generations"]))
 
 
-def sweep(db="sweep.db", callback=None, **options):
+def sweep(db="sweep.db", callback=None, progress=False, **options):
     """Runs `softdrop sweep` in this process (the tortuosity-porosity study): options as for
     optimize (porosities=[0.6, 0.8], media=4, droplets=20, preset="quick", threads=2, ...). The
     store is the program's: running it again goes on with the media not yet stored.
@@ -195,8 +250,10 @@ def sweep(db="sweep.db", callback=None, **options):
     porosity_index, medium_index, target_porosity, passed, mean_t, media_done, media_to_do.
     Returning False stops after the media in flight (they are stored); Ctrl-C does too, then
     raises KeyboardInterrupt. Returns a summary: sweep, status, media, media_stored,
-    media_this_session, droplets_this_session, wall_seconds. read_sweep(db) has the records."""
-    return Result(_core._run_command(_command_line("sweep", db, options), callback))
+    media_this_session, droplets_this_session, wall_seconds. read_sweep(db) has the records.
+    progress=True shows a progress bar over the media, as for optimize."""
+    return _run_with_progress("sweep", db, callback, progress, options, "medium",
+                              lambda e: (e["media_done"], e["media_to_do"]))
 
 
 def read_history(db, arrangements=True):

@@ -254,3 +254,34 @@ def test_ctrl_c_stops_a_search_which_then_resumes(tmp_path):
     assert runs.loc[0, "status"] == "interrupted"
     stopped_at = runs.loc[0, "generations"]
     assert softdrop.optimize(db, resume=1, generations=stopped_at + 2, quiet=True).last_generation == stopped_at + 2
+
+
+def test_progress_is_a_bar_in_python_not_the_programs_line(tmp_path, capfd):
+    tqdm = pytest.importorskip("tqdm")  # noqa: F841 (Debian python3-tqdm; scripts/setup.sh installs it)
+    seen = []
+    summary = softdrop.optimize(tmp_path / "p.db", progress=True, callback=seen.append, generations=3,
+                                **dict(SEARCH, quiet=False))
+    out, err = capfd.readouterr()
+    assert summary.last_generation == 3 and [e["generation"] for e in seen] == [1, 2, 3]  # the callback still runs
+    assert "3/3" in err and "generation" in err and "best T" in err
+    assert "optimize: run 1" not in err  # the program's own progress line is silenced
+    softdrop.sweep(tmp_path / "s.db", progress=True, **dict(SWEEP, quiet=False))
+    out, err = capfd.readouterr()
+    assert "4/4" in err and "medium" in err and "sweep: " not in err
+
+
+def test_without_tqdm_progress_goes_to_logging(tmp_path, monkeypatch, caplog):
+    import builtins
+
+    real_import = builtins.__import__
+
+    def no_tqdm(name, *args, **kwargs):
+        if name.startswith("tqdm"):
+            raise ImportError(name)
+        return real_import(name, *args, **kwargs)
+
+    monkeypatch.setattr(builtins, "__import__", no_tqdm)
+    with caplog.at_level("INFO", logger="softdrop"):
+        softdrop.optimize(tmp_path / "p.db", progress=True, generations=3, **SEARCH)
+    lines = [r.getMessage() for r in caplog.records if r.name == "softdrop"]
+    assert lines and lines[-1].startswith("generation 3/3")
