@@ -3,8 +3,9 @@
 #   bash results/search/objectives.sh ["SEEDS"] ["OBJECTIVE:GENERATIONS ..."]
 # For each seed and run, a search of the program's default problem and strategy with that
 # objective (seed = medium seed), whose best gets its held-out value at the end (200 random
-# starts, seed 1, at dt and dt/2); then results/search/objectives/runs.csv and summary.csv.
-# A search already in objectives/db/ is not run again.
+# starts, seed 1, at dt and dt/2), and its starting medium the same (at dt): a random medium of
+# the problem. Then results/search/objectives/runs.csv and summary.csv. A search already in
+# objectives/db/ is not run again.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 S=${SOFTDROP:-./build/softdrop}
@@ -23,16 +24,22 @@ for run in $RUNS; do
       --generations "$generations" --quiet --json "$name.json" > /dev/null
   done
 done
+for db in "$OUT"/db/*.db; do  # the starting media, held out as the bests are
+  [[ -f ${db%.db}-start.json ]] || "$S" validate --db "$db" --run 1 --generation 0 --same-dt-only --quiet \
+    --format json > "${db%.db}-start.json"
+done
 python3 - "$OUT" <<'PY'
 import csv, glob, json, os, statistics, sys
 out = sys.argv[1]
 rows = []
-for path in sorted(glob.glob(f"{out}/db/*.json")):
+for path in sorted(p for p in glob.glob(f"{out}/db/*.json") if not p.endswith("-start.json")):
     j = json.load(open(path))
+    start = json.load(open(path[:-5] + "-start.json"))["at_dt"]
     _, objective, generations, seed = os.path.basename(path)[:-5].split("-")
     h = j["held_out"] or {}
     rows.append(dict(problem="default", objective=objective, strategy=j["strategy"], generations=int(generations),
-                     seed=int(seed), droplets=j["droplets"], in_search_t=j["best_tortuosity"],
+                     seed=int(seed), droplets=j["droplets"], start_held_out_t=start["mean_t"],
+                     start_held_out_passed=start["passed"], in_search_t=j["best_tortuosity"],
                      best_generation=j["best_generation"], held_out_t=h.get("mean_t"),
                      held_out_se=h.get("standard_error"), held_out_passed=h.get("passed"),
                      held_out_objective=h.get("objective_value"), half_dt_t=h.get("half_dt_mean_t"),
@@ -46,8 +53,9 @@ for r in rows:
     groups.setdefault((r["objective"], r["generations"]), []).append(r)
 with open(f"{out}/summary.csv", "w", newline="") as f:
     w = csv.writer(f)
-    w.writerow(["objective", "generations", "seeds", "droplets", "median_in_search_t", "median_held_out_t",
-                "min_held_out_t", "max_held_out_t", "median_gap", "max_gap_in_se", "median_wall_seconds"])
+    w.writerow(["objective", "generations", "seeds", "droplets", "median_start_held_out_t", "median_in_search_t",
+                "median_held_out_t", "min_held_out_t", "max_held_out_t", "median_held_out_passed", "median_gap",
+                "max_gap_in_se", "median_wall_seconds"])
     for (objective, generations), rs in sorted(groups.items()):
         held = [r["held_out_t"] for r in rs]
         # The in-search value against its held-out counterpart: the objective over the held-out
@@ -55,8 +63,10 @@ with open(f"{out}/summary.csv", "w", newline="") as f:
         ref = [r["held_out_objective"] if r["held_out_objective"] is not None else r["held_out_t"] for r in rs]
         gaps = [r["in_search_t"] - x for r, x in zip(rs, ref)]
         w.writerow([objective, generations, len(rs), statistics.median(r["droplets"] for r in rs),
+                    round(statistics.median(r["start_held_out_t"] for r in rs), 4),
                     round(statistics.median(r["in_search_t"] for r in rs), 4), round(statistics.median(held), 4),
-                    round(min(held), 4), round(max(held), 4), round(statistics.median(gaps), 4),
+                    round(min(held), 4), round(max(held), 4), statistics.median(r["held_out_passed"] for r in rs),
+                    round(statistics.median(gaps), 4),
                     round(max(abs(g) / r["held_out_se"] for g, r in zip(gaps, rs)), 1),
                     statistics.median(r["wall_seconds"] for r in rs)])
 print(open(f"{out}/summary.csv").read(), end="")
