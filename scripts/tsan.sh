@@ -12,4 +12,4 @@ cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_
   -DSOFTDROP_SANITIZE=thread -DSOFTDROP_BUILD_BENCH=OFF -DSOFTDROP_WERROR=ON -DSOFTDROP_TEST_HOOKS=ON
 cmake --build build-tsan -j "$(nproc)" --target softdrop_tests
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" build-tsan/tests/softdrop_tests \
-  --gtest_filter='Interleaved.*:Sweep*:Determinism.*:Search.Speculative*:Search.Predicted*:Search.PredictionsAhead*:Search.EvolutionStrategySpeculates*:Search.ASlowCompletion*:Islands.Driven*'
+  --gtest_filter='Interleaved.*:Sweep*:Determinism.*:Search.Speculative*:Search.Predicted*:Search.PredictionsAhead*:Search.EvolutionStrategySpeculates*:Search.ASlowCompletion*:Islands.Driven*:Objective.TheRobust*:Objective.ARobust*'

@@ -78,33 +78,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_option("--half-life", a.search.strategy.half_life, "anneal: generations in which the temperature halves")
       ->capture_default_str()
       ->each([&a](const std::string&) { a.strategy_options.emplace_back("--half-life", StrategyKind::anneal); });
-  g->add_option_function<std::string>(
-       "--objective", [&a](const std::string& v) { a.search.objective.kind = parse_objective(v); },
-       "What a candidate scores. single: T of one droplet from the middle of the top (the paper's; one path, "
-       "chaotic in its start). mean: <T> of --starts droplets from fresh starts each generation, the "
-       "candidates and their parent on the same starts. quantile: the --quantile of their T. lower-bound: "
-       "<T> - --se-factor x its standard error. A droplet that does not pass counts as T = 1")
-      ->check(CLI::IsMember(objective_names()))
-      ->default_str(to_string(a.search.objective.kind));
-  const auto of_objectives = [&a](const char* option, std::vector<ObjectiveKind> kinds) {
-    return [&a, option, kinds](const std::string&) { a.objective_options.emplace_back(option, kinds); };
-  };
-  g->add_option("--starts", a.search.objective.starts,
-                "mean, quantile, lower-bound: droplets per evaluation, in [1, 4096], stratified over the top and "
-                "drawn afresh each generation")
-      ->capture_default_str()
-      ->each(of_objectives("--starts", {ObjectiveKind::mean, ObjectiveKind::quantile, ObjectiveKind::lower_bound}));
-  g->add_option("--quantile", a.search.objective.quantile, "quantile: the quantile of the droplets' T, in (0, 1)")
-      ->capture_default_str()
-      ->each(of_objectives("--quantile", {ObjectiveKind::quantile}));
-  g->add_option("--se-factor", a.search.objective.se_factor, "lower-bound: k in <T> - k x standard error")
-      ->capture_default_str()
-      ->each(of_objectives("--se-factor", {ObjectiveKind::lower_bound}));
-  g->add_option("--margin", a.search.objective.margin,
-                "mean, quantile, lower-bound: a candidate beats its parent only by more than this many standard "
-                "errors of their droplets' paired differences (0: any gain)")
-      ->capture_default_str()
-      ->each(of_objectives("--margin", {ObjectiveKind::mean, ObjectiveKind::quantile, ObjectiveKind::lower_bound}));
+  add_objective_options(g, a);
   g->add_option("--islands", a.islands.islands,
                 "Island model: this many searches with seeds of their own, run side by side, each a run of the "
                 "history; every --migrate-every generations each takes another's best (1: one search)")
@@ -225,11 +199,7 @@ void check_optimize(OptimizeArgs& a) {
       if (kind != a.search.strategy.kind)
         throw std::invalid_argument(option.substr(2) + ": an option of --strategy " + to_string(kind) +
                                     ", not used by --strategy " + to_string(a.search.strategy.kind));
-  if (a.resume == 0)
-    for (const auto& [option, kinds] : a.objective_options)
-      if (std::find(kinds.begin(), kinds.end(), a.search.objective.kind) == kinds.end())
-        throw std::invalid_argument(option.substr(2) + ": not an option of --objective " +
-                                    to_string(a.search.objective.kind));
+  if (a.resume == 0) check_objective_options(a);  // on resume the stored objective decides
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   if (std::string why; !a.islands.IsValid(&why)) throw std::invalid_argument(why);
   if (a.own_island_starts && a.resume == 0 && a.islands.islands < 2)

@@ -33,6 +33,44 @@ OptimizeArgs::OptimizeArgs() {
   search.objective.kind = ObjectiveKind::mean;
 }
 
+// The objective's options (objective.hpp), each noted with the objectives that use it.
+void add_objective_options(CLI::Option_group* g, OptimizeArgs& a) {
+  g->add_option_function<std::string>(
+       "--objective", [&a](const std::string& v) { a.search.objective.kind = parse_objective(v); },
+       "What a candidate scores. single: T of one droplet from the middle of the top (the paper's; one path, "
+       "chaotic in its start). mean: <T> of --starts droplets from fresh starts each generation, the "
+       "candidates and their parent on the same starts. quantile: the --quantile of their T. lower-bound: "
+       "<T> - --se-factor x its standard error. A droplet that does not pass counts as T = 1")
+      ->check(CLI::IsMember(objective_names()))
+      ->default_str(to_string(a.search.objective.kind));
+  const auto of_objectives = [&a](const char* option, std::vector<ObjectiveKind> kinds) {
+    return [&a, option, kinds](const std::string&) { a.objective_options.emplace_back(option, kinds); };
+  };
+  g->add_option("--starts", a.search.objective.starts,
+                "mean, quantile, lower-bound: droplets per evaluation, in [1, 4096], stratified over the top and "
+                "drawn afresh each generation")
+      ->capture_default_str()
+      ->each(of_objectives("--starts", {ObjectiveKind::mean, ObjectiveKind::quantile, ObjectiveKind::lower_bound}));
+  g->add_option("--quantile", a.search.objective.quantile, "quantile: the quantile of the droplets' T, in (0, 1)")
+      ->capture_default_str()
+      ->each(of_objectives("--quantile", {ObjectiveKind::quantile}));
+  g->add_option("--se-factor", a.search.objective.se_factor, "lower-bound: k in <T> - k x standard error")
+      ->capture_default_str()
+      ->each(of_objectives("--se-factor", {ObjectiveKind::lower_bound}));
+  g->add_option("--margin", a.search.objective.margin,
+                "mean, quantile, lower-bound: a candidate beats its parent only by more than this many standard "
+                "errors of their droplets' paired differences (0: any gain)")
+      ->capture_default_str()
+      ->each(of_objectives("--margin", {ObjectiveKind::mean, ObjectiveKind::quantile, ObjectiveKind::lower_bound}));
+}
+
+void check_objective_options(const OptimizeArgs& a) {
+  for (const auto& [option, kinds] : a.objective_options)
+    if (std::find(kinds.begin(), kinds.end(), a.search.objective.kind) == kinds.end())
+      throw std::invalid_argument(option.substr(2) + ": not an option of --objective " +
+                                  to_string(a.search.objective.kind));
+}
+
 // The command line's view of the run: search options plus how the starting medium was made.
 const char* island_starts_name(bool own) { return own ? "own" : "shared"; }
 

@@ -53,6 +53,11 @@ struct OptimizeArgs {
   OptimizeArgs();
 };
 
+/// The options of --objective on the search group `g`: --objective, --starts, --quantile,
+/// --se-factor and --margin, each noted in args.objective_options with the objectives that use it.
+void add_objective_options(CLI::Option_group* g, OptimizeArgs& args);
+/// Refuses an option of an objective other than the one chosen, naming both.
+void check_objective_options(const OptimizeArgs& args);
 /// The stored and command-line spelling of OptimizeArgs::own_island_starts: "own" or "shared".
 const char* island_starts_name(bool own);
 /// The run's parameters as the command line gives them (search options and how the starting
