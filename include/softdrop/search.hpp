@@ -225,6 +225,12 @@ class Search {
 
  private:
   Generation complete_robust(std::vector<Candidate> candidates, double seconds, Evaluation parent);
+  // Generation last_ + 1 with its candidates (lambda of them, or std::logic_error).
+  Generation open_generation(std::vector<Candidate> candidates) const;
+  // Records the generation as done: the best after it, its time and the strategy's state.
+  void close_generation(Generation& g, double seconds);
+  // Robust objectives: one more re-run of the best on fresh starts, into its mean.
+  void rerun_best(double fresh);
   SearchOptions options_;
   Configuration best_;
   std::unique_ptr<Strategy> strategy_;

@@ -264,13 +264,7 @@ Generation Search::next(int threads, int lanes) {
 
 Generation Search::complete(std::vector<Candidate> candidates, double seconds, Evaluation parent) {
   if (options_.objective.robust()) return complete_robust(std::move(candidates), seconds, std::move(parent));
-  Generation g;
-  g.number = last_ + 1;
-  g.kind = move_kind(g.number, options_);
-  g.candidates = std::move(candidates);
-  if (static_cast<int>(g.candidates.size()) != options_.lambda)
-    throw std::logic_error("Search::complete: " + std::to_string(g.candidates.size()) + " candidates for lambda " +
-                           std::to_string(options_.lambda));
+  Generation g = open_generation(std::move(candidates));
   g.accepted = strategy_->tell(g.number, g.candidates);
   // The best so far is always an arrangement the strategy kept (and so the history stored).
   const int best_k =
@@ -285,22 +279,12 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds, E
     best_.medium = c.medium;
     best_.eval = c.eval;
   }
-  last_ = g.number;
-  g.best_t = best_.eval.tortuosity;
-  g.touched = static_cast<int>(best_.eval.touched.size());
-  g.seconds = seconds;
-  g.state = strategy_->state();
+  close_generation(g, seconds);
   return g;
 }
 
 Generation Search::complete_robust(std::vector<Candidate> candidates, double seconds, Evaluation parent) {
-  Generation g;
-  g.number = last_ + 1;
-  g.kind = move_kind(g.number, options_);
-  g.candidates = std::move(candidates);
-  if (static_cast<int>(g.candidates.size()) != options_.lambda)
-    throw std::logic_error("Search::complete: " + std::to_string(g.candidates.size()) + " candidates for lambda " +
-                           std::to_string(options_.lambda));
+  Generation g = open_generation(std::move(candidates));
   if (parent.droplets != options_.objective.starts)
     throw std::logic_error("Search::complete: the parent was not run on the generation's starts");
   // Every value of this generation is on the same starts: the candidates compete with the parent's
@@ -312,15 +296,10 @@ Generation Search::complete_robust(std::vector<Candidate> candidates, double sec
     const Candidate& c = g.candidates[static_cast<std::size_t>(g.accepted)];
     best_ = Configuration{g.number, c.medium, c.eval};
     remeasured_ = 0;
-  } else {  // the running mean of the re-runs, the value it was kept with dropped at the first
-    ++remeasured_;
-    best_.eval.tortuosity += (fresh - best_.eval.tortuosity) / static_cast<double>(remeasured_);
+  } else {
+    rerun_best(fresh);
   }
-  last_ = g.number;
-  g.best_t = best_.eval.tortuosity;
-  g.touched = static_cast<int>(best_.eval.touched.size());
-  g.seconds = seconds;
-  g.state = strategy_->state();
+  close_generation(g, seconds);
   g.parent = std::move(parent);
   return g;
 }
@@ -349,10 +328,7 @@ Generation Search::immigrate(const Configuration& immigrant) {
     g.parent = std::move(both[1].eval);
     strategy_->remeasure(g.parent.tortuosity, g.parent.values);
     better = detail::improves(c.eval, strategy_->current().eval, options_.objective);
-    if (!better) {
-      ++remeasured_;
-      best_.eval.tortuosity += (g.parent.tortuosity - best_.eval.tortuosity) / static_cast<double>(remeasured_);
-    }
+    if (!better) rerun_best(g.parent.tortuosity);
   } else {
     better = immigrant.eval.outcome == Outcome::passed && immigrant.eval.tortuosity > best_.eval.tortuosity;
   }
@@ -363,11 +339,33 @@ Generation Search::immigrate(const Configuration& immigrant) {
     strategy_ = make_strategy(options_, best_, strategy_->state());
   }
   g.candidates.push_back(std::move(c));
+  close_generation(g, 0);
+  return g;
+}
+
+Generation Search::open_generation(std::vector<Candidate> candidates) const {
+  Generation g;
+  g.number = last_ + 1;
+  g.kind = move_kind(g.number, options_);
+  g.candidates = std::move(candidates);
+  if (static_cast<int>(g.candidates.size()) != options_.lambda)
+    throw std::logic_error("Search::complete: " + std::to_string(g.candidates.size()) + " candidates for lambda " +
+                           std::to_string(options_.lambda));
+  return g;
+}
+
+void Search::close_generation(Generation& g, double seconds) {
   last_ = g.number;
   g.best_t = best_.eval.tortuosity;
   g.touched = static_cast<int>(best_.eval.touched.size());
+  g.seconds = seconds;
   g.state = strategy_->state();
-  return g;
+}
+
+void Search::rerun_best(double fresh) {
+  // The running mean of the re-runs: the value the best was kept with is dropped at the first.
+  ++remeasured_;
+  best_.eval.tortuosity += (fresh - best_.eval.tortuosity) / static_cast<double>(remeasured_);
 }
 
 }  // namespace softdrop
