@@ -217,21 +217,23 @@ Search resumed_search(History& history, const RunRecord& rec, const SearchOption
   // robust objective it is that arrangement, with the mean of its re-runs stored as the run's best).
   Configuration current = history.configuration(rec.id, -1);
   const bool robust = options.objective.robust();
-  Configuration best = robust || rec.best_generation == current.generation
-                           ? current
-                           : history.configuration(rec.id, rec.best_generation);
   // Both must come out the same with this build (on the starts they were kept on), or the history
-  // would fork.
-  for (Configuration* c : {&current, &best}) {
-    const Evaluation check = evaluate(c->medium, options, c->generation);
-    if (check.outcome != Outcome::passed || check.tortuosity != c->eval.tortuosity ||
-        check.touched != c->eval.touched)
+  // would fork. The best is checked apart only when it is another arrangement.
+  const auto check = [&](Configuration& c) {
+    const Evaluation again = evaluate(c.medium, options, c.generation);
+    if (again.outcome != Outcome::passed || again.tortuosity != c.eval.tortuosity || again.touched != c.eval.touched)
       throw std::runtime_error(
-          "resume " + std::to_string(rec.id) + ": this build gives T = " + fmt(check.tortuosity) +
-          " for the stored arrangement of generation " + std::to_string(c->generation) +
-          ", the run stored " + fmt(c->eval.tortuosity) +
+          "resume " + std::to_string(rec.id) + ": this build gives T = " + fmt(again.tortuosity) +
+          " for the stored arrangement of generation " + std::to_string(c.generation) +
+          ", the run stored " + fmt(c.eval.tortuosity) +
           " (built with other numerics? resuming would not continue the same history)");
-    c->eval = check;
+    c.eval = again;
+  };
+  check(current);
+  Configuration best = current;
+  if (!robust && rec.best_generation != current.generation) {
+    best = history.configuration(rec.id, rec.best_generation);
+    check(best);
   }
   if (robust) {
     if (rec.best_generation != current.generation)
