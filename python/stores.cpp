@@ -134,7 +134,8 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
   Columns droplets({"sweep_id", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity",
                     "steps"});
   Columns points({"sweep_id", "target_phi", "phi", "media", "droplets", "passed", "mean_t",
-                  "standard_error", "media_passed", "media_standard_error", "stuck_fraction"});
+                  "standard_error", "media_passed", "media_standard_error", "stuck_fraction",
+                  "per_medium_t", "per_medium_standard_error"});
   const std::vector<SweepRecord> all = only > 0 ? std::vector<SweepRecord>{store.sweep(only)} : store.sweeps();
   for (const SweepRecord& s : all) {
     sweeps["id"].append(s.id), sweeps["created"].append(s.created), sweeps["updated"].append(s.updated);
@@ -166,6 +167,8 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
       points["media_passed"].append(p.media_passed);
       points["media_standard_error"].append(p.media_passed > 1 ? p.media_standard_error : kNaN);
       points["stuck_fraction"].append(p.stuck_fraction);
+      points["per_medium_t"].append(p.media_passed ? p.per_medium_t : kNaN);
+      points["per_medium_standard_error"].append(p.media_passed > 1 ? p.per_medium_standard_error : kNaN);
     }
   }
   py::dict out;

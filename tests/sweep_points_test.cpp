@@ -68,5 +68,38 @@ TEST(Sweep, PointsGiveTheStandardErrorOverMediaAsClusters) {
   EXPECT_GT(one[0].standard_error, 0);
 }
 
+// Per medium first: the media's own means 1.1, 1.5 and 1.2 (the medium where none passed has
+// none), their plain mean 3.8 / 3 and its error sd / sqrt(3). The pooled mean 7.3 / 6 weighs the
+// three-droplet medium three times; this one counts each medium once.
+TEST(Sweep, PointsAverageEachMediumFirstAsWell) {
+  auto medium = [](std::vector<double> passed, int stuck) {
+    SweepMedium m;
+    m.target_porosity = 0.6, m.porosity = 0.6;
+    for (double t : passed) m.droplets.push_back({0, 0, Outcome::passed, t, 1});
+    for (int i = 0; i < stuck; ++i) m.droplets.push_back({0, 0, Outcome::stuck, 0, 1});
+    return m;
+  };
+  const auto p = sweep_points(
+      {medium({1.0, 1.2}, 1), medium({1.5}, 0), medium({}, 3), medium({1.1, 1.3, 1.2}, 0)});
+  ASSERT_EQ(p.size(), 1u);
+  const double mean = 3.8 / 3;
+  EXPECT_NEAR(p[0].per_medium_t, mean, 1e-15);
+  const double ss = (1.1 - mean) * (1.1 - mean) + (1.5 - mean) * (1.5 - mean) + (1.2 - mean) * (1.2 - mean);
+  EXPECT_NEAR(p[0].per_medium_standard_error, std::sqrt(ss / 2 / 3), 1e-15);
+  EXPECT_NEAR(p[0].per_medium_standard_error, 0.1201850, 1e-7);
+  EXPECT_NE(p[0].per_medium_t, p[0].mean_t);
+
+  // With as many droplets passed in every medium the two averagings are the same mean.
+  const auto even = sweep_points({medium({1.0, 1.4}, 0), medium({1.3, 1.5}, 2)});
+  EXPECT_NEAR(even[0].per_medium_t, even[0].mean_t, 1e-15);
+
+  // One medium with a passed droplet: its mean, and no error.
+  const auto one = sweep_points({medium({1.2, 1.4}, 0), medium({}, 5)});
+  EXPECT_NEAR(one[0].per_medium_t, 1.3, 1e-15);
+  EXPECT_EQ(one[0].per_medium_standard_error, 0);
+  // None passed: 0, as mean_t.
+  EXPECT_EQ(sweep_points({medium({}, 2)})[0].per_medium_t, 0);
+}
+
 }  // namespace
 }  // namespace softdrop

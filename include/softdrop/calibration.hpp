@@ -21,7 +21,7 @@ double paper_tortuosity(double phi);
 /// What every setting of a calibration runs.
 struct CalibrationOptions {
   /// The sweep: porosities, media, droplets, seed, media options and exit conditions. Its
-  /// droplet is replaced by each setting's. Default: 6 porosities x 10 media x 20 droplets.
+  /// droplet is replaced by each setting's, and its media are always MediaStream::calibration's. Default: 6 porosities x 10 media x 20 droplets.
   SweepOptions sweep = default_sweep();
   /// Area traces: `trace_media` non-overlapping media of porosity `trace_porosity` (the sweep's
   /// box, radii and gap), `trace_droplets` droplets each from random starts.

@@ -17,11 +17,25 @@
 namespace softdrop {
 
 /// Everything that defines a sweep (stored with it; the same options resume the same sweep).
+/// Where a sweep's media come from. The two streams give disjoint media for every seed (their
+/// seeds are hashes of different tags), so a study can be validated on media its tuning never saw.
+enum class MediaStream {
+  held_out,     ///< the sweep's own media: `softdrop sweep`'s, never calibrate's
+  calibration,  ///< the media `calibrate` tunes on (and every sweep stored before the streams were)
+};
+
+/// Names of the streams as the command line and stored sweeps spell them ("held-out",
+/// "calibration"); the parse throws std::invalid_argument naming media-stream.
+const char* to_string(MediaStream stream);
+MediaStream parse_media_stream(const std::string& name);
+std::vector<std::string> media_stream_names();
+
 struct SweepOptions {
   std::vector<double> porosities{0.5, 0.6, 0.7, 0.8, 0.9};  ///< target porosities
   int media = 10;           ///< M media per porosity
   int droplets = 20;        ///< K droplets per medium, from random starts
   std::uint64_t seed = 1;   ///< seed of media and start positions
+  MediaStream stream = MediaStream::held_out;  ///< which media the seed picks
   MediumOptions medium;     ///< the media (porosity and seed are set per medium)
   DropletParams droplet;
   RunOptions run;           ///< exit conditions (traces are not recorded)
@@ -39,8 +53,9 @@ struct SweepUnit {
 /// The units of shard `shard` of `shards` (0 <= shard < shards), in order.
 std::vector<SweepUnit> sweep_units(const SweepOptions& options, int shard = 0, int shards = 1);
 
-/// Seed of a unit's medium: depends on the sweep seed, the target porosity's value and the medium
-/// index, so adding porosities or media to a sweep leaves the existing units unchanged.
+/// Seed of a unit's medium: depends on the media stream, the sweep seed, the target porosity's
+/// value and the medium index, so adding porosities or media to a sweep leaves the existing units
+/// unchanged.
 std::uint64_t sweep_medium_seed(const SweepOptions& options, const SweepUnit& unit);
 
 /// One droplet's record.
@@ -104,6 +119,10 @@ struct SweepPoint {
   int media_passed = 0;
   double media_standard_error = 0;
   double stuck_fraction = 0;
+  /// The other averaging: each medium's mean T first, then their plain mean over the media_passed
+  /// media, and its standard error over them (0 if fewer than two). Every medium counts alike;
+  /// mean_t counts a medium by its passed droplets.
+  double per_medium_t = 0, per_medium_standard_error = 0;
 };
 /// Aggregates records by target porosity (ascending); points with no passed droplet are kept with
 /// mean_t = 0 and passed = 0.

@@ -294,8 +294,9 @@ def read_sweep(db, sweep=None):
     by the program's own store: a dict of pandas DataFrames `sweeps`, `media` and `droplets` (the
     database's tables; mean_t, standard_error and tortuosity are NaN where nothing passed), and
     `points` (per target porosity, as `softdrop sweep-report` aggregates them, with the standard
-    error over droplets and, in media_standard_error, over media as clusters). A file the store
-    refuses raises StoreError naming it."""
+    error over droplets and, in media_standard_error, over media as clusters; per_medium_t is the
+    other averaging, each medium's <T> first and then their mean, with per_medium_standard_error).
+    A file the store refuses raises StoreError naming it."""
     import pandas as pd
 
     if sweep is not None and (isinstance(sweep, bool) or not isinstance(sweep, numbers.Integral) or sweep < 1):

@@ -120,18 +120,42 @@ def best_curve(history, run=1, ax=None):
     return ax.figure
 
 
-def porosity(points, ax=None, paper=True):
-    """<T> against porosity: read_sweep's `points` (phi, mean_t, standard_error) with error bars,
-    and the paper's fit (paper=True). Returns the Figure."""
+def porosity(points, ax=None, paper=True, mean="mean_t", error="media_standard_error", residuals=False,
+             label="softdrop"):
+    """<T> against porosity: read_sweep's `points` with error bars, and the paper's fit
+    (paper=True). `mean` is the column of <T> (mean_t, pooled over the droplets; per_medium_t,
+    each medium's first) and `error` its error (media_standard_error, the media as clusters, or
+    standard_error over droplets; per_medium_standard_error goes with per_medium_t). A table
+    without `error` (a phi,t,se file read by pandas, say) may name its own columns.
+
+    residuals=True adds a panel below with (<T> - f(phi)) / error against the paper's f, with the
+    band of +-2; it needs a new figure (ax=None). Returns the Figure."""
+    for column in ("phi", mean, error):
+        if column not in points:
+            raise ValueError(f"points: no column {column!r} (columns: {', '.join(map(str, points.columns))})")
+    phi, t, se = (np.asarray(points[c], dtype=float) for c in ("phi", mean, error))
+    if residuals:
+        if ax is not None:
+            raise ValueError("residuals=True draws two panels of a new figure: leave ax out")
+        import matplotlib.pyplot as plt
+
+        fig, (ax, low) = plt.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 1]})
     ax = _axes(ax)
-    ax.errorbar(points["phi"], points["mean_t"], yerr=points["standard_error"], fmt="o", color="black",
-                label="softdrop")
-    if paper:
-        phi = np.linspace(min(points["phi"].min(), 0.4), 1.0, 200)
-        ax.plot(phi, paper_fit(phi), color="tab:red", label="paper's fit 1.58 - 0.58 φ^3.87")
-    ax.set_xlabel("porosity φ")
+    ax.errorbar(phi, t, yerr=se, fmt="o", color="black", capsize=2, label=label)
+    if paper or residuals:
+        grid = np.linspace(min(np.nanmin(phi), 0.4), 1.0, 200)
+        ax.plot(grid, paper_fit(grid), color="tab:red", label="paper's fit 1.58 - 0.58 φ^3.87")
     ax.set_ylabel("<T>")
     ax.legend(loc="best", frameon=False)
+    if not residuals:
+        ax.set_xlabel("porosity φ")
+        return ax.figure
+    pull = (t - paper_fit(phi)) / se
+    low.axhspan(-2, 2, color="0.9")
+    low.axhline(0, color="tab:red", linewidth=1)
+    low.plot(phi, pull, "o", color="black")
+    low.set_xlabel("porosity φ")
+    low.set_ylabel("(<T> - f) / se")
     return ax.figure
 
 

@@ -38,19 +38,25 @@ int run_fit(const FitArgs& a) {
   if (!a.plot.empty()) check_picture_path("--plot", a.plot), plot_style(a.size, a.dpi);
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
   const FitErrors errors = a.errors == "droplets" ? FitErrors::droplets : FitErrors::media;
+  const FitAveraging averaging = a.mean == "per-medium" ? FitAveraging::per_medium : FitAveraging::pooled;
+  if (averaging == FitAveraging::per_medium && errors == FitErrors::droplets)
+    throw std::invalid_argument("--errors droplets: a per-medium mean has only its error over the media "
+                                "(leave --errors out, or fit --mean pooled)");
   std::vector<FitPoint> points;
   bool used_errors = true;  // false: a phi,t,se file, which brings its own
   if (!a.points.empty()) {
     std::ifstream in(a.points);
     if (!in) throw std::runtime_error("--points '" + a.points + "': cannot read");
-    points = read_fit_points(in, a.points, errors, &used_errors);
+    points = read_fit_points(in, a.points, errors, &used_errors, averaging);
   } else {
     auto store = open_sweep_store(a.db, OpenMode::read_only);
     int few = 0, fewest = kFewMedia;
     for (const SweepPoint& p : sweep_points(store->media(pick_sweep(*store, a.sweep, a.db)))) {
-      const double se = errors == FitErrors::media ? p.media_standard_error : p.standard_error;
+      const bool per_medium = averaging == FitAveraging::per_medium;
+      const double se = per_medium ? p.per_medium_standard_error
+                        : errors == FitErrors::media ? p.media_standard_error : p.standard_error;
       if (p.passed < 2 || !(se > 0)) continue;
-      points.push_back({p.porosity, p.mean_t, se});
+      points.push_back({p.porosity, per_medium ? p.per_medium_t : p.mean_t, se});
       if (p.media_passed < kFewMedia) ++few, fewest = std::min(fewest, p.media_passed);
     }
     if (errors == FitErrors::media && few > 0)
@@ -78,7 +84,7 @@ int run_fit(const FitArgs& a) {
   nlohmann::ordered_json j;
   j["version"] = kVersion;
   j["points"] = points.size();
-  if (used_errors) j["errors"] = a.errors;
+  if (used_errors) j["errors"] = a.errors, j["mean"] = a.mean;
   for (const FitResult* r : {&power, &log}) {
     nlohmann::ordered_json f;
     f["law"] = r->law == FitLaw::power ? "T = a - c phi^b" : "T = 1 - p ln(phi)";
@@ -92,6 +98,16 @@ int run_fit(const FitArgs& a) {
     if (!r->warning.empty()) f["warning"] = r->warning;
     j[to_string(r->law)] = f;
   }
+  // The paper's own f(phi) against these points: nothing fitted, so its chi2 has one degree of
+  // freedom a point (on media no calibration saw, the out-of-sample test of the model).
+  std::vector<double> paper_residuals;
+  double paper_chi2 = 0;
+  for (const FitPoint& p : points) {
+    paper_residuals.push_back((p.t - fit_law_value(FitLaw::power, {1.58, 3.87, 0.58}, p.phi)) / p.se);
+    paper_chi2 += paper_residuals.back() * paper_residuals.back();
+  }
+  j["paper"] = {{"law", "T = 1.58 - 0.58 phi^3.87"}, {"chi2", paper_chi2}, {"dof", points.size()},
+                {"residuals", paper_residuals}};
   j["delta_aic_log_minus_power"] = log.aic - power.aic;
   j["preferred"] = power.dof <= 0 || log.dof <= 0 ? nlohmann::ordered_json(nullptr)
                    : nlohmann::ordered_json(log.aic > power.aic ? "power" : "log");
@@ -101,7 +117,8 @@ int run_fit(const FitArgs& a) {
   } else {
     std::cout << points.size() << " points";
     if (used_errors)
-      std::cout << " weighed by the " << (errors == FitErrors::media ? "media's" : "droplets'")
+      std::cout << (averaging == FitAveraging::per_medium ? " (each medium's <T> first, then over media)" : "")
+                << " weighed by the " << (errors == FitErrors::media ? "media's" : "droplets'")
                 << " standard errors";
     std::cout << "\n";
     for (const FitResult* r : {&power, &log}) {
@@ -111,16 +128,19 @@ int run_fit(const FitArgs& a) {
       std::cout << "   chi2 = " << fmt(r->chi2, 5) << " (dof " << r->dof << ", reduced " << fmt(r->reduced_chi2, 4)
                 << "), AIC = " << fmt(r->aic, 5) << "\n";
     }
+    std::cout << "paper's f          1.58 - 0.58 phi^3.87, nothing fitted:  chi2 = " << fmt(paper_chi2, 5) << " (dof "
+              << points.size() << ")\n";
     std::cout << "AIC(log) - AIC(power) = " << fmt(log.aic - power.aic, 4);
     if (power.dof <= 0 || log.dof <= 0)
       std::cout << " (no verdict: a fit with 0 degrees of freedom passes through every point)\n";
     else
       std::cout << (log.aic > power.aic ? " (the power law is preferred)\n" : " (the log law is preferred)\n");
-    std::cout << "phi         T          se         resid_power  resid_log\n";
+    std::cout << "phi         T          se         resid_power  resid_log  resid_paper\n";
     for (std::size_t i = 0; i < points.size(); ++i) {
       std::ostringstream row;
       row << std::left << std::setw(12) << fmt(points[i].phi, 6) << std::setw(11) << fmt(points[i].t, 6) << std::setw(11)
-          << fmt(points[i].se, 3) << std::setw(13) << fmt(power.residuals[i], 3) << fmt(log.residuals[i], 3);
+          << fmt(points[i].se, 3) << std::setw(13) << fmt(power.residuals[i], 3) << std::setw(11)
+          << fmt(log.residuals[i], 3) << fmt(paper_residuals[i], 3);
       std::cout << row.str() << "\n";
     }
   }
@@ -145,10 +165,12 @@ int run_fit(const FitArgs& a) {
       }
       return s;
     };
-    auto value = [](const FitResult& r, std::size_t i) {
-      return r.names[i] + " = " + fmt(r.values[i], 3) + " ± " + fmt(r.errors[i], 2);
-    };
-    c.series = {curve(power, Rgba{0.8, 0.1, 0.1, 1},
+    auto value = [](const FitResult& r, std::size_t i) { return r.names[i] + " = " + with_error(r.values[i], r.errors[i]); };
+    // The paper's fit beside ours, over the same range (its a, b, c as it quotes them).
+    FitResult paper;
+    paper.values = {1.58, 3.87, 0.58};
+    c.series = {curve(paper, Rgba{0.55, 0.55, 0.55, 1}, "paper: 1.58 − 0.58 φ^3.87"),
+                curve(power, Rgba{0.8, 0.1, 0.1, 1},
                       "a − c φᵇ: " + value(power, 0) + ", " + value(power, 1) + ", " + value(power, 2)),
                 curve(log, Rgba{0.1, 0.3, 0.8, 1}, "1 − p ln φ: " + value(log, 0)), data};
     c.x_label = "porosity φ";

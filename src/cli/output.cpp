@@ -8,6 +8,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstring>
@@ -177,6 +178,15 @@ std::string fmt(double v, int digits) {
   std::ostringstream s;
   s.precision(digits);
   s << v;
+  return s.str();
+}
+
+std::string with_error(double value, double error) {
+  if (!std::isfinite(value) || !std::isfinite(error) || !(error > 0)) return fmt(value, 4) + " ± " + fmt(error, 2);
+  // Decimal places that keep the error's second significant digit (none when the error is >= 10).
+  const int places = std::max(0, 1 - static_cast<int>(std::floor(std::log10(error))));
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(places) << value << " ± " << error;
   return s.str();
 }
 

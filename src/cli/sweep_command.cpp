@@ -40,6 +40,11 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   g->add_option("--media", a.sweep.media, "M media per porosity")->capture_default_str();
   g->add_option("--droplets", a.sweep.droplets, "K droplets per medium, from random starts")->capture_default_str();
   g->add_option("--seed", a.sweep.seed, "Seed of media and start positions")->capture_default_str()->check(seed_check());
+  g->add_option("--media-stream", a.media_stream,
+                "Which media a seed picks: held-out (media no calibrate run ever tunes on) or calibration "
+                "(calibrate's own media for that seed: to re-measure what a calibration saw)")
+      ->capture_default_str()
+      ->check(CLI::IsMember(media_stream_names()));
   g->add_option("--shard", a.shard, "Run only shard i of n (i/n, 0-based); merge the stores with sweep-merge")
       ->capture_default_str();
   g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
@@ -65,7 +70,9 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
       "Columns. Points: phi = mean exact porosity of the media; mean_t = <T> over the passed droplets; "
       "standard_error = its error taking every passed droplet as independent; media_passed = media where a "
       "droplet passed; media_standard_error = its error taking each medium's droplets as one cluster (they share "
-      "its throats and dead ends: the error to quote, larger); stuck_fraction over all droplets. Media (--media): "
+      "its throats and dead ends: the error to quote, larger); stuck_fraction over all droplets; per_medium_t = "
+      "the other averaging, each medium's <T> first, then their plain mean over the media_passed media, with "
+      "per_medium_standard_error over those media. Media (--media): "
       "one row per medium, mean_t and standard_error over its own passed droplets; seconds = its wall time.");
 
   CLI::App* ft = app.add_subcommand("fit", "Weighted least-squares fits of <T>(phi): a - c phi^b and 1 - p ln phi (NLopt)");
@@ -82,6 +89,12 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
         "of one medium share its dead ends); a phi,t,se file brings its own")
       ->capture_default_str()
       ->check(CLI::IsMember({"media", "droplets"}));
+  ft->add_option("--mean", f.mean,
+                 "Which <T> of a sweep's porosity: pooled over its passed droplets (a medium counts by the "
+                 "droplets that passed it), or per-medium: each medium's <T> first, then their mean over the "
+                 "media, weighed by its error over the media")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"pooled", "per-medium"}));
   ft->add_option("--plot", f.plot, "Also draw T(phi) with error bars and both fits (.png, .svg, .pdf)");
   ft->add_option("--size", f.size, "Plot width in points (1/72 inch)")->capture_default_str();
   ft->add_option("--dpi", f.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
@@ -147,14 +160,15 @@ Table points_table(const std::vector<SweepPoint>& points) {
   t.header = {"target_phi",     "phi",          "media",
               "droplets",       "passed",       "mean_t",
               "standard_error", "media_passed", "media_standard_error",
-              "stuck_fraction"};
+              "stuck_fraction", "per_medium_t",  "per_medium_standard_error"};
   for (const SweepPoint& p : points)
     t.rows.push_back(
         {p.target_porosity, p.porosity, p.media, p.droplets, p.passed,
          p.passed ? nlohmann::json(p.mean_t) : nlohmann::json(),
          p.passed > 1 ? nlohmann::json(p.standard_error) : nlohmann::json(), p.media_passed,
          p.media_passed > 1 ? nlohmann::json(p.media_standard_error) : nlohmann::json(),
-         p.stuck_fraction});
+         p.stuck_fraction, p.media_passed ? nlohmann::json(p.per_medium_t) : nlohmann::json(),
+         p.media_passed > 1 ? nlohmann::json(p.per_medium_standard_error) : nlohmann::json()});
   return t;
 }
 
@@ -199,6 +213,7 @@ std::pair<int, int> check_sweep(SweepArgs& a, const CLI::App& cmd) {
   if (!a.medium.file.empty()) throw std::invalid_argument("medium: sweep generates its media; --medium is not used");
   resolve_medium(a.medium);
   a.sweep.medium = a.medium.options;
+  a.sweep.stream = parse_media_stream(a.media_stream);
   std::string why;
   if (!a.sweep.IsValid(&why)) throw std::invalid_argument(why);
   check_threads(a.threads);

@@ -23,6 +23,7 @@ struct SweepArgs {
   SweepOptions sweep;
   MediumArgs medium;
   std::string preset;      ///< quick or paper: defaults for options not given
+  std::string media_stream = "held-out";  ///< parsed into sweep.stream
   std::string shard = "0/1";
   int threads = 0;
   bool quiet = false;
@@ -47,6 +48,7 @@ struct FitArgs {
   std::string points;       ///< ... or a CSV with columns phi,t,se
   std::string errors =
       "media";              ///< a sweep's points weighed by media_standard_error, or "droplets"
+  std::string mean = "pooled";  ///< the porosity's mean over its droplets, or "per-medium" first
   std::string plot;         ///< T(phi) with error bars and both fits
   int size = 800;           ///< plot width (points)
   double dpi = 72;          ///< PNG pixels an inch

@@ -10,13 +10,14 @@ namespace {
 
 // Keys added after files already existed. A missing one reads as what older builds did: the
 // default for the constraint order, the explicit viscosity step, the viscosity's share on dilation
-// (1), the strategy (paper) and its options, no rest test (0) for the rest test's keys.
+// (1), the strategy (paper) and its options, no rest test (0) for the rest test's keys, a sweep's
+// media from the calibration stream (the only one there was).
 bool optional_key(const std::string& key) {
   return key == "constraint-order" || key == "rest-window" || key == "rest-distance" ||
          key == "strategy" || key == "target-success" || key == "history-length" ||
          key == "temperature" || key == "half-life" || key == "relocate-every" ||
          key == "viscosity-dilation" || key == "viscosity-step" || key == "objective" || key == "starts" ||
-         key == "quantile" || key == "se-factor" || key == "margin";
+         key == "quantile" || key == "se-factor" || key == "margin" || key == "media-stream";
 }
 // The stored enums go through the same names as the command line (their to_string and parse), so
 // an unknown stored name is refused in the parse's words instead of read as the first value.
@@ -26,6 +27,7 @@ void parse_stored(const std::string& name, DropletEnum* value) {
 }
 void parse_stored(const std::string& name, StrategyKind* kind) { *kind = parse_strategy(name); }
 void parse_stored(const std::string& name, ObjectiveKind* kind) { *kind = parse_objective(name); }
+void parse_stored(const std::string& name, MediaStream* stream) { *stream = parse_media_stream(name); }
 
 template <class T>
 void set_legacy(const std::string& key, T& value) {
@@ -34,6 +36,7 @@ void set_legacy(const std::string& key, T& value) {
     if (key == "viscosity-dilation") value = 1;  // (the default is 0 now)
   }
   if constexpr (std::is_same_v<T, ViscosityStep>) value = ViscosityStep::explicit_euler;
+  if constexpr (std::is_same_v<T, MediaStream>) value = MediaStream::calibration;
 }
 
 // The lists of stored options: key (= CLI long option name) and field. They are alike in shape
@@ -91,6 +94,7 @@ void visit_sweep(SweepFields& s, F&& f) {
   f("media", s.o.media);
   f("droplets", s.o.droplets);
   f("seed", s.o.seed);
+  f("media-stream", s.o.stream);
   f("kind", s.kind);
   f("width", s.o.medium.width);
   f("height", s.o.medium.height);

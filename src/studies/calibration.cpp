@@ -25,6 +25,7 @@ SweepOptions CalibrationOptions::default_sweep() {
   s.porosities = {0.5, 0.6, 0.7, 0.8, 0.9, 0.95};
   s.media = 10;
   s.droplets = 20;
+  s.stream = MediaStream::calibration;
   return s;
 }
 
@@ -123,6 +124,7 @@ CalibrationResult run_calibration(const CalibrationOptions& o, const DropletPara
   if (!droplet.IsValid(&why)) throw std::invalid_argument(why);
   SweepOptions sweep = o.sweep;
   sweep.droplet = droplet;
+  sweep.stream = MediaStream::calibration;  // tuning sees only these media; sweeps default to others
   const std::vector<SweepUnit> units = sweep_units(sweep);
   const long traces = static_cast<long>(o.trace_media) * o.trace_droplets;
   const long total = static_cast<long>(units.size()) * sweep.droplets + traces;

@@ -26,7 +26,8 @@ std::string point_problem(const FitPoint& q) {
 }  // namespace
 
 std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name, FitErrors errors,
-                                      bool* used_errors) {
+                                      bool* used_errors, FitAveraging averaging) {
+  const bool per_medium = averaging == FitAveraging::per_medium;
   std::string line;
   std::vector<FitPoint> out;
   int number = 0;
@@ -52,9 +53,14 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
       auto at = [&](const char* column) { return std::size_t(std::find(f.begin(), f.end(), column) - f.begin()); };
       sweep_report = at("t") == f.size() && at("mean_t") < f.size();
       const char* error = !sweep_report                ? "se"
+                          : per_medium                 ? "per_medium_standard_error"
                           : errors == FitErrors::media ? "media_standard_error"
                                                        : "standard_error";
-      phi = at("phi"), t = at(sweep_report ? "mean_t" : "t"), se = at(error);
+      const char* mean = !sweep_report ? "t" : per_medium ? "per_medium_t" : "mean_t";
+      phi = at("phi"), t = at(mean), se = at(error);
+      if (sweep_report && phi < f.size() && per_medium && (t == f.size() || se == f.size()))
+        throw bad("no per_medium_t and per_medium_standard_error columns (a sweep-report of an older "
+                  "softdrop? fit its pooled mean)");
       if (sweep_report && phi < f.size() && se == f.size())
         throw bad(std::string("no ") + error +
                   " column (a sweep-report of an older softdrop? fit it with --errors " +

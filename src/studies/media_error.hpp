@@ -8,6 +8,11 @@
 // with n_g droplets of medium g passed, s_g the sum of their T, n = sum n_g, mean = sum s_g / n and
 // G the media with at least one passed droplet. With one passed droplet per medium it is the
 // droplet-level error exactly.
+//
+// The other averaging, per medium first: each medium's own mean T, then the plain mean of those
+// over the G media, with the standard error of a mean of G independent values (sample sd /
+// sqrt(G)). It weighs every medium alike, where the pooled mean weighs a medium by its passed
+// droplets (so by how open it is).
 
 #include <cmath>
 #include <vector>
@@ -34,6 +39,24 @@ class MediaMean {
       ss += r * r;
     }
     return std::sqrt(g / (g - 1) * ss) / n;
+  }
+  /// The mean over media of each medium's mean T; 0 with no such medium.
+  double per_medium_mean() const {
+    double sum = 0;
+    for (const Medium& m : media_) sum += m.sum_t / m.passed;
+    return media_.empty() ? 0 : sum / static_cast<double>(media_.size());
+  }
+  /// Its standard error over the media (two-pass); 0 with fewer than two.
+  double per_medium_standard_error() const {
+    const double g = static_cast<double>(media_.size());
+    if (g < 2) return 0;
+    const double mean = per_medium_mean();
+    double ss = 0;
+    for (const Medium& m : media_) {
+      const double r = m.sum_t / m.passed - mean;
+      ss += r * r;
+    }
+    return std::sqrt(ss / (g - 1) / g);
   }
 
  private:

@@ -15,6 +15,7 @@
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
 #include "studies/media_error.hpp"
+#include "util/enum_names.hpp"
 #include "util/validation.hpp"
 #include "util/worker_threads.hpp"
 
@@ -52,9 +53,22 @@ std::vector<SweepUnit> sweep_units(const SweepOptions& o, int shard, int shards)
   return units;
 }
 
+constexpr detail::EnumName<MediaStream> kMediaStreams[] = {{MediaStream::held_out, "held-out"},
+                                                            {MediaStream::calibration, "calibration"}};
+
+const char* to_string(MediaStream stream) { return detail::name_of(kMediaStreams, stream); }
+
+MediaStream parse_media_stream(const std::string& name) { return detail::parse_name(kMediaStreams, name, "media-stream"); }
+
+std::vector<std::string> media_stream_names() { return detail::name_list(kMediaStreams); }
+
 std::uint64_t sweep_medium_seed(const SweepOptions& o, const SweepUnit& u) {
   const auto micro = static_cast<std::uint64_t>(std::llround(o.porosities.at(static_cast<std::size_t>(u.porosity)) * 1e9));
-  return derive_seed(derive_seed(o.seed, micro), static_cast<std::uint64_t>(u.medium));
+  // The calibration stream is the derivation every store before the streams used; the held-out
+  // stream starts from the seed hashed with its own tag, so no seed of one is a seed of the other.
+  const std::uint64_t base =
+      o.stream == MediaStream::calibration ? o.seed : derive_seed(o.seed, 0x48454C444F5554ULL);  // "HELDOUT"
+  return derive_seed(derive_seed(base, micro), static_cast<std::uint64_t>(u.medium));
 }
 
 namespace {
@@ -290,6 +304,8 @@ std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media) {
     }
     p.media_passed = by_medium.media();
     p.media_standard_error = by_medium.standard_error();
+    p.per_medium_t = by_medium.per_medium_mean();
+    p.per_medium_standard_error = by_medium.per_medium_standard_error();
     p.porosity = phi / p.media;
     p.stuck_fraction = p.droplets ? static_cast<double>(p.stuck) / p.droplets : 0.0;
     if (p.passed > 0) p.mean_t = sum / p.passed;

@@ -136,6 +136,9 @@ def test_sweep_writes_the_programs_store(tmp_path):
     np.testing.assert_array_equal(  # NaN where fewer than two media had a droplet pass
         a["points"]["media_standard_error"].to_numpy(),
         np.array([np.nan if r["media_standard_error"] is None else r["media_standard_error"] for r in rows]))
+    for column in ("per_medium_t", "per_medium_standard_error"):  # the other averaging, also sweep-report's
+        np.testing.assert_array_equal(a["points"][column].to_numpy(),
+                                      np.array([np.nan if r[column] is None else r[column] for r in rows]))
 
 
 def test_a_sweep_stopped_by_the_callback_goes_on_where_it_stopped(tmp_path):

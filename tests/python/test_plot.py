@@ -67,12 +67,33 @@ def test_the_best_curve_is_the_stored_best_t_with_the_re_runs_and_held_out_value
 
 
 def test_porosity_has_the_points_and_the_papers_fit():
-    points = pd.DataFrame({"phi": [0.6, 0.8], "mean_t": [1.4, 1.2], "standard_error": [0.02, 0.01]})
+    points = pd.DataFrame({"phi": [0.6, 0.8], "mean_t": [1.4, 1.2], "standard_error": [0.02, 0.01],
+                           "media_standard_error": [0.04, 0.03], "per_medium_t": [1.45, 1.22],
+                           "per_medium_standard_error": [0.05, 0.02]})
     fig = softdrop.plot.porosity(points)
     fit = fig.axes[0].lines[-1]
     assert np.allclose(fit.get_ydata(), 1.58 - 0.58 * fit.get_xdata() ** 3.87)
     assert softdrop.plot.paper_fit(1.0) == pytest.approx(1.0)
+    # The error bars are the media's unless told otherwise.
+    bars = fig.axes[0].containers[0]
+    assert np.array_equal(bars.lines[0].get_ydata(), [1.4, 1.2])
+    segments = bars.lines[2][0].get_segments()
+    assert [s[1][1] - s[0][1] for s in segments] == pytest.approx([0.08, 0.06])
     plt.close(fig)
+
+    # Per medium first, with the residuals against the paper's f in units of the error.
+    fig = softdrop.plot.porosity(points, mean="per_medium_t", error="per_medium_standard_error", residuals=True)
+    top, low = fig.axes
+    assert np.array_equal(top.containers[0].lines[0].get_ydata(), [1.45, 1.22])
+    pull = low.lines[-1].get_ydata()
+    f = 1.58 - 0.58 * np.array([0.6, 0.8]) ** 3.87
+    assert pull == pytest.approx((np.array([1.45, 1.22]) - f) / np.array([0.05, 0.02]))
+    plt.close(fig)
+    with pytest.raises(ValueError, match="no column 'per_medium_t'"):
+        softdrop.plot.porosity(points.drop(columns="per_medium_t"), mean="per_medium_t")
+    with pytest.raises(ValueError, match="leave ax out"):
+        softdrop.plot.porosity(points, ax=plt.figure().add_subplot(), residuals=True)
+    plt.close("all")
 
 
 def test_the_area_trace_is_the_runs_area_ratio():
