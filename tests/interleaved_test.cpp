@@ -219,13 +219,16 @@ TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
   o.path_interval = 40;
   const ConstraintOrder seq = ConstraintOrder::sequential, rb = ConstraintOrder::red_black;
   // An odd ring (41 masses) too: red-black's closing spring then touches the first spring's mass;
-  // a viscosity that spares the ring's dilation; the exponential viscosity step.
+  // a viscosity that spares the ring's dilation; the exponential and the implicit viscosity steps
+  // (the implicit one reads the other stages' forces, so their order and sums must agree too).
   const ViscosityStep ex = ViscosityStep::explicit_euler;
   for (auto [viscosity, order, masses, dilation, step] :
        {std::tuple{1.0e4, seq, 40, 1.0, ex}, std::tuple{0.0, seq, 40, 1.0, ex},
         std::tuple{1.0e4, rb, 40, 1.0, ex}, std::tuple{1.0e4, rb, 41, 1.0, ex},
         std::tuple{1.0e4, seq, 40, 0.0, ex},
-        std::tuple{1.0e5, seq, 40, 0.0, ViscosityStep::exponential}}) {
+        std::tuple{1.0e5, seq, 40, 0.0, ViscosityStep::exponential},
+        std::tuple{1.37e5, seq, 40, 0.0, ViscosityStep::implicit},
+        std::tuple{1.37e5, rb, 41, 1.0, ViscosityStep::implicit}}) {
     SCOPED_TRACE("viscosity " + std::to_string(viscosity) + ", " + to_string(order) + ", " +
                  std::to_string(masses) + " masses, dilation share " + std::to_string(dilation) +
                  ", " + to_string(step) + " step");

@@ -1,5 +1,7 @@
-// The internal viscosity's two steps: the explicit force (1 - nu dt a step) and the exponential
-// one (exp(-nu dt) a step, the exact decay), their limits, and the option's names.
+// The internal viscosity's three steps: the explicit force (1 - nu dt a step), the exponential
+// one (exp(-nu dt) a step, the exact decay) and the implicit one (backward Euler on the velocity
+// after the other forces: a steadily pushed ring deforms at the continuous rate), their limits,
+// and the option's names.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,8 +19,9 @@ namespace {
 // A ring at rest positions moving rigidly (translation u, rotation omega) plus a shear of rate a,
 // (a r_x, -a r_y): a deformation with no momentum, no angular momentum and no dilation. After the
 // viscosity and integration stages alone, returns the largest misfit of the new velocities against
-// the rigid motion plus `factor` times the shear, over the largest shear speed.
-double shear_misfit(const DropletParams& p, double factor) {
+// the rigid motion plus `factor` times the shear, over the largest shear speed. `push` adds a
+// shearing force m push (r_x, -r_y) before the viscosity (no net force or torque on the ring).
+double shear_misfit(const DropletParams& p, double factor, double push = 0) {
   const Medium empty = test::empty_medium();
   Simulation sim(p, empty);
   sim.place(250, 250);
@@ -33,6 +36,7 @@ double shear_misfit(const DropletParams& p, double factor) {
     s.py[i] = s.y[i] - dt * (rigid_y(rx[i], ry[i]) - a * ry[i]);
   }
   sim.run_stage(StepStage::gravity);  // clears the forces (no gravity)
+  for (int i = 0; i < s.size(); ++i) s.fx[i] += p.mass * push * rx[i], s.fy[i] -= p.mass * push * ry[i];
   sim.run_stage(StepStage::viscosity);
   sim.run_stage(StepStage::integrate);
   double worst = 0;
@@ -75,6 +79,26 @@ TEST(ViscosityStep, TheExponentialStepTakesTheExactDecayAtAnyNuDt) {
   EXPECT_EQ(slow.viscous_rate(), explicit_rate);  // the reference's coefficient, to the bit
 }
 
+// The implicit step: u' = (u + push dt) / (1 + nu dt) on the deformation. A ring shearing at
+// push / nu, the rate at which the continuous viscosity balances the push, stays at it at every
+// nu dt; the exponential step's steady rate is push / nu times nu dt / (1 - exp(-nu dt)).
+TEST(ViscosityStep, TheImplicitStepDeformsASteadilyPushedRingAtTheContinuousRateAtAnyDt) {
+  for (double nu_dt : {1e-3, 0.4795, 1.68, 20.0}) {
+    SCOPED_TRACE("nu dt = " + std::to_string(nu_dt));
+    const DropletParams p = weightless(ViscosityStep::implicit, nu_dt / 3.5e-6);
+    const double shear = 2000, push = shear * p.viscosity;  // shear = push / nu
+    EXPECT_LT(shear_misfit(p, 1.0, push), 1e-8);
+    EXPECT_LT(shear_misfit(p, 1 / (1 + nu_dt)), 1e-8);  // unpushed: backward Euler's decay
+    EXPECT_EQ(p.viscous_rate(), p.viscosity / (1 + nu_dt));
+    DropletParams e = p;
+    e.viscosity_step = ViscosityStep::exponential;
+    EXPECT_LT(shear_misfit(e, std::exp(-nu_dt) + nu_dt, push), 1e-8);  // not steady: it drifts
+    if (nu_dt > 0.1) {
+      EXPECT_GT(std::abs(std::exp(-nu_dt) + nu_dt - 1), 0.09);
+    }
+  }
+}
+
 TEST(ViscosityStep, OnlyTheExplicitStepBoundsNuDt) {
   DropletParams p = weightless(ViscosityStep::explicit_euler, 1e6);  // nu dt = 3.5
   std::string why;
@@ -83,6 +107,8 @@ TEST(ViscosityStep, OnlyTheExplicitStepBoundsNuDt) {
             "viscosity = 1e+06, dt = 3.5e-06: viscosity * dt = 3.5 must be <= 0.5 for "
             "viscosity-step explicit");
   p.viscosity_step = ViscosityStep::exponential;
+  EXPECT_TRUE(p.IsValid(&why)) << why;
+  p.viscosity_step = ViscosityStep::implicit;
   EXPECT_TRUE(p.IsValid(&why)) << why;
   p.dt = 1e-2;  // the springs still bound dt
   EXPECT_FALSE(p.IsValid(&why));
@@ -150,7 +176,9 @@ TEST(ViscosityStep, TheRingsFastestModeBoundsDtWithTheSpringDampingAndTheViscosi
   // or exponential, with weak or strong viscosity.
   for (auto [step, nu] : {std::pair{ViscosityStep::explicit_euler, 0.0},
                           std::pair{ViscosityStep::exponential, 1.8656e5},
-                          std::pair{ViscosityStep::exponential, 1e6}}) {
+                          std::pair{ViscosityStep::exponential, 1e6},
+                          std::pair{ViscosityStep::implicit, 1.37e5},
+                          std::pair{ViscosityStep::implicit, 1e6}}) {
     DropletParams q;
     q.viscosity_step = step;
     q.viscosity = nu;
@@ -164,12 +192,13 @@ TEST(ViscosityStep, TheRingsFastestModeBoundsDtWithTheSpringDampingAndTheViscosi
   }
 }
 
-TEST(ViscosityStep, TheOptionTakesItsTwoNamesAndNamesABadOne) {
+TEST(ViscosityStep, TheOptionTakesItsNamesAndNamesABadOne) {
   EXPECT_EQ(parse_viscosity_step("exponential"), ViscosityStep::exponential);
   EXPECT_STREQ(to_string(ViscosityStep::explicit_euler), "explicit");
-  EXPECT_EQ(value_names(ViscosityStep{}), (std::vector<std::string>{"explicit", "exponential"}));
-  EXPECT_THROW(parse_viscosity_step("implicit"), std::invalid_argument);
-  const test::Result bad = test::run("simulate --x0 250 --viscosity-step implicit");
+  EXPECT_EQ(parse_viscosity_step("implicit"), ViscosityStep::implicit);
+  EXPECT_EQ(value_names(ViscosityStep{}), (std::vector<std::string>{"explicit", "exponential", "implicit"}));
+  EXPECT_THROW(parse_viscosity_step("backward"), std::invalid_argument);
+  const test::Result bad = test::run("simulate --x0 250 --viscosity-step backward");
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.err.find("--viscosity-step"), std::string::npos) << bad.err;
   const test::Result refused =

@@ -29,8 +29,13 @@ const char* to_string(ConstraintOrder order);
 ///   exp(-nu dt) a step, the exact decay of du/dt = -nu u: any nu dt is stable, and dt is bounded
 ///   by the springs, the contacts and the ring's fastest mode (IsValid). The two agree to first
 ///   order in nu dt.
-enum class ViscosityStep { explicit_euler, exponential };
-/// Parses "explicit" / "exponential"; throws std::invalid_argument naming the value.
+/// - implicit: backward Euler on the deformation velocity after the step's other forces: u' =
+///   (u + a dt) / (1 + nu dt), a the deformation part of every other force a mass feels. Any nu dt
+///   is stable, and a steadily pushed ring deforms at a / nu, the continuous rate, at every dt
+///   (the exponential step's rate is a / nu times nu dt / (1 - exp(-nu dt)): its effective
+///   viscosity grows as dt falls, and with it T).
+enum class ViscosityStep { explicit_euler, exponential, implicit };
+/// Parses "explicit" / "exponential" / "implicit"; throws std::invalid_argument naming the value.
 ViscosityStep parse_viscosity_step(const std::string& name);
 const char* to_string(ViscosityStep step);
 
@@ -187,8 +192,9 @@ void visit_droplet_fields(F&& f, Params&... p) {
                  between(0, true, 1, true)},
     p.viscosity_dilation...);
   f(DropletField{"viscosity-step", U::lanes,
-                 "explicit (nu's force integrated as the others, nu dt <= 0.5) or exponential "
-                 "(deformation decays by exp(-nu dt) a step: any nu dt)"},
+                 "explicit (nu's force integrated as the others, nu dt <= 0.5), exponential "
+                 "(deformation decays by exp(-nu dt) a step: any nu dt) or implicit (backward Euler "
+                 "after the other forces: any nu dt, and a pushed ring deforms at the continuous rate)"},
     p.viscosity_step...);
 }
 

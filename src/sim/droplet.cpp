@@ -38,8 +38,12 @@ double DropletParams::resting_area() const { return regular_polygon_area(masses,
 
 double DropletParams::viscous_rate() const {
   // -expm1(-x) = 1 - exp(-x) without the cancellation of small x.
-  return viscosity_step == ViscosityStep::exponential ? -std::expm1(-viscosity * dt) / dt
-                                                      : viscosity;
+  switch (viscosity_step) {
+    case ViscosityStep::exponential: return -std::expm1(-viscosity * dt) / dt;
+    case ViscosityStep::implicit: return viscosity / (1 + viscosity * dt);  // on the kicked velocity
+    case ViscosityStep::explicit_euler: break;
+  }
+  return viscosity;
 }
 
 DropletParams DropletParams::balloon() {
@@ -163,7 +167,8 @@ const char* to_string(ConstraintOrder order) { return detail::name_of(kConstrain
 std::vector<std::string> constraint_order_names() { return detail::name_list(kConstraintOrders); }
 
 constexpr detail::EnumName<ViscosityStep> kViscositySteps[] = {
-    {ViscosityStep::explicit_euler, "explicit"}, {ViscosityStep::exponential, "exponential"}};
+    {ViscosityStep::explicit_euler, "explicit"}, {ViscosityStep::exponential, "exponential"},
+    {ViscosityStep::implicit, "implicit"}};
 
 ViscosityStep parse_viscosity_step(const std::string& name) {
   return detail::parse_name(kViscositySteps, name, "viscosity-step");

@@ -192,6 +192,7 @@ void Simulation::accumulate_viscosity() {
   k.inv_dt = 1.0 / params_.dt;
   k.viscous = viscous_;
   k.spared_dilation = 1.0 - params_.viscosity_dilation;
+  k.kick = params_.viscosity_step == ViscosityStep::implicit ? params_.dt * params_.dt / params_.mass : 0.0;
   lanes::scalar::viscosity_k<1>(k, state_.x.data(), state_.y.data(), state_.px.data(),
                                 state_.py.data(), state_.fx.data(), state_.fy.data(), state_.size());
 }

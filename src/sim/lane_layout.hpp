@@ -55,6 +55,9 @@ struct StepConstants {
   double half_nrt = 0;      ///< 0.5 nRT (the pressure is 0.5 nRT / area on each edge end)
   double viscous = 0;       ///< m nu; 0: no viscosity
   double spared_dilation = 0;  ///< 1 - viscosity_dilation: the share of uniform dilation not damped
+  /// dt^2 / m with the implicit viscosity step, whose damped velocity is the one after this step's
+  /// other forces (FX, FY at the viscosity stage: x - px + kick F); 0 for the other steps.
+  double kick = 0;
   double h2m = 0;           ///< dt^2 / m (position Verlet)
 };
 

@@ -145,6 +145,7 @@ StepConstants step_constants(const DropletParams& p) {
   k.half_nrt = 0.5 * p.nrt;         // accumulate_pressure: 0.5 nRT / area
   k.viscous = p.mass * p.viscous_rate();
   k.spared_dilation = 1.0 - p.viscosity_dilation;
+  k.kick = p.viscosity_step == ViscosityStep::implicit ? p.dt * p.dt / p.mass : 0.0;
   k.h2m = p.dt * p.dt / p.mass;     // integrate
   return k;
 }
