@@ -1,11 +1,12 @@
-"""Draws curves.png from curves.csv: for every problem (a column) the median best T over seeds
-against evaluations (top row) and against wall seconds (bottom row), one line a strategy, with the
-band from the least to the largest seed.
+"""Draws curves.png and curves_seconds.png from curves.csv: for every problem (a panel, three to a
+row) the median best T over seeds against evaluations (curves.png) or wall seconds
+(curves_seconds.png), one line a strategy, with the band from the least to the largest seed.
 Where some seeds' searches went further than the others, each goes on as a thin line of its own.
 A strategy NAME+rN (with relocation) is drawn solid, NAME alone dashed, in NAME's colour; restarts
 (NAME+rN+oK) dash-dotted.
 
     python3 results/search/plot.py results/search/curves.csv results/search/curves.png
+    (curves_seconds.png is written beside curves.png)
 """
 import sys
 
@@ -37,43 +38,52 @@ def band(runs, column, grid):
     return out
 
 
-def main(csv, png):
-    curves = pd.read_csv(csv, float_precision="round_trip")
-    problems = [p for p in PROBLEMS if p in set(curves.problem)]
-    problems += sorted(set(curves.problem) - set(problems))
-    fig, axes = plt.subplots(2, len(problems), figsize=(4.2 * len(problems), 7.5), squeeze=False)
-    for col, problem in enumerate(problems):
+def draw(curves, problems, column, label, png):
+    """One panel a problem, three to a row, best T against `column`."""
+    across = min(3, len(problems))
+    down = -(-len(problems) // across)
+    fig, axes = plt.subplots(down, across, figsize=(4.3 * across, 3.4 * down), squeeze=False)
+    for k, problem in enumerate(problems):
+        ax = axes[k // across][k % across]
         of_problem = curves[curves.problem == problem]
         for strategy in sorted(set(of_problem.strategy)):
             runs = [r.sort_values("generation") for _, r in of_problem[of_problem.strategy == strategy].groupby("seed")]
             base = strategy.split("+")[0]
             line = "-." if "+o" in strategy else "-" if "+r" in strategy else "--"
             style = dict(color=COLOURS.get(base, "#9467bd"), linestyle=line)
-            for row, column in enumerate(["evaluations", "seconds"]):
-                top = max(r[column].iloc[-1] for r in runs)
-                grid = np.linspace(0, top, 400)
-                median, least, largest = band(runs, column, grid)
-                ax = axes[row][col]
-                # The median only where every seed counts; a search that went further goes on alone.
-                common = grid <= min(r[column].iloc[-1] for r in runs)
-                ax.plot(grid[common], median[common], label=f"{strategy} ({len(runs)})", linewidth=1.4, **style)
-                ax.fill_between(grid[common], least[common], largest[common], color=style["color"], alpha=0.08,
-                                linewidth=0)
-                for r in runs:
-                    beyond = r[r[column] >= grid[common][-1]]
-                    if len(beyond) > 1:
-                        ax.step(beyond[column], beyond["best_t"], where="post", linewidth=0.7, **style)
-        for row, column in enumerate(["evaluations", "wall seconds"]):
-            ax = axes[row][col]
-            ax.set_xlabel(column)
-            ax.set_ylabel("best T (median, band: least to largest seed)")
-            ax.set_title(problem)
-            ax.axhline(2.42, color="#999999", linewidth=0.8, linestyle=":")
-            ax.grid(alpha=0.3)
-        axes[0][col].legend(fontsize=7, loc="lower right", title="strategy (seeds)", title_fontsize=7)
-    fig.suptitle("Best T found against cost, per problem (dotted: the paper's 2.42)")
+            top = max(r[column].iloc[-1] for r in runs)
+            grid = np.linspace(0, top, 400)
+            median, least, largest = band(runs, column, grid)
+            # The median only where every seed counts; a search that went further goes on alone.
+            common = grid <= min(r[column].iloc[-1] for r in runs)
+            ax.plot(grid[common], median[common], label=f"{strategy} ({len(runs)})", linewidth=1.4, **style)
+            ax.fill_between(grid[common], least[common], largest[common], color=style["color"], alpha=0.08,
+                            linewidth=0)
+            for r in runs:
+                beyond = r[r[column] >= grid[common][-1]]
+                if len(beyond) > 1:
+                    ax.step(beyond[column], beyond["best_t"], where="post", linewidth=0.7, **style)
+        ax.set_xlabel(label)
+        ax.set_ylabel("best T")
+        ax.set_title(problem, fontsize=10)
+        ax.axhline(2.42, color="#999999", linewidth=0.8, linestyle=":")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6.5, loc="lower right", title="strategy (seeds)", title_fontsize=6.5)
+    for k in range(len(problems), down * across):
+        axes[k // across][k % across].axis("off")
+    fig.suptitle(f"Best T found against {label}: median over seeds, band from the least to the largest seed "
+                 "(dotted: the paper's 2.42)", fontsize=10)
     fig.tight_layout()
-    fig.savefig(png, dpi=90)
+    fig.savefig(png, dpi=110)
+
+
+def main(csv, png):
+    curves = pd.read_csv(csv, float_precision="round_trip")
+    problems = [p for p in PROBLEMS if p in set(curves.problem)]
+    problems += sorted(set(curves.problem) - set(problems))
+    draw(curves, problems, "evaluations", "evaluations", png)
+    root, ext = png.rsplit(".", 1)
+    draw(curves, problems, "seconds", "wall seconds", f"{root}_seconds.{ext}")
 
 
 if __name__ == "__main__":

@@ -5,7 +5,7 @@
 # run in parts. Writes curves.csv (problem, strategy, seed, generation, evaluations, seconds,
 # best_t), summary.csv (per problem and strategy: the median, least and largest best T over the
 # seeds after 750, 3 000, 5 000, 8 000 and 20 000 evaluations, for the seeds that got that far) and
-# curves.png (every search's best T against evaluations).
+# curves.png and curves_seconds.png (every search's best T against evaluations, and wall seconds).
 #   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
 #   e.g. bash results/search/run.sh 20000 "1 2 3 4 5" default "paper es lahc anneal es+r3"
 #        bash results/search/run.sh 3000 "1 2 3" calibrated "paper es lahc anneal paper+r3 es+r3"
