@@ -24,8 +24,8 @@ struct AreaTrace {
   double min_ratio = 0, max_ratio = 0;
 };
 
-/// Runs the droplet from above the medium at x = x0 under `run` (its trace fields are ignored),
-/// then replays the same run recording the area every `interval` steps (>= 1). A droplet that
+/// Runs the droplet from above the medium at x = x0 under `run` (its path is recorded as `run`
+/// asks, into the summary; its area samples and snapshots are not), then replays the same run recording the area every `interval` steps (>= 1). A droplet that
 /// passed is followed until its last mass has left the medium (at most 20 000 steps more).
 /// Deterministic: the trace belongs to exactly the run summarised in `run`.
 AreaTrace trace_area(const DropletParams& params, const Medium& medium, double x0, const RunOptions& run,

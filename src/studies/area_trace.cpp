@@ -10,7 +10,7 @@ AreaTrace trace_area(const DropletParams& params, const Medium& medium, double x
                      int interval) {
   if (interval < 1) throw std::invalid_argument("trace_area: interval must be >= 1");
   RunOptions plain = run;
-  plain.path_interval = plain.area_interval = 0;
+  plain.area_interval = 0;  // (the replay records the area; the path, if asked for, is the run's)
   plain.snapshot_times.clear();
   Simulation sim(params, medium);
   AreaTrace trace;

@@ -84,15 +84,16 @@ def test_every_droplet_option_is_an_attribute_and_gives_the_programs_bits():
     assert run.steps == theirs["run"]["steps"]
     with pytest.raises(ValueError, match="constraint-order = 'zigzag'"):
         params.constraint_order = "zigzag"
-    # The other enum, the viscosity's step, the same way; nu dt = 3.5 runs only exponentially.
+    # The other enum, the viscosity's step, the same way; nu dt = 3.5 runs only exponentially or
+    # implicitly.
     params = softdrop.DropletParams(viscosity_step="exponential", viscosity=1e6)
     assert params.viscosity_step == "exponential"
     run = softdrop.simulate(medium, x0=250, params=params)
     theirs = json.loads(cli("simulate", "--x0", "250", "--viscosity-step", "exponential", "--viscosity", "1e6",
                             "--format", "json"))
     assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
-    with pytest.raises(ValueError, match="viscosity-step = 'implicit'"):
-        params.viscosity_step = "implicit"
+    with pytest.raises(ValueError, match="viscosity-step = 'backward'"):
+        params.viscosity_step = "backward"
 
 
 def test_the_area_trace_is_the_programs(tmp_path):
@@ -109,6 +110,11 @@ def test_the_area_trace_is_the_programs(tmp_path):
     assert (theirs.loc[inside, "t"] >= run.enter).all() and run.s0 > 0
     assert run.inside_min_area_ratio <= theirs.loc[inside, "area_ratio"].min()
     assert run.outcome == softdrop.simulate(medium, x0=100).outcome  # the trace is of the same run
+    # Asked for both, the path is the run's own, as with path=True alone.
+    both = softdrop.simulate(medium, x0=100, path=True, trace=True, trace_interval=50)
+    alone = softdrop.simulate(medium, x0=100, path=True)
+    assert len(alone.path) > 10 and np.array_equal(both.path, alone.path)
+    assert np.array_equal(both.trace, run.trace)
     with pytest.raises(ValueError, match="trace_interval = 0"):
         softdrop.simulate(medium, trace=True, trace_interval=0)
 
