@@ -115,5 +115,21 @@ TEST(FitAveraging, FitPerMediumFitsThosePointsFromTheStoreOrItsReport) {
   EXPECT_NE(older.err.find("no per_medium_t and per_medium_standard_error columns"), std::string::npos) << older.err;
 }
 
+// A reader of part of a sweep (a shard's store, a sweep stopped half way) is told whose figures it
+// prints; a whole sweep's reader is not.
+TEST(FitAveraging, AReportOfPartOfASweepSaysSo) {
+  const std::string part = test::fresh_path("part.db"), whole = test::fresh_path("whole.db");
+  ASSERT_EQ(test::run("sweep --db " + part + kSweep + " --shard 0/2").code, 0);
+  ASSERT_EQ(test::run("sweep --db " + whole + kSweep).code, 0);
+  for (const std::string command : {"sweep-report", "fit", "averagings"}) {
+    const test::Result r = test::run(command + " --db " + part);
+    EXPECT_EQ(r.code, 0) << command << ": " << r.err;
+    EXPECT_NE(r.err.find("warning: sweep 1 in '" + part + "' holds 8 of its 16 media (status running; a shard's store"),
+              std::string::npos)
+        << command << ": " << r.err;
+    EXPECT_EQ(test::run(command + " --db " + whole).err.find("holds"), std::string::npos) << command;
+  }
+}
+
 }  // namespace
 }  // namespace softdrop

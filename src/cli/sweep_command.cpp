@@ -120,10 +120,29 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   av->add_option("--dpi", v.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
 }
 
+namespace {
+// A reader of part of a sweep is told so: its figures are of the media stored, not of the sweep.
+void warn_if_partial(const SweepRecord& r, const std::string& db) {
+  if (r.done >= r.units) return;
+  std::cerr << "warning: sweep " << r.id << " in '" << db << "' holds " << r.done << " of its " << r.units
+            << " media (status " << r.status
+            << "; a shard's store, or a sweep stopped or still running: the same sweep command goes on with "
+               "the rest); these figures are of those "
+            << r.done << "\n";
+}
+}  // namespace
+
 std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db) {
-  if (id > 0) return store.sweep(id).id;
+  if (id > 0) {
+    const SweepRecord r = store.sweep(id);
+    warn_if_partial(r, db);
+    return r.id;
+  }
   const auto all = store.sweeps();
-  if (all.size() == 1) return all[0].id;
+  if (all.size() == 1) {
+    warn_if_partial(all[0], db);
+    return all[0].id;
+  }
   throw std::invalid_argument(all.empty() ? "--db '" + db + "': holds no sweep"
                                           : "--sweep: '" + db + "' holds " + std::to_string(all.size()) +
                                                 " sweeps; choose one with --sweep ID (softdrop sweep-report --db " +

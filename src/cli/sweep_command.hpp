@@ -76,7 +76,8 @@ int run_sweep(SweepArgs& args, const CLI::App& command, Host* host = nullptr);
 int run_sweep_merge(const SweepMergeArgs& args);
 int run_sweep_report(const SweepReportArgs& args);
 /// The sweep `id` of the store, or its only sweep when id is 0; throws std::invalid_argument
-/// naming the file when it holds none or several.
+/// naming the file when it holds none or several. A sweep that holds fewer media than it has is
+/// warned of on stderr: its readers' figures are of part of it.
 std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db);
 int run_fit(const FitArgs& args);  // fit_command.cpp, as run_averagings
 int run_averagings(const AveragingArgs& args);
