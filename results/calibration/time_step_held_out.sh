@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Is <T>(phi) converged in the time step? Three droplets, each at its time step and at half of it,
+# on media no calibration saw: 10 porosities (0.45 to 0.9) x 100 overlapping media x 40 droplets,
+# the same media and starts for every run (seed 55501 of the calibration stream of media seeds,
+# which no calibration used: they use seeds 1 and 2). The droplets:
+#   defaults     the exponential viscosity step, nu = 2.8e5, dt = 6e-6 (and 3e-6)
+#   explicit-nu  the exponential step with the explicit droplet's continuous nu, 1.8656e5, at
+#                dt = 3.5e-6 (and 1.75e-6)
+#   implicit     the implicit step, nu = 1.37e5 (the explicit droplet's), dt = 6e-6 (and 3e-6)
+# Writes time_step_held_out_points.csv (one row per run and porosity, sweep-report's columns) and
+# time_step_held_out.csv (one row per droplet and porosity: <T> at dt and dt/2, their difference
+# with its error, and the per-medium paired difference). About 75 minutes on 2 cores.
+# SOFTDROP=path runs another build.
+#     bash results/calibration/time_step_held_out.sh
+set -euo pipefail
+cd "$(dirname "$0")"
+BIN=${SOFTDROP:-../../build/softdrop}
+mkdir -p time_step_held_out
+P=0.45,0.5,0.55,0.6,0.65,0.7,0.75,0.8,0.85,0.9
+run() {  # name, dt, droplet options...
+  local name=$1 dt=$2
+  shift 2
+  "$BIN" sweep --db "time_step_held_out/$name.db" --media-stream calibration --seed 55501 --porosities $P \
+    --media 100 --droplets 40 --dt "$dt" "$@" --quiet --format csv > /dev/null
+  "$BIN" sweep-report --db "time_step_held_out/$name.db" --format csv > "time_step_held_out/$name.csv"
+  "$BIN" sweep-report --db "time_step_held_out/$name.db" --media --format csv > "time_step_held_out/$name-media.csv"
+}
+run defaults-6e-6 6e-6
+run defaults-3e-6 3e-6
+run explicit-nu-3.5e-6 3.5e-6 --viscosity 1.8656e5
+run explicit-nu-1.75e-6 1.75e-6 --viscosity 1.8656e5
+run implicit-6e-6 6e-6 --viscosity-step implicit --viscosity 1.37e5
+run implicit-3e-6 3e-6 --viscosity-step implicit --viscosity 1.37e5
+/usr/bin/python3 time_step_held_out.py
