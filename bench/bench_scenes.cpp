@@ -137,6 +137,7 @@ Work sweep(int threads, int per_medium) {
   o.medium.width = o.medium.height = 300;
   o.medium.r_min = r_min, o.medium.r_max = r_max;
   o.droplet = scene_droplet;
+  o.stream = MediaStream::calibration;  // the media every committed sweep scene was timed on
   Work w;
   const auto t0 = Clock::now();
   run_sweep_units(o, sweep_units(o), threads, [&](SweepMedium&& m) {  // as `softdrop sweep` runs
