@@ -19,7 +19,7 @@ enum class StepStage : std::uint8_t {
   springs,        ///< damped springs along the ring: k_s (d - d0) + k_d (relative velocity)
   pressure,       ///< the gas, P = nRT / S, on each edge along its outward normal
   collisions,     ///< penalty and damping against grains and walls; the touched grains
-  viscosity,      ///< internal viscosity relative to the rigid motion (only where ν > 0)
+  viscosity,      ///< internal viscosity relative to the rigid motion (only where ν > 0); last of the forces
   integrate,      ///< position Verlet
   constraint,     ///< the Provot length constraint, in the droplet's constraint order
   contact_limit,  ///< inverse dynamics: no mass deeper than max_depth inside a grain
@@ -29,6 +29,12 @@ enum class StepStage : std::uint8_t {
 inline constexpr std::array<StepStage, 8> kStepStages{
     StepStage::gravity,   StepStage::springs,   StepStage::pressure,   StepStage::collisions,
     StepStage::viscosity, StepStage::integrate, StepStage::constraint, StepStage::contact_limit};
+
+// The implicit viscosity step damps the velocity after every other force of the step, which it
+// reads from the force arrays: viscosity must come after the other force stages, just before
+// the integration.
+static_assert(kStepStages[4] == StepStage::viscosity && kStepStages[5] == StepStage::integrate,
+              "the viscosity stage must be the last force stage (the implicit step reads the others' forces)");
 
 /// The stage's name, as above ("gravity", ..., "contact_limit").
 const char* to_string(StepStage stage);
