@@ -89,6 +89,21 @@ TEST(Check, RefusesTheDatabaseTheRunWouldRefuse) {
   }
 }
 
+// --check render paths applies the run's own limits: a path memory the run would refuse, or a
+// droplet count out of range, is refused without drawing; a count it takes passes.
+TEST(Check, RefusesThePathsPictureTheRunWouldRefuse) {
+  const std::string out = fresh_path("check_paths.png");
+  const Result big = run("--check render paths --droplets 3000 -o " + out);
+  EXPECT_EQ(big.code, 1);
+  EXPECT_NE(big.err.find("3000 droplets of up to 12000000 steps could keep 7.2e+08 path points in memory"),
+            std::string::npos)
+      << big.err;
+  EXPECT_EQ(run("--check render paths --droplets 0 -o " + out).code, 1);
+  const Result fine = run("--check render paths --droplets 30 -o " + out);
+  EXPECT_EQ(fine.code, 0) << fine.err;
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
 TEST(BadWords, MistypedOptionsAndCommandsGetTheNearestName) {
   struct Case {
     std::string args, says;

@@ -132,7 +132,8 @@ void Cli::check() {
       check_placement(o);
     }
   }
-  if (render_cmd_->parsed()) check_render(render_);
+  if (render_cmd_->parsed() && !render_cmd_->get_subcommands().empty())
+    check_render(render_, render_cmd_->get_subcommands().front()->get_name());
   if (calibrate_cmd_->parsed()) check_calibrate(calibrate_);
   if (validate_cmd_->parsed()) check_validate(validate_, *validate_cmd_);
 }

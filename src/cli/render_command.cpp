@@ -230,16 +230,23 @@ int render_snapshots(RenderArgs& a) {
   return 0;
 }
 
-int render_paths(RenderArgs& a) {
+// render paths' own limits, which --check applies too: the droplet count, the colours' alpha and
+// the memory its paths may take. Returns the run options it records with.
+RunOptions paths_run(const RenderArgs& a) {
   if (a.batch.droplets < 1 || a.batch.droplets > 1'000'000)
     throw std::invalid_argument("droplets = " + std::to_string(a.batch.droplets) + ": must be in [1, 1e6]");
   if (!(a.alpha >= 0 && a.alpha <= 1)) throw std::invalid_argument("alpha = " + fmt(a.alpha) + ": must be in [0, 1]");
-  const RenderStyle style = style_of(a);
-  Scene scene;
-  scene.medium = medium_of(a);
   RunOptions run = a.run;
   run.path_interval = 50;
   check_recording(run, a.batch.droplets, a.droplet.masses);
+  return run;
+}
+
+int render_paths(RenderArgs& a) {
+  const RunOptions run = paths_run(a);
+  const RenderStyle style = style_of(a);
+  Scene scene;
+  scene.medium = medium_of(a);
   Progress progress("render: droplets done");
   const auto runs = run_batch(a.droplet, scene.medium, run, a.batch,
                               [&](int done, int total) { progress.update(done, total); });
@@ -399,16 +406,17 @@ int render_trace(RenderArgs& a) {
 }  // namespace
 
 // Run before every picture (run_render), so the commands below need not check the droplet again.
-void check_render(RenderArgs& a) {
+void check_render(RenderArgs& a, const std::string& which) {
   check_picture_path("--output", a.output);
   style_of(a);
   check_droplet(a);
   resolve_medium(a.medium);
+  if (which == "paths") paths_run(a);
 }
 
 int run_render(RenderArgs& a, const CLI::App& render) {
   const std::string which = render.get_subcommands().front()->get_name();
-  check_render(a);
+  check_render(a, which);
   if (which == "medium") return render_medium(a);
   if (which == "snapshots") return render_snapshots(a);
   if (which == "paths") return render_paths(a);

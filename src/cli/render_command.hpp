@@ -47,8 +47,9 @@ int render_curves(RenderArgs& args);
 /// Registers `render` and its seven subcommands; returns `render`.
 CLI::App* add_render_command(CLI::App& app, RenderArgs& args);
 /// Runs the chosen subcommand of `render`.
-/// Checks the options shared by the pictures without drawing; throws std::invalid_argument.
-void check_render(RenderArgs& args);
+/// Checks the options shared by the pictures, and those of the picture `which` names (render
+/// paths' droplets and path memory), without drawing; throws std::invalid_argument.
+void check_render(RenderArgs& args, const std::string& which);
 int run_render(RenderArgs& args, const CLI::App& render);
 
 }  // namespace softdrop::cli
