@@ -10,6 +10,15 @@
 namespace softdrop {
 namespace {
 
+// A medium of porosity 0.6 whose droplets passed with these T, and `stuck` more that did not.
+SweepMedium medium(const std::vector<double>& passed, int stuck) {
+  SweepMedium m;
+  m.target_porosity = 0.6, m.porosity = 0.6;
+  for (double t : passed) m.droplets.push_back({0, 0, Outcome::passed, t, 1});
+  for (int i = 0; i < stuck; ++i) m.droplets.push_back({0, 0, Outcome::stuck, 0, 1});
+  return m;
+}
+
 TEST(Sweep, PointsPoolTheDropletsOfAPorosity) {
   SweepMedium m1, m2, m3;
   m1.target_porosity = m2.target_porosity = 0.8;
@@ -35,13 +44,6 @@ TEST(Sweep, PointsPoolTheDropletsOfAPorosity) {
 // media pass 2, 1 and 3 droplets (T summing to 2.2, 1.5 and 3.6, mean 7.3 / 6), so
 // var = 3/2 * ((2.2 - 2 m)^2 + (1.5 - m)^2 + (3.6 - 3 m)^2) / 6^2 with m = 7.3 / 6.
 TEST(Sweep, PointsGiveTheStandardErrorOverMediaAsClusters) {
-  auto medium = [](std::vector<double> passed, int stuck) {
-    SweepMedium m;
-    m.target_porosity = 0.6, m.porosity = 0.6;
-    for (double t : passed) m.droplets.push_back({0, 0, Outcome::passed, t, 1});
-    for (int i = 0; i < stuck; ++i) m.droplets.push_back({0, 0, Outcome::stuck, 0, 1});
-    return m;
-  };
   const auto p = sweep_points(
       {medium({1.0, 1.2}, 1), medium({1.5}, 0), medium({}, 3), medium({1.1, 1.3, 1.2}, 0)});
   ASSERT_EQ(p.size(), 1u);
@@ -72,13 +74,6 @@ TEST(Sweep, PointsGiveTheStandardErrorOverMediaAsClusters) {
 // none), their plain mean 3.8 / 3 and its error sd / sqrt(3). The pooled mean 7.3 / 6 weighs the
 // three-droplet medium three times; this one counts each medium once.
 TEST(Sweep, PointsAverageEachMediumFirstAsWell) {
-  auto medium = [](std::vector<double> passed, int stuck) {
-    SweepMedium m;
-    m.target_porosity = 0.6, m.porosity = 0.6;
-    for (double t : passed) m.droplets.push_back({0, 0, Outcome::passed, t, 1});
-    for (int i = 0; i < stuck; ++i) m.droplets.push_back({0, 0, Outcome::stuck, 0, 1});
-    return m;
-  };
   const auto p = sweep_points(
       {medium({1.0, 1.2}, 1), medium({1.5}, 0), medium({}, 3), medium({1.1, 1.3, 1.2}, 0)});
   ASSERT_EQ(p.size(), 1u);
