@@ -11,6 +11,7 @@
 #include "cli/output.hpp"
 #include "cli/sweep_command.hpp"
 #include "softdrop/averaging.hpp"
+#include "softdrop/calibration.hpp"
 #include "softdrop/fit.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/render.hpp"
@@ -103,7 +104,7 @@ int run_fit(const FitArgs& a) {
   std::vector<double> paper_residuals;
   double paper_chi2 = 0;
   for (const FitPoint& p : points) {
-    paper_residuals.push_back((p.t - fit_law_value(FitLaw::power, {1.58, 3.87, 0.58}, p.phi)) / p.se);
+    paper_residuals.push_back((p.t - paper_tortuosity(p.phi)) / p.se);
     paper_chi2 += paper_residuals.back() * paper_residuals.back();
   }
   j["paper"] = {{"law", "T = 1.58 - 0.58 phi^3.87"}, {"chi2", paper_chi2}, {"dof", points.size()},
@@ -154,25 +155,24 @@ int run_fit(const FitArgs& a) {
     for (const FitPoint& p : points) data.x.push_back(p.phi), data.y.push_back(p.t), data.err.push_back(p.se);
     double lo = 1, hi = 0;
     for (const FitPoint& p : points) lo = std::min(lo, p.phi), hi = std::max(hi, p.phi);
-    auto curve = [&](const FitResult& r, Rgba colour, const std::string& label) {
+    auto curve = [&](auto&& f, Rgba colour, const std::string& label) {  // f(phi) over the points' range
       Series s;
       s.colour = colour;
       s.label = label;
       for (int i = 0; i <= 100; ++i) {
         const double phi = lo + (hi - lo) * i / 100.0;
         s.x.push_back(phi);
-        s.y.push_back(fit_law_value(r.law, r.values, phi));
+        s.y.push_back(f(phi));
       }
       return s;
     };
+    auto law = [](const FitResult& r) { return [&r](double phi) { return fit_law_value(r.law, r.values, phi); }; };
     auto value = [](const FitResult& r, std::size_t i) { return r.names[i] + " = " + with_error(r.values[i], r.errors[i]); };
-    // The paper's fit beside ours, over the same range (its a, b, c as it quotes them).
-    FitResult paper;
-    paper.values = {1.58, 3.87, 0.58};
-    c.series = {curve(paper, Rgba{0.55, 0.55, 0.55, 1}, "paper: 1.58 − 0.58 φ^3.87"),
-                curve(power, Rgba{0.8, 0.1, 0.1, 1},
+    // The paper's fit beside ours, over the same range.
+    c.series = {curve(paper_tortuosity, Rgba{0.55, 0.55, 0.55, 1}, "paper: 1.58 − 0.58 φ^3.87"),
+                curve(law(power), Rgba{0.8, 0.1, 0.1, 1},
                       "a − c φᵇ: " + value(power, 0) + ", " + value(power, 1) + ", " + value(power, 2)),
-                curve(log, Rgba{0.1, 0.3, 0.8, 1}, "1 − p ln φ: " + value(log, 0)), data};
+                curve(law(log), Rgba{0.1, 0.3, 0.8, 1}, "1 − p ln φ: " + value(log, 0)), data};
     c.x_label = "porosity φ";
     c.y_label = "tortuosity ⟨T⟩";
     render_chart(c, plot_style(a.size, a.dpi), a.plot);
