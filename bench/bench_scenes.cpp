@@ -2,13 +2,14 @@
 // machine and compiler.
 //
 //   build/bench/bench_scenes [--scene NAME[,NAME...]|all] [--repeats 5] [--threads N] [--lanes N]
-//                            [--width W] [--droplet defaults|balloon|explicit] [--out FILE.csv]
+//                            [--width W] [--droplet defaults|balloon|explicit|exponential] [--out FILE.csv]
 //
 // --droplet balloon runs every scene with the balloon (DropletParams::balloon()) on its grains
 // (radii 8 to 16) and its default search scene (60 grains in 300 x 300), to compare with the
 // defaults (grains of radii 16 to 48, 20 grains in 500 x 500) in one run. --droplet explicit runs
 // them with DropletParams::explicit_step() (the defaults' droplet, explicit viscosity step, dt
-// / 1.7).
+// / 1.7), --droplet exponential with DropletParams::exponential_step() (the exponential step's
+// calibration, at the defaults' dt).
 //
 // Scenes: free-fall (40 masses, empty box); medium-200 (40 masses through an overlapping medium of
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
@@ -260,8 +261,9 @@ int main(int argc, char** argv) {
     else if (a == "--width") width = std::stoi(value());
     else if (a == "--droplet") {
       const std::string d = value();
-      if (d != "defaults" && d != "balloon" && d != "explicit") {
-        std::cerr << "bench_scenes: --droplet " << d << ": must be defaults, balloon or explicit\n";
+      if (d != "defaults" && d != "balloon" && d != "explicit" && d != "exponential") {
+        std::cerr << "bench_scenes: --droplet " << d
+                  << ": must be defaults, balloon, explicit or exponential\n";
         return 2;
       }
       droplet_name = d;
@@ -281,6 +283,7 @@ int main(int argc, char** argv) {
   limit_constraint_vector_width(static_cast<VectorWidth>(width));
   if (balloon()) scene_droplet = DropletParams::balloon(), r_min = 8, r_max = 16;
   if (droplet_name == "explicit") scene_droplet = DropletParams::explicit_step();
+  if (droplet_name == "exponential") scene_droplet = DropletParams::exponential_step();
   const Medium m200 = bench::medium_200(500, r_min, r_max), m5000 = bench::medium_200(2500, r_min, r_max);
   const std::vector<std::pair<std::string, std::function<Work()>>> scenes{
       {"free-fall", free_fall},

@@ -196,8 +196,13 @@ PYBIND11_MODULE(_core, m) {
   droplet.def_static(
       "explicit_step", &DropletParams::explicit_step,
       "The defaults' droplet with the explicit viscosity step (the reference) at the dt it needs, "
-      "3.5e-6, and nu = 1.37e5, as results/calibration/explicit.toml: the defaults' <T>(phi) "
-      "within 0.008, at 1.7 times the steps");
+      "3.5e-6, and the defaults' nu = 1.37e5, as results/calibration/explicit.toml, at 1.7 times the "
+      "steps");
+  droplet.def_static(
+      "exponential_step", &DropletParams::exponential_step,
+      "The droplet calibrated for the exponential viscosity step, nu = 2.8e5 at dt = 6e-6, as "
+      "results/calibration/exponential.toml: the defaults' <T>(phi) within 0.02, but not converged "
+      "in dt (its <T> rises by 0.015 to 0.04 at dt / 2)");
   droplet.def_static(
       "passage", &DropletParams::passage,
       "A smaller droplet with a stiffer ring, for more passage at low porosity, as "

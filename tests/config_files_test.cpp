@@ -53,6 +53,15 @@ TEST(ConfigFiles, TheExplicitConfigIsTheLibrarysExplicitStepDroplet) {
   EXPECT_GT(2 * s.steps, 3 * fast.steps);  // the defaults' dt is 1.7 times explicit_step()'s
 }
 
+// exponential.toml is DropletParams::exponential_step(), which differs from the defaults.
+TEST(ConfigFiles, TheExponentialConfigIsTheLibrarysExponentialStepDroplet) {
+  const auto j = simulate_with("exponential.toml");
+  const Medium medium = generate_medium(MediumOptions{});
+  const RunSummary s = Simulation(DropletParams::exponential_step(), medium).run(250, RunOptions{});
+  expect_same_run(j, s);
+  EXPECT_NE(Simulation(DropletParams{}, medium).run(250, RunOptions{}).tortuosity, s.tortuosity);
+}
+
 // passage.toml is DropletParams::passage() on grains of radii 26 to 50, and differs from the
 // defaults' droplet on those grains.
 TEST(ConfigFiles, ThePassageConfigIsTheLibrarysPassageDroplet) {

@@ -41,7 +41,7 @@ DropletParams changed(const DropletParams& p, const std::string& key) {
         if (key != field.key) return;
         using T = std::decay_t<decltype(v)>;
         if constexpr (std::is_enum_v<T>)
-          v = static_cast<T>(1 - static_cast<int>(v));  // (each enum field is a choice of two)
+          v = static_cast<T>(static_cast<int>(v) == 0 ? 1 : 0);  // (every enum has two values or more)
         else if constexpr (std::is_floating_point_v<T>)
           v = v != 0 ? v * 1.5 : 0.5;  // (0.5: in every field's range)
         else

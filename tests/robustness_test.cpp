@@ -142,16 +142,17 @@ TEST(HardCases, AGrainWhereTheRingStarts) {
     EXPECT_EQ(run.outcome, Outcome::passed) << run.reason;
     EXPECT_EQ(run.touched, (std::vector<std::int32_t>{0}));
   }
-  // Exactly on the axis of the grain of radius 12 the droplet lands on its top, an unstable
-  // balance: the ring's rounding leaves it on the axis long enough for the rest test to end it
-  // there (1e-9 off the axis it rolls off, above). It rests whole on top.
-  const Grain g{100, 200, 12};
+  // Two grains of radius 12 touching side by side, right under the start: the droplet lands in
+  // the notch between them, a stable rest whatever the rounding, and the rest test ends it there,
+  // whole and on the axis of the notch.
+  const Grain left{88, 195, 12}, right{112, 195, 12};
   double cx = 0, cy = 0;
-  const RunSummary balanced = run_checked(Medium{200, 200, true, {g}}, 100, &cx, &cy);
+  const RunSummary balanced = run_checked(Medium{200, 200, true, {left, right}}, 100, &cx, &cy);
   EXPECT_EQ(balanced.outcome, Outcome::stuck) << balanced.reason;
   EXPECT_EQ(balanced.reason.rfind("at rest", 0), 0u) << balanced.reason;
-  EXPECT_NEAR(cx, 100, 1e-6);
-  EXPECT_GT(cy, g.y + g.r);
+  EXPECT_NEAR(cx, 100, 0.01);
+  EXPECT_GT(cy, left.y);
+  EXPECT_EQ(balanced.touched, (std::vector<std::int32_t>{0, 1}));
   EXPECT_GT(balanced.min_area_ratio, 0.95);  // (run_checked checks that no grain is inside it)
 }
 

@@ -6,7 +6,7 @@ import pandas as pd
 
 here = os.path.dirname(os.path.abspath(__file__))
 runs = os.path.join(here, "time_step_held_out")
-pairs = [("defaults", "6e-6", "3e-6"), ("explicit-nu", "3.5e-6", "1.75e-6"), ("implicit", "6e-6", "3e-6")]
+pairs = [("defaults", "6e-6", "3e-6"), ("exponential", "6e-6", "3e-6"), ("explicit-nu", "3.5e-6", "1.75e-6")]
 
 
 def paper(phi):

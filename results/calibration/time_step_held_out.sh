@@ -3,10 +3,11 @@
 # on media no calibration saw: 10 porosities (0.45 to 0.9) x 100 overlapping media x 40 droplets,
 # the same media and starts for every run (seed 55501 of the calibration stream of media seeds,
 # which no calibration used: they use seeds 1 and 2). The droplets:
-#   defaults     the exponential viscosity step, nu = 2.8e5, dt = 6e-6 (and 3e-6)
+#   defaults     the implicit viscosity step, nu = 1.37e5 (the explicit droplet's), dt = 6e-6
+#                (and 3e-6)
+#   exponential  exponential.toml: the exponential step, nu = 2.8e5, dt = 6e-6 (and 3e-6)
 #   explicit-nu  the exponential step with the explicit droplet's continuous nu, 1.8656e5, at
 #                dt = 3.5e-6 (and 1.75e-6)
-#   implicit     the implicit step, nu = 1.37e5 (the explicit droplet's), dt = 6e-6 (and 3e-6)
 # Writes time_step_held_out_points.csv (one row per run and porosity, sweep-report's columns) and
 # time_step_held_out.csv (one row per droplet and porosity: <T> at dt and dt/2, their difference
 # with its error, and the per-medium paired difference). About 75 minutes on 2 cores.
@@ -27,8 +28,8 @@ run() {  # name, dt, droplet options...
 }
 run defaults-6e-6 6e-6
 run defaults-3e-6 3e-6
-run explicit-nu-3.5e-6 3.5e-6 --viscosity 1.8656e5
-run explicit-nu-1.75e-6 1.75e-6 --viscosity 1.8656e5
-run implicit-6e-6 6e-6 --viscosity-step implicit --viscosity 1.37e5
-run implicit-3e-6 3e-6 --viscosity-step implicit --viscosity 1.37e5
+run exponential-6e-6 6e-6 --viscosity-step exponential --viscosity 2.8e5
+run exponential-3e-6 3e-6 --viscosity-step exponential --viscosity 2.8e5
+run explicit-nu-3.5e-6 3.5e-6 --viscosity-step exponential --viscosity 1.8656e5
+run explicit-nu-1.75e-6 1.75e-6 --viscosity-step exponential --viscosity 1.8656e5
 /usr/bin/python3 time_step_held_out.py

@@ -67,8 +67,16 @@ DropletParams DropletParams::explicit_step() {
   return p;
 }
 
+DropletParams DropletParams::exponential_step() {
+  DropletParams p;
+  p.viscosity_step = ViscosityStep::exponential;
+  p.viscosity = 2.8e5;
+  return p;
+}
+
 DropletParams DropletParams::passage() {
   DropletParams p;
+  p.viscosity_step = ViscosityStep::exponential;
   p.radius = 5;
   p.nrt = 1.59e9;
   p.kc = 2.5e8;

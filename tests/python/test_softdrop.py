@@ -45,21 +45,25 @@ def test_the_balloon_is_the_config_files():
     assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
 
 
-def test_the_explicit_step_droplet_is_the_config_files():
-    """DropletParams.explicit_step() is results/calibration/explicit.toml, to the bit."""
-    params = softdrop.DropletParams.explicit_step()
-    assert params.viscosity_step == "explicit" and params.dt == 3.5e-6
-    assert softdrop.DropletParams().viscosity_step == "exponential"
+@pytest.mark.parametrize("factory, config, step", [("explicit_step", "explicit.toml", "explicit"),
+                                                    ("exponential_step", "exponential.toml", "exponential")])
+def test_the_other_viscosity_steps_are_the_config_files(factory, config, step):
+    """DropletParams.explicit_step() and .exponential_step() are their config files, to the bit."""
+    params = getattr(softdrop.DropletParams, factory)()
+    defaults = softdrop.DropletParams()
+    assert params.viscosity_step == step and defaults.viscosity_step == "implicit"
+    assert params.viscosity != defaults.viscosity or params.dt != defaults.dt
     run = softdrop.simulate(softdrop.Medium.generate(), x0=250, params=params)
-    config = str(pathlib.Path(balloon.CONFIG).with_name("explicit.toml"))
+    config = str(pathlib.Path(balloon.CONFIG).with_name(config))
     theirs = json.loads(cli("--config", config, "simulate", "--x0", "250", "--format", "json"))
     assert run.tortuosity == theirs["run"]["tortuosity"] and run.steps == theirs["run"]["steps"]
+    assert run.tortuosity != softdrop.simulate(softdrop.Medium.generate(), x0=250).tortuosity
 
 
 def test_the_passage_droplet_is_the_config_files():
     """DropletParams.passage() on grains of radii 26 to 50 is results/calibration/passage.toml, to the bit."""
     params = softdrop.DropletParams.passage()
-    assert params.radius == 5 and params.viscosity == 1e6
+    assert params.radius == 5 and params.viscosity == 1e6 and params.viscosity_step == "exponential"
     run = softdrop.simulate(softdrop.Medium.generate(r_min=26, r_max=50), x0=250, params=params)
     config = str(pathlib.Path(balloon.CONFIG).with_name("passage.toml"))
     theirs = json.loads(cli("--config", config, "simulate", "--x0", "250", "--format", "json"))
