@@ -52,7 +52,8 @@ TEST(EnumNames, AnUnknownNameIsRefusedWithTheOptionAndEveryName) {
   EXPECT_EQ(message(parse_strategy, "cmaes"), "strategy = 'cmaes': must be paper, es, lahc or anneal");
   EXPECT_EQ(message(parse_constraint_order, "zigzag"),
             "constraint-order = 'zigzag': must be sequential or red-black");
-  EXPECT_EQ(message(parse_medium_kind, "Overlapping"), "kind = 'Overlapping': must be overlapping or non-overlapping");
+  EXPECT_EQ(message(parse_medium_kind, "Overlapping"),
+            "kind = 'Overlapping': must be overlapping, non-overlapping or relaxed");
   EXPECT_EQ(message(parse_outcome, ""), "outcome = '': must be passed, stuck, timeout or diverged");
   EXPECT_EQ(message(parse_move_kind, "all "), "move kind = 'all ': must be initial, all, single, relocate or migrate");
 }
@@ -76,7 +77,7 @@ TEST(EnumNames, TheTableHelpersNameOneValueAndListAll) {
 TEST(EnumNames, TheCommandLineOffersEveryNameAParseTakes) {
   EXPECT_EQ(strategy_names(), (std::vector<std::string>{"paper", "es", "lahc", "anneal"}));
   EXPECT_EQ(constraint_order_names(), (std::vector<std::string>{"sequential", "red-black"}));
-  EXPECT_EQ(medium_kind_names(), (std::vector<std::string>{"overlapping", "non-overlapping"}));
+  EXPECT_EQ(medium_kind_names(), (std::vector<std::string>{"overlapping", "non-overlapping", "relaxed"}));
   EXPECT_EQ(radius_distribution_names(), (std::vector<std::string>{"uniform", "lognormal"}));
   for (const std::string& name : strategy_names()) EXPECT_STREQ(to_string(parse_strategy(name)), name.c_str());
   for (const std::string& name : medium_kind_names()) EXPECT_STREQ(to_string(parse_medium_kind(name)), name.c_str());

@@ -37,7 +37,11 @@ struct Medium {
 /// How grains are placed.
 enum class MediumKind {
   overlapping,     ///< Boolean model: uniform centres, discs may overlap
-  non_overlapping  ///< random sequential addition with a minimum surface gap
+  non_overlapping,  ///< random sequential addition with a minimum surface gap
+  /// Non-overlapping by relaxation: the grains are put down at random, then pushed apart until
+  /// every gap holds the same rule. It reaches lower porosities with wider gaps than random
+  /// sequential addition, which jams.
+  relaxed
 };
 
 /// Parses "overlapping" / "non-overlapping"; throws std::invalid_argument naming the value.
@@ -84,7 +88,11 @@ struct MediumOptions {
 /// Generates a medium. With `grains` > 0: that many grains, overlapping or not. Otherwise: overlapping: adds discs until the exact porosity first drops to or below the
 /// target. Non-overlapping: random sequential addition keeping every surface gap >= gap * larger
 /// radius and grains inside the box in y, until the target is reached; throws std::runtime_error if
-/// the target cannot be reached (jamming). Throws std::invalid_argument for invalid options.
+/// the target cannot be reached (jamming). Relaxed: grains drawn at random until the porosity is
+/// nearest the target (one grain more or fewer than non-overlapping placement stops at), then
+/// relaxed to the same rule; throws
+/// std::runtime_error if relaxation cannot make room for them. Throws std::invalid_argument for
+/// invalid options.
 Medium generate_medium(const MediumOptions& options);
 
 }  // namespace softdrop

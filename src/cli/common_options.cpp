@@ -18,7 +18,9 @@ CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_cou
   if (fixed_count) {
     g->add_option("--grains", a.options.grains, "Number of non-overlapping grains")->capture_default_str();
   } else {
-    g->add_option("--kind", a.kind, "overlapping or non-overlapping")
+    g->add_option("--kind", a.kind,
+                  "overlapping, non-overlapping (random sequential addition) or relaxed (non-overlapping, "
+                  "placed at random and pushed apart: lower porosities with wider gaps)")
         ->capture_default_str()
         ->check(CLI::IsMember(medium_kind_names()));
     g->add_option("--porosity", a.options.porosity, "Target porosity phi, in (0, 1)")->capture_default_str();
@@ -37,7 +39,7 @@ CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_cou
       ->capture_default_str();
   g->add_option("--gap", a.options.gap,
                 fixed_count ? "Spacing rule: min surface gap as a fraction of the larger radius"
-                            : "Non-overlapping: min surface gap as a fraction of the larger radius")
+                            : "Non-overlapping and relaxed: min surface gap as a fraction of the larger radius")
       ->capture_default_str();
   g->add_flag("--walls", a.walls, "Solid side walls instead of periodic x");
   g->add_option("--medium-seed", a.options.seed, "Seed of the medium generator")->capture_default_str()->check(seed_check());

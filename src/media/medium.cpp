@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "media/relaxation.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
 #include "softdrop/spacing.hpp"
@@ -43,7 +44,8 @@ bool Medium::IsValid(std::string* why) const {
 }
 
 constexpr detail::EnumName<MediumKind> kMediumKinds[] = {{MediumKind::overlapping, "overlapping"},
-                                                         {MediumKind::non_overlapping, "non-overlapping"}};
+                                                         {MediumKind::non_overlapping, "non-overlapping"},
+                                                         {MediumKind::relaxed, "relaxed"}};
 constexpr detail::EnumName<RadiusDistribution> kRadiusDistributions[] = {{RadiusDistribution::uniform, "uniform"},
                                                                          {RadiusDistribution::lognormal, "lognormal"}};
 
@@ -92,7 +94,7 @@ bool MediumOptions::IsValid(std::string* why) const {
     return fail(why, "max-failed-attempts = " + std::to_string(max_failed_attempts) + ": must be > 0");
   // Non-overlapping grains of radius >= r_min, kept gap * r_min apart and inside the box in y,
   // are disjoint once each is grown by gap * r_min / 2: their area cannot exceed the (grown) box's.
-  if (kind == MediumKind::non_overlapping && grains > 0) {
+  if (kind != MediumKind::overlapping && grains > 0) {
     const double grown = r_min * (1 + 0.5 * gap);
     const double room = width * (height + gap * r_min) / (M_PI * grown * grown);
     if (grains > room)
@@ -216,13 +218,45 @@ Medium non_overlapping_medium(const MediumOptions& o) {
   return m;
 }
 
+// Passes of relaxation before the grains are declared too many for the box: a medium that can be
+// relaxed at all settles within a few hundred (tests/relaxed_medium_test.cpp).
+constexpr int kMaxRelaxationSweeps = 20000;
+
+Medium relaxed_medium(const MediumOptions& o) {
+  Rng rng(derive_seed(o.seed, 2));
+  Medium m{o.width, o.height, o.periodic, {}};
+  const double box = o.width * o.height;
+  double solid = 0;
+  while (o.grains > 0 ? m.grains.size() < static_cast<std::size_t>(o.grains) : 1 - solid / box > o.porosity) {
+    m.grains.push_back(random_grain(rng, o));
+    solid += M_PI * m.grains.back().r * m.grains.back().r;
+  }
+  // A porosity target keeps the grain count whose porosity is nearest to it (one grain of radius
+  // 48 is 3 % of the default box), the last grain or not.
+  if (o.grains == 0 && m.grains.size() > 1) {
+    const double last = M_PI * m.grains.back().r * m.grains.back().r;
+    if (std::abs(1 - (solid - last) / box - o.porosity) < std::abs(1 - solid / box - o.porosity))
+      m.grains.pop_back();
+  }
+  if (!detail::relax_spacing(m.grains, o.width, o.height, o.periodic, o.gap, kMaxRelaxationSweeps))
+    throw std::runtime_error(
+        (o.grains > 0 ? "grains = " + std::to_string(o.grains) : "porosity = " + num(o.porosity)) +
+        ": unreachable for relaxed grains with gap " + num(o.gap) + " (" + std::to_string(m.grains.size()) +
+        " grains, some still too close after " + std::to_string(kMaxRelaxationSweeps) + " passes of relaxation)");
+  return m;
+}
+
 }  // namespace
 
 Medium generate_medium(const MediumOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
-  return options.kind == MediumKind::overlapping ? overlapping_medium(options)
-                                                 : non_overlapping_medium(options);
+  switch (options.kind) {
+    case MediumKind::overlapping: return overlapping_medium(options);
+    case MediumKind::non_overlapping: return non_overlapping_medium(options);
+    case MediumKind::relaxed: break;
+  }
+  return relaxed_medium(options);
 }
 
 }  // namespace softdrop

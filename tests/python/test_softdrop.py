@@ -157,6 +157,25 @@ def test_media_as_arrays_files_and_images(tmp_path):
     assert abs(image.mean() - medium.porosity()) < 0.01  # pore fraction of the pixels
 
 
+def test_relaxed_media_are_the_programs_and_keep_their_gaps(tmp_path):
+    """A relaxed medium at porosity 0.5 with gaps of 0.4 of the larger radius, which random
+    sequential addition cannot place: the program's grains to the bit, every gap kept."""
+    medium = softdrop.Medium.generate("relaxed", porosity=0.5, gap=0.4, seed=3)
+    theirs = tmp_path / "theirs.json"
+    cli("simulate", "--kind", "relaxed", "--porosity", "0.5", "--gap", "0.4", "--medium-seed", "3",
+        "--save-medium", str(theirs))
+    assert np.array_equal(softdrop.Medium.load(str(theirs)).grains, medium.grains)
+    x, y, r = medium.grains.T
+    dx = np.abs(x[:, None] - x[None, :])
+    dx = np.minimum(dx, medium.width - dx)
+    gap = np.hypot(dx, y[:, None] - y[None, :]) - r[:, None] - r[None, :]
+    need = 0.4 * np.maximum(r[:, None], r[None, :])
+    assert np.all((gap >= need) | np.eye(len(r), dtype=bool))
+    assert abs(medium.porosity() - 0.5) < 0.015
+    with pytest.raises(ValueError, match="unreachable for non-overlapping grains with gap 0.4"):
+        softdrop.Medium.generate("non-overlapping", porosity=0.5, gap=0.4, seed=3)
+
+
 def test_rigid_descent_stops_in_a_notch_and_passes_a_gap():
     # Grains of radius 50 at x = 200 and 280 meet at (240, 280); one at 400 leaves a gap of 20.
     medium = softdrop.Medium.from_arrays([200, 280, 400], [250, 250, 250], [50, 50, 50], 500, 500)
