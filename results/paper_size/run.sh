@@ -3,7 +3,8 @@
 # media x 200 droplets, 400 000 droplets, on the defaults and on media no calibration saw (the
 # sweep's held-out stream); then the paper's fit (weighed by the media's standard errors, again by
 # the droplets', and of the per-medium means), its two averagings in groups of 100 media, and the
-# figure of both means against the paper's f with their residuals. About 16 minutes on 2 cores.
+# figure of both means against the paper's f with their residuals. About 30 minutes on 2 cores
+# (Intel Xeon; 16 on an AMD EPYC of family 26).
 # An interrupted run continues where it stopped: the store, paper.db (not committed), keeps every
 # finished medium. SOFTDROP=path runs another build.
 #     bash results/paper_size/run.sh
