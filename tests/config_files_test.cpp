@@ -10,6 +10,7 @@
 #include "balloon.hpp"
 #include "cli_run.hpp"
 #include "softdrop/medium.hpp"
+#include "softdrop/porosity.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace softdrop {
@@ -73,6 +74,17 @@ TEST(ConfigFiles, ThePassageConfigIsTheLibrarysPassageDroplet) {
   expect_same_run(j, s);
   EXPECT_EQ(j["medium"]["grains"].get<std::size_t>(), medium.grains.size());
   EXPECT_NE(Simulation(DropletParams{}, medium).run(250, RunOptions{}).tortuosity, s.tortuosity);
+}
+
+// relaxed.toml is a medium, not a droplet: relaxed grains with gaps of 0.4, the default droplet.
+TEST(ConfigFiles, TheRelaxedConfigIsARelaxedMediumWithWideGaps) {
+  const auto j = simulate_with("relaxed.toml");
+  MediumOptions mo;
+  mo.kind = MediumKind::relaxed, mo.gap = 0.4;
+  const Medium medium = generate_medium(mo);
+  expect_same_run(j, Simulation(DropletParams{}, medium).run(250, RunOptions{}));
+  EXPECT_EQ(j["medium"]["grains"].get<std::size_t>(), medium.grains.size());
+  EXPECT_EQ(j["medium"]["porosity"].get<double>(), exact_porosity(medium));
 }
 
 }  // namespace

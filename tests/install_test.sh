@@ -9,7 +9,8 @@ build=$(realpath "$1"); src=$(realpath "$2"); cxx=$3
 prefix=$(mktemp -d); trap 'rm -rf "$prefix"' EXIT
 cmake --install "$build" --prefix "$prefix" > /dev/null
 for f in bin/softdrop include/softdrop/simulation.hpp include/softdrop/version.hpp lib/libsoftdrop_sim.a \
-         share/softdrop/explicit.toml share/softdrop/exponential.toml share/softdrop/balloon.toml share/softdrop/passage.toml; do
+         share/softdrop/explicit.toml share/softdrop/exponential.toml share/softdrop/balloon.toml share/softdrop/passage.toml \
+         share/softdrop/relaxed.toml; do
   [[ -e $prefix/$f ]] || { echo "install_test: $f was not installed"; exit 1; }
 done
 "$cxx" -std=c++20 -O2 "$src/examples/library/push_droplet.cpp" -I "$prefix/include" -L "$prefix/lib" \
@@ -33,6 +34,7 @@ config_is explicit.toml --viscosity-step explicit --viscosity 1.37e5 --dt 3.5e-6
 config_is exponential.toml --viscosity-step exponential --viscosity 2.8e5
 config_is passage.toml --r-min 26 --r-max 50 --radius 5 --nrt 1.59e9 --kc 2.5e8 --viscosity 1e6 \
   --viscosity-step exponential  # the grains as well as the droplet
+config_is relaxed.toml --kind relaxed --gap 0.4  # a medium, not a droplet
 # The Python package, where the prefix's python3 finds it (when the module was built).
 if [[ -f $build/python/softdrop/__init__.py ]]; then
   site=$(dirname "$(find "$prefix/lib" -path '*/softdrop/__init__.py' -print -quit)")

@@ -33,7 +33,7 @@ Outcome parse_outcome(const std::string& name);
 
 /// What to run and what to record.
 struct RunOptions {
-  std::int64_t max_steps = 12'000'000;  ///< step budget (timeout): 42 time units at the default dt
+  std::int64_t max_steps = 12'000'000;  ///< step budget (timeout): 72 time units at the default dt
   double stuck_window = 0.5;           ///< time window of the stuck test (time units)
   double stuck_distance = 5.0;         ///< downward progress required per window (length)
   /// The rest test, which ends a stuck droplet early: a centre of mass that travelled less than
