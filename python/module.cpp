@@ -241,7 +241,10 @@ PYBIND11_MODULE(_core, m) {
           py::arg("height") = kMedium.height, py::arg("r_min") = kMedium.r_min, py::arg("r_max") = kMedium.r_max,
           py::arg("seed") = kMedium.seed, py::arg("gap") = kMedium.gap, py::arg("periodic") = kMedium.periodic,
           py::arg("grains") = kMedium.grains,
-          "A random medium, as `softdrop simulate` generates it (the same options give the same grains)")
+          "A random medium, as `softdrop simulate` generates it (the same options give the same grains). "
+          "kind: overlapping, non-overlapping (random sequential addition) or relaxed (non-overlapping, "
+          "placed at random and pushed apart: lower porosities with wider gaps); gap: the least surface gap "
+          "of non-overlapping and relaxed grains, as a fraction of the larger radius")
       .def_static(
           "from_arrays",
           [](const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& r, double width,

@@ -157,6 +157,22 @@ TEST(Cli, ConfigFilesAreRealToml) {
   EXPECT_EQ(run("--check simulate --config " + ini).code, 0);
 }
 
+// A command's own table is the later, more specific value: it beats a top-level key (TOML puts
+// those first), and the command line beats both.
+TEST(Cli, ACommandsTableBeatsTopLevelKeysAndTheCommandLineBeatsBoth) {
+  const std::string config = temp("precedence.toml");
+  std::ofstream(config) << "porosity = 0.6\nwidth = 200\nheight = 200\n[simulate]\nporosity = 0.9\n";
+  auto porosity = [](const std::string& args) {
+    const Result r = run("simulate --droplets 1 --format json " + args);
+    EXPECT_EQ(r.code, 0) << r.err;
+    return nlohmann::json::parse(r.out)["medium"]["porosity"].get<double>();
+  };
+  const double from_table = porosity("--config " + config);
+  EXPECT_EQ(from_table, porosity("--width 200 --height 200 --porosity 0.9"));
+  EXPECT_NE(from_table, porosity("--width 200 --height 200 --porosity 0.6"));
+  EXPECT_EQ(porosity("--config " + config + " --porosity 0.7"), porosity("--width 200 --height 200 --porosity 0.7"));
+}
+
 TEST(Cli, HelpDocumentsUnitsAndDefaults) {
   const Result r = run("simulate --help");
   EXPECT_EQ(r.code, 0);

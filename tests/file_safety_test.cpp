@@ -160,7 +160,12 @@ TEST_F(FileSafety, ConfigArraysAreCheckedAgainstTheirOptions) {
   write(seed_ / "empty.toml", "porosity = [0.5, 0.6]\n");
   expect_refused("simulate --config empty.toml", "--porosity takes one value, not an array of 2");
   write(seed_ / "empty.toml", "porosty = 0.5\n");
-  expect_refused("simulate --config empty.toml", "config file 'empty.toml': porosty: simulate has no option --porosty");
+  expect_refused("simulate --config empty.toml",
+                 "config file 'empty.toml': porosty: simulate has no option --porosty (did you mean porosity?)");
+  write(seed_ / "empty.toml", "[sweep]\nmeida = 3\n");  // a command's table: its options and the program's
+  expect_refused("sweep --db e.db --config empty.toml", "meida: sweep has no option --meida (did you mean media?)");
+  write(seed_ / "empty.toml", "zzzzzz = 1\n");  // nothing near: no guess
+  expect_refused("simulate --config empty.toml", "zzzzzz: simulate has no option --zzzzzz\n");
   fs::remove(seed_ / "empty.toml");
   // A list option takes an array, and gives the same sweep as the command line.
   write(seed_ / "list.toml", "porosities = [0.8]\nmedia = 2\ndroplets = 2\nseed = 3\n");

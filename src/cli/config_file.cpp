@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <toml++/toml.h>
 
+#include "cli/suggest.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop::cli {
@@ -59,8 +60,9 @@ bool SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string
   if (option == nullptr) {
     std::string path;
     for (const std::string& parent : item.parents) path += parent + " ";
+    const std::string near = nearest_option(app_, *command, item.name);
     throw CLI::ConversionError(where + ": " + (path.empty() ? std::string("softdrop ") : path) + "has no option --" +
-                               item.name);
+                               item.name + (near.empty() ? "" : " (did you mean " + near + "?)"));
   }
   if (item.inputs.size() > 1 && option->get_items_expected_max() <= 1)
     throw CLI::ConversionError(where + ": --" + item.name + " takes one value, not an array of " +
@@ -103,11 +105,16 @@ std::vector<CLI::ConfigItem> SubcommandConfig::from_config(std::istream& input) 
       throw CLI::ConversionError(where.str());
     }
   }
-  std::vector<CLI::ConfigItem> kept;
+  // A key of the command's own table is more specific than a top-level key, which TOML puts
+  // before every table, so it is the later value and wins. The parser keeps the first value an
+  // option gets from a file, so the tables' keys go first.
+  std::vector<CLI::ConfigItem> kept, top_level;
   for (auto& item : found) {
-    if (item.parents.empty()) item.parents = chain;
-    if (check_item(item, name)) kept.push_back(std::move(item));
+    const bool top = item.parents.empty();
+    if (top) item.parents = chain;
+    if (check_item(item, name)) (top ? top_level : kept).push_back(std::move(item));
   }
+  kept.insert(kept.end(), std::make_move_iterator(top_level.begin()), std::make_move_iterator(top_level.end()));
   return kept;
 }
 

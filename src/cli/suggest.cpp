@@ -47,6 +47,13 @@ std::string joined(const std::vector<std::string>& names) {
 
 }  // namespace
 
+std::string nearest_option(const CLI::App& app, const CLI::App& command, const std::string& name) {
+  std::vector<std::string> names;
+  long_names(command, &names);
+  if (&command != &app) long_names(app, &names);
+  return nearest(name, names);
+}
+
 std::string suggest_correction(const CLI::App& app, int argc, const char* const* argv) {
   std::vector<const CLI::App*> chain{&app};  // the commands named so far
   bool options_seen = false;                 // after an option, a plain word may be its value

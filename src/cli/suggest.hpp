@@ -13,4 +13,8 @@ namespace softdrop::cli {
 /// the parser's own message stands.
 std::string suggest_correction(const CLI::App& app, int argc, const char* const* argv);
 
+/// The long option name (without dashes) of `command` or of the program `app` nearest to `name`,
+/// by the same rule; "" if none is close. For keys of config files, which name options so.
+std::string nearest_option(const CLI::App& app, const CLI::App& command, const std::string& name);
+
 }  // namespace softdrop::cli
