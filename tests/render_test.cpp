@@ -253,6 +253,21 @@ TEST(RenderCli, EveryPictureKindRenders) {
   DGifCloseFile(g, &error);
 }
 
+// Progress goes to stderr, as every long command's does; --quiet leaves it out and still draws.
+TEST(RenderCli, QuietLeavesOutTheProgressAndStillDraws) {
+  for (const std::string kind : {"paths --droplets 4", "animation --x0 100 --speed 0.01 --fps 10"}) {
+    SCOPED_TRACE(kind);
+    const std::string out = fresh(kind[0] == 'p' ? "quiet.png" : "quiet.gif");
+    const std::string args = "render " + kind + " --medium " + kPore + " --size 160 -o " + out;
+    const test::Result loud = test::run(args), quiet = test::run(args + " --quiet");
+    ASSERT_EQ(loud.code, 0) << loud.err;
+    ASSERT_EQ(quiet.code, 0) << quiet.err;
+    EXPECT_NE(loud.err.find("render: "), std::string::npos) << loud.err;
+    EXPECT_EQ(quiet.err, "");
+    EXPECT_GT(std::filesystem::file_size(out), 0u);
+  }
+}
+
 TEST(RenderCli, AConfigFileReachesTheNestedCommand) {
   const std::string toml = fresh("render.toml"), out = fresh("from_config.png");
   // In a config file a colour goes without its '#' (CLI11's TOML reader takes it for a comment).

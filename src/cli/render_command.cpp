@@ -33,6 +33,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
     g->add_option("--droplet-colour", a.droplet_colour, "Droplet boundary colour")->capture_default_str();
     g->add_flag("--no-caption", a.no_caption, "No line of text under the picture");
     g->add_flag("--scale-bar", a.scale_bar, "A labelled bar of a round length at the lower left of the box");
+    g->add_flag("--quiet", a.quiet, "No progress on stderr (the droplets of paths, an animation's frames)");
   };
   auto scene_options = [&](CLI::App* s) {
     add_medium_options(s, a.medium, false);
@@ -249,7 +250,9 @@ int render_paths(RenderArgs& a) {
   scene.medium = medium_of(a);
   Progress progress("render: droplets done");
   const auto runs = run_batch(a.droplet, scene.medium, run, a.batch,
-                              [&](int done, int total) { progress.update(done, total); });
+                              [&](int done, int total) {
+                                if (!a.quiet) progress.update(done, total);
+                              });
   const double alpha = a.alpha > 0 ? a.alpha : std::min(1.0, std::max(0.03, 10.0 / a.batch.droplets));
   Rgba passed = parse_colour(a.path_colour), stuck = parse_colour(a.stuck_colour);
   passed.a = stuck.a = alpha;
@@ -360,7 +363,7 @@ int render_animation_command(RenderArgs& a) {
     scene.lines.push_back(std::move(ring));
     scene.caption = "t = " + fmt(static_cast<double>(done) * a.droplet.dt, 3) + " (" + to_string(whole.outcome) +
                     (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") + ")";
-    progress.update(f + 1, frames);
+    if (!a.quiet) progress.update(f + 1, frames);
   }, style, a.output);
   return 0;
 }

@@ -21,6 +21,7 @@ struct RenderArgs {
               path_colour = "#cc1a1a", droplet_colour = "#1f4fcc", stuck_colour = "#1f4fcc";
   bool no_caption = false;
   bool scale_bar = false;
+  bool quiet = false;  ///< no progress on stderr
   MediumArgs medium;
   DropletParams droplet;
   RunOptions run;
