@@ -157,6 +157,30 @@ TEST(Signals, LeaveNoTemporaryFileAndEndWithTheConventionalStatus) {
   EXPECT_EQ(wait_for(pid), 143);
 }
 
+// simulate stops starting droplets at the first signal, lets those in flight finish, and writes
+// them: droplets 0 to n - 1, the rows an uninterrupted run of n droplets has, to the bit.
+TEST(Signals, AStoppedSimulateWritesTheDropletsThatRan) {
+  const std::string runs = fresh("stopped_runs.csv"), err = fresh("stopped.err"), ref = fresh("ref_runs.csv");
+  const pid_t pid = spawn("simulate --droplets 5000 --seed 3 --runs " + runs, err);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+  kill(pid, SIGTERM);
+  EXPECT_EQ(wait_for(pid), 143);
+  std::ifstream e(err);
+  const std::string said((std::istreambuf_iterator<char>(e)), std::istreambuf_iterator<char>());
+  const auto at = said.find("simulate: stopped by a signal after ");
+  ASSERT_NE(at, std::string::npos) << said;
+  const int n = std::stoi(said.substr(at + 36));
+  EXPECT_GT(n, 0);
+  EXPECT_LT(n, 5000);
+  EXPECT_NE(said.find(" of 5000 droplets; the outputs hold those " + std::to_string(n)), std::string::npos) << said;
+  ASSERT_EQ(run("simulate --droplets " + std::to_string(n) + " --seed 3 --quiet --runs " + ref).code, 0);
+  std::ifstream a(runs), b(ref);
+  const std::string mine((std::istreambuf_iterator<char>(a)), std::istreambuf_iterator<char>()),
+      theirs((std::istreambuf_iterator<char>(b)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(mine, theirs);
+  EXPECT_EQ(std::count(mine.begin(), mine.end(), '\n'), n + 1);  // the header and a row a droplet
+}
+
 softdrop::Medium read_csv(const std::string& text) {
   std::istringstream in(text);
   return softdrop::read_medium(in, softdrop::GrainFileFormat::csv, "m.csv");

@@ -2,6 +2,7 @@
 /// \file batch.hpp
 /// Many droplets through one medium, in parallel, with results independent of the thread count.
 
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -23,6 +24,9 @@ struct BatchOptions {
   int lanes = interleaved_lanes();
   /// Start x of every droplet; NaN draws it uniformly in [0, W) (walls: [R, W - R]).
   double start_x = std::numeric_limits<double>::quiet_NaN();
+  /// If set, once it reads true no droplet starts, the droplets in flight run to their end, and
+  /// run_batch returns those that ran: droplets 0 to n - 1, since droplets start in index order.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 /// Aggregate over a batch: tortuosity statistics over passed droplets.
@@ -39,7 +43,8 @@ double batch_start_x(const BatchOptions& options, const Medium& medium, const Dr
                      int i);
 
 /// Runs options.droplets droplets, each in its own Simulation; `progress(done, total)` is called
-/// from worker threads (serialised) as droplets finish. Results are ordered by droplet index.
+/// from worker threads (serialised) as droplets finish. Results are ordered by droplet index; there
+/// are fewer than options.droplets only if options.stop was raised.
 std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& medium,
                                   const RunOptions& run_options, const BatchOptions& options,
                                   const std::function<void(int, int)>& progress = {});

@@ -99,6 +99,10 @@ int run_simulate(SimulateArgs& a) {
   a.batch.start_x = a.x0;
 
   Progress progress("simulate: droplets done");
+  // The first SIGINT or SIGTERM starts no more droplets; the ones in flight finish, and the
+  // outputs hold the droplets that ran (0 to n - 1, as an uninterrupted run has them).
+  const StopOnSignal stop("\nsoftdrop: finishing the droplets in flight (Ctrl-C again to leave now)\n");
+  a.batch.stop = stop.flag();
   const auto t0 = std::chrono::steady_clock::now();
   RunOptions batch_run = a.run;
   batch_run.area_interval = 0;  // --trace replays each droplet with trace_area, which records the area
@@ -190,6 +194,11 @@ int run_simulate(SimulateArgs& a) {
     std::cout << j.dump(2) << '\n';
   else
     std::cout << table.str();
+  if (stop.requested()) {
+    std::cerr << "simulate: stopped by a signal after " << runs.size() << " of " << a.batch.droplets
+              << " droplets; the outputs hold those " << runs.size() << "\n";
+    return stop.exit_code();
+  }
   return 0;
 }
 

@@ -46,6 +46,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
       // Asked again after every step while a lane is idle: look before taking, so the counter
       // stays near k however long the last droplets run.
       if (next_droplet.load(std::memory_order_relaxed) >= k) return false;
+      if (options.stop && options.stop->load(std::memory_order_relaxed)) return false;
       const int i = next_droplet.fetch_add(1);
       if (i >= k) return false;
       std::unique_ptr<Simulation>& sim = running[static_cast<std::size_t>(i)];
@@ -96,6 +97,8 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
   guarded();
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);
+  // Every droplet below the counter was started and has run to its end; none above it started.
+  results.resize(static_cast<std::size_t>(std::min(k, next_droplet.load())));
   return results;
 }
 
