@@ -60,8 +60,8 @@ TEST(RelaxedMedium, KeepsWideGapsAtAPorosityWhereSequentialAdditionJams) {
     const Medium m = generate_medium(o);
     expect_rule_holds(m, o.gap);
     // Disjoint discs inside the box: the porosity is one minus their area over the box's (to the
-    // exact area's rounding at grains that touch a wall), and the grain count is the one nearest the
-    // target, within half the largest grain's share of the box.
+    // exact area's rounding at grains that touch a wall), and the grain count is the one nearest
+    // the target, within half the largest grain's share of the box.
     const double box = o.width * o.height;
     EXPECT_NEAR(exact_porosity(m), 1 - disc_area(m) / box, 1e-9);
     EXPECT_LE(std::abs(exact_porosity(m) - 0.5), 0.5 * M_PI * o.r_max * o.r_max / box);
@@ -91,7 +91,8 @@ TEST(RelaxedMedium, TooManyGrainsForTheGapIsAClearError) {
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
-    EXPECT_EQ(what.rfind("porosity = 0.5: unreachable for relaxed grains with gap 0.6", 0), 0u) << what;
+    EXPECT_EQ(what.rfind("porosity = 0.5: unreachable for relaxed grains with gap 0.6", 0), 0u)
+        << what;
   }
   EXPECT_EQ(parse_medium_kind("relaxed"), MediumKind::relaxed);
   EXPECT_STREQ(to_string(MediumKind::relaxed), "relaxed");

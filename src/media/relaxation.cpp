@@ -27,13 +27,17 @@ void confine(Grain& g, double width, double height, bool periodic) {
 class PairGrid {
  public:
   PairGrid(double width, double height, bool periodic, double reach)
-      : width_(width), height_(height), periodic_(periodic),
-        nx_(std::max(1, static_cast<int>(width / reach))), ny_(std::max(1, static_cast<int>(height / reach))),
+      : width_(width),
+        height_(height),
+        periodic_(periodic),
+        nx_(std::max(1, static_cast<int>(width / reach))),
+        ny_(std::max(1, static_cast<int>(height / reach))),
         cells_(static_cast<std::size_t>(nx_) * static_cast<std::size_t>(ny_)) {}
 
   const std::vector<std::pair<int, int>>& pairs(const std::vector<Grain>& grains) {
     for (auto& cell : cells_) cell.clear();
-    for (int i = 0; i < static_cast<int>(grains.size()); ++i) cells_[cell_of(grains[static_cast<std::size_t>(i)])].push_back(i);
+    for (int i = 0; i < static_cast<int>(grains.size()); ++i)
+      cells_[cell_of(grains[static_cast<std::size_t>(i)])].push_back(i);
     pairs_.clear();
     for (int cy = 0; cy < ny_; ++cy)
       for (int cx = 0; cx < nx_; ++cx)
@@ -56,7 +60,10 @@ class PairGrid {
   }
 
  private:
-  std::size_t index(int cx, int cy) const { return static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(cx); }
+  std::size_t index(int cx, int cy) const {
+    return static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx_) +
+           static_cast<std::size_t>(cx);
+  }
   std::size_t cell_of(const Grain& g) const {
     const int cx = std::clamp(static_cast<int>(g.x / width_ * nx_), 0, nx_ - 1);
     const int cy = std::clamp(static_cast<int>(g.y / height_ * ny_), 0, ny_ - 1);
@@ -72,8 +79,8 @@ class PairGrid {
 
 }  // namespace
 
-bool relax_spacing(std::vector<Grain>& grains, double width, double height, bool periodic, double gap,
-                   int max_sweeps) {
+bool relax_spacing(std::vector<Grain>& grains, double width, double height, bool periodic,
+                   double gap, int max_sweeps) {
   double r_max = 0;
   for (Grain& g : grains) {
     r_max = std::max(r_max, g.r);
