@@ -75,6 +75,37 @@ TEST(Render, PngHasTheAskedWidthAndIsNotBlank) {
   EXPECT_GT(png.non_background, 2000);
 }
 
+// A caption longer than the picture is shrunk until the whole of it fits inside the margins: no
+// pixel of it in the right margin, at any of these widths.
+TEST(Render, ALongCaptionStaysInsideTheRightMargin) {
+  Scene scene = small_scene();
+  scene.caption = "run 1, generation 3: T = 1.4711, 19 grains touched (filled); 20 grains, porosity 0.7611, "
+                  "500 x 500, periodic in x";
+  for (const int width : {200, 400, 800}) {
+    SCOPED_TRACE(width);
+    const std::string out = fresh("long_caption.png");
+    RenderStyle style;
+    style.width = width;
+    render_scene(scene, style, out);
+    cairo_surface_t* png = cairo_image_surface_create_from_png(out.c_str());
+    ASSERT_EQ(cairo_surface_status(png), CAIRO_STATUS_SUCCESS);
+    const int h = cairo_image_surface_get_height(png), stride = cairo_image_surface_get_stride(png);
+    const unsigned char* data = cairo_image_surface_get_data(png);
+    const auto background = *reinterpret_cast<const std::uint32_t*>(data);
+    long in_margin = 0, caption = 0;
+    const int band = static_cast<int>(std::max(11.0, 0.02 * width) * 1.6);  // the caption's rows
+    for (int y = h - static_cast<int>(style.margin) - band; y < h; ++y)
+      for (int x = 0; x < width; ++x) {
+        const bool ink = reinterpret_cast<const std::uint32_t*>(data + y * stride)[x] != background;
+        caption += ink;
+        in_margin += ink && x >= width - static_cast<int>(style.margin);
+      }
+    cairo_surface_destroy(png);
+    EXPECT_GT(caption, 100);  // the caption is drawn
+    EXPECT_EQ(in_margin, 0);
+  }
+}
+
 TEST(Render, SvgParsesAndHasOneCirclePerGrainPlusPeriodicCopies) {
   const std::string out = fresh("scene.svg");
   RenderStyle style;

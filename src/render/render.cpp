@@ -229,13 +229,17 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
   if (g.caption_height > 0) {
     set(cr, style.text);
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    // Shrink the font until the caption fits the width.
+    // Shrink the font until the caption fits the width. Measured again after each shrink: hinted
+    // glyph advances are rounded to whole pixels, so the width is not proportional to the size.
     double font = g.caption_height / 1.6;
-    cairo_set_font_size(cr, font);
-    cairo_text_extents_t ext;
-    cairo_text_extents(cr, scene.caption.c_str(), &ext);
     const double room = g.width - 2 * style.margin;
-    if (ext.x_advance > room) cairo_set_font_size(cr, font * room / ext.x_advance);
+    cairo_text_extents_t ext;
+    for (int tries = 0; tries < 20; ++tries) {
+      cairo_set_font_size(cr, font);
+      cairo_text_extents(cr, scene.caption.c_str(), &ext);
+      if (ext.x_bearing + ext.width <= room) break;
+      font *= std::min(0.98, room / (ext.x_bearing + ext.width));
+    }
     cairo_move_to(cr, style.margin, g.height - style.margin - 0.3 * g.caption_height);
     show_text(cr, scene.caption);
   }
