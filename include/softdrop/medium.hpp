@@ -90,9 +90,8 @@ struct MediumOptions {
 /// radius and grains inside the box in y, until the target is reached; throws std::runtime_error if
 /// the target cannot be reached (jamming). Relaxed: grains drawn at random until the porosity is
 /// nearest the target (one grain more or fewer than non-overlapping placement stops at), then
-/// relaxed to the same rule; throws
-/// std::runtime_error if relaxation cannot make room for them. Throws std::invalid_argument for
-/// invalid options.
+/// relaxed to the same rule; throws std::runtime_error if relaxation cannot make room for them.
+/// Throws std::invalid_argument for invalid options.
 Medium generate_medium(const MediumOptions& options);
 
 }  // namespace softdrop
