@@ -98,6 +98,12 @@ int continue_after_fault(const Scenario& s, const std::string& db, const std::st
   return lost_lines(before, s.stored(db));
 }
 
+// How many checkpoint writes one run may make fewer than another of the same command. Runs of the
+// same sweep do not write the same WAL to the byte: over 30 runs the bytes varied by one 4120-byte
+// frame, and under load (CI) the checkpoint writes by one, so the last position counted may never
+// come.
+constexpr std::int64_t kWriteCountSlack = 3;
+
 // Positions to kill at: every one, or every third under AddressSanitizer (3-4x slower).
 int kill_stride() { return kAddressSanitizer ? 3 : 1; }
 
@@ -112,10 +118,17 @@ void kill_at_every_database_write(const Scenario& s) {
     SCOPED_TRACE(s.name + " killed before database write " + std::to_string(k) + " of " + std::to_string(writes));
     const std::string db = fresh("crash.db");
     const Result r = run_faulty(kCheckpointEvery + "SOFTDROP_FAULT_KILL_AT=" + std::to_string(k) + " ", s.command(db));
+    if (r.code == 0 && k > writes - kWriteCountSlack) {
+      // This run made fewer writes than the counting run: the run finished unharmed, with the
+      // uninterrupted records; every earlier position was killed at.
+      EXPECT_EQ(s.records(db), reference);
+      break;
+    }
     ASSERT_TRUE(killed(r)) << "exit " << r.code << ": " << r.err;
     ++kills;
     lost += continue_after_fault(s, db, reference);
   }
+  EXPECT_GE(kills, (writes - kWriteCountSlack) / kill_stride());
   std::cout << "store crash (" << s.name << "): " << kills << " kills over " << writes << " database writes, "
             << lost << " stored records lost\n";
   EXPECT_EQ(lost, 0);
