@@ -187,9 +187,10 @@ TEST(Islands, OwnStartsGiveEachIslandTheMediumOfItsOwnSeed) {
 }
 
 TEST(Islands, TheSameHistoryOnAnyThreadCountWithAndWithoutSpeculation) {
-  for (const std::string strategy : {"paper", "es"}) {
+  for (const auto& [strategy, lambda] : {std::pair<std::string, int>{"paper", 2}, {"es", 2}, {"cmaes", 5}}) {
     SCOPED_TRACE(strategy);
-    const std::string args = kScene + " --islands 3 --migrate-every 4 --generations 13 --lambda 2 --strategy " + strategy;
+    const std::string args = kScene + " --islands 3 --migrate-every 4 --generations 13 --lambda " +
+                             std::to_string(lambda) + " --strategy " + strategy;
     const std::string one = fresh("islands_1.db"), two = fresh("islands_2.db"), plain = fresh("islands_ns.db");
     ASSERT_EQ(run("optimize --db " + one + args + " --threads 1").code, 0);
     ASSERT_EQ(run("optimize --db " + two + args + " --threads 2").code, 0);
@@ -202,8 +203,23 @@ TEST(Islands, TheSameHistoryOnAnyThreadCountWithAndWithoutSpeculation) {
     EXPECT_EQ(d.execAndGet("SELECT count(DISTINCT seed) FROM runs").getInt(), 3);
     // A migration counts no evaluation: each island has generation 0's and lambda a generation.
     EXPECT_EQ(d.execAndGet("SELECT min(evaluations) || ',' || max(evaluations) FROM runs").getString(),
-              std::to_string(1 + 10 * 2) + "," + std::to_string(1 + 10 * 2));
+              std::to_string(1 + 10 * lambda) + "," + std::to_string(1 + 10 * lambda));
   }
+}
+
+// CMA-ES resumes by replaying the values told in every stored generation, migrations among them
+// (which tell it nothing): stopped after a migration and resumed, the islands go on as if never
+// stopped.
+TEST(Islands, CmaesStoppedAfterAMigrationResumesToTheSameHistory) {
+  const std::string args = kScene + " --islands 2 --migrate-every 3 --lambda 5 --threads 2 --strategy cmaes";
+  const std::string whole = fresh("islands_cmaes.db"), parts = fresh("islands_cmaes_parts.db");
+  ASSERT_EQ(run("optimize --db " + whole + args + " --generations 10").code, 0);
+  ASSERT_EQ(run("optimize --db " + parts + args + " --generations 4").code, 0);
+  const auto r = run("optimize --db " + parts + args + " --resume 1 --generations 10");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(islands_dump(parts, 2), islands_dump(whole, 2));
+  SQLite::Database d(whole, SQLite::OPEN_READONLY);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM generations WHERE kind = 'migrate'").getInt(), 2 * 3);  // 3, 6, 9
 }
 
 TEST(Islands, KilledAtRandomInstantsTheyResumeBitForBit) {

@@ -168,9 +168,9 @@ void expect_same(const std::vector<Generation>& a, const std::vector<Generation>
 }
 
 TEST(Strategy, EveryStrategyGivesTheSameHistoryAtAnyThreadAndLaneCount) {
-  for (const StrategyKind kind : {StrategyKind::es, StrategyKind::lahc, StrategyKind::anneal}) {
+  for (const StrategyKind kind : {StrategyKind::es, StrategyKind::lahc, StrategyKind::anneal, StrategyKind::cmaes}) {
     SCOPED_TRACE(to_string(kind));
-    SearchOptions o = test::small_search_options(4);
+    SearchOptions o = test::small_search_options(kind == StrategyKind::cmaes ? 5 : 4);
     o.strategy.kind = kind;
     const auto one = run_search(o, 8, 1, 1);
     expect_same(one, run_search(o, 8, 2, 3));
@@ -193,9 +193,10 @@ using test::wait_for;
 // stopped, and every generation committed before a kill is unchanged (the soak test's rule, for the
 // strategies with a state of their own).
 TEST(Strategy, KilledAtRandomInstantsEveryStrategyResumesBitForBit) {
-  for (const std::string strategy : {"es", "lahc", "anneal"}) {
+  for (const std::string strategy : {"es", "lahc", "anneal", "cmaes"}) {
     SCOPED_TRACE(strategy);
-    const std::string args = kScene + " --generations 50 --lambda 4 --threads 2 --strategy " + strategy;
+    const std::string args = kScene + " --generations 50 --lambda " + (strategy == "cmaes" ? "5" : "4") +
+                             " --threads 2 --strategy " + strategy;
     const std::string ref = fresh("strategy_ref.db"), killed = fresh("strategy_killed.db");
     ASSERT_EQ(run("optimize --db " + ref + args).code, 0);
     std::mt19937 rng(11);
@@ -216,8 +217,11 @@ TEST(Strategy, KilledAtRandomInstantsEveryStrategyResumesBitForBit) {
     EXPECT_EQ(dump(killed, 1), dump(ref, 1));
     // The state is stored with every generation and shown by history.
     const auto h = run("history --db " + killed + " --run 1 --format csv");
-    EXPECT_NE(h.out.find(strategy == "es" ? "single-step" : strategy == "lahc" ? "history" : "temperature"),
-              std::string::npos);
+    const char* shown = strategy == "es"     ? "single-step"
+                        : strategy == "lahc" ? "history"
+                        : strategy == "cmaes" ? "values"
+                                              : "temperature";
+    EXPECT_NE(h.out.find(shown), std::string::npos);
     EXPECT_NE(run("history --db " + killed).out.find(strategy), std::string::npos);
   }
 }
@@ -227,7 +231,8 @@ TEST(StrategyCli, BadNamesUnusedOptionsAndContradictionsGetOneLine) {
   struct Case {
     std::string args, names;
   };
-  for (const Case& c : {Case{"--strategy tabu", "--strategy: tabu not in {paper,es,lahc,anneal}"},
+  for (const Case& c : {Case{"--strategy tabu", "--strategy: tabu not in {paper,es,lahc,anneal,cmaes}"},
+                        Case{"--strategy cmaes --lambda 4", "lambda = 4: --strategy cmaes needs a population of at least 5"},
                         Case{"--strategy lahc --temperature 0.1", "temperature: an option of --strategy anneal"},
                         Case{"--temperature 0.3", "temperature: an option of --strategy anneal, not used by --strategy es"},
                         Case{"--strategy paper --target-success 0.3",

@@ -148,6 +148,9 @@ class History {
   virtual Configuration configuration(std::int64_t run, std::int64_t generation) = 0;
   /// The strategy state stored with `generation` ("" if none).
   virtual std::string strategy_state(std::int64_t run, std::int64_t generation) = 0;
+  /// The strategy states stored with generations 1 to `last`, in order, as a JSON array of the
+  /// non-empty ones: what make_strategy takes for a strategy that resumes_by_replay().
+  virtual std::string strategy_states(std::int64_t run, std::int64_t last) = 0;
   /// Stores a held-out value of the run's arrangement as of v.generation, replacing one of the
   /// same generation, seed and starts (the numbers are deterministic: the same).
   virtual void add_validation(std::int64_t run, const ValidationRecord& v) = 0;

@@ -43,10 +43,13 @@ enum class StrategyKind {
   paper,  ///< the paper's hill climb: keep the best candidate that beats the current arrangement
   es,     ///< (1 + lambda) evolution strategy: the paper's moves, with step sizes that adapt
   lahc,   ///< late acceptance hill climbing: also keeps candidates no worse than L generations ago
-  anneal  ///< simulated annealing: keeps a worse candidate with probability exp(dT / temperature)
+  anneal, ///< simulated annealing: keeps a worse candidate with probability exp(dT / temperature)
+  /// CMA-ES (pagmo2): lambda arrangements a generation drawn from a Gaussian over every grain
+  /// centre, which adapts to the better ones; the best so far is kept apart
+  cmaes
 };
 const char* to_string(StrategyKind kind);
-/// Parses paper / es / lahc / anneal; throws std::invalid_argument naming the value.
+/// Parses paper / es / lahc / anneal / cmaes; throws std::invalid_argument naming the value.
 StrategyKind parse_strategy(const std::string& name);
 /// Every strategy's name, in the enum's order.
 std::vector<std::string> strategy_names();
@@ -73,7 +76,9 @@ struct SearchOptions {
   std::uint64_t seed = 1;   ///< seed of the moves
   int lambda = 1;           ///< candidates per generation (1: exactly the paper's algorithm)
   int single_every = 10;    ///< every this-th generation moves a single touched grain (0: never)
-  double step = 1.0;        ///< all-grain move: each grain jumps uniformly within this radius (length)
+  /// all-grain move: each grain jumps uniformly within this radius (length). cmaes: the Gaussian's
+  /// first standard deviation of every centre coordinate (length).
+  double step = 1.0;
   double single_step = 5.0; ///< single move: the grain jumps uniformly within this radius (length)
   /// Every this-th generation (0: never; single moves take precedence) one grain the droplet did
   /// not touch moves next to a point of the droplet's path: its centre within droplet radius + its

@@ -47,6 +47,9 @@ class Strategy {
   /// nothing until it finishes (foresee), and a generation in which none improves changes the
   /// state in a way known in advance (the paper's hill climb: not at all; es: smaller steps).
   virtual bool speculative() const { return false; }
+  /// Moves on from `arrangement` (an immigrant from another island), the rest of the state as it
+  /// was.
+  virtual void adopt(Configuration arrangement) = 0;
   /// A copy, state and all.
   virtual std::unique_ptr<Strategy> clone() const = 0;
   /// A copy told `generation` as far as its candidates are evaluated: evaluated[k] is candidate k
@@ -62,9 +65,15 @@ class Strategy {
 };
 
 /// A strategy (options.strategy) moving on from `current`, with `state` as a previous state()
-/// returned ("": a new search). Throws std::invalid_argument naming the strategy if the state is
-/// not its own.
+/// returned ("": a new search), or, for a strategy that resumes_by_replay(), the JSON array of
+/// the state() of every generation so far, in order. Throws std::invalid_argument naming the
+/// strategy if the state is not its own.
 std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configuration current,
                                         const std::string& state);
+
+/// Whether a resumed `kind` takes every generation's state (see make_strategy) rather than the
+/// last: cmaes, whose state is too large to store with each generation, stores the values it was
+/// told and replays them.
+bool resumes_by_replay(StrategyKind kind);
 
 }  // namespace softdrop

@@ -52,14 +52,15 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_option("--relocate-every", a.search.relocate_every,
                 "Every this-th generation puts one grain the droplet did not touch next to its path (0: never)")
       ->capture_default_str();
-  g->add_option("--step", a.search.step, "All-grain move: jump radius of each grain (length units)")
+  g->add_option("--step", a.search.step, "All-grain move: jump radius of each grain (length units); cmaes: first standard deviation of each centre coordinate")
       ->capture_default_str();
   g->add_option("--single-step", a.search.single_step, "Single move: jump radius of the grain (length units)")
       ->capture_default_str();
   g->add_option_function<std::string>(
        "--strategy", [&a](const std::string& v) { a.search.strategy.kind = parse_strategy(v); },
        "paper (the paper's hill climb), es (its moves with step sizes that adapt), lahc (late acceptance: "
-       "also keeps candidates no worse than history-length generations ago) or anneal (simulated annealing)")
+       "also keeps candidates no worse than history-length generations ago), anneal (simulated annealing) or cmaes "
+       "(CMA-ES on every grain centre, a population of --lambda >= 5)")
       ->check(CLI::IsMember(strategy_names()))
       ->default_str(to_string(a.search.strategy.kind));
   g->add_option("--target-success", a.search.strategy.target_success,

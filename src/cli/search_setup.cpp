@@ -11,6 +11,7 @@
 #include "softdrop/params_json.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
+#include "softdrop/strategy.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
@@ -244,7 +245,9 @@ Search resumed_search(History& history, const RunRecord& rec, const SearchOption
     best.eval.tortuosity = rec.best_t;
   }
   return Search(options, std::move(best), std::move(current),
-                history.strategy_state(rec.id, rec.generations), rec.generations);
+                resumes_by_replay(options.strategy.kind) ? history.strategy_states(rec.id, rec.generations)
+                                                         : history.strategy_state(rec.id, rec.generations),
+                rec.generations);
 }
 
 }  // namespace softdrop::cli

@@ -76,6 +76,7 @@ int try_relocate(int i, const Evaluation& parent, double droplet_radius, const M
 
 MoveKind move_kind(std::int64_t generation, const SearchOptions& options) {
   if (generation <= 0) return MoveKind::initial;
+  if (options.strategy.kind == StrategyKind::cmaes) return MoveKind::all;  // every grain, every generation
   if (options.single_every > 0 && generation % options.single_every == 0) return MoveKind::single;
   if (options.relocate_every > 0 && generation % options.relocate_every == 0) return MoveKind::relocate;
   return MoveKind::all;

@@ -33,7 +33,8 @@ constexpr detail::EnumName<Termination> kTerminations[] = {{Termination::generat
                                                            {Termination::interrupted, "interrupted"},
                                                            {Termination::callback, "callback"}};
 constexpr detail::EnumName<StrategyKind> kStrategies[] = {
-    {StrategyKind::paper, "paper"}, {StrategyKind::es, "es"}, {StrategyKind::lahc, "lahc"}, {StrategyKind::anneal, "anneal"}};
+    {StrategyKind::paper, "paper"}, {StrategyKind::es, "es"}, {StrategyKind::lahc, "lahc"}, {StrategyKind::anneal, "anneal"},
+    {StrategyKind::cmaes, "cmaes"}};
 
 const char* to_string(MoveKind kind) { return detail::name_of(kMoveKinds, kind); }
 
@@ -64,6 +65,8 @@ bool StrategyOptions::IsValid(std::string* why) const {
 
 bool SearchOptions::IsValid(std::string* why) const {
   if (lambda < 1 || lambda > 4096) return fail(why, "lambda = " + std::to_string(lambda) + ": must be in [1, 4096]");
+  if (strategy.kind == StrategyKind::cmaes && lambda < 5)
+    return fail(why, "lambda = " + std::to_string(lambda) + ": --strategy cmaes needs a population of at least 5");
   if (single_every < 0) return fail(why, "single-every = " + std::to_string(single_every) + ": must be >= 0");
   if (relocate_every < 0) return fail(why, "relocate-every = " + std::to_string(relocate_every) + ": must be >= 0");
   if (!std::isfinite(step) || step <= 0) return fail(why, "step = " + num(step) + ": must be > 0");
@@ -336,7 +339,7 @@ Generation Search::immigrate(const Configuration& immigrant) {
     g.accepted = 0;
     best_ = Configuration{g.number, c.medium, c.eval};
     remeasured_ = 0;
-    strategy_ = make_strategy(options_, best_, strategy_->state());
+    strategy_->adopt(best_);
   }
   g.candidates.push_back(std::move(c));
   close_generation(g, 0);

@@ -11,64 +11,20 @@
 #include <vector>
 
 #include "evaluation.hpp"
+#include "strategy_base.hpp"
 #include "softdrop/random.hpp"
 
 namespace softdrop {
 namespace {
+using detail::best_passed;
 using detail::improves;
-
-// The random stream of candidate k of generation g: the same for every strategy.
-std::uint64_t stream(const SearchOptions& o, std::int64_t g, int k) {
-  return derive_seed(derive_seed(o.seed, static_cast<std::uint64_t>(g)), static_cast<std::uint64_t>(k));
-}
-
-// The candidate of the generation that passed with the highest T (the earliest on a tie), -1 if none.
-int best_passed(const std::vector<const Candidate*>& candidates) {
-  int best = -1;
-  for (const Candidate* c : candidates)
-    if (c && c->eval.outcome == Outcome::passed &&
-        (best < 0 ||
-         c->eval.tortuosity > candidates[static_cast<std::size_t>(best)]->eval.tortuosity))
-      best = c->index;
-  return best;
-}
-
-class Base : public Strategy {
- public:
-  Base(const SearchOptions& o, Configuration current) : o_(o), current_(std::move(current)) {}
-  const SearchOptions& options() const override { return o_; }
-  const Configuration& current() const override { return current_; }
-  void remeasure(double value, const std::vector<double>& values) override {
-    current_.eval.tortuosity = value;
-    current_.eval.values = values;
-  }
-  using Strategy::propose;
-  // The paper's candidates: its move kinds, steps and streams (the strategies that override this
-  // have moves of their own).
-  Candidate propose(std::int64_t generation, int k) const override {
-    return make_candidate(current_, generation, k, o_);
-  }
-
- protected:
-  int keep(std::int64_t generation, const std::vector<const Candidate*>& candidates, int k) {
-    if (k < 0) return -1;
-    const Candidate& c = *candidates[static_cast<std::size_t>(k)];
-    current_ = {generation, c.medium, c.eval};
-    return k;
-  }
-  // The best strict improvement of the current arrangement, -1 if none.
-  int best_improvement(const std::vector<const Candidate*>& candidates) const {
-    return detail::best_improvement(candidates, current_.eval, o_.objective);
-  }
-
-  SearchOptions o_;
-  Configuration current_;
-};
+using detail::StrategyBase;
+using detail::stream;
 
 // The paper's hill climb: every candidate from the current arrangement, which is also the best.
-class Paper final : public Base {
+class Paper final : public StrategyBase {
  public:
-  using Base::Base;
+  using StrategyBase::StrategyBase;
   std::string state() const override { return ""; }
   bool speculative() const override { return true; }
   std::unique_ptr<Strategy> clone() const override { return std::make_unique<Paper>(*this); }
@@ -84,9 +40,9 @@ class Paper final : public Base {
 // step size of its own that follows the 1/5 success rule per candidate (Kern et al. 2004): a
 // success multiplies it by exp(1/d), a failure by exp(-p/(1-p)/d), so it settles where a share p of
 // the candidates improve. Elitist: the best strict improvement is kept.
-class Evolution final : public Base {
+class Evolution final : public StrategyBase {
  public:
-  Evolution(const SearchOptions& o, Configuration current, const std::string& state) : Base(o, std::move(current)) {
+  Evolution(const SearchOptions& o, Configuration current, const std::string& state) : StrategyBase(o, std::move(current)) {
     steps_ = {o.step, o.single_step};
     if (state.empty()) return;
     const auto j = nlohmann::json::parse(state, nullptr, false);
@@ -140,10 +96,10 @@ class Evolution final : public Base {
 // kept if it is no worse than the current arrangement or than the current arrangement of
 // history-length generations before, so the search walks plateaus and crosses shallow dips; the
 // best so far is kept apart by the search. The paper's moves.
-class LateAcceptance final : public Base {
+class LateAcceptance final : public StrategyBase {
  public:
   LateAcceptance(const SearchOptions& o, Configuration current, const std::string& state)
-      : Base(o, std::move(current)) {
+      : StrategyBase(o, std::move(current)) {
     const auto length = static_cast<std::size_t>(o.strategy.history_length);
     history_.assign(length, current_.eval.tortuosity);
     if (state.empty()) return;
@@ -183,9 +139,9 @@ class LateAcceptance final : public Base {
 // the temperature halving every half-life generations; the best so far is kept apart by the
 // search. The draw comes from the generation's stream lambda, which no candidate uses, so the
 // state is only the current arrangement. The paper's moves.
-class Annealing final : public Base {
+class Annealing final : public StrategyBase {
  public:
-  Annealing(const SearchOptions& o, Configuration current, const std::string& state) : Base(o, std::move(current)) {
+  Annealing(const SearchOptions& o, Configuration current, const std::string& state) : StrategyBase(o, std::move(current)) {
     if (!state.empty() && !nlohmann::json::parse(state, nullptr, false).is_object())
       throw std::invalid_argument("strategy anneal: stored state '" + state + "' is not an anneal state");
   }
@@ -193,6 +149,11 @@ class Annealing final : public Base {
     return nlohmann::json{{"temperature", temperature_}}.dump();
   }
   std::unique_ptr<Strategy> clone() const override { return std::make_unique<Annealing>(*this); }
+  // As a strategy made again from its state: the temperature shows from the next generation on.
+  void adopt(Configuration arrangement) override {
+    current_ = std::move(arrangement);
+    temperature_ = 0;
+  }
 
  protected:
   int decide(std::int64_t generation, const std::vector<const Candidate*>& candidates) override {
@@ -234,6 +195,8 @@ std::unique_ptr<Strategy> Strategy::foresee(std::int64_t generation,
   return told;
 }
 
+bool resumes_by_replay(StrategyKind kind) { return kind == StrategyKind::cmaes; }
+
 std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configuration current, const std::string& state) {
   switch (options.strategy.kind) {
     case StrategyKind::paper:
@@ -242,6 +205,7 @@ std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configurat
     case StrategyKind::es: return std::make_unique<Evolution>(options, std::move(current), state);
     case StrategyKind::lahc: return std::make_unique<LateAcceptance>(options, std::move(current), state);
     case StrategyKind::anneal: return std::make_unique<Annealing>(options, std::move(current), state);
+    case StrategyKind::cmaes: return detail::make_cmaes(options, std::move(current), state);
   }
   throw std::invalid_argument("strategy: unknown kind");
 }

@@ -225,6 +225,23 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     });
   }
 
+  std::string strategy_states(std::int64_t run_id, std::int64_t last) override {
+    return guarded([&] {
+      std::string out = "[";
+      if (schema_version() >= 3) {
+        SQLite::Statement q(db_, "SELECT state FROM generations WHERE run_id = ? AND generation BETWEEN 1 AND ? "
+                                 "AND state IS NOT NULL AND state != '' ORDER BY generation");
+        q.bind(1, run_id);
+        q.bind(2, last);
+        while (q.executeStep()) {
+          if (out.size() > 1) out.push_back(',');
+          out.append(detail::as_text(q.getColumn(0)));
+        }
+      }
+      return out + "]";
+    });
+  }
+
   void add_validation(std::int64_t run_id, const ValidationRecord& v) override {
     guarded([&] {
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
