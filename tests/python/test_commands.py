@@ -76,6 +76,19 @@ def test_a_search_stopped_by_the_callback_resumes_as_if_never_stopped(tmp_path):
     assert_same_history(softdrop.read_history(stopped), softdrop.read_history(whole))
 
 
+def test_cmaes_stopped_by_the_callback_resumes_by_replay_as_if_never_stopped(tmp_path):
+    options = dict(SEARCH, lambda_=5, strategy="cmaes")
+    stopped, whole = tmp_path / "stopped.db", tmp_path / "whole.db"
+    first = softdrop.optimize(stopped, callback=lambda e: e["generation"] < 3, generations=6, **options)
+    assert first.termination == "callback" and first.last_generation == 3
+    assert softdrop.optimize(stopped, resume=1, quiet=True).last_generation == 6
+    softdrop.optimize(whole, generations=6, **options)
+    assert_same_history(softdrop.read_history(stopped), softdrop.read_history(whole))
+    states = [json.loads(s) for s in softdrop.read_history(whole)["generations"]["state"] if isinstance(s, str) and s]
+    assert [s["generation"] for s in states] == [1, 2, 3, 4, 5, 6] and all(len(s["values"]) == 5 for s in states)
+    assert "start" in states[0] and "start" not in states[1]
+
+
 def test_an_exception_in_the_callback_stops_the_search_and_is_raised(tmp_path):
     db = tmp_path / "s.db"
 
