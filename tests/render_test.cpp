@@ -25,6 +25,24 @@ struct Png {
   long non_background = 0;  // pixels that differ from the top-left one
 };
 
+// The resolution a PNG's pHYs chunk gives, in pixels an inch (0: no chunk, or not in metres).
+double png_dpi(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto be32 = [&](std::size_t at) {
+    std::uint32_t v = 0;
+    for (std::size_t i = 0; i < 4; ++i) v = v << 8 | static_cast<unsigned char>(bytes[at + i]);
+    return v;
+  };
+  for (std::size_t at = 8; at + 8 <= bytes.size();) {  // chunks after the 8-byte signature
+    const std::uint32_t length = be32(at);
+    if (bytes.compare(at + 4, 4, "pHYs") == 0 && length == 9 && bytes[at + 16] == 1)
+      return be32(at + 8) * 0.0254;
+    at += 12 + length;
+  }
+  return 0;
+}
+
 Png read_png(const std::string& path) {
   cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
   Png p;
@@ -358,6 +376,7 @@ PoreTrace trace_through_pore(const std::string& options) {
                                    " --size 400" + options);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_png(png).width, 400);
+  EXPECT_NEAR(png_dpi(png), 72, 0.01);  // the default --dpi, written into the file
   const test::CsvTable table = test::read_csv_table(csv);
   PoreTrace p;  // enter, leave: the first sample inside the medium, and below it
   std::vector<double> t, ratio;
@@ -417,10 +436,12 @@ TEST(RenderCli, PrintSizesScalePngsAndBadOnesAreRefusedFirst) {
   const std::string png = fresh("print.png");
   ASSERT_EQ(test::run("render medium --medium " + kPore + " --size 200 --dpi 144 --no-caption -o " + png).code, 0);
   EXPECT_EQ(read_png(png).width, 400);
+  EXPECT_NEAR(png_dpi(png), 144, 0.01);  // read as drawn, not as 72 dpi
   const std::string db = fresh("print.db"), plot = fresh("print_fit.png");
   ASSERT_EQ(test::run("sweep --db " + db + " --preset quick --porosities 0.8,0.85,0.9,0.95 --quiet").code, 0);
   ASSERT_EQ(test::run("fit --db " + db + " --plot " + plot + " --size 252 --dpi 300").code, 0);
   EXPECT_EQ(read_png(plot).width, 1050);  // 3.5 inches at 300 dpi
+  EXPECT_NEAR(png_dpi(plot), 300, 0.01);
   const std::string never = fresh("never_print.png");
   const test::Result bad = test::run("fit --db " + db + " --plot " + never + " --dpi 5000");
   EXPECT_EQ(bad.code, 1);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "png_file.hpp"
 #include "svg_text.hpp"
 #include "util/temp_files.hpp"
 
@@ -47,8 +48,11 @@ void write_picture(const std::string& path, int width, int height, double dpi,
     if (cairo_status(cr.get()) != CAIRO_STATUS_SUCCESS) throw failed(cairo_status_to_string(cairo_status(cr.get())));
   }
   if (format == ImageFormat::png) {
-    const cairo_status_t s = cairo_surface_write_to_png(surface.get(), tmp.c_str());
-    if (s != CAIRO_STATUS_SUCCESS) throw failed(cairo_status_to_string(s));
+    try {
+      write_png(surface.get(), tmp, dpi);
+    } catch (const std::runtime_error& e) {
+      throw failed(e.what());
+    }
   } else {
     cairo_surface_finish(surface.get());
     if (cairo_surface_status(surface.get()) != CAIRO_STATUS_SUCCESS)
