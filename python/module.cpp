@@ -16,6 +16,7 @@
 #include <type_traits>
 
 #include "bindings.hpp"
+#include "values.hpp"
 #include "cli/common_options.hpp"
 #include "softdrop/area_trace.hpp"
 #include "softdrop/batch.hpp"
@@ -76,6 +77,7 @@ py::array_t<double> grain_array(const Medium& m) {
     const auto k = static_cast<py::ssize_t>(i);
     v(k, 0) = m.grains[i].x, v(k, 1) = m.grains[i].y, v(k, 2) = m.grains[i].r;
   }
+  a.attr("setflags")(py::arg("write") = false);  // a copy: a write would be lost, so it is refused
   return a;
 }
 
@@ -133,13 +135,17 @@ py::dict summary_dict(const RunSummary& s, bool with_path) {
 // with its help as the docstring; the constraint order as its name ("sequential", "red-black").
 template <class Field>
 using Value = std::decay_t<Field>;
+// A droplet option's attribute name: its key with '_' for '-'.
+std::string field_name(std::string key) {
+  std::replace(key.begin(), key.end(), '-', '_');
+  return key;
+}
 void bind_droplet_fields(py::class_<DropletParams>& cls) {
   DropletParams defaults;
   visit_droplet_fields(
       [&](const DropletField& field, const auto& proto) {
         using T = Value<decltype(proto)>;
-        std::string name = field.key;
-        std::replace(name.begin(), name.end(), '-', '_');
+        const std::string name = field_name(field.key);
         const std::string key = field.key;
         // The field `key` of p, for reading or writing.
         auto with_field = [key](auto& p, const auto& use) {
@@ -208,15 +214,22 @@ PYBIND11_MODULE(_core, m) {
       "A smaller droplet with a stiffer ring, for more passage at low porosity, as "
       "results/calibration/passage.toml (whose grains, radii 26 to 50, go to Medium.generate)");
   bind_droplet_fields(droplet);
+  std::vector<std::string> droplet_fields;
+  DropletParams defaults;
+  visit_droplet_fields([&](const DropletField& f, const auto&) { droplet_fields.push_back(field_name(f.key)); },
+                       defaults);
+  python::def_value_semantics(droplet, droplet_fields, "DropletParams");
 
-  py::class_<RunOptions>(m, "RunOptions", "When a run ends, and what it records")
-      .def(py::init(&from_keywords<RunOptions>))
+  py::class_<RunOptions> run_options(m, "RunOptions", "When a run ends, and what it records");
+  run_options.def(py::init(&from_keywords<RunOptions>))
       .def_readwrite("max_steps", &RunOptions::max_steps)
       .def_readwrite("stuck_window", &RunOptions::stuck_window)
       .def_readwrite("stuck_distance", &RunOptions::stuck_distance)
       .def_readwrite("rest_window", &RunOptions::rest_window)
       .def_readwrite("rest_distance", &RunOptions::rest_distance)
       .def_readwrite("path_interval", &RunOptions::path_interval);
+  python::def_value_semantics(run_options, {"max_steps", "stuck_window", "stuck_distance", "rest_window",
+                                            "rest_distance", "path_interval"}, "RunOptions");
 
   const MediumOptions kMedium;  // the program's defaults are the module's
   py::class_<Medium>(m, "Medium", "A box of disc grains (length units)")
@@ -281,10 +294,31 @@ PYBIND11_MODULE(_core, m) {
       .def("to_image", &pore_image, py::arg("pixels"),
            "Boolean image, `pixels` wide, rows from the top: True in the pore space")
       .def("__len__", [](const Medium& med) { return med.grains.size(); })
-      .def("__repr__", [](const Medium& med) {
-        return "<softdrop.Medium: " + std::to_string(med.grains.size()) + " grains, " + std::to_string(med.width) +
-               " x " + std::to_string(med.height) + (med.periodic ? ", periodic>" : ", walls>");
-      });
+      .def("__repr__",
+           [](const Medium& med) {
+             return "<softdrop.Medium: " + std::to_string(med.grains.size()) + " grains, " +
+                    std::string(py::repr(py::float_(med.width))) + " x " +
+                    std::string(py::repr(py::float_(med.height))) + (med.periodic ? ", periodic>" : ", walls>");
+           })
+      .def("__eq__", [](const Medium& a, py::object b) { return py::isinstance<Medium>(b) && a == b.cast<Medium>(); })
+      .def(py::pickle(  // the box and every grain, to the bit (Python floats are doubles)
+          [](const Medium& med) {
+            py::list grains;
+            for (const Grain& g : med.grains) grains.append(py::make_tuple(g.x, g.y, g.r));
+            return py::make_tuple(med.width, med.height, med.periodic, grains);
+          },
+          [](const py::tuple& state) {
+            if (state.size() != 4) throw std::invalid_argument("Medium: a pickled state has 4 items");
+            Medium med;
+            med.width = state[0].cast<double>(), med.height = state[1].cast<double>();
+            med.periodic = state[2].cast<bool>();
+            for (const auto& g : state[3].cast<py::list>()) {
+              const auto t = g.cast<py::tuple>();
+              med.grains.push_back({t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>()});
+            }
+            return med;
+          }));
+  py::type::of<Medium>().attr("__hash__") = py::none();
 
   bind_stores(m);
   bind_commands(m);

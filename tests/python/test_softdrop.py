@@ -299,3 +299,39 @@ def test_a_robust_search_reads_with_its_droplets_and_re_runs(tmp_path):
     later = h["generations"]["generation"] > 0
     assert h["generations"].loc[later, "parent_passed"].between(0, 4).all()
     assert h["generations"].loc[~later, "parent_t"].isna().all()
+
+
+def _tortuosity_in_a_worker(medium, params):
+    return softdrop.simulate(medium, x0=200, params=params).tortuosity
+
+
+def test_parameters_and_media_are_values_that_cross_to_worker_processes():
+    import concurrent.futures
+    import copy
+    import multiprocessing
+    import pickle
+
+    medium = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
+    params = softdrop.DropletParams(radius=7, viscosity_step="explicit", dt=3e-6)
+    run = softdrop.RunOptions(max_steps=10**6, path_interval=50)
+    for value in (medium, params, run):
+        assert pickle.loads(pickle.dumps(value)) == value
+        assert copy.deepcopy(value) == value and copy.copy(value) == value
+    assert pickle.loads(pickle.dumps(medium)).grains.tobytes() == medium.grains.tobytes()  # to the bit
+    # A repr names what differs from the defaults, and reads back.
+    assert repr(softdrop.DropletParams()) == "softdrop.DropletParams()"
+    assert repr(params) == "softdrop.DropletParams(radius=7.0, dt=3e-06, viscosity_step='explicit')"
+    assert eval(repr(params), {"softdrop": softdrop}) == params
+    assert repr(run) == "softdrop.RunOptions(max_steps=1000000, path_interval=50)"
+    assert params != softdrop.DropletParams() and medium != softdrop.Medium.generate(seed=2)
+    # A copy is its own: changing it leaves the original.
+    other = copy.deepcopy(params)
+    other.radius = 6
+    assert params.radius == 7
+    # The grains are a copy, so a write to them is refused rather than lost.
+    with pytest.raises(ValueError, match="read-only"):
+        medium.grains[0, 0] = 1.0
+    # A worker process gets the same droplet in the same medium: the same bits.
+    here = softdrop.simulate(medium, x0=200, params=params).tortuosity
+    with concurrent.futures.ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
+        assert pool.submit(_tortuosity_in_a_worker, medium, params).result() == here
