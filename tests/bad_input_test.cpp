@@ -89,18 +89,21 @@ TEST(Check, RefusesTheDatabaseTheRunWouldRefuse) {
   }
 }
 
-// --check render paths applies the run's own limits: a path memory the run would refuse, or a
-// droplet count out of range, is refused without drawing; a count it takes passes.
+// --check render paths applies the run's own limits: the memory of the paths in flight (a thread's
+// lanes of droplets, each up to --max-steps), or a droplet count out of range, is refused without
+// drawing; a count it takes passes, however many droplets (a finished path keeps only what is drawn).
 TEST(Check, RefusesThePathsPictureTheRunWouldRefuse) {
   const std::string out = fresh_path("check_paths.png");
-  const Result big = run("--check render paths --droplets 3000 -o " + out);
+  const Result big = run("--check render paths --droplets 3000 --threads 1 --max-steps 1000000000 -o " + out);
   EXPECT_EQ(big.code, 1);
-  EXPECT_NE(big.err.find("3000 droplets of up to 12000000 steps could keep 7.2e+08 path points in memory"),
-            std::string::npos)
-      << big.err;
+  EXPECT_NE(big.err.find("path-interval = 50: "), std::string::npos) << big.err;
+  EXPECT_NE(big.err.find("droplets of up to 1000000000 steps could keep"), std::string::npos) << big.err;
   EXPECT_EQ(run("--check render paths --droplets 0 -o " + out).code, 1);
-  const Result fine = run("--check render paths --droplets 30 -o " + out);
-  EXPECT_EQ(fine.code, 0) << fine.err;
+  EXPECT_EQ(run("--check render paths --droplets 30 --path-interval 0 -o " + out).code, 1);
+  for (const std::string droplets : {"30", "3000", "1000000"}) {
+    const Result fine = run("--check render paths --droplets " + droplets + " -o " + out);
+    EXPECT_EQ(fine.code, 0) << droplets << ": " << fine.err;
+  }
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 

@@ -471,6 +471,16 @@ TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
   EXPECT_NE(text.find("rgb(0%,0%,100%)"), std::string::npos) << "stuck paths";
 }
 
+// 600 droplets (refused from 417 on while every path was kept whole at its worst case): each finished
+// path keeps the points half a pixel apart, and the picture is drawn.
+TEST(RenderCli, PathsOfManyDropletsAreDrawn) {
+  const std::string png = fresh("paths_1000.png");
+  const test::Result ok = test::run("render paths --porosity 0.75 --width 200 --height 200 --droplets 600 --seed 1 "
+                                    "--r-min 8 --r-max 16 --quiet --size 200 -o " + png + test::kBalloonOptions);
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  EXPECT_GT(read_png(png).non_background, 10000);
+}
+
 TEST(RenderCli, CurvesDrawSeveralSearchesAndNameWhatTheyCannotDraw) {
   const std::string a = fresh("curves-a-1.db"), b = fresh("curves-a-2.db"), png = fresh("curves.png");
   const std::string search = test::kSmallScene + " --stuck-window 0.1 "

@@ -27,6 +27,10 @@ struct BatchOptions {
   /// If set, once it reads true no droplet starts, the droplets in flight run to their end, and
   /// run_batch returns those that ran: droplets 0 to n - 1, since droplets start in index order.
   const std::atomic<bool>* stop = nullptr;
+  /// If set, called with each droplet's index and summary as it finishes, before the summary is
+  /// kept (serialised, from the worker threads): it may thin what the summary recorded, so that a
+  /// long batch keeps only what its caller needs (render paths keeps a few points a pixel).
+  std::function<void(int, RunSummary&)> on_finished;
 };
 
 /// Aggregate over a batch: tortuosity statistics over passed droplets.

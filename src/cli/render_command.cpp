@@ -1,6 +1,7 @@
 #include "cli/render_command.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -13,86 +14,9 @@
 #include "softdrop/history.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/simulation.hpp"
+#include "util/worker_threads.hpp"
 
 namespace softdrop::cli {
-
-CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
-  CLI::App* r = app.add_subcommand("render", "Draw media, droplets, paths, searches and animations (PNG, SVG, PDF; animations GIF or MP4)");
-  r->require_subcommand(1);
-  r->fallthrough();  // lets `render medium --config FILE` reach the program-level --config
-  auto style = [&](CLI::App* s, const char* formats) {
-    s->fallthrough();
-    auto* g = s->add_option_group("Picture");
-    g->add_option("--output,-o", a.output, std::string("Picture file: ") + formats + " (format from the extension)")->required();
-    g->add_option("--size", a.size, "Width in points (1/72 inch; pixels at --dpi 72); the height follows")->capture_default_str();
-    g->add_option("--dpi", a.dpi, "PNG resolution: pixels an inch (300 for print)")->capture_default_str();
-    g->add_option("--background", a.background, "Colour #rrggbb[aa]")->capture_default_str();
-    g->add_option("--grain-colour", a.grain_colour, "Grain outline colour")->capture_default_str();
-    g->add_option("--touched-colour", a.touched_colour, "Fill of grains the droplet touched")->capture_default_str();
-    g->add_option("--path-colour", a.path_colour, "Centre-of-mass path colour")->capture_default_str();
-    g->add_option("--droplet-colour", a.droplet_colour, "Droplet boundary colour")->capture_default_str();
-    g->add_flag("--no-caption", a.no_caption, "No line of text under the picture");
-    g->add_flag("--scale-bar", a.scale_bar, "A labelled bar of a round length at the lower left of the box");
-    g->add_flag("--quiet", a.quiet, "No progress on stderr (the droplets of paths, an animation's frames)");
-  };
-  auto scene_options = [&](CLI::App* s) {
-    add_medium_options(s, a.medium, false);
-    auto* d = add_droplet_options(s, a.droplet);
-    add_exit_options(d, a.run);
-  };
-
-  CLI::App* m = r->add_subcommand("medium", "The grains as outlined discs, with periodic copies at the edges");
-  style(m, ".png, .svg or .pdf");
-  add_medium_options(m, a.medium, false);
-
-  CLI::App* s = r->add_subcommand("snapshots", "The droplet's boundary at chosen times over the medium (paper Fig. 2)");
-  style(s, ".png, .svg or .pdf");
-  scene_options(s);
-  s->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
-  s->add_option("--times", a.times, "Times of the snapshots (time units), comma-separated")->delimiter(',')->required();
-
-  CLI::App* p = r->add_subcommand("paths", "Centre-of-mass paths of many droplets, alpha-blended");
-  style(p, ".png, .svg or .pdf");
-  scene_options(p);
-  p->add_option("--droplets", a.batch.droplets, "Droplets from random starts")->capture_default_str();
-  p->add_option("--seed", a.batch.seed, "Seed of the start positions")->capture_default_str()->check(seed_check());
-  p->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
-  p->add_option("--stuck-colour", a.stuck_colour, "Path colour of droplets that did not pass")->capture_default_str();
-  p->add_option("--alpha", a.alpha, "Opacity of one path (0: automatic, 10 / droplets, at least 0.03)")->capture_default_str();
-
-  CLI::App* q = r->add_subcommand("search", "A search's best configuration, its path, earlier paths, touched grains");
-  style(q, ".png, .svg or .pdf");
-  q->add_option("--db", a.db, "SQLite history file")->required();
-  q->add_option("--run", a.run_id, "Run id")->required()->check(id_check());
-  q->add_option("--generation", a.generation, "The best as of this generation (default: the run's best)")
-      ->check(index_check());
-  q->add_option("--curve", a.curve, "Also draw the best-T-versus-generation chart to this file");
-
-  CLI::App* v = r->add_subcommand("animation", "A droplet pushed through the medium, as an animated GIF or an MP4 video (.gif, .mp4)");
-  style(v, ".gif");
-  scene_options(v);
-  v->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
-  v->add_option("--fps", a.fps, "Frames per second")->capture_default_str();
-  v->add_option("--speed", a.speed, "Simulated time units per second of animation (1 = real time)")->capture_default_str();
-  v->add_option("--max-frames", a.max_frames, "Refuse animations longer than this")->capture_default_str();
-  CLI::App* t = r->add_subcommand("trace", "The area trace S(t)/S0 of one droplet, entry and exit marked (paper's area figure)");
-  style(t, ".png, .svg or .pdf");
-  scene_options(t);
-  t->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
-  t->add_option("--csv", a.csv, "Also write the samples (droplet, t, area, area_ratio, phase) to this CSV");
-
-  CLI::App* c = r->add_subcommand("curves", "The best T of several searches against evaluations (or seconds), one line each");
-  style(c, ".png, .svg or .pdf");
-  c->add_option("--db", a.dbs, "A search's SQLite history (repeat for more searches)")->required();
-  c->add_option("--run", a.run_id, "Run id in every file (default: each file's only run)")->check(id_check());
-  c->add_option("--label", a.labels,
-                "Legend label, one a --db in order (default: the file name without a trailing -<seed>; "
-                "equal labels share a colour)");
-  c->add_option("--x", a.x_axis, "evaluations or seconds (wall, summed over generations)")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"evaluations", "seconds"}));
-  return r;
-}
 
 RenderStyle style_of(const RenderArgs& a) {
   RenderStyle s;
@@ -232,15 +156,36 @@ int render_snapshots(RenderArgs& a) {
 }
 
 // render paths' own limits, which --check applies too: the droplet count, the colours' alpha and
-// the memory its paths may take. Returns the run options it records with.
+// the memory of the paths being recorded: the droplets in flight at once (each thread's lanes) may
+// each run --max-steps; a finished path keeps only what the picture shows (thin_path). Returns the
+// run options it records with.
 RunOptions paths_run(const RenderArgs& a) {
   if (a.batch.droplets < 1 || a.batch.droplets > 1'000'000)
     throw std::invalid_argument("droplets = " + std::to_string(a.batch.droplets) + ": must be in [1, 1e6]");
   if (!(a.alpha >= 0 && a.alpha <= 1)) throw std::invalid_argument("alpha = " + fmt(a.alpha) + ": must be in [0, 1]");
+  if (a.path_interval < 1) throw std::invalid_argument("path-interval = " + std::to_string(a.path_interval) + ": must be >= 1");
   RunOptions run = a.run;
-  run.path_interval = 50;
-  check_recording(run, a.batch.droplets, a.droplet.masses);
+  run.path_interval = a.path_interval;
+  const long threads = detail::worker_threads(a.batch.threads);
+  check_recording(run, std::min<long>(a.batch.droplets, threads * a.batch.lanes), a.droplet.masses);
   return run;
+}
+
+// A finished droplet's path as drawn: the points at least `spacing` (half a pixel, in length
+// units) from the last one kept, and the last; its times and other records dropped. A path in a
+// picture needs no more, and a long batch keeps no more.
+void thin_path(RunSummary& r, double spacing) {
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < r.path_x.size(); ++i) {
+    const bool last = i + 1 == r.path_x.size();
+    if (kept > 0 && !last && std::hypot(r.path_x[i] - r.path_x[kept - 1], r.path_y[i] - r.path_y[kept - 1]) < spacing)
+      continue;
+    r.path_x[kept] = r.path_x[i], r.path_y[kept] = r.path_y[i];
+    ++kept;
+  }
+  r.path_x.resize(kept), r.path_y.resize(kept);
+  r.path_x.shrink_to_fit(), r.path_y.shrink_to_fit();
+  r.path_t = {}, r.area_t = {}, r.area = {}, r.snapshots = {};
 }
 
 int render_paths(RenderArgs& a) {
@@ -249,10 +194,23 @@ int render_paths(RenderArgs& a) {
   Scene scene;
   scene.medium = medium_of(a);
   Progress progress("render: droplets done");
-  const auto runs = run_batch(a.droplet, scene.medium, run, a.batch,
+  BatchOptions batch = a.batch;
+  const double spacing = 0.5 * scene.medium.width / (a.size * a.dpi / 72.0);
+  std::atomic<bool> over{false};
+  double points = 0;
+  batch.stop = &over;
+  batch.on_finished = [&](int, RunSummary& r) {
+    thin_path(r, spacing);
+    points += static_cast<double>(r.path_x.size());
+    if (points > kMaxRecordedSamples) over = true;
+  };
+  const auto runs = run_batch(a.droplet, scene.medium, run, batch,
                               [&](int done, int total) {
                                 if (!a.quiet) progress.update(done, total);
                               });
+  if (over)
+    throw std::runtime_error("render paths: the paths of the first " + std::to_string(runs.size()) +
+                             " droplets hold more than 1e8 points as drawn; draw fewer --droplets");
   const double alpha = a.alpha > 0 ? a.alpha : std::min(1.0, std::max(0.03, 10.0 / a.batch.droplets));
   Rgba passed = parse_colour(a.path_colour), stuck = parse_colour(a.stuck_colour);
   passed.a = stuck.a = alpha;

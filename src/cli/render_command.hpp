@@ -29,6 +29,7 @@ struct RenderArgs {
   std::vector<double> times;  ///< snapshots
   BatchOptions batch;         ///< paths
   double alpha = 0;           ///< paths: 0 = automatic
+  int path_interval = 50;     ///< paths: steps between recorded centre-of-mass points
   std::string db;             ///< search
   std::int64_t run_id = 0;
   std::int64_t generation = -1;

@@ -63,6 +63,10 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
       return true;
     };
     auto finished = [&](std::int64_t id, RunSummary&& summary) {
+      if (options.on_finished) {
+        std::lock_guard lock(progress_mutex);
+        options.on_finished(static_cast<int>(id), summary);
+      }
       results[static_cast<std::size_t>(id)] = std::move(summary);
       pool.push_back(std::move(running[static_cast<std::size_t>(id)]));
       if (progress) {
