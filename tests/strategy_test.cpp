@@ -233,6 +233,8 @@ TEST(StrategyCli, BadNamesUnusedOptionsAndContradictionsGetOneLine) {
   };
   for (const Case& c : {Case{"--strategy tabu", "--strategy: tabu not in {paper,es,lahc,anneal,cmaes}"},
                         Case{"--strategy cmaes --lambda 4", "lambda = 4: --strategy cmaes needs a population of at least 5"},
+                        Case{"--strategy es --sigma 3", "sigma: an option of --strategy cmaes, not used by --strategy es"},
+                        Case{"--strategy cmaes --lambda 6 --sigma 0", "sigma = 0: must be > 0"},
                         Case{"--strategy lahc --temperature 0.1", "temperature: an option of --strategy anneal"},
                         Case{"--temperature 0.3", "temperature: an option of --strategy anneal, not used by --strategy es"},
                         Case{"--strategy paper --target-success 0.3",

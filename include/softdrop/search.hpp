@@ -68,6 +68,9 @@ struct StrategyOptions {
   /// generations.
   double temperature = 0.01;
   double half_life = 1000;  ///< anneal: generations
+  /// cmaes: the Gaussian's first standard deviation of every centre coordinate (length units). It
+  /// adapts from there; too small a start spends the first hundreds of generations growing it.
+  double sigma = 8;
   bool IsValid(std::string* why) const;
 };
 
@@ -76,9 +79,7 @@ struct SearchOptions {
   std::uint64_t seed = 1;   ///< seed of the moves
   int lambda = 1;           ///< candidates per generation (1: exactly the paper's algorithm)
   int single_every = 10;    ///< every this-th generation moves a single touched grain (0: never)
-  /// all-grain move: each grain jumps uniformly within this radius (length). cmaes: the Gaussian's
-  /// first standard deviation of every centre coordinate (length).
-  double step = 1.0;
+  double step = 1.0;        ///< all-grain move: each grain jumps uniformly within this radius (length)
   double single_step = 5.0; ///< single move: the grain jumps uniformly within this radius (length)
   /// Every this-th generation (0: never; single moves take precedence) one grain the droplet did
   /// not touch moves next to a point of the droplet's path: its centre within droplet radius + its

@@ -52,7 +52,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_option("--relocate-every", a.search.relocate_every,
                 "Every this-th generation puts one grain the droplet did not touch next to its path (0: never)")
       ->capture_default_str();
-  g->add_option("--step", a.search.step, "All-grain move: jump radius of each grain (length units); cmaes: first standard deviation of each centre coordinate")
+  g->add_option("--step", a.search.step, "All-grain move: jump radius of each grain (length units)")
       ->capture_default_str();
   g->add_option("--single-step", a.search.single_step, "Single move: jump radius of the grain (length units)")
       ->capture_default_str();
@@ -79,6 +79,10 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_option("--half-life", a.search.strategy.half_life, "anneal: generations in which the temperature halves")
       ->capture_default_str()
       ->each([&a](const std::string&) { a.strategy_options.emplace_back("--half-life", StrategyKind::anneal); });
+  g->add_option("--sigma", a.search.strategy.sigma,
+                "cmaes: the Gaussian's first standard deviation of each grain coordinate (length units); it adapts")
+      ->capture_default_str()
+      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--sigma", StrategyKind::cmaes); });
   add_objective_options(g, a);
   g->add_option("--islands", a.islands.islands,
                 "Island model: this many searches with seeds of their own, run side by side, each a run of the "

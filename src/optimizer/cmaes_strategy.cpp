@@ -67,7 +67,7 @@ class Cmaes final : public StrategyBase {
  public:
   Cmaes(const SearchOptions& o, Configuration current, const std::string& state)
       : StrategyBase(o, std::move(current)), scale_(std::max(current_.medium.width, current_.medium.height)),
-        algorithm_(1u, -1, -1, -1, -1, o.step / scale_, /*ftol=*/0, /*xtol=*/0, /*memory=*/true,
+        algorithm_(1u, -1, -1, -1, -1, o.strategy.sigma / scale_, /*ftol=*/0, /*xtol=*/0, /*memory=*/true,
                    /*force_bounds=*/false, static_cast<unsigned>(derive_seed(o.seed, kStream))) {
     start_ = coordinates(current_.medium);
     if (!state.empty()) replay(state);

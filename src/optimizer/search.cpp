@@ -60,6 +60,7 @@ bool StrategyOptions::IsValid(std::string* why) const {
   if (!(temperature > 0) || !std::isfinite(temperature))
     return fail(why, "temperature = " + num(temperature) + ": must be > 0");
   if (!(half_life > 0) || !std::isfinite(half_life)) return fail(why, "half-life = " + num(half_life) + ": must be > 0");
+  if (!(sigma > 0) || !std::isfinite(sigma)) return fail(why, "sigma = " + num(sigma) + ": must be > 0");
   return true;
 }
 

@@ -15,7 +15,7 @@ namespace {
 bool optional_key(const std::string& key) {
   return key == "constraint-order" || key == "rest-window" || key == "rest-distance" ||
          key == "strategy" || key == "target-success" || key == "history-length" ||
-         key == "temperature" || key == "half-life" || key == "relocate-every" ||
+         key == "temperature" || key == "half-life" || key == "sigma" || key == "relocate-every" ||
          key == "viscosity-dilation" || key == "viscosity-step" || key == "objective" || key == "starts" ||
          key == "quantile" || key == "se-factor" || key == "margin" || key == "media-stream";
 }
@@ -71,6 +71,7 @@ void visit_search(Options& o, F&& f) {
   f("history-length", o.strategy.history_length);
   f("temperature", o.strategy.temperature);
   f("half-life", o.strategy.half_life);
+  f("sigma", o.strategy.sigma);
   f("objective", o.objective.kind);
   f("starts", o.objective.starts);
   f("quantile", o.objective.quantile);
