@@ -16,6 +16,9 @@ t=$("$work/venv/bin/python" -c "
 import softdrop, softdrop.plot
 m = softdrop.Medium.generate('non-overlapping', porosity=0.8, seed=1)
 print(repr(softdrop.simulate(m, x0=200).tortuosity))")
+for f in py.typed __init__.pyi _core.pyi plot.pyi; do  # the type stubs, for editors and type checkers
+  [[ -f $(dirname "$where")/$f ]] || { echo "pip_install_test: $f not installed"; exit 1; }
+done
 version=$("$work/venv/bin/python" -c "import softdrop; print(softdrop.__version__)")
 [[ $("$work/venv/bin/softdrop" --version) == "$version" ]] || { echo "pip_install_test: the softdrop command"; exit 1; }
 theirs=$("$work/venv/bin/softdrop" simulate --porosity 0.8 --kind non-overlapping --medium-seed 1 --x0 200 --format json |

@@ -16,8 +16,8 @@ import os
 from ._core import DropletParams, Medium, RunOptions, StoreError, __version__  # noqa: F401
 from . import _core
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "optimize", "sweep",
-           "rigid_descent", "read_history", "read_sweep", "best_arrangement", "__version__"]
+__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "optimize",
+           "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "__version__"]
 
 
 class Result(dict):

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The objectives compared on what a user means: the held-out value of each search's best.
-#   bash results/search/objectives.sh ["SEEDS"] ["OBJECTIVE:GENERATIONS[:STRATEGY] ..."]
+#   bash results/search/objectives.sh ["SEEDS"] ["OBJECTIVE:GENERATIONS[:STRATEGY[:LAMBDA]] ..."]
 # For each seed and run, a search of the program's default problem with that objective and
 # strategy (default es; seed = medium seed), whose best gets its held-out value at the end (200 random
 # starts, seed 1, at dt and dt/2), and its starting medium the same (at dt): a random medium of
@@ -17,15 +17,17 @@ RUNS=${2:-"mean:200 single:200 single:3600 mean:600"}
 OUT=results/search/objectives
 mkdir -p "$OUT/db"
 for run in $RUNS; do
-  IFS=: read -r objective generations strategy <<< "$run"
+  IFS=: read -r objective generations strategy lambda <<< "$run"
   strategy=${strategy:-es}
+  lambda=${lambda:-8}
   for seed in $SEEDS; do
     name="$OUT/db/default-$objective-$generations-$seed"
     [[ $strategy == es ]] || name+="-$strategy"
+    [[ $lambda == 8 ]] || name+="$lambda"
     [[ -f $name.json ]] && continue
     echo "objectives: $objective, $generations generations, $strategy, seed $seed" >&2
     rm -f "$name.db" "$name.db-wal" "$name.db-shm"
-    "$S" "${DROPLET[@]}" optimize --db "$name.db" --objective "$objective" --strategy "$strategy" --seed "$seed" \
+    "$S" "${DROPLET[@]}" optimize --db "$name.db" --objective "$objective" --strategy "$strategy" --lambda "$lambda" --seed "$seed" \
       --medium-seed "$seed" --generations "$generations" --quiet --json "$name.json" > /dev/null
   done
 done
@@ -42,7 +44,9 @@ for path in sorted(p for p in glob.glob(f"{out}/db/*.json") if not p.endswith("-
     start = json.load(open(path[:-5] + "-start.json"))["at_dt"]
     _, objective, generations, seed = os.path.basename(path)[:-5].split("-")[:4]
     h = j["held_out"] or {}
-    rows.append(dict(problem="default", objective=objective, strategy=j["strategy"], generations=int(generations),
+    lam = round((j["evaluations"] - 1) / int(generations))  # generation 0 is one evaluation
+    rows.append(dict(problem="default", objective=objective, strategy=j["strategy"], **{"lambda": lam},
+                     generations=int(generations),
                      seed=int(seed), droplets=j["droplets"], start_held_out_t=start["mean_t"],
                      start_held_out_passed=start["passed"], in_search_t=j["best_tortuosity"],
                      best_generation=j["best_generation"], held_out_t=h.get("mean_t"),
@@ -55,19 +59,19 @@ with open(f"{out}/runs.csv", "w", newline="") as f:
     w.writerows(rows)
 groups = {}
 for r in rows:
-    groups.setdefault((r["objective"], r["generations"], r["strategy"]), []).append(r)
+    groups.setdefault((r["objective"], r["generations"], r["strategy"], r["lambda"]), []).append(r)
 with open(f"{out}/summary.csv", "w", newline="") as f:
     w = csv.writer(f)
-    w.writerow(["objective", "generations", "strategy", "seeds", "droplets", "median_start_held_out_t", "median_in_search_t",
+    w.writerow(["objective", "generations", "strategy", "lambda", "seeds", "droplets", "median_start_held_out_t", "median_in_search_t",
                 "median_held_out_t", "min_held_out_t", "max_held_out_t", "median_held_out_passed", "median_gap",
                 "max_gap_in_se", "median_wall_seconds"])
-    for (objective, generations, strategy), rs in sorted(groups.items()):
+    for (objective, generations, strategy, lam), rs in sorted(groups.items()):
         held = [r["held_out_t"] for r in rs]
         # The in-search value against its held-out counterpart: the objective over the held-out
         # starts (a robust objective), or the held-out <T> (single).
         ref = [r["held_out_objective"] if r["held_out_objective"] is not None else r["held_out_t"] for r in rs]
         gaps = [r["in_search_t"] - x for r, x in zip(rs, ref)]
-        w.writerow([objective, generations, strategy, len(rs), statistics.median(r["droplets"] for r in rs),
+        w.writerow([objective, generations, strategy, lam, len(rs), statistics.median(r["droplets"] for r in rs),
                     round(statistics.median(r["start_held_out_t"] for r in rs), 4),
                     round(statistics.median(r["in_search_t"] for r in rs), 4), round(statistics.median(held), 4),
                     round(min(held), 4), round(max(held), 4), statistics.median(r["held_out_passed"] for r in rs),

@@ -1,0 +1,41 @@
+# Types of the softdrop package (__init__.py), so that editors complete its calls and type
+# checkers check them. The classes come from the compiled core (_core.pyi).
+from os import PathLike
+from typing import Any, Callable, Optional, Sequence, Union
+
+import numpy as np
+import numpy.typing as npt
+import pandas as pd
+
+from ._core import DropletParams as DropletParams
+from ._core import Medium as Medium
+from ._core import RunOptions as RunOptions
+from ._core import StoreError as StoreError
+from ._core import __version__ as __version__
+
+_Path = Union[str, PathLike[str]]
+_MediumLike = Union[Medium, _Path]
+_Event = dict[str, Any]
+
+__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "optimize",
+           "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "__version__"]
+
+class Result(dict[str, Any]):
+    def __getattr__(self, name: str) -> Any: ...
+
+def simulate(medium: _MediumLike, x0: Optional[float] = ..., params: Optional[DropletParams] = ...,
+             run: Optional[RunOptions] = ..., path: bool = ..., trace: bool = ...,
+             trace_interval: int = ...) -> Result: ...
+def simulate_many(medium: _MediumLike, n: int, seed: int = ..., threads: int = ...,
+                  params: Optional[DropletParams] = ..., run: Optional[RunOptions] = ...) -> pd.DataFrame: ...
+def held_out(medium: _MediumLike, starts: int = ..., seed: int = ..., half_dt: bool = ..., threads: int = ...,
+             params: Optional[DropletParams] = ..., run: Optional[RunOptions] = ...) -> Result: ...
+def rigid_descent(medium: Medium, x0: Union[float, Sequence[float], npt.NDArray[np.float64]], radius: float = ...,
+                  path: bool = ...) -> pd.DataFrame: ...
+def optimize(db: _Path = ..., callback: Optional[Callable[[_Event], Optional[bool]]] = ..., progress: bool = ...,
+             **options: Any) -> Result: ...
+def sweep(db: _Path = ..., callback: Optional[Callable[[_Event], Optional[bool]]] = ..., progress: bool = ...,
+          **options: Any) -> Result: ...
+def read_history(db: _Path, arrangements: bool = ...) -> dict[str, pd.DataFrame]: ...
+def read_sweep(db: _Path, sweep: Optional[int] = ...) -> dict[str, pd.DataFrame]: ...
+def best_arrangement(db: _Path, run: int = ..., generation: int = ...) -> Result: ...

@@ -1,0 +1,54 @@
+"""The package's type stubs: they name what the module has (mypy's stubtest against the module as
+built), and a type checker passes a right call and catches a wrong one, as an editor would."""
+import os
+import pathlib
+import subprocess
+import sys
+
+import pytest
+
+import softdrop
+
+pytest.importorskip("mypy")
+
+HERE = pathlib.Path(__file__).resolve().parent
+PACKAGE_ROOT = pathlib.Path(softdrop.__file__).resolve().parents[1]  # the folder softdrop/ is in
+
+
+def mypy(tmp_path, *args):
+    config = tmp_path / "mypy.ini"
+    # Debian's pandas and matplotlib have no stubs; the cache goes with the test's files.
+    config.write_text(f"[mypy]\nignore_missing_imports = True\ncache_dir = {tmp_path / 'cache'}\n")
+    env = dict(os.environ, MYPYPATH=str(PACKAGE_ROOT))
+    option = "--config-file" if args[0] == "mypy" else "--mypy-config-file"
+    return subprocess.run([sys.executable, "-m", *args, option, str(config)], capture_output=True, text=True,
+                          cwd=PACKAGE_ROOT, env=env)
+
+
+def test_the_stubs_name_what_the_module_has(tmp_path):
+    r = mypy(tmp_path, "mypy.stubtest", "softdrop", "--allowlist", str(HERE / "stubtest_allowlist.txt"))
+    assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_a_type_checker_passes_right_calls_and_catches_wrong_ones(tmp_path):
+    right = tmp_path / "right.py"
+    right.write_text(
+        "import softdrop\n"
+        "m = softdrop.Medium.generate('non-overlapping', porosity=0.8, seed=1)\n"
+        "run = softdrop.simulate(m, x0=200.0, params=softdrop.DropletParams(radius=8), path=True)\n"
+        "frame = softdrop.simulate_many(m, 20, seed=3)\n"
+        "r: float = m.porosity() + m.grains[0, 2] + softdrop.DropletParams.balloon().radius\n"
+        "softdrop.optimize('s.db', generations=3, callback=lambda e: e['generation'] < 2)\n")
+    r = mypy(tmp_path, "mypy", str(right))
+    assert r.returncode == 0, r.stdout
+    wrong = tmp_path / "wrong.py"
+    wrong.write_text(
+        "import softdrop\n"
+        "m = softdrop.Medium.generate(porosity='0.8')\n"
+        "softdrop.simulate(m, x0='left')\n"
+        "softdrop.DropletParams().radius = 'big'\n"
+        "softdrop.read_history(3)\n")
+    r = mypy(tmp_path, "mypy", str(wrong))
+    assert r.returncode == 1
+    lines = {int(line.split(":")[1]) for line in r.stdout.splitlines() if "error:" in line}
+    assert lines == {2, 3, 4, 5}, r.stdout
