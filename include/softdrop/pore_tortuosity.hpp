@@ -1,0 +1,62 @@
+#pragma once
+/// \file pore_tortuosity.hpp
+/// Tortuosities of a medium's pore space on a pixel grid, beside the droplet's: the geometric
+/// tortuosity (shortest paths through the pores) and the diffusive one (a steady diffusion solve,
+/// PoreSpy's tortuosity_fd definition). The medium is drawn as a binary image, pixel centres
+/// inside no grain being pore, as PoreSpy's and TauFactor's images are.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "softdrop/medium.hpp"
+
+namespace softdrop {
+
+/// A binary image of a box: `pore[i + nx * j]` is 1 where pixel (i, j) is pore space, rows j from
+/// the bottom (y = 0) up, columns i from x = 0. Pixels are squares of side `pixel` (length units).
+struct PoreImage {
+  int nx = 0, ny = 0;
+  double pixel = 1;      ///< side of a pixel, length units
+  bool periodic = true;  ///< periodic in x (otherwise walls at x = 0 and x = W)
+  std::vector<std::uint8_t> pore;
+  bool IsValid(std::string* why) const;
+  double porosity() const;  ///< the share of pore pixels
+};
+
+/// The medium drawn with `nx` pixels across its width (and as many rows as fill its height, at
+/// least 1): a pixel is pore where its centre lies inside no grain. Throws std::invalid_argument
+/// for nx < 2 or an image of more than kMaxPoreImagePixels pixels.
+PoreImage pore_image(const Medium& medium, int nx);
+inline constexpr std::int64_t kMaxPoreImagePixels = 64'000'000;
+
+/// The geometric tortuosity: over the pore pixels of the top row (the starts), the length of the
+/// shortest path through pore space to the bottom edge, over the box's height; first-order fast
+/// marching on the pixel centres (Sethian), which converges to the continuous distance as the
+/// pixels shrink. Starts that reach no bottom pore pixel are left out and counted.
+struct GeometricTortuosity {
+  double tortuosity = 0;    ///< mean over the connected starts of path length / H
+  double standard_error = 0;  ///< of that mean over the starts (they are correlated: neighbours share paths)
+  int starts = 0;           ///< pore pixels of the top row
+  int connected = 0;        ///< of them, those with a path to the bottom
+  double shortest = 0, longest = 0;  ///< the least and largest path length / H
+};
+/// Throws std::invalid_argument naming the problem when no start is connected to the bottom.
+GeometricTortuosity geometric_tortuosity(const PoreImage& image);
+
+/// The diffusive tortuosity: a steady diffusion through the pore space, concentration 1 above the
+/// top row and 0 below the bottom row, no flux into the solid (or the walls), periodic in x if the
+/// image is; finite volumes on the pixels, solved by sparse Cholesky (Eigen). Pore pixels joined
+/// to neither edge carry no flux and are left out. tau = phi D / D_eff, with phi the image's
+/// porosity and D_eff the flux through the box times H over W (PoreSpy's tortuosity_fd).
+struct DiffusiveTortuosity {
+  double tau = 0;                  ///< phi D / D_eff
+  double formation_factor = 0;     ///< D / D_eff
+  double effective_diffusivity = 0;  ///< D_eff / D
+  double porosity = 0;             ///< of the image (all pore pixels)
+  std::int64_t unknowns = 0;       ///< pore pixels solved for
+};
+/// Throws std::invalid_argument naming the problem when no pore path joins the top and bottom.
+DiffusiveTortuosity diffusive_tortuosity(const PoreImage& image);
+
+}  // namespace softdrop
