@@ -100,6 +100,7 @@ Cli::Cli() {
   render_cmd_ = add_render_command(app, render_);
   calibrate_cmd_ = add_calibrate_command(app, calibrate_);
   validate_cmd_ = add_validate_command(app, validate_);
+  tortuosity_cmd_ = add_tortuosity_command(app, tortuosity_);
   add_value_checks(app);
 }
 
@@ -136,6 +137,10 @@ void Cli::check() {
     check_render(render_, render_cmd_->get_subcommands().front()->get_name());
   if (calibrate_cmd_->parsed()) check_calibrate(calibrate_);
   if (validate_cmd_->parsed()) check_validate(validate_, *validate_cmd_);
+  if (tortuosity_cmd_->parsed()) {
+    check_tortuosity(tortuosity_);
+    if (tortuosity_.medium.file.empty()) check_placement(tortuosity_.medium.options);
+  }
 }
 
 int Cli::run() {
@@ -159,6 +164,7 @@ int Cli::run() {
   if (render_cmd_->parsed()) return run_render(render_, *render_cmd_);
   if (calibrate_cmd_->parsed()) return run_calibrate(calibrate_);
   if (validate_cmd_->parsed()) return run_validate(validate_, *validate_cmd_);
+  if (tortuosity_cmd_->parsed()) return run_tortuosity(tortuosity_);
   return 0;
 }
 

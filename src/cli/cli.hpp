@@ -13,6 +13,7 @@
 #include "cli/render_command.hpp"
 #include "cli/simulate_command.hpp"
 #include "cli/sweep_command.hpp"
+#include "cli/tortuosity_command.hpp"
 #include "cli/validate_command.hpp"
 
 namespace softdrop::cli {
@@ -56,6 +57,7 @@ class Cli {
   RenderArgs render_;
   CalibrateArgs calibrate_;
   ValidateArgs validate_;
+  TortuosityArgs tortuosity_;
   CLI::App* simulate_cmd_ = nullptr;
   CLI::App* optimize_cmd_ = nullptr;
   CLI::App* history_cmd_ = nullptr;
@@ -63,6 +65,7 @@ class Cli {
   CLI::App* render_cmd_ = nullptr;
   CLI::App* calibrate_cmd_ = nullptr;
   CLI::App* validate_cmd_ = nullptr;
+  CLI::App* tortuosity_cmd_ = nullptr;
 };
 
 /// The whole program: parses, runs, and turns every error into one line on stderr. Returns the

@@ -1,0 +1,168 @@
+#include "cli/tortuosity_command.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <stdexcept>
+
+#include "cli/output.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/pore_tortuosity.hpp"
+#include "softdrop/porosity.hpp"
+#include "softdrop/version.hpp"
+
+namespace softdrop::cli {
+
+namespace {
+// The least pixels a radius of the smallest grain: below it a throat between two grains is a few
+// pixels wide, and the first-order error of the solves is tens of percent.
+constexpr double kMinPixelsPerRadius = 4;
+}  // namespace
+
+CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& a) {
+  CLI::App* s = app.add_subcommand(
+      "tortuosity",
+      "A medium's tortuosities side by side: the droplet's, and its pore space's on a pixel image (geometric: "
+      "shortest paths; diffusive: tau = phi D / D_eff), each at a resolution and its double");
+  s->fallthrough();
+  add_medium_options(s, a.medium, false);
+  auto* g = s->add_option_group("Tortuosity");
+  g->add_option("--pixels", a.pixels,
+                "Pixels across the box's width at the coarser resolution; the finer has twice as many (the pixel "
+                "count of the height follows)")
+      ->capture_default_str();
+  g->add_option("--starts", a.droplets.starts, "Droplets from random starts for the droplet's T (0: none)")
+      ->capture_default_str();
+  g->add_option("--seed", a.droplets.seed, "Seed of the droplets' starts")->capture_default_str()->check(seed_check());
+  g->add_option("--threads", a.droplets.threads, "Worker threads for the droplets (0 = all cores)")->capture_default_str();
+  auto* d = add_droplet_options(s, a.droplet);
+  add_exit_options(d, a.run);
+  auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
+  o->add_option("--csv", a.csv_file,
+                "CSV, one row a value: quantity (geometric, diffusive, droplet), pixels (empty: extrapolated or the "
+                "droplet's), pixel (length units), value, standard_error");
+  return s;
+}
+
+void check_tortuosity(TortuosityArgs& a) {
+  resolve_medium(a.medium);
+  if (a.pixels < 8 || a.pixels > 4000) throw std::invalid_argument("pixels = " + std::to_string(a.pixels) + ": must be in [8, 4000]");
+  a.droplets.half_dt = false;
+  std::string why;
+  if (a.droplets.starts != 0 && !a.droplets.IsValid(&why)) throw std::invalid_argument(why);
+  if (!a.droplet.IsValid(&why)) throw std::invalid_argument(why);
+  if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
+  for (const auto& [option, path] : {std::pair{"--json", a.json_file}, {"--csv", a.csv_file}})
+    if (!path.empty()) check_output_path(option, path);
+}
+
+namespace {
+
+struct Resolved {
+  int pixels;
+  double pixel;
+  GeometricTortuosity geometric;
+  DiffusiveTortuosity diffusive;
+};
+
+// Both tortuosities at `pixels` across; a medium with no pore path says so in one line.
+Resolved at_resolution(const Medium& m, int pixels, bool quiet) {
+  if (!quiet) std::cerr << "tortuosity: the pore space at " << pixels << " pixels across\n";
+  const PoreImage image = pore_image(m, pixels);
+  try {
+    return {pixels, image.pixel, geometric_tortuosity(image), diffusive_tortuosity(image)};
+  } catch (const std::invalid_argument& e) {
+    throw std::runtime_error("tortuosity: the medium at " + std::to_string(pixels) + " pixels across: " + e.what() +
+                             "; every tortuosity is undefined");
+  }
+}
+
+nlohmann::json pair_json(double coarse, double fine, int pixels) {
+  return {{"pixels", {pixels, 2 * pixels}},
+          {"values", {coarse, fine}},
+          {"change", (fine - coarse) / coarse},
+          {"extrapolated", 2 * fine - coarse}};
+}
+
+std::string pair_line(double coarse, double fine, int pixels) {
+  return fmt(coarse, 5) + " at " + std::to_string(pixels) + " px, " + fmt(fine, 5) + " at " +
+         std::to_string(2 * pixels) + " px (" + (fine >= coarse ? "+" : "") + fmt(100 * (fine - coarse) / coarse, 2) +
+         " %), extrapolated " + fmt(2 * fine - coarse, 5);
+}
+
+}  // namespace
+
+int run_tortuosity(TortuosityArgs& a) {
+  check_tortuosity(a);
+  const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
+  double r_min = medium.width;
+  for (const Grain& g : medium.grains) r_min = std::min(r_min, g.r);
+  const double per_radius = r_min / (medium.width / a.pixels);
+  if (!medium.grains.empty() && per_radius < kMinPixelsPerRadius)
+    throw std::invalid_argument("pixels = " + std::to_string(a.pixels) + ": " + fmt(per_radius, 3) +
+                                " pixels a radius of the smallest grain (r = " + fmt(r_min) + "), fewer than 4");
+  const Resolved coarse = at_resolution(medium, a.pixels, a.quiet);
+  const Resolved fine = at_resolution(medium, 2 * a.pixels, a.quiet);
+  HeldOutValue droplets;
+  if (a.droplets.starts > 0) {
+    Progress progress("tortuosity: droplets");
+    droplets = held_out_value(a.droplet, medium, a.run, a.droplets, [&](int done, int total) {
+      if (!a.quiet) progress.update(done, total);
+    });
+  }
+  const HeldOutRuns& d = droplets.at_dt;
+  nlohmann::json j{
+      {"version", kVersion},
+      {"medium", {{"grains", medium.grains.size()}, {"porosity", exact_porosity(medium)}, {"width", medium.width},
+                  {"height", medium.height}, {"periodic", medium.periodic}}},
+      {"pixels_per_smallest_radius", medium.grains.empty() ? nlohmann::json() : nlohmann::json({per_radius, 2 * per_radius})},
+      {"image_porosity", {coarse.diffusive.porosity, fine.diffusive.porosity}},
+      {"geometric", pair_json(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels)},
+      {"diffusive", pair_json(coarse.diffusive.tau, fine.diffusive.tau, a.pixels)}};
+  j["geometric"]["starts"] = fine.geometric.starts;
+  j["geometric"]["connected"] = fine.geometric.connected;
+  j["diffusive"]["formation_factor"] = {coarse.diffusive.formation_factor, fine.diffusive.formation_factor};
+  if (a.droplets.starts > 0)
+    j["droplet"] = {{"starts", d.starts}, {"seed", a.droplets.seed}, {"passed", d.passed},
+                    {"mean_t", finite_or_null(d.mean_t)}, {"standard_error", finite_or_null(d.standard_error)}};
+  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  if (!a.csv_file.empty()) {
+    std::ostringstream out;
+    out << "quantity,pixels,pixel,value,standard_error\n";
+    for (const Resolved* r : {&coarse, &fine}) {
+      out << "geometric," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->geometric.tortuosity) << ','
+          << fmt(r->geometric.standard_error) << '\n';
+      out << "diffusive," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->diffusive.tau) << ",\n";
+    }
+    out << "geometric,,," << fmt(2 * fine.geometric.tortuosity - coarse.geometric.tortuosity) << ",\n";
+    out << "diffusive,,," << fmt(2 * fine.diffusive.tau - coarse.diffusive.tau) << ",\n";
+    if (a.droplets.starts > 0 && d.passed > 0)
+      out << "droplet,,," << fmt(d.mean_t) << ',' << (d.passed > 1 ? fmt(d.standard_error) : "") << '\n';
+    write_file_atomically(a.csv_file, out.str());
+  }
+  if (a.format == "json") {
+    std::cout << j.dump(2) << '\n';
+    return 0;
+  }
+  std::cout << "medium       " << medium.grains.size() << " grains, porosity " << fmt(exact_porosity(medium), 6) << ", "
+            << fmt(medium.width) << " x " << fmt(medium.height) << (medium.periodic ? ", periodic" : ", walls") << "\n"
+            << "image        " << a.pixels << " and " << 2 * a.pixels << " pixels across";
+  if (!medium.grains.empty()) std::cout << " (" << fmt(per_radius, 3) << " and " << fmt(2 * per_radius, 3) << " a smallest radius)";
+  std::cout << ", porosity " << fmt(coarse.diffusive.porosity, 5) << " and " << fmt(fine.diffusive.porosity, 5) << "\n"
+            << "geometric T  " << pair_line(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels) << "; "
+            << fine.geometric.connected << " of " << fine.geometric.starts << " top pixels reach the bottom\n"
+            << "diffusive    tau = " << pair_line(coarse.diffusive.tau, fine.diffusive.tau, a.pixels) << "\n";
+  if (a.droplets.starts > 0) {
+    std::cout << "droplet T    ";
+    if (d.passed == 0)
+      std::cout << "no droplet passed";
+    else
+      std::cout << "<T> = " << fmt(d.mean_t, 5) << (d.passed > 1 ? " +- " + fmt(d.standard_error, 2) : std::string());
+    std::cout << "; " << d.passed << " of " << d.starts << " starts passed (seed " << a.droplets.seed << ")\n";
+  }
+  return 0;
+}
+
+}  // namespace softdrop::cli

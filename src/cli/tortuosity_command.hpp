@@ -1,0 +1,33 @@
+#pragma once
+// `softdrop tortuosity`: one medium's tortuosities side by side: the droplet's (held-out starts),
+// and its pore space's on a pixel image, geometric and diffusive, each at a resolution and at its
+// double, with the value extrapolated from the two.
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "cli/common_options.hpp"
+#include "softdrop/droplet.hpp"
+#include "softdrop/held_out.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop::cli {
+
+struct TortuosityArgs {
+  MediumArgs medium;
+  int pixels = 500;          ///< across the box's width, at the coarser resolution (the finer has twice)
+  HeldOutOptions droplets;   ///< the droplet's T: starts and seed (0 starts: no droplet)
+  DropletParams droplet;
+  RunOptions run;
+  std::string format = "table";
+  std::string json_file, csv_file;
+  bool quiet = false;
+};
+
+/// Registers the subcommand and its options on `app`; returns it.
+CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& args);
+/// Checks the options without running; throws std::invalid_argument naming the bad one.
+void check_tortuosity(TortuosityArgs& args);
+int run_tortuosity(TortuosityArgs& args);
+
+}  // namespace softdrop::cli
