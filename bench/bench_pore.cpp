@@ -1,0 +1,34 @@
+// The pore-space tortuosities' solves (pore_tortuosity.hpp) on the default box at the resolutions
+// `softdrop tortuosity` uses by default: 500 and 1000 pixels across an overlapping medium of
+// porosity 0.7 (medium seed 3). One core: the solves are serial.
+#include <benchmark/benchmark.h>
+
+#include "softdrop/medium.hpp"
+#include "softdrop/pore_tortuosity.hpp"
+
+namespace {
+
+softdrop::PoreImage image(int pixels) {
+  softdrop::MediumOptions o;
+  o.porosity = 0.7;
+  o.seed = 3;
+  return softdrop::pore_image(softdrop::generate_medium(o), pixels);
+}
+
+void BM_GeometricTortuosity(benchmark::State& state) {
+  const softdrop::PoreImage im = image(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(softdrop::geometric_tortuosity(im).tortuosity);
+  state.counters["pixels"] = static_cast<double>(im.pore.size());
+}
+BENCHMARK(BM_GeometricTortuosity)->Arg(500)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+void BM_DiffusiveTortuosity(benchmark::State& state) {
+  const softdrop::PoreImage im = image(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(softdrop::diffusive_tortuosity(im).tau);
+  state.counters["pixels"] = static_cast<double>(im.pore.size());
+}
+BENCHMARK(BM_DiffusiveTortuosity)->Arg(500)->Arg(1000)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();
