@@ -28,6 +28,8 @@ inline std::function<void(int, int)> stop_on_ctrl_c() {
 
 /// The held-out value of a medium (held_out.hpp).
 void bind_held_out(py::module_& m);
+/// The pore space's tortuosities of a medium or an image (pore_tortuosity.hpp).
+void bind_tortuosity(py::module_& m);
 /// The readers of search histories and sweep stores: read_history, read_sweep, best_arrangement.
 void bind_stores(py::module_& m);
 /// The program's optimize and sweep commands, run in this process: the same options, files and

@@ -323,6 +323,7 @@ PYBIND11_MODULE(_core, m) {
   bind_stores(m);
   bind_commands(m);
   bind_held_out(m);
+  python::bind_tortuosity(m);
 
   m.def(
       "_simulate",

@@ -40,6 +40,9 @@ struct GeometricTortuosity {
   int starts = 0;           ///< pore pixels of the top row
   int connected = 0;        ///< of them, those with a path to the bottom
   double shortest = 0, longest = 0;  ///< the least and largest path length / H
+  /// Every pixel's path length to the bottom edge (length units), as the image's pixels; infinite
+  /// in the solid and in pores with no path down.
+  std::vector<double> distance;
 };
 /// Throws std::invalid_argument naming the problem when no start is connected to the bottom.
 GeometricTortuosity geometric_tortuosity(const PoreImage& image);
@@ -55,6 +58,9 @@ struct DiffusiveTortuosity {
   double effective_diffusivity = 0;  ///< D_eff / D
   double porosity = 0;             ///< of the image (all pore pixels)
   std::int64_t unknowns = 0;       ///< pore pixels solved for
+  /// The concentration at every pixel, as the image's pixels (1 at the top, 0 at the bottom); NaN
+  /// in the solid and in closed pockets.
+  std::vector<double> concentration;
 };
 /// Throws std::invalid_argument naming the problem when no pore path joins the top and bottom.
 DiffusiveTortuosity diffusive_tortuosity(const PoreImage& image);

@@ -16,7 +16,7 @@ import os
 from ._core import DropletParams, Medium, RunOptions, StoreError, __version__  # noqa: F401
 from . import _core
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "optimize",
+__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "tortuosity", "optimize",
            "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "__version__"]
 
 
@@ -71,6 +71,27 @@ def held_out(medium, starts=200, seed=1, half_dt=True, threads=0, params=None, r
                           _whole(threads, "threads"), params or DropletParams(), run or RunOptions())
     out["runs"] = pd.DataFrame(out["runs"])
     return Result(out)
+
+
+def tortuosity(medium, pixels=500, pixel_size=1.0, periodic=True):
+    """The pore space's tortuosities, as `softdrop tortuosity` measures them at one resolution.
+    `medium` is a Medium (drawn `pixels` across its width, a pixel being pore where its centre lies
+    in no grain), or a grain file's name, or a 2D binary image: a numpy array, True (or 1) in the
+    pore space, rows from the top (PoreSpy's convention, and Medium.to_image's), of pixels of side
+    `pixel_size`, periodic in x or not. Returns a Result: geometric_t (the shortest path from each
+    pore pixel of the top row to the bottom, over the height, averaged over them: fast marching),
+    geometric_standard_error, starts and connected (top pixels, and those with a path down), tau
+    (phi D / D_eff from a steady diffusion between the top and the bottom: PoreSpy's tortuosity_fd),
+    formation_factor, effective_diffusivity, porosity (of the image), pixel, and the fields as arrays
+    of the image's shape, rows from the top: distance (to the bottom edge, length units; inf where
+    no path) and concentration (NaN in the solid). Both values converge at first order in the pixel
+    size: compare a resolution with its double. Raises ValueError for an image that is not binary
+    or is empty, a bad pixel size, or no pore path from the top to the bottom."""
+    import numpy as np
+
+    if isinstance(medium, np.ndarray):
+        return Result(_core._tortuosity_of_image(medium, float(pixel_size), bool(periodic)))
+    return Result(_core._tortuosity_of_medium(_medium(medium), _whole(pixels, "pixels", 2)))
 
 
 def rigid_descent(medium, x0, radius=0.0, path=False):

@@ -17,7 +17,7 @@ _Path = Union[str, PathLike[str]]
 _MediumLike = Union[Medium, _Path]
 _Event = dict[str, Any]
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "optimize",
+__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "tortuosity", "optimize",
            "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "__version__"]
 
 class Result(dict[str, Any]):
@@ -30,6 +30,8 @@ def simulate_many(medium: _MediumLike, n: int, seed: int = ..., threads: int = .
                   params: Optional[DropletParams] = ..., run: Optional[RunOptions] = ...) -> pd.DataFrame: ...
 def held_out(medium: _MediumLike, starts: int = ..., seed: int = ..., half_dt: bool = ..., threads: int = ...,
              params: Optional[DropletParams] = ..., run: Optional[RunOptions] = ...) -> Result: ...
+def tortuosity(medium: Union[_MediumLike, npt.NDArray[Any]], pixels: int = ..., pixel_size: float = ...,
+               periodic: bool = ...) -> Result: ...
 def rigid_descent(medium: Medium, x0: Union[float, Sequence[float], npt.NDArray[np.float64]], radius: float = ...,
                   path: bool = ...) -> pd.DataFrame: ...
 def optimize(db: _Path = ..., callback: Optional[Callable[[_Event], Optional[bool]]] = ..., progress: bool = ...,

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -103,6 +104,9 @@ DiffusiveTortuosity diffusive_tortuosity(const PoreImage& image) {
   d.formation_factor = 1 / d.effective_diffusivity;
   d.tau = d.porosity * d.formation_factor;
   d.unknowns = n;
+  d.concentration.assign(image.pore.size(), std::numeric_limits<double>::quiet_NaN());
+  for (std::size_t k = 0; k < index.size(); ++k)
+    if (index[k] >= 0) d.concentration[k] = c[index[k]];
   return d;
 }
 

@@ -82,7 +82,7 @@ std::vector<double> distance_to_bottom(const PoreImage& im) {
 GeometricTortuosity geometric_tortuosity(const PoreImage& image) {
   std::string why;
   if (!image.IsValid(&why)) throw std::invalid_argument(why);
-  const std::vector<double> d = distance_to_bottom(image);
+  std::vector<double> d = distance_to_bottom(image);
   const double height = image.ny * image.pixel;
   GeometricTortuosity g;
   double sum = 0, sum2 = 0;
@@ -104,6 +104,7 @@ GeometricTortuosity geometric_tortuosity(const PoreImage& image) {
   const double n = g.connected;
   g.tortuosity = sum / n;
   g.standard_error = n > 1 ? std::sqrt(std::max(0.0, (sum2 - sum * sum / n) / (n - 1)) / n) : 0.0;
+  g.distance = std::move(d);
   return g;
 }
 

@@ -335,3 +335,38 @@ def test_parameters_and_media_are_values_that_cross_to_worker_processes():
     here = softdrop.simulate(medium, x0=200, params=params).tortuosity
     with concurrent.futures.ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
         assert pool.submit(_tortuosity_in_a_worker, medium, params).result() == here
+
+
+def test_pore_space_tortuosities_of_a_medium_and_of_its_image_are_the_programs(tmp_path):
+    medium = softdrop.Medium.generate(porosity=0.7, seed=3, width=200, height=200, r_min=8, r_max=16)
+    r = softdrop.tortuosity(medium, pixels=100)
+    image = medium.to_image(100)  # True in the pore space, rows from the top
+    s = softdrop.tortuosity(image, pixel_size=2.0)
+    assert (r.geometric_t, r.tau, r.porosity) == (s.geometric_t, s.tau, s.porosity)
+    assert r.porosity == image.mean()
+    # The program's coarser resolution is this one.
+    path = tmp_path / "m.json"
+    medium.save(path)
+    out = json.loads(subprocess.run([CLI, "tortuosity", "--medium", str(path), "--pixels", "100", "--starts", "0",
+                                     "--quiet", "--format", "json"], capture_output=True, text=True, check=True).stdout)
+    assert out["geometric"]["values"][0] == r.geometric_t and out["diffusive"]["values"][0] == r.tau
+    # The fields: the top row's distances give the geometric T; the concentration runs from 1 to 0.
+    assert r.distance.shape == r.concentration.shape == image.shape
+    top = r.distance[0][np.isfinite(r.distance[0])]
+    assert np.isclose((top + r.pixel / 2).mean() / medium.height, r.geometric_t, rtol=1e-12, atol=0)
+    assert np.all(np.isnan(r.concentration[~image]))
+    assert np.nanmin(r.concentration) > 0 and np.nanmax(r.concentration) < 1
+    assert np.nanmean(r.concentration[0]) > 0.9 and np.nanmean(r.concentration[-1]) < 0.1
+
+
+@pytest.mark.parametrize("image, says", [
+    (np.full((20, 20), 0.5), "not binary"),
+    (np.zeros((0, 5), dtype=bool), "empty"),
+    (np.ones(5, dtype=bool), "a 2D array"),
+    (np.vstack([np.ones((9, 20)), np.zeros((1, 20)), np.ones((10, 20))]).astype(bool), "no pore path"),
+])
+def test_a_bad_image_gets_one_line_naming_it(image, says):
+    with pytest.raises(ValueError, match=says):
+        softdrop.tortuosity(image)
+    with pytest.raises(ValueError, match="pixel_size"):
+        softdrop.tortuosity(np.ones((4, 4), dtype=bool), pixel_size=float("nan"))

@@ -1,0 +1,85 @@
+// softdrop.tortuosity: the pore space's geometric and diffusive tortuosities of a medium or of a
+// binary image (True in the pore space, rows from the top: PoreSpy's convention and
+// Medium.to_image's), with their fields as numpy arrays.
+#include <pybind11/numpy.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "bindings.hpp"
+#include "softdrop/pore_tortuosity.hpp"
+
+namespace softdrop::python {
+namespace {
+
+// A field of the image (rows from the bottom) as a 2D array with rows from the top.
+py::array_t<double> field(const PoreImage& im, const std::vector<double>& values) {
+  py::array_t<double> a({static_cast<py::ssize_t>(im.ny), static_cast<py::ssize_t>(im.nx)});
+  auto v = a.mutable_unchecked<2>();
+  for (int j = 0; j < im.ny; ++j)
+    for (int i = 0; i < im.nx; ++i)
+      v(im.ny - 1 - j, i) = values[static_cast<std::size_t>(i + im.nx * j)];
+  return a;
+}
+
+py::dict measure(const PoreImage& im) {
+  GeometricTortuosity g;
+  DiffusiveTortuosity d;
+  {
+    py::gil_scoped_release release;
+    g = geometric_tortuosity(im);
+    d = diffusive_tortuosity(im);
+  }
+  py::dict out;
+  out["pixel"] = im.pixel;
+  out["porosity"] = im.porosity();
+  out["geometric_t"] = g.tortuosity;
+  out["geometric_standard_error"] = g.standard_error;
+  out["starts"] = g.starts;
+  out["connected"] = g.connected;
+  out["tau"] = d.tau;
+  out["formation_factor"] = d.formation_factor;
+  out["effective_diffusivity"] = d.effective_diffusivity;
+  out["distance"] = field(im, g.distance);
+  out["concentration"] = field(im, d.concentration);
+  return out;
+}
+
+}  // namespace
+
+void bind_tortuosity(py::module_& m) {
+  m.def(
+      "_tortuosity_of_medium",
+      [](const Medium& medium, int pixels) { return measure(pore_image(medium, pixels)); }, py::arg("medium"),
+      py::arg("pixels"));
+  m.def(
+      "_tortuosity_of_image",
+      [](const py::array& image, double pixel_size, bool periodic) {
+        if (image.ndim() != 2) throw std::invalid_argument("image: a 2D array, not " + std::to_string(image.ndim()) + "D");
+        if (image.shape(0) < 1 || image.shape(1) < 1) throw std::invalid_argument("image: empty");
+        if (!(pixel_size > 0) || !std::isfinite(pixel_size))
+          throw std::invalid_argument("pixel_size = " + std::to_string(pixel_size) + ": must be finite and > 0");
+        const auto values = py::array_t<double, py::array::forcecast>::ensure(image);
+        if (!values) throw std::invalid_argument("image: not an array of numbers");
+        const auto v = values.unchecked<2>();
+        PoreImage im;
+        im.ny = static_cast<int>(image.shape(0));
+        im.nx = static_cast<int>(image.shape(1));
+        im.pixel = pixel_size;
+        im.periodic = periodic;
+        im.pore.resize(static_cast<std::size_t>(im.nx) * static_cast<std::size_t>(im.ny));
+        for (int r = 0; r < im.ny; ++r)
+          for (int c = 0; c < im.nx; ++c) {
+            const double x = v(r, c);
+            if (x != 0 && x != 1)
+              throw std::invalid_argument("image: not binary (" + std::to_string(x) + " at row " + std::to_string(r) +
+                                          ", column " + std::to_string(c) + "); True or 1 is pore space");
+            im.pore[static_cast<std::size_t>(c + im.nx * (im.ny - 1 - r))] = x == 1;
+          }
+        return measure(im);
+      },
+      py::arg("image"), py::arg("pixel_size"), py::arg("periodic"));
+}
+
+}  // namespace softdrop::python
