@@ -182,6 +182,37 @@ TEST(Render, SvgKeepsItsTextAsText) {
   EXPECT_EQ(svg.find("glyph"), std::string::npos) << "no glyph outlines";
 }
 
+// The legend goes to the corner the data leave free: top left over a rising line, top right over a
+// falling one, bottom right when the data fill the top.
+TEST(Render, TheLegendSitsWhereTheDataAreNot) {
+  struct Case {
+    std::vector<double> y;
+    bool legend_left, legend_top;
+  };
+  for (const Case& c : {Case{{1, 2, 3, 4, 5}, true, true}, Case{{5, 4, 3, 2, 1}, false, true},
+                        Case{{5, 5, 1, 5, 5}, false, false}}) {
+    const std::string svg = fresh("legend.svg");
+    Chart chart;
+    Series line;
+    line.x = {0, 1, 2, 3, 4};
+    line.y = c.y;
+    line.label = "a legend entry";
+    chart.series = {line};
+    RenderStyle style;
+    style.width = 400;
+    render_chart(chart, style, svg);
+    tinyxml2::XMLDocument doc;
+    ASSERT_EQ(doc.LoadFile(svg.c_str()), tinyxml2::XML_SUCCESS);
+    double x = -1, y = -1;
+    for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e; e = e->NextSiblingElement("text"))
+      if (e->GetText() && std::string(e->GetText()) == "a legend entry") x = e->DoubleAttribute("x"), y = e->DoubleAttribute("y");
+    ASSERT_GE(x, 0) << "no legend";
+    SCOPED_TRACE(c.y[0]);
+    EXPECT_EQ(x < 200, c.legend_left) << x;
+    EXPECT_EQ(y < 124, c.legend_top) << y;
+  }
+}
+
 TEST(Render, PdfAndChartAreWritten) {
   const std::string pdf = fresh("scene.pdf");
   render_scene(small_scene(), RenderStyle{}, pdf);

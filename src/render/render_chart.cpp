@@ -2,6 +2,7 @@
 #include <cairo.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
@@ -175,17 +176,44 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
       cairo_stroke(cr);
     }
     cairo_restore(cr);
-    // Legend, top right; its font shrinks until the longest entry fits inside the plot.
+    // Legend: its font shrinks until the longest entry fits inside the plot; it goes to the corner
+    // that covers the fewest data (points, and lines sampled every few pixels), top right on a tie.
     double widest = 0;
+    int entries = 0;
     for (const Series& s : chart.series)
-      if (!s.label.empty()) cairo_text_extents(cr, s.label.c_str(), &ext), widest = std::max(widest, ext.x_advance);
+      if (!s.label.empty()) {
+        cairo_text_extents(cr, s.label.c_str(), &ext);
+        widest = std::max(widest, ext.x_advance);
+        ++entries;
+      }
     const double lf = widest + 3.4 * font > right - left ? font * (right - left) / (widest + 3.4 * font) : font;
     cairo_set_font_size(cr, lf);
-    double ly = top + 1.4 * lf;
+    const double box_w = widest + 3.4 * lf, box_h = 1.4 * lf * entries + 0.5 * lf;
+    const std::array<std::array<double, 2>, 4> corners{{{right - box_w, top},  // x, y of the box's top left
+                                                         {left, top},
+                                                         {right - box_w, bottom - box_h},
+                                                         {left, bottom - box_h}}};
+    std::array<long, 4> covered{};
+    auto cover = [&](double x, double y) {
+      for (std::size_t c = 0; c < corners.size(); ++c)
+        covered[c] += x >= corners[c][0] && x <= corners[c][0] + box_w && y >= corners[c][1] &&
+                      y <= corners[c][1] + box_h;
+    };
+    for (const Series& s : chart.series)
+      for (std::size_t i = 0; i < s.x.size(); ++i) {
+        const double xa = px(s.x[i]), ya = py(s.y[i]);
+        cover(xa, ya);
+        if (s.style == Series::Style::points || i + 1 == s.x.size()) continue;
+        const double xb = px(s.x[i + 1]), yb = py(s.y[i + 1]);
+        const int n = static_cast<int>(std::min(1000.0, std::hypot(xb - xa, yb - ya) / 3));
+        for (int k = 1; k < n; ++k) cover(xa + (xb - xa) * k / n, ya + (yb - ya) * k / n);
+      }
+    const std::size_t best = static_cast<std::size_t>(std::min_element(covered.begin(), covered.end()) - covered.begin());
+    double ly = corners[best][1] + 1.4 * lf;
     for (const Series& s : chart.series) {
       if (s.label.empty()) continue;
       cairo_text_extents(cr, s.label.c_str(), &ext);
-      const double lx = right - ext.x_advance - 3.2 * lf;
+      const double lx = corners[best][0] + box_w - ext.x_advance - 3.2 * lf;
       set(cr, s.colour);
       if (s.style == Series::Style::points) {
         cairo_arc(cr, lx + 1.2 * lf, ly - 0.35 * lf, std::max(2.5, s.width), 0, 2 * M_PI);
