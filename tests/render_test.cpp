@@ -490,6 +490,25 @@ TEST(RenderCli, AScaleBarIsDrawnWhenAsked) {
 }
 
 // Passed and stuck droplets in their own colours.
+// A snapshot's label beside its droplet lies over a halo of the background's colour, so that it
+// reads over a grain or the path: in SVG, a stroke painted under the glyphs.
+TEST(RenderCli, SnapshotLabelsLieOnAHaloOfTheBackground) {
+  const std::string svg = fresh("snapshots_halo.svg");
+  ASSERT_EQ(test::run("render snapshots --medium " + kPore + " --x0 100 --times 0.01,0.02 --background '#fafaf0' -o " +
+                      svg).code, 0);
+  tinyxml2::XMLDocument doc;
+  ASSERT_EQ(doc.LoadFile(svg.c_str()), tinyxml2::XML_SUCCESS);
+  int labels = 0;
+  for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e; e = e->NextSiblingElement("text")) {
+    if (!e->GetText() || std::string(e->GetText()).rfind("t = ", 0) != 0) continue;
+    ++labels;
+    EXPECT_STREQ(e->Attribute("stroke"), "rgb(250,250,240)");
+    EXPECT_STREQ(e->Attribute("paint-order"), "stroke");
+    EXPECT_GT(e->DoubleAttribute("stroke-width"), 1.0);
+  }
+  EXPECT_EQ(labels, 2);
+}
+
 TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
   const std::string svg = fresh("paths_colours.svg");
   const test::Result ok = test::run("render paths --porosity 0.75 --width 200 --height 200 --droplets 8 --seed 1 "

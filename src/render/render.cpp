@@ -190,10 +190,12 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
   if (!scene.labels.empty()) {
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     cairo_set_font_size(cr, std::max(9.0, 0.016 * g.width));
+    // Over a halo of the background's colour: a label beside a droplet often lies on a grain.
+    const double halo = 0.25 * std::max(9.0, 0.016 * g.width);
     for (const Label& l : scene.labels) {
       set(cr, l.colour);
       cairo_move_to(cr, px(l.x), py(l.y));
-      show_text(cr, l.text);
+      detail::show_text_with_halo(cr, l.text, style.background.r, style.background.g, style.background.b, halo);
     }
   }
   cairo_restore(cr);

@@ -52,6 +52,29 @@ void show_text(cairo_t* cr, const std::string& text) {
   texts->push_back(std::move(t));
 }
 
+void show_text_with_halo(cairo_t* cr, const std::string& text, double r, double g, double b, double width) {
+  auto* texts = static_cast<std::vector<SvgText>*>(cairo_get_user_data(cr, &kCollector));
+  if (texts != nullptr) {
+    show_text(cr, text);
+    SvgText& t = texts->back();
+    double w = width, unused = 0;
+    cairo_user_to_device_distance(cr, &w, &unused);
+    t.halo = std::abs(w), t.hr = r, t.hg = g, t.hb = b;
+    return;
+  }
+  double x = 0, y = 0;
+  cairo_get_current_point(cr, &x, &y);
+  cairo_save(cr);
+  cairo_text_path(cr, text.c_str());
+  cairo_set_source_rgb(cr, r, g, b);
+  cairo_set_line_width(cr, width);
+  cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  cairo_stroke(cr);
+  cairo_restore(cr);
+  cairo_move_to(cr, x, y);
+  cairo_show_text(cr, text.c_str());
+}
+
 void insert_svg_text(const std::string& path, const std::vector<SvgText>& texts) {
   if (texts.empty()) return;
   std::string svg;
@@ -70,6 +93,9 @@ void insert_svg_text(const std::string& path, const std::vector<SvgText>& texts)
         << ")\"";
     if (t.a < 1) out << " fill-opacity=\"" << t.a << "\"";
     if (t.bold) out << " font-weight=\"bold\"";
+    if (t.halo > 0)
+      out << " stroke=\"rgb(" << std::lround(255 * t.hr) << "," << std::lround(255 * t.hg) << "," << std::lround(255 * t.hb)
+          << ")\" stroke-width=\"" << t.halo << "\" stroke-linejoin=\"round\" paint-order=\"stroke\"";
     if (std::abs(t.angle) > 1e-9) out << " transform=\"rotate(" << t.angle << " " << t.x << " " << t.y << ")\"";
     out << " xml:space=\"preserve\">" << escaped(t.text) << "</text>\n";
   }
