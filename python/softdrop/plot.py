@@ -113,7 +113,7 @@ def best_curve(history, run=1, ax=None):
     if v is not None and not v.empty:
         v = v[v["run_id"] == run]
         ax.errorbar(v["generation"], v["mean_t"], yerr=v["standard_error"], fmt="o", color="tab:red",
-                    label="held-out <T>")
+                    label="held-out ⟨T⟩")
     ax.set_xlabel("generation")
     ax.set_ylabel("T")
     ax.legend(loc="best", frameon=False)
@@ -144,8 +144,8 @@ def porosity(points, ax=None, paper=True, mean="mean_t", error="media_standard_e
     ax.errorbar(phi, t, yerr=se, fmt="o", color="black", capsize=2, label=label)
     if paper or residuals:
         grid = np.linspace(min(np.nanmin(phi), 0.4), 1.0, 200)
-        ax.plot(grid, paper_fit(grid), color="tab:red", label="paper's fit 1.58 - 0.58 φ^3.87")
-    ax.set_ylabel("<T>")
+        ax.plot(grid, paper_fit(grid), color="tab:red", label="paper's fit 1.58 − 0.58 φ^3.87")
+    ax.set_ylabel("⟨T⟩")
     ax.legend(loc="best", frameon=False)
     if not residuals:
         ax.set_xlabel("porosity φ")
@@ -155,7 +155,7 @@ def porosity(points, ax=None, paper=True, mean="mean_t", error="media_standard_e
     low.axhline(0, color="tab:red", linewidth=1)
     low.plot(phi, pull, "o", color="black")
     low.set_xlabel("porosity φ")
-    low.set_ylabel("(<T> - f) / se")
+    low.set_ylabel("(⟨T⟩ − f) / se")
     return ax.figure
 
 
@@ -171,7 +171,7 @@ def area_trace(run, ax=None):
         if key in run and np.isfinite(run[key]):
             ax.axvline(run[key], color="0.5", linestyle=style, label=f"{key}s the medium")
     ax.set_xlabel("t")
-    ax.set_ylabel("S / S0")
+    ax.set_ylabel("S / S₀")
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="best", frameon=False)
     return ax.figure

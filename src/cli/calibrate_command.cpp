@@ -203,7 +203,7 @@ void plot_best(const std::vector<const Row*>& ranked, int best, const std::strin
     const double phi = 0.45 + 0.55 * i / 100.0;
     paper.x.push_back(phi), paper.y.push_back(paper_tortuosity(phi));
   }
-  paper.label = "paper: 1.58 - 0.58 phi^3.87";
+  paper.label = "paper: 1.58 − 0.58 φ^3.87";
   paper.colour = {0.1, 0.1, 0.1, 1};
   c.series.push_back(paper);
   const Rgba colours[] = {{0.8, 0.1, 0.1, 1}, {0.1, 0.35, 0.8, 1}, {0.1, 0.6, 0.2, 1}, {0.7, 0.4, 0.0, 1},

@@ -266,7 +266,7 @@ int render_search(RenderArgs& a) {
     chart.series.push_back(curve);
     chart.x_label = "generation";
     chart.y_label = "best tortuosity T";
-    chart.title = "run " + std::to_string(a.run_id) + ": " + std::to_string(run.grains) + " grains, lambda = " +
+    chart.title = "run " + std::to_string(a.run_id) + ": " + std::to_string(run.grains) + " grains, λ = " +
                   std::to_string(run.lambda);
     render_chart(chart, style, a.curve);
   }

@@ -79,6 +79,10 @@ def test_porosity_has_the_points_and_the_papers_fit():
     assert np.array_equal(bars.lines[0].get_ydata(), [1.4, 1.2])
     segments = bars.lines[2][0].get_segments()
     assert [s[1][1] - s[0][1] for s in segments] == pytest.approx([0.08, 0.06])
+    # The labels speak one notation, the program's pictures' (φ, ⟨T⟩, a minus sign), not ASCII stand-ins.
+    texts = [fig.axes[0].get_ylabel(), fig.axes[0].get_xlabel()] + [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert "⟨T⟩" in texts and "porosity φ" in texts and any("1.58 − 0.58 φ^3.87" in t for t in texts)
+    assert not any(ascii in t for t in texts for ascii in ("<T>", "phi", " - "))
     plt.close(fig)
 
     # Per medium first, with the residuals against the paper's f in units of the error.
