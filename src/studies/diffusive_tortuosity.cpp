@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pore_grid.hpp"
 #include "softdrop/pore_tortuosity.hpp"
 
 namespace softdrop {
@@ -30,16 +31,10 @@ std::vector<std::uint8_t> open_pores(const PoreImage& im, bool* joined) {
       const std::int64_t k = queue.front();
       queue.pop_front();
       const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
-      const int ni[4] = {i - 1, i + 1, i, i}, nj[4] = {j, j, j - 1, j + 1};
       for (int n = 0; n < 4; ++n) {
-        int ii = ni[n];
-        if (nj[n] < 0 || nj[n] >= ny) continue;
-        if (ii < 0 || ii >= nx) {
-          if (!im.periodic) continue;
-          ii = (ii + nx) % nx;
-        }
-        const auto m = static_cast<std::size_t>(ii + nx * nj[n]);
-        if (im.pore[m] && !seen[m]) seen[m] = 1, queue.push_back(static_cast<std::int64_t>(m));
+        const std::int64_t m = detail::face_neighbour(im, i, j, n);
+        if (m >= 0 && im.pore[static_cast<std::size_t>(m)] && !seen[static_cast<std::size_t>(m)])
+          seen[static_cast<std::size_t>(m)] = 1, queue.push_back(m);
       }
     }
   };
@@ -73,15 +68,10 @@ DiffusiveTortuosity diffusive_tortuosity(const PoreImage& image) {
       const std::int64_t p = index[static_cast<std::size_t>(i + nx * j)];
       if (p < 0) continue;
       double diagonal = 0;
-      const int ni[4] = {i - 1, i + 1, i, i}, nj[4] = {j, j, j - 1, j + 1};
       for (int m = 0; m < 4; ++m) {
-        int ii = ni[m];
-        if (nj[m] < 0 || nj[m] >= ny) continue;
-        if (ii < 0 || ii >= nx) {
-          if (!image.periodic) continue;
-          ii = (ii + nx) % nx;
-        }
-        const std::int64_t q = index[static_cast<std::size_t>(ii + nx * nj[m])];
+        const std::int64_t neighbour = detail::face_neighbour(image, i, j, m);
+        if (neighbour < 0) continue;
+        const std::int64_t q = index[static_cast<std::size_t>(neighbour)];
         if (q < 0) continue;
         diagonal += 1;
         entries.emplace_back(p, q, -1.0);

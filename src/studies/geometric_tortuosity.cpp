@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "pore_grid.hpp"
 #include "softdrop/pore_tortuosity.hpp"
 
 namespace softdrop {
@@ -49,17 +50,11 @@ std::vector<double> distance_to_bottom(const PoreImage& im) {
     if (done[uk] || dk > d[uk]) continue;
     done[uk] = 1;
     const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
-    const int ni[4] = {i - 1, i + 1, i, i};
-    const int nj[4] = {j, j, j - 1, j + 1};
     for (int n = 0; n < 4; ++n) {
-      int ii = ni[n];
-      const int jj = nj[n];
-      if (jj < 0 || jj >= ny) continue;
-      if (ii < 0 || ii >= nx) {
-        if (!im.periodic) continue;
-        ii = (ii + nx) % nx;
-      }
-      const auto un = static_cast<std::size_t>(ii + nx * jj);
+      const std::int64_t neighbour = detail::face_neighbour(im, i, j, n);
+      if (neighbour < 0) continue;
+      const auto un = static_cast<std::size_t>(neighbour);
+      const int ii = static_cast<int>(neighbour % nx), jj = static_cast<int>(neighbour / nx);
       if (!im.pore[un] || done[un]) continue;
       const double a = std::min(at(ii - 1, jj), at(ii + 1, jj)), b = std::min(at(ii, jj - 1), at(ii, jj + 1));
       double v;
