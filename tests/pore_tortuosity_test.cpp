@@ -102,6 +102,35 @@ TEST(PoreTortuosity, SlantedChannelsGiveTheStraightPathThroughThem) {
   EXPECT_NEAR(diffusive_tortuosity(slanted_channels(400, 0.5, 200, 40)).tau, 1.25, 0.02 * 1.25);
 }
 
+// Traced down the distance field: straight down an empty box; through slanted channels, from the
+// top edge to the bottom edge, never through solid, and as long as the channel makes it.
+TEST(PoreTortuosity, ShortestPathsRunFromTheTopEdgeToTheBottomThroughPores) {
+  Medium empty;
+  const PoreImage open = pore_image(empty, 50);
+  const auto straight = shortest_paths(open, geometric_tortuosity(open), 5);
+  ASSERT_EQ(straight.size(), 5u);
+  for (const PorePath& p : straight) {
+    EXPECT_EQ(p.y.front(), 500.0);
+    EXPECT_EQ(p.y.back(), 0.0);
+    for (double x : p.x) EXPECT_EQ(x, p.x.front());
+  }
+  const PoreImage im = slanted_channels(200, 0.5, 100, 20);
+  const GeometricTortuosity g = geometric_tortuosity(im);
+  for (const PorePath& p : shortest_paths(im, g, 8)) {
+    double length = 0;
+    for (std::size_t k = 1; k < p.x.size(); ++k) {
+      length += std::hypot(p.x[k] - p.x[k - 1], p.y[k] - p.y[k - 1]);
+      if (k + 1 < p.x.size()) {  // the points between the edges are pore pixels' centres
+        const int i = static_cast<int>(std::floor(p.x[k])) % 200, j = static_cast<int>(std::floor(p.y[k]));
+        EXPECT_TRUE(im.pore[static_cast<std::size_t>((i + 200) % 200 + 200 * j)]);
+      }
+    }
+    // Eight directions make the drawn path a little longer than the distance field's, never shorter.
+    EXPECT_GE(length / 200, g.shortest * 0.999);
+    EXPECT_LE(length / 200, g.longest * 1.09);
+  }
+}
+
 TEST(PoreTortuosity, NoPathFromTopToBottomIsSaidNotGivenAsANumber) {
   PoreImage im = slanted_channels(40, 0, 10, 5);
   for (int i = 0; i < 40; ++i) im.pore[static_cast<std::size_t>(i + 40 * 20)] = 0;  // a solid row across

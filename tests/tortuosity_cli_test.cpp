@@ -50,6 +50,12 @@ TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
   EXPECT_EQ(std::stod(t.rows[1][3]), j["diffusive"]["values"][0].get<double>());
   EXPECT_EQ(t.rows[6][0], "droplet");
 
+  const std::string png = fresh_path("pore_space.png");
+  const auto drawn = run("tortuosity --porosity 0.75 --width 200 --height 200 --r-min 8 --r-max 16 --pixels 100 "
+                         "--starts 0 --quiet --size 300 --picture " + png);
+  ASSERT_EQ(drawn.code, 0) << drawn.err;
+  EXPECT_GT(std::filesystem::file_size(png), 5000u);  // the field, the grains, the paths, the caption
+
   const auto empty = run("tortuosity --medium " + grain_file("empty.json", "") + " --pixels 50 --starts 4 --quiet "
                          "--format json");
   ASSERT_EQ(empty.code, 0) << empty.err;

@@ -47,6 +47,16 @@ struct GeometricTortuosity {
 /// Throws std::invalid_argument naming the problem when no start is connected to the bottom.
 GeometricTortuosity geometric_tortuosity(const PoreImage& image);
 
+/// A path through the pore space: points in length units, from the top edge down to the bottom
+/// edge, x running on across a periodic side.
+struct PorePath {
+  std::vector<double> x, y;
+};
+/// Up to `count` shortest paths, from starts spread evenly over the top pixels that reach the
+/// bottom, each traced down `g`'s distance field (to whichever of the eight neighbours it falls
+/// to most steeply) from the start's pixel to the bottom edge.
+std::vector<PorePath> shortest_paths(const PoreImage& image, const GeometricTortuosity& g, int count);
+
 /// The diffusive tortuosity: a steady diffusion through the pore space, concentration 1 above the
 /// top row and 0 below the bottom row, no flux into the solid (or the walls), periodic in x if the
 /// image is; finite volumes on the pixels, solved by sparse Cholesky (Eigen). Pore pixels joined

@@ -67,8 +67,17 @@ struct Label {
   Rgba colour{0, 0, 0, 1};
 };
 
+/// A scalar field over the medium's box on a pixel grid, drawn under the grains in a colour map
+/// from `lo` (dark blue) to `hi` (yellow); NaN pixels are left to the background.
+struct Field {
+  int nx = 0, ny = 0;
+  std::vector<double> values;  ///< nx * ny, rows from the bottom (y = 0) up
+  double lo = 0, hi = 1;
+};
+
 struct Scene {
   Medium medium;
+  Field field;                       ///< optional, under everything else
   std::vector<std::uint8_t> filled;  ///< per grain, nonzero: fill it (touched grains)
   std::vector<Polyline> lines;
   std::vector<Label> labels;         ///< drawn on top of everything in the box

@@ -11,6 +11,7 @@
 #include "softdrop/grain_file.hpp"
 #include "softdrop/pore_tortuosity.hpp"
 #include "softdrop/porosity.hpp"
+#include "softdrop/render.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
@@ -43,6 +44,10 @@ CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& a) {
   o->add_option("--csv", a.csv_file,
                 "CSV, one row a value: quantity (geometric, diffusive, droplet), pixels (empty: extrapolated or the "
                 "droplet's), pixel (length units), value, standard_error");
+  o->add_option("--picture", a.picture,
+                "Draw the pore space at the coarser resolution: the diffusion's concentration and shortest paths "
+                "(.png, .svg or .pdf)");
+  o->add_option("--size", a.size, "The picture's width in points")->capture_default_str();
   return s;
 }
 
@@ -56,6 +61,8 @@ void check_tortuosity(TortuosityArgs& a) {
   if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
   for (const auto& [option, path] : {std::pair{"--json", a.json_file}, {"--csv", a.csv_file}})
     if (!path.empty()) check_output_path(option, path);
+  if (!a.picture.empty()) check_picture_path("--picture", a.picture);
+  if (a.size < 100 || a.size > 5000) throw std::invalid_argument("size = " + std::to_string(a.size) + ": must be in [100, 5000]");
 }
 
 namespace {
@@ -63,6 +70,7 @@ namespace {
 struct Resolved {
   int pixels;
   double pixel;
+  PoreImage image;
   GeometricTortuosity geometric;
   DiffusiveTortuosity diffusive;
 };
@@ -72,7 +80,7 @@ Resolved at_resolution(const Medium& m, int pixels, bool quiet) {
   if (!quiet) std::cerr << "tortuosity: the pore space at " << pixels << " pixels across\n";
   const PoreImage image = pore_image(m, pixels);
   try {
-    return {pixels, image.pixel, geometric_tortuosity(image), diffusive_tortuosity(image)};
+    return {pixels, image.pixel, image, geometric_tortuosity(image), diffusive_tortuosity(image)};
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error("tortuosity: the medium at " + std::to_string(pixels) + " pixels across: " + e.what() +
                              "; every tortuosity is undefined");
@@ -90,6 +98,23 @@ std::string pair_line(double coarse, double fine, int pixels) {
   return fmt(coarse, 5) + " at " + std::to_string(pixels) + " px, " + fmt(fine, 5) + " at " +
          std::to_string(2 * pixels) + " px (" + (fine >= coarse ? "+" : "") + fmt(100 * (fine - coarse) / coarse, 2) +
          " %), extrapolated " + fmt(2 * fine - coarse, 5);
+}
+
+// The picture: the concentration of the diffusion (dark blue at the bottom, yellow at the top) in
+// the pore space, the grains over it, and shortest paths from starts spread over the top.
+void draw_pore_space(const Medium& medium, const Resolved& r, const TortuosityArgs& a) {
+  Scene scene;
+  scene.medium = medium;
+  scene.field = {r.image.nx, r.image.ny, r.diffusive.concentration, 0, 1};
+  for (const PorePath& p : shortest_paths(r.image, r.geometric, 24))
+    scene.lines.push_back({p.x, p.y, Rgba{1, 1, 1, 0.9}, 1.2});
+  scene.caption = "diffusion (concentration, 0 to 1) and 24 shortest paths at " + std::to_string(r.pixels) +
+                  " pixels across: tau = " + fmt(r.diffusive.tau, 4) + ", geometric T = " + fmt(r.geometric.tortuosity, 4);
+  scene.top_room = 0;
+  RenderStyle style;
+  style.width = a.size;
+  style.solid_grains = true;  // the solid the solves saw: the union of the grains
+  render_scene(scene, style, a.picture);
 }
 
 }  // namespace
@@ -127,6 +152,7 @@ int run_tortuosity(TortuosityArgs& a) {
   if (a.droplets.starts > 0)
     j["droplet"] = {{"starts", d.starts}, {"seed", a.droplets.seed}, {"passed", d.passed},
                     {"mean_t", finite_or_null(d.mean_t)}, {"standard_error", finite_or_null(d.standard_error)}};
+  if (!a.picture.empty()) draw_pore_space(medium, coarse, a);
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (!a.csv_file.empty()) {
     std::ostringstream out;

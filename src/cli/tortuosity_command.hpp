@@ -21,6 +21,8 @@ struct TortuosityArgs {
   RunOptions run;
   std::string format = "table";
   std::string json_file, csv_file;
+  std::string picture;  ///< the pore space drawn: the concentration and shortest paths
+  int size = 600;       ///< its width in points
   bool quiet = false;
 };
 

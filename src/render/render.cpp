@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <stdexcept>
@@ -114,6 +116,49 @@ std::vector<std::vector<std::pair<double, double>>> pieces_of(const Polyline& p,
   return out;
 }
 
+// A colour map from dark blue through teal and green to yellow (samples of viridis, which reads
+// in grey and to colour-blind eyes), linear between its stops.
+Rgba colour_map(double t) {
+  static constexpr double kStops[][3] = {{0.267, 0.005, 0.329}, {0.231, 0.322, 0.545}, {0.129, 0.569, 0.549},
+                                         {0.369, 0.788, 0.384}, {0.993, 0.906, 0.144}};
+  t = std::clamp(t, 0.0, 1.0) * 4;
+  const int k = std::min(3, static_cast<int>(t));
+  const double f = t - k;
+  auto mix = [&](int c) { return kStops[k][c] + f * (kStops[k + 1][c] - kStops[k][c]); };
+  return {mix(0), mix(1), mix(2), 1};
+}
+
+// The field as an image stretched over the box (x0, y0 its top left on the page, w x h), pixels
+// kept square-edged.
+void draw_field(cairo_t* cr, const Field& field, double x0, double y0, double w, double h) {
+  if (field.values.size() != static_cast<std::size_t>(field.nx) * static_cast<std::size_t>(field.ny))
+    throw std::invalid_argument("field: " + std::to_string(field.values.size()) + " values for " +
+                                std::to_string(field.nx) + " x " + std::to_string(field.ny) + " pixels");
+  SurfacePtr image(cairo_image_surface_create(CAIRO_FORMAT_ARGB32, field.nx, field.ny), cairo_surface_destroy);
+  unsigned char* data = cairo_image_surface_get_data(image.get());
+  const int stride = cairo_image_surface_get_stride(image.get());
+  const double span = field.hi > field.lo ? field.hi - field.lo : 1;
+  for (int j = 0; j < field.ny; ++j)
+    for (int i = 0; i < field.nx; ++i) {
+      const double v = field.values[static_cast<std::size_t>(i + field.nx * j)];
+      std::uint32_t pixel = 0;  // transparent
+      if (std::isfinite(v)) {
+        const Rgba c = colour_map((v - field.lo) / span);
+        pixel = 0xff000000u | static_cast<std::uint32_t>(std::lround(255 * c.r)) << 16 |
+                static_cast<std::uint32_t>(std::lround(255 * c.g)) << 8 | static_cast<std::uint32_t>(std::lround(255 * c.b));
+      }
+      std::memcpy(data + static_cast<std::ptrdiff_t>(field.ny - 1 - j) * stride + 4 * i, &pixel, 4);
+    }
+  cairo_surface_mark_dirty(image.get());
+  cairo_save(cr);
+  cairo_translate(cr, x0, y0);
+  cairo_scale(cr, w / field.nx, h / field.ny);
+  cairo_set_source_surface(cr, image.get(), 0, 0);
+  cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_NEAREST);
+  cairo_paint(cr);
+  cairo_restore(cr);
+}
+
 void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const Geometry& g) {
   const Medium& m = scene.medium;
   auto px = [&](double x) { return style.margin + g.scale * x; };
@@ -124,6 +169,8 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
   cairo_save(cr);
   cairo_rectangle(cr, px(0), py(g.y1), g.scale * m.width, g.scale * (g.y1 - g.y0));
   cairo_clip(cr);
+  if (scene.field.nx > 0 && scene.field.ny > 0) draw_field(cr, scene.field, px(0), py(m.height), g.scale * m.width,
+                                                          g.scale * m.height);
   // Grains, with their periodic images at the edges; each grain is one path (or, solid, all of
   // them one path, filled with the nonzero rule: their union).
   auto images = [&](const Grain& gr) {

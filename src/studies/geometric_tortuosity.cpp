@@ -103,4 +103,52 @@ GeometricTortuosity geometric_tortuosity(const PoreImage& image) {
   return g;
 }
 
+std::vector<PorePath> shortest_paths(const PoreImage& image, const GeometricTortuosity& g, int count) {
+  if (g.distance.size() != image.pore.size()) throw std::invalid_argument("shortest paths: a distance field of another image");
+  const int nx = image.nx, ny = image.ny;
+  const double h = image.pixel;
+  std::vector<int> starts;
+  for (int i = 0; i < nx; ++i)
+    if (std::isfinite(g.distance[static_cast<std::size_t>(i + nx * (ny - 1))])) starts.push_back(i);
+  std::vector<PorePath> paths;
+  const int n = std::min<int>(count, static_cast<int>(starts.size()));
+  for (int p = 0; p < n; ++p) {
+    int i = starts[static_cast<std::size_t>((2 * p + 1) * static_cast<std::int64_t>(starts.size()) / (2 * n))];
+    int j = ny - 1, laps = 0;  // laps: times the path crossed a periodic side (x unwrapped)
+    PorePath path;
+    auto add = [&](double y) {
+      path.x.push_back((i + 0.5 + static_cast<double>(laps) * nx) * h);
+      path.y.push_back(y);
+    };
+    add(ny * h);
+    for (std::int64_t steps = 0; steps <= static_cast<std::int64_t>(nx) * ny; ++steps) {
+      add((j + 0.5) * h);
+      if (j == 0) break;
+      // The steepest way down: the largest fall of the distance per length of the step, so that
+      // straight steps win over diagonal ones of the same fall.
+      const double here = g.distance[static_cast<std::size_t>(i + nx * j)];
+      double best = 0;
+      int bi = -1, bj = -1, bl = 0;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          int ii = i + di, lap = 0;
+          const int jj = j + dj;
+          if ((di == 0 && dj == 0) || jj < 0 || jj >= ny) continue;
+          if (ii < 0 || ii >= nx) {
+            if (!image.periodic) continue;
+            lap = ii < 0 ? -1 : 1;
+            ii -= lap * nx;
+          }
+          const double fall = (here - g.distance[static_cast<std::size_t>(ii + nx * jj)]) / std::hypot(di, dj);
+          if (fall > best) best = fall, bi = ii, bj = jj, bl = lap;
+        }
+      if (bi < 0) break;  // no neighbour nearer the bottom: cannot happen off the bottom row
+      i = bi, j = bj, laps += bl;
+    }
+    add(0);
+    paths.push_back(std::move(path));
+  }
+  return paths;
+}
+
 }  // namespace softdrop
