@@ -89,7 +89,6 @@ class Cmaes final : public StrategyBase {
     if (told_ == first_) j["start"] = start_;
     return j.dump();
   }
-  void adopt(Configuration arrangement) override { current_ = std::move(arrangement); }
   std::unique_ptr<Strategy> clone() const override { return std::make_unique<Cmaes>(*this); }
 
  protected:
