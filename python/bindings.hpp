@@ -1,10 +1,12 @@
 #pragma once
 // The parts of the Python module's compiled core (softdrop._core), one function each to add its
 // bindings to the module.
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
 #include <functional>
 #include <thread>
+#include <vector>
 
 namespace softdrop::python {
 
@@ -25,6 +27,9 @@ inline std::function<void(int, int)> stop_on_ctrl_c() {
     if (PyErr_CheckSignals() != 0) throw py::error_already_set();
   };
 }
+
+/// A path as every path softdrop gives it to Python: an (n, 2) array of rows x, y.
+pybind11::array_t<double> xy_array(const std::vector<double>& x, const std::vector<double>& y);
 
 /// The held-out value of a medium (held_out.hpp).
 void bind_held_out(py::module_& m);

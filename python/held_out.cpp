@@ -18,7 +18,7 @@ py::dict summary(const HeldOutRuns& r) {
   py::dict d;
   d["dt"] = r.dt, d["starts"] = r.starts, d["passed"] = r.passed, d["stuck"] = r.stuck;
   d["timeout"] = r.timeout, d["diverged"] = r.diverged, d["pass_fraction"] = r.pass_fraction;
-  d["mean_t"] = number(r.mean_t), d["standard_error"] = number(r.standard_error);
+  d["mean_tortuosity"] = number(r.mean_t), d["standard_error"] = number(r.standard_error);
   d["q1"] = number(r.q1), d["median"] = number(r.median), d["q3"] = number(r.q3);
   return d;
 }

@@ -25,6 +25,7 @@
 #include "softdrop/medium.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/rigid_descent.hpp"
+#include "cli/columns.hpp"
 #include "softdrop/simulation.hpp"
 #include "softdrop/version.hpp"
 
@@ -116,17 +117,13 @@ py::dict summary_dict(const RunSummary& s, bool with_path) {
   d["tortuosity"] = s.outcome == Outcome::passed ? s.tortuosity : std::numeric_limits<double>::quiet_NaN();
   d["steps"] = s.steps;
   d["start_x"] = s.start_x;
-  d["touched"] = s.touched;
+  d["touched"] = s.touched.size();
+  d["touched_grains"] = s.touched;
   d["min_area_ratio"] = s.min_area_ratio;
   d["max_penetration"] = s.max_penetration;
-  if (with_path) {
-    py::array_t<double> path({static_cast<py::ssize_t>(s.path_t.size()), py::ssize_t{3}});
-    auto v = path.mutable_unchecked<2>();
-    for (std::size_t i = 0; i < s.path_t.size(); ++i) {
-      const auto k = static_cast<py::ssize_t>(i);
-      v(k, 0) = s.path_t[i], v(k, 1) = s.path_x[i], v(k, 2) = s.path_y[i];
-    }
-    d["path"] = path;
+  if (with_path) {  // rows of x, y as every path softdrop gives, and their times beside them
+    d["path"] = python::xy_array(s.path_x, s.path_y);
+    d["path_time"] = py::array_t<double>(static_cast<py::ssize_t>(s.path_t.size()), s.path_t.data());
   }
   return d;
 }
@@ -321,6 +318,13 @@ PYBIND11_MODULE(_core, m) {
   py::type::of<Medium>().attr("__hash__") = py::none();
 
   bind_stores(m);
+  m.def("_columns", [] {
+    py::dict d;
+    py::list names, units, meanings;
+    for (const cli::ColumnName& c : cli::column_names()) names.append(c.name), units.append(c.unit), meanings.append(c.meaning);
+    d["name"] = names, d["unit"] = units, d["meaning"] = meanings;
+    return d;
+  });
   bind_commands(m);
   bind_held_out(m);
   python::bind_tortuosity(m);
@@ -409,14 +413,7 @@ PYBIND11_MODULE(_core, m) {
         columns["slides"] = column(&RigidDescent::slides);
         if (!paths) return columns;
         py::list rows_of;  // each start's path: rows of x, y
-        for (const RigidDescent& r : runs) {
-          py::array_t<double> rows({static_cast<py::ssize_t>(r.path_x.size()), py::ssize_t{2}});
-          auto v = rows.mutable_unchecked<2>();
-          for (py::ssize_t i = 0; i < rows.shape(0); ++i)
-            v(i, 0) = r.path_x[static_cast<std::size_t>(i)],
-                 v(i, 1) = r.path_y[static_cast<std::size_t>(i)];
-          rows_of.append(rows);
-        }
+        for (const RigidDescent& r : runs) rows_of.append(python::xy_array(r.path_x, r.path_y));
         columns["path"] = rows_of;
         return columns;
       },

@@ -6,11 +6,13 @@
 
 #include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "bindings.hpp"
+#include "cli/columns.hpp"
 #include "softdrop/history.hpp"
 #include "softdrop/sweep_store.hpp"
 
@@ -25,6 +27,7 @@ const double kNaN = std::numeric_limits<double>::quiet_NaN();
 class Columns {
  public:
   explicit Columns(std::vector<std::string> names) : names_(std::move(names)) {
+    cli::check_column_names(names_);
     for (const std::string& n : names_) columns_[n] = py::list();
   }
   py::list& operator[](const std::string& name) { return columns_.at(name); }
@@ -53,50 +56,59 @@ auto in_store(Read&& read) {
 }
 
 py::dict history_tables(History& h, bool arrangements) {
-  Columns runs({"id", "created", "updated", "version", "status", "seed", "lambda", "grains", "width", "height",
-                "periodic", "generations", "evaluations", "droplets", "best_t", "best_generation", "island",
-                "archipelago", "params"});
-  Columns gens({"run_id", "generation", "kind", "accepted_candidate", "best_t", "touched", "seconds", "finished",
-                "state", "parent_t", "parent_passed"});
-  Columns cands({"run_id", "generation", "candidate", "moved_grain", "moved", "outcome", "reason", "tortuosity",
+  // The columns of the database's views (runs_view, ...), in their order.
+  Columns runs({"run", "created", "updated", "version", "status", "strategy", "objective", "seed", "lambda", "grains",
+                "width", "height", "periodic", "generations", "evaluations", "droplets", "best_tortuosity",
+                "best_generation", "island", "archipelago", "params"});
+  Columns gens({"run", "generation", "kind", "accepted_candidate", "best_tortuosity", "touched", "seconds", "finished",
+                "state", "parent_tortuosity", "parent_passed"});
+  Columns cands({"run", "generation", "candidate", "kind", "moved_grain", "moved", "outcome", "reason", "tortuosity",
                  "steps", "touched", "seconds", "droplets", "passed"});
-  Columns grains({"run_id", "generation", "grain", "x", "y", "r", "touched"});
-  Columns paths({"run_id", "generation", "point", "x", "y"});
-  Columns held({"run_id", "generation", "seed", "starts", "created", "version", "dt", "passed", "mean_t",
-                "standard_error", "q1", "median", "q3", "half_dt", "half_dt_passed", "half_dt_mean_t",
+  Columns grains({"run", "generation", "grain", "x", "y", "r", "touched"});
+  Columns paths({"run", "generation", "point", "x", "y"});
+  Columns held({"run", "generation", "seed", "starts", "created", "version", "dt", "passed", "mean_tortuosity",
+                "standard_error", "q1", "median", "q3", "half_dt", "half_dt_passed", "half_dt_mean_tortuosity",
                 "half_dt_standard_error", "paired", "dt_shift", "dt_shift_error"});
   for (const RunRecord& r : h.runs()) {
     for (const ValidationRecord& v : h.validations(r.id)) {
-      held["run_id"].append(r.id), held["generation"].append(v.generation), held["seed"].append(v.seed);
+      held["run"].append(r.id), held["generation"].append(v.generation), held["seed"].append(v.seed);
       held["starts"].append(v.starts), held["created"].append(v.created), held["version"].append(v.version);
-      held["dt"].append(v.dt), held["passed"].append(v.passed), held["mean_t"].append(v.mean_t);
+      held["dt"].append(v.dt), held["passed"].append(v.passed), held["mean_tortuosity"].append(v.mean_t);
       held["standard_error"].append(v.standard_error), held["q1"].append(v.q1), held["median"].append(v.median);
       held["q3"].append(v.q3), held["half_dt"].append(v.half_dt);
       held["half_dt_passed"].append(or_none(v.half_dt, py::int_(v.half_dt_passed)));
-      held["half_dt_mean_t"].append(v.half_dt ? v.half_dt_mean_t : kNaN);
+      held["half_dt_mean_tortuosity"].append(v.half_dt ? v.half_dt_mean_t : kNaN);
       held["half_dt_standard_error"].append(v.half_dt ? v.half_dt_standard_error : kNaN);
       held["paired"].append(or_none(v.half_dt, py::int_(v.paired)));
       held["dt_shift"].append(v.half_dt ? v.dt_shift : kNaN);
       held["dt_shift_error"].append(v.half_dt ? v.dt_shift_error : kNaN);
     }
-    runs["id"].append(r.id), runs["created"].append(r.created), runs["updated"].append(r.updated);
-    runs["version"].append(r.version), runs["status"].append(r.status), runs["seed"].append(r.seed);
+    const auto params = nlohmann::json::parse(r.params, nullptr, false);
+    const auto param = [&](const char* key, const char* otherwise) {
+      return params.is_object() && params.contains(key) && params[key].is_string() ? params[key].get<std::string>()
+                                                                                    : std::string(otherwise);
+    };
+    runs["run"].append(r.id), runs["created"].append(r.created), runs["updated"].append(r.updated);
+    runs["version"].append(r.version), runs["status"].append(r.status);
+    runs["strategy"].append(param("strategy", "paper")), runs["objective"].append(param("objective", "single"));
+    runs["seed"].append(r.seed);
     runs["lambda"].append(r.lambda), runs["grains"].append(r.grains), runs["width"].append(r.width);
     runs["height"].append(r.height), runs["periodic"].append(r.periodic), runs["generations"].append(r.generations);
-    runs["evaluations"].append(r.evaluations), runs["droplets"].append(r.droplets), runs["best_t"].append(r.best_t);
+    runs["evaluations"].append(r.evaluations), runs["droplets"].append(r.droplets), runs["best_tortuosity"].append(r.best_t);
     runs["best_generation"].append(r.best_generation), runs["params"].append(r.params);
     runs["island"].append(or_none(r.island >= 0, py::int_(r.island)));
     runs["archipelago"].append(or_none(r.archipelago > 0, py::int_(r.archipelago)));
     for (const GenerationRecord& g : h.generations(r.id)) {
-      gens["run_id"].append(r.id), gens["generation"].append(g.generation), gens["kind"].append(g.kind);
+      gens["run"].append(r.id), gens["generation"].append(g.generation), gens["kind"].append(g.kind);
       gens["accepted_candidate"].append(or_none(g.accepted >= 0, py::int_(g.accepted)));
-      gens["best_t"].append(g.best_t), gens["touched"].append(g.touched), gens["seconds"].append(g.seconds);
+      gens["best_tortuosity"].append(g.best_t), gens["touched"].append(g.touched), gens["seconds"].append(g.seconds);
       gens["finished"].append(g.finished), gens["state"].append(g.state);
       const bool rerun = g.parent_passed > 0 || !std::isnan(g.parent_t);
-      gens["parent_t"].append(g.parent_t);
+      gens["parent_tortuosity"].append(g.parent_t);
       gens["parent_passed"].append(or_none(rerun, py::int_(g.parent_passed)));
       for (const CandidateRecord& c : g.candidates) {
-        cands["run_id"].append(r.id), cands["generation"].append(g.generation), cands["candidate"].append(c.index);
+        cands["run"].append(r.id), cands["generation"].append(g.generation), cands["candidate"].append(c.index);
+        cands["kind"].append(c.kind.empty() ? py::object(py::none()) : py::object(py::str(c.kind)));
         cands["moved_grain"].append(or_none(c.moved_grain >= 0, py::int_(c.moved_grain)));
         cands["moved"].append(c.moved), cands["outcome"].append(c.outcome), cands["reason"].append(c.reason);
         cands["tortuosity"].append(c.outcome == "passed" ? c.tortuosity : kNaN);
@@ -110,12 +122,12 @@ py::dict history_tables(History& h, bool arrangements) {
       for (const std::int32_t i : c.eval.touched) touched.at(static_cast<std::size_t>(i)) = true;
       for (std::size_t i = 0; i < c.medium.grains.size(); ++i) {
         const Grain& gr = c.medium.grains[i];
-        grains["run_id"].append(r.id), grains["generation"].append(g.generation), grains["grain"].append(i);
+        grains["run"].append(r.id), grains["generation"].append(g.generation), grains["grain"].append(i);
         grains["x"].append(gr.x), grains["y"].append(gr.y), grains["r"].append(gr.r);
         grains["touched"].append(static_cast<bool>(touched[i]));
       }
       for (std::size_t i = 0; i < c.eval.path_x.size(); ++i) {
-        paths["run_id"].append(r.id), paths["generation"].append(g.generation), paths["point"].append(i);
+        paths["run"].append(r.id), paths["generation"].append(g.generation), paths["point"].append(i);
         paths["x"].append(c.eval.path_x[i]), paths["y"].append(c.eval.path_y[i]);
       }
     }
@@ -127,32 +139,32 @@ py::dict history_tables(History& h, bool arrangements) {
 }
 
 py::dict sweep_tables(SweepStore& store, std::int64_t only) {
-  Columns sweeps({"id", "created", "updated", "version", "status", "params", "units", "done"});
-  Columns media({"sweep_id", "porosity_index", "medium_index", "target_porosity", "porosity", "grains",
-                 "medium_seed", "droplets", "passed", "stuck", "timeout", "diverged", "mean_t", "standard_error",
+  Columns sweeps({"sweep", "created", "updated", "version", "status", "params", "units", "done"});
+  Columns media({"sweep", "porosity_index", "medium_index", "target_porosity", "porosity", "grains",
+                 "medium_seed", "droplets", "passed", "stuck", "timeout", "diverged", "mean_tortuosity", "standard_error",
                  "stuck_fraction", "seconds"});
-  Columns droplets({"sweep_id", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity",
+  Columns droplets({"sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity",
                     "steps"});
-  Columns points({"sweep_id", "target_phi", "phi", "media", "droplets", "passed", "mean_t",
+  Columns points({"sweep", "target_porosity", "porosity", "media", "droplets", "passed", "mean_tortuosity",
                   "standard_error", "media_passed", "media_standard_error", "stuck_fraction",
-                  "per_medium_t", "per_medium_standard_error"});
+                  "per_medium_tortuosity", "per_medium_standard_error"});
   const std::vector<SweepRecord> all = only > 0 ? std::vector<SweepRecord>{store.sweep(only)} : store.sweeps();
   for (const SweepRecord& s : all) {
-    sweeps["id"].append(s.id), sweeps["created"].append(s.created), sweeps["updated"].append(s.updated);
+    sweeps["sweep"].append(s.id), sweeps["created"].append(s.created), sweeps["updated"].append(s.updated);
     sweeps["version"].append(s.version), sweeps["status"].append(s.status), sweeps["params"].append(s.params);
     sweeps["units"].append(s.units), sweeps["done"].append(s.done);
     const std::vector<SweepMedium> stored = store.media(s.id);
     for (const SweepMedium& m : stored) {
-      media["sweep_id"].append(s.id), media["porosity_index"].append(m.unit.porosity);
+      media["sweep"].append(s.id), media["porosity_index"].append(m.unit.porosity);
       media["medium_index"].append(m.unit.medium), media["target_porosity"].append(m.target_porosity);
       media["porosity"].append(m.porosity), media["grains"].append(m.grains), media["medium_seed"].append(m.medium_seed);
       media["droplets"].append(m.droplets.size()), media["passed"].append(m.passed), media["stuck"].append(m.stuck);
       media["timeout"].append(m.timeout), media["diverged"].append(m.diverged);
-      media["mean_t"].append(m.passed ? m.mean_t : kNaN);
+      media["mean_tortuosity"].append(m.passed ? m.mean_t : kNaN);
       media["standard_error"].append(m.passed > 1 ? m.standard_error : kNaN);
       media["stuck_fraction"].append(m.stuck_fraction), media["seconds"].append(m.seconds);
       for (const SweepDroplet& d : m.droplets) {
-        droplets["sweep_id"].append(s.id), droplets["porosity_index"].append(m.unit.porosity);
+        droplets["sweep"].append(s.id), droplets["porosity_index"].append(m.unit.porosity);
         droplets["medium_index"].append(m.unit.medium), droplets["droplet"].append(d.droplet);
         droplets["start_x"].append(d.start_x), droplets["outcome"].append(to_string(d.outcome));
         droplets["tortuosity"].append(d.outcome == Outcome::passed ? d.tortuosity : kNaN);
@@ -160,14 +172,15 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
       }
     }
     for (const SweepPoint& p : sweep_points(stored)) {  // as `softdrop sweep-report` aggregates them
-      points["sweep_id"].append(s.id), points["target_phi"].append(p.target_porosity), points["phi"].append(p.porosity);
+      points["sweep"].append(s.id), points["target_porosity"].append(p.target_porosity);
+      points["porosity"].append(p.porosity);
       points["media"].append(p.media), points["droplets"].append(p.droplets), points["passed"].append(p.passed);
-      points["mean_t"].append(p.passed ? p.mean_t : kNaN);
+      points["mean_tortuosity"].append(p.passed ? p.mean_t : kNaN);
       points["standard_error"].append(p.passed > 1 ? p.standard_error : kNaN);
       points["media_passed"].append(p.media_passed);
       points["media_standard_error"].append(p.media_passed > 1 ? p.media_standard_error : kNaN);
       points["stuck_fraction"].append(p.stuck_fraction);
-      points["per_medium_t"].append(p.media_passed ? p.per_medium_t : kNaN);
+      points["per_medium_tortuosity"].append(p.media_passed ? p.per_medium_t : kNaN);
       points["per_medium_standard_error"].append(p.media_passed > 1 ? p.per_medium_standard_error : kNaN);
     }
   }
@@ -177,14 +190,14 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
   return out;
 }
 
+}  // namespace
+
 py::array_t<double> xy_array(const std::vector<double>& x, const std::vector<double>& y) {
   py::array_t<double> a({static_cast<py::ssize_t>(x.size()), py::ssize_t{2}});
   auto v = a.mutable_unchecked<2>();
   for (std::size_t i = 0; i < x.size(); ++i) v(static_cast<py::ssize_t>(i), 0) = x[i], v(static_cast<py::ssize_t>(i), 1) = y[i];
   return a;
 }
-
-}  // namespace
 
 PyObject* store_error() { return g_store_error; }
 
@@ -222,7 +235,8 @@ void bind_stores(py::module_& m) {
           d["medium"] = c.medium;
           d["generation"] = c.generation;
           d["tortuosity"] = c.eval.tortuosity;
-          d["touched"] = c.eval.touched;
+          d["touched"] = c.eval.touched.size();
+          d["touched_grains"] = c.eval.touched;
           d["path"] = xy_array(c.eval.path_x, c.eval.path_y);
           return d;
         });

@@ -34,11 +34,11 @@ py::dict measure(const PoreImage& im) {
   py::dict out;
   out["pixel"] = im.pixel;
   out["porosity"] = im.porosity();
-  out["geometric_t"] = g.tortuosity;
+  out["geometric_tortuosity"] = g.tortuosity;
   out["geometric_standard_error"] = g.standard_error;
   out["starts"] = g.starts;
   out["connected"] = g.connected;
-  out["tau"] = d.tau;
+  out["diffusive_tortuosity"] = d.tau;
   out["formation_factor"] = d.formation_factor;
   out["effective_diffusivity"] = d.effective_diffusivity;
   out["distance"] = field(im, g.distance);

@@ -36,7 +36,7 @@ TEST(CsvOutputs, SimulateWritesPlainTablesAndItsJsonHasEveryDroplet) {
     EXPECT_NO_THROW(read_csv_table(f));
   }
   const CsvTable t = read_csv_table(trace);
-  EXPECT_EQ(t.header, (std::vector<std::string>{"droplet", "t", "area", "area_ratio", "phase"}));
+  EXPECT_EQ(t.header, (std::vector<std::string>{"droplet", "time", "area", "area_ratio", "phase"}));
   std::set<std::string> droplets;
   for (std::size_t i = 0; i < t.rows.size(); ++i) droplets.insert(t.cell(i, "droplet"));
   EXPECT_EQ(droplets, (std::set<std::string>{"0", "1", "2"}));

@@ -55,7 +55,7 @@ TEST(EnumNames, AnUnknownNameIsRefusedWithTheOptionAndEveryName) {
   EXPECT_EQ(message(parse_medium_kind, "Overlapping"),
             "kind = 'Overlapping': must be overlapping, non-overlapping or relaxed");
   EXPECT_EQ(message(parse_outcome, ""), "outcome = '': must be passed, stuck, timeout or diverged");
-  EXPECT_EQ(message(parse_move_kind, "all "), "move kind = 'all ': must be initial, all, single, relocate or migrate");
+  EXPECT_EQ(message(parse_move_kind, "all "), "move kind = 'all ': must be initial, all, single, relocate, migrate or mixed");
 }
 
 TEST(EnumNames, TheTableHelpersNameOneValueAndListAll) {

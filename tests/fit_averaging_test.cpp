@@ -1,5 +1,5 @@
 // The two averagings of a porosity's <T> over its media, through the command line: pooled over the
-// passed droplets (mean_t) and per medium first (per_medium_t). sweep-report's per-porosity
+// passed droplets (mean_tortuosity) and per medium first (per_medium_tortuosity). sweep-report's per-porosity
 // columns must be the plain aggregates of its own per-medium rows, and `fit --mean per-medium`
 // must fit exactly those points, from the store and from a sweep-report file alike.
 #include <gtest/gtest.h>
@@ -30,12 +30,12 @@ TEST(FitAveraging, PerMediumPointsAreTheMeanOfTheMediaRows) {
   // Each medium's own mean T, gathered per target porosity over the media where one passed.
   std::map<std::string, std::vector<double>> by;
   for (std::size_t i = 0; i < m.rows.size(); ++i)
-    if (m.number(i, "passed") > 0) by[m.cell(i, "target_phi")].push_back(m.number(i, "mean_t"));
+    if (m.number(i, "passed") > 0) by[m.cell(i, "target_porosity")].push_back(m.number(i, "mean_tortuosity"));
   int differ = 0;
   ASSERT_EQ(p.rows.size(), 4u);
   for (std::size_t i = 0; i < p.rows.size(); ++i) {
-    const std::vector<double>& t = by[p.cell(i, "target_phi")];
-    ASSERT_GE(t.size(), 2u) << p.cell(i, "target_phi");
+    const std::vector<double>& t = by[p.cell(i, "target_porosity")];
+    ASSERT_GE(t.size(), 2u) << p.cell(i, "target_porosity");
     double sum = 0;
     for (double x : t) sum += x;
     const double mean = sum / static_cast<double>(t.size());
@@ -43,10 +43,10 @@ TEST(FitAveraging, PerMediumPointsAreTheMeanOfTheMediaRows) {
     for (double x : t) ss += (x - mean) * (x - mean);
     const double se = std::sqrt(ss / static_cast<double>(t.size() - 1) / static_cast<double>(t.size()));
     // The CSV holds 17 significant digits; the per-medium rows were rounded once before this sum.
-    EXPECT_NEAR(p.number(i, "per_medium_t"), mean, 1e-14);
+    EXPECT_NEAR(p.number(i, "per_medium_tortuosity"), mean, 1e-14);
     EXPECT_NEAR(p.number(i, "per_medium_standard_error"), se, 1e-14);
     EXPECT_EQ(p.number(i, "media_passed"), static_cast<double>(t.size()));
-    differ += std::abs(p.number(i, "per_medium_t") - p.number(i, "mean_t")) > 1e-9;
+    differ += std::abs(p.number(i, "per_medium_tortuosity") - p.number(i, "mean_tortuosity")) > 1e-9;
   }
   EXPECT_GE(differ, 1);  // a medium that passed fewer droplets weighs less when pooled
 }
@@ -58,11 +58,11 @@ TEST(FitAveraging, FitPerMediumFitsThosePointsFromTheStoreOrItsReport) {
   ASSERT_EQ(test::run("sweep-report --db " + db + " --format csv > " + report).code, 0);
   const test::CsvTable p = test::read_csv_table(report);
   {
-    std::ofstream out(own);  // the same points as a plain phi,t,se file
+    std::ofstream out(own);  // the same points as a plain points file
     out.precision(17);
-    out << "phi,t,se\n";
+    out << "porosity,tortuosity,standard_error\n";
     for (std::size_t i = 0; i < p.rows.size(); ++i)
-      out << p.cell(i, "phi") << ',' << p.cell(i, "per_medium_t") << ',' << p.cell(i, "per_medium_standard_error")
+      out << p.cell(i, "porosity") << ',' << p.cell(i, "per_medium_tortuosity") << ',' << p.cell(i, "per_medium_standard_error")
           << '\n';
   }
   const test::Result store = test::run("fit --db " + db + " --mean per-medium --format json");
@@ -87,8 +87,8 @@ TEST(FitAveraging, FitPerMediumFitsThosePointsFromTheStoreOrItsReport) {
   // distances in errors, with a degree of freedom a point.
   double chi2 = 0;
   for (std::size_t i = 0; i < p.rows.size(); ++i) {
-    const double phi = p.number(i, "phi");
-    const double r = (p.number(i, "per_medium_t") - (1.58 - 0.58 * std::pow(phi, 3.87))) /
+    const double phi = p.number(i, "porosity");
+    const double r = (p.number(i, "per_medium_tortuosity") - (1.58 - 0.58 * std::pow(phi, 3.87))) /
                      p.number(i, "per_medium_standard_error");
     EXPECT_NEAR(s["paper"]["residuals"][i].get<double>(), r, 1e-9);
     chi2 += r * r;
@@ -112,7 +112,7 @@ TEST(FitAveraging, FitPerMediumFitsThosePointsFromTheStoreOrItsReport) {
                         "media_standard_error,stuck_fraction\n0.8,0.8,4,20,18,1.3,0.01,4,0.02,0.1\n";
   const test::Result older = test::run("fit --points " + old + " --mean per-medium");
   EXPECT_EQ(older.code, 1);
-  EXPECT_NE(older.err.find("no per_medium_t and per_medium_standard_error columns"), std::string::npos) << older.err;
+  EXPECT_NE(older.err.find("no per_medium_tortuosity and per_medium_standard_error columns"), std::string::npos) << older.err;
 }
 
 // A reader of part of a sweep (a shard's store, a sweep stopped half way) is told whose figures it

@@ -128,7 +128,7 @@ TEST(FitPointsFile, BadLinesAndTooManyPointsNameTheFileAndLine) {
   };
   for (const Case& c : {Case{"x,y\n", "--points 'p.csv' line 1: expected the header"},
                         Case{"phi,t,se\n0.5;1.5;0.1\n", "--points 'p.csv' line 2: expected 3 fields, as the header"},
-                        Case{"phi,t,se\n0.5,1.5x,0.1\n", "line 2: expected numbers for phi, t and se"},
+                        Case{"phi,t,se\n0.5,1.5x,0.1\n", "line 2: expected numbers for porosity, tortuosity and standard_error"},
                         Case{"phi,t,se\n0.5,1.5\n", "line 2: expected 3 fields"}}) {
     std::istringstream in(c.text);
     try {

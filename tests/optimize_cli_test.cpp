@@ -93,8 +93,8 @@ TEST(Optimize, ExportedGenerationsReproduceTheStoredTBitForBit) {
   ASSERT_GE(curve.size(), 2u);
   double previous = 0;
   for (const auto& point : curve) {  // the best-T curve rises strictly
-    EXPECT_GT(point["best_t"].get<double>(), previous);
-    previous = point["best_t"].get<double>();
+    EXPECT_GT(point["best_tortuosity"].get<double>(), previous);
+    previous = point["best_tortuosity"].get<double>();
   }
   for (const auto& point : {curve.front(), curve.back()}) {
     const std::string g = std::to_string(point["generation"].get<int>());
@@ -106,7 +106,7 @@ TEST(Optimize, ExportedGenerationsReproduceTheStoredTBitForBit) {
     ASSERT_EQ(s.code, 0) << s.err;
     const auto j = nlohmann::json::parse(s.out);
     EXPECT_EQ(j["run"]["outcome"], "passed");
-    EXPECT_EQ(j["run"]["tortuosity"].get<double>(), point["best_t"].get<double>()) << "generation " << g;
+    EXPECT_EQ(j["run"]["tortuosity"].get<double>(), point["best_tortuosity"].get<double>()) << "generation " << g;
   }
 }
 
@@ -275,7 +275,8 @@ TEST(Optimize, HistoryListsCandidatesAndTheStoredOptions) {
   std::istringstream lines(c.out);
   std::string line;
   std::getline(lines, line);
-  EXPECT_EQ(line, "generation,candidate,accepted,outcome,t,steps,touched,moved_grain,moved,seconds,reason,droplets,passed");
+  EXPECT_EQ(line, "generation,candidate,kind,accepted,outcome,tortuosity,steps,touched,moved_grain,moved,seconds,reason,"
+                  "droplets,passed");
   int rows = 0, accepted = 0;
   while (std::getline(lines, line)) {
     ++rows;
@@ -303,7 +304,18 @@ TEST(Optimize, HistoryListsCandidatesAndTheStoredOptions) {
     EXPECT_NE(e.err.find(bad + " needs --run"), std::string::npos) << e.err;
   }
   EXPECT_EQ(run("history --db " + db + " --run 1 --best --candidates").code, 2);
-  EXPECT_NE(run("history --help").out.find("candidate_t = the best T among"), std::string::npos);
+  EXPECT_NE(run("history --help").out.find("best_candidate_tortuosity = the best among"), std::string::npos);
+  // --params in JSON keeps each option's type: numbers as numbers, flags as true or false.
+  const nlohmann::json typed = nlohmann::json::parse(run("history --db " + db + " --run 1 --params --format json").out);
+  for (const auto& row : typed) {
+    if (row["option"] == "lambda") {
+      EXPECT_EQ(row["value"], 2);
+    } else if (row["option"] == "walls") {
+      EXPECT_EQ(row["value"], false);
+    } else if (row["option"] == "strategy") {
+      EXPECT_EQ(row["value"], "es");
+    }
+  }
 }
 
 // --preset paper is the paper's algorithm spelled out, to the bit; it fills only the options not

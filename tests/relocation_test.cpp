@@ -104,10 +104,18 @@ TEST(Relocation, AVersionThreeHistoryIsWidenedInPlaceAndKeepsItsRuns) {
   SQLite::Database d(db, SQLite::OPEN_READONLY);
   EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), kHistorySchemaVersion);
   EXPECT_EQ(d.execAndGet("PRAGMA integrity_check").getString(), "ok");
-  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM generations WHERE run_id = 2 AND kind = 'relocate'").getInt(), 2);
+  // es draws each candidate's move: candidate n of the run (from 1) is a single move where n is a
+  // multiple of --single-every (10), else a relocation where n is even. Each is stored with its
+  // kind, and the generations that hold several kinds are 'mixed'.
+  const int lambda = d.execAndGet("SELECT lambda FROM runs WHERE id = 2").getInt();
+  int relocations = 0;
+  for (int n = 1; n <= 4 * lambda; ++n) relocations += n % 10 != 0 && n % 2 == 0;
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM candidates WHERE run_id = 2 AND kind = 'relocate'").getInt(), relocations);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM candidates_view WHERE run = 2 AND kind = 'relocate'").getInt(), relocations);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM generations WHERE run_id = 2 AND kind = 'mixed'").getInt(), 4);
   EXPECT_EQ(dump(db, 1), before);
   // The history shows the move, and a resume keeps the stored option.
-  EXPECT_NE(run("history --db " + db + " --run 2").out.find("relocate"), std::string::npos);
+  EXPECT_NE(run("history --db " + db + " --run 2 --candidates").out.find("relocate"), std::string::npos);
   const auto again = run("optimize --db " + db + " --resume 2 --generations 6 --relocate-every 3");
   EXPECT_EQ(again.code, 1);
   EXPECT_NE(again.err.find("relocate-every"), std::string::npos) << again.err;

@@ -413,7 +413,7 @@ PoreTrace trace_through_pore(const std::string& options) {
   std::vector<double> t, ratio;
   for (std::size_t i = 0; i < table.rows.size(); ++i) {
     EXPECT_EQ(table.cell(i, "droplet"), "0");
-    t.push_back(table.number(i, "t"));
+    t.push_back(table.number(i, "time"));
     ratio.push_back(table.number(i, "area_ratio"));
     const std::string& phase = table.cell(i, "phase");
     if (phase == "inside" && p.enter < 0) p.enter = t.back();

@@ -36,7 +36,7 @@ TEST(RefusedFiles, AreLeftAsTheyWereFoundWithNoSideFiles) {
     std::string sql, names;
   };
   for (const Case& c : {Case{"PRAGMA application_id = 5", "not a softdrop database"},
-                        Case{"PRAGMA user_version = 8", "written by a newer softdrop"},
+                        Case{"PRAGMA user_version = 9", "written by a newer softdrop"},
                         Case{"PRAGMA user_version = 99", "schema version 99"},
                         Case{"DROP TABLE paths", "without its table paths"}}) {
     SCOPED_TRACE(c.sql);

@@ -224,7 +224,7 @@ TEST(SweepCli, QuickPresetEndToEnd) {
   }
   // <T> rises as phi falls, from phi = 0.9 to 0.7 (16 droplets each are too few to order
   // neighbouring porosities).
-  EXPECT_GT(points[0]["mean_t"].get<double>(), points[2]["mean_t"].get<double>());
+  EXPECT_GT(points[0]["mean_tortuosity"].get<double>(), points[2]["mean_tortuosity"].get<double>());
   // Every record is complete.
   SQLite::Database d(db, SQLite::OPEN_READONLY);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_droplets").getInt(), 48);

@@ -30,7 +30,7 @@ TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   const auto j = nlohmann::json::parse(std::ifstream(json));
-  for (const char* q : {"geometric", "diffusive"}) {
+  for (const char* q : {"geometric_tortuosity", "diffusive_tortuosity"}) {
     SCOPED_TRACE(q);
     const double coarse = j[q]["values"][0], fine = j[q]["values"][1];
     EXPECT_GE(coarse, 1.0);
@@ -41,14 +41,14 @@ TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
   const double per_radius = j["pixels_per_smallest_radius"][0];  // the smallest of radii 8 to 16, at 2 a pixel
   EXPECT_GE(per_radius, 4.0);
   EXPECT_LT(per_radius, 8.0);
-  EXPECT_EQ(j["droplet"]["starts"], 20);
+  EXPECT_EQ(j["droplet_tortuosity"]["starts"], 20);
   EXPECT_NE(r.out.find("geometric T  "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("diffusive    tau = "), std::string::npos) << r.out;
   const test::CsvTable t = test::read_csv_table(csv);
   ASSERT_EQ(t.header, (std::vector<std::string>{"quantity", "pixels", "pixel", "value", "standard_error"}));
   ASSERT_EQ(t.rows.size(), 7u);  // two resolutions and the extrapolation of each, and the droplet
-  EXPECT_EQ(std::stod(t.rows[1][3]), j["diffusive"]["values"][0].get<double>());
-  EXPECT_EQ(t.rows[6][0], "droplet");
+  EXPECT_EQ(std::stod(t.rows[1][3]), j["diffusive_tortuosity"]["values"][0].get<double>());
+  EXPECT_EQ(t.rows[6][0], "droplet_tortuosity");
 
   const std::string png = fresh_path("pore_space.png");
   const auto drawn = run("tortuosity --porosity 0.75 --width 200 --height 200 --r-min 8 --r-max 16 --pixels 100 "
@@ -60,9 +60,9 @@ TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
                          "--format json");
   ASSERT_EQ(empty.code, 0) << empty.err;
   const auto e = nlohmann::json::parse(empty.out);
-  EXPECT_NEAR(e["geometric"]["values"][1].get<double>(), 1.0, 1e-12);
-  EXPECT_NEAR(e["diffusive"]["values"][1].get<double>(), 1.0, 1e-9);
-  EXPECT_NEAR(e["droplet"]["mean_t"].get<double>(), 1.0, 0.02);  // straight down, but for its own wobble
+  EXPECT_NEAR(e["geometric_tortuosity"]["values"][1].get<double>(), 1.0, 1e-12);
+  EXPECT_NEAR(e["diffusive_tortuosity"]["values"][1].get<double>(), 1.0, 1e-9);
+  EXPECT_NEAR(e["droplet_tortuosity"]["mean_tortuosity"].get<double>(), 1.0, 0.02);  // straight down, but for its own wobble
 }
 
 TEST(TortuosityCli, NoPorePathOrTooCoarsePixelsGetOneLineAndWriteNothing) {

@@ -42,9 +42,9 @@ TEST(Validate, IsTheSimulateBatchOfTheSameStartsAtBothTimeSteps) {
   EXPECT_EQ(v["at_dt"]["dt"].get<double>(), 6e-6);
   EXPECT_EQ(v["at_half_dt"]["dt"].get<double>(), 3e-6);
   EXPECT_EQ(v["at_dt"]["passed"], at_dt["passed"]);
-  EXPECT_EQ(v["at_dt"]["mean_t"], at_dt["mean_tortuosity"]);
+  EXPECT_EQ(v["at_dt"]["mean_tortuosity"], at_dt["mean_tortuosity"]);
   EXPECT_EQ(v["at_dt"]["standard_error"], at_dt["standard_error"]);
-  EXPECT_EQ(v["at_half_dt"]["mean_t"], at_half["mean_tortuosity"]);
+  EXPECT_EQ(v["at_half_dt"]["mean_tortuosity"], at_half["mean_tortuosity"]);
   EXPECT_EQ(v["at_dt"]["pass_fraction"].get<double>(), at_dt["passed"].get<double>() / 24);
   // The median of the passed droplets' T, as numpy.quantile computes it.
   std::vector<double> t = passed_t(at_dt);
@@ -81,7 +81,7 @@ TEST(Validate, AStoredRunIsValidatedWithItsOwnDroplet) {
   EXPECT_EQ(stored["at_dt"], file["at_dt"]);
   EXPECT_EQ(stored["at_half_dt"], file["at_half_dt"]);
   EXPECT_EQ(stored["source"]["run"], 1);
-  EXPECT_TRUE(stored["source"]["in_search_t"].is_number());
+  EXPECT_TRUE(stored["source"]["in_search_tortuosity"].is_number());
 }
 
 // The end of a search stores its best's held-out value: what validate computes for it, shown by
@@ -94,14 +94,14 @@ TEST(Validate, ASearchStoresItsBestsHeldOutValue) {
   EXPECT_EQ(end["held_out"]["starts"], 16);
   EXPECT_EQ(end["held_out"]["generation"], end["best_generation"]);
   const nlohmann::json again = json_of(run("validate --db " + db + " --run 1 --starts 16 --format json --quiet"));
-  EXPECT_EQ(end["held_out"]["mean_t"], again["at_dt"]["mean_t"]);
-  EXPECT_EQ(end["held_out"]["half_dt_mean_t"], again["at_half_dt"]["mean_t"]);
+  EXPECT_EQ(end["held_out"]["mean_tortuosity"], again["at_dt"]["mean_tortuosity"]);
+  EXPECT_EQ(end["held_out"]["half_dt_mean_tortuosity"], again["at_half_dt"]["mean_tortuosity"]);
   const nlohmann::json best = json_of(run("history --db " + db + " --run 1 --best --format json"));
   const nlohmann::json& last = best.back();
   EXPECT_EQ(last["generation"], end["best_generation"]);
-  EXPECT_EQ(last["held_out_t"], again["at_dt"]["mean_t"]);
+  EXPECT_EQ(last["held_out_tortuosity"], again["at_dt"]["mean_tortuosity"]);
   EXPECT_EQ(last["held_out_starts"], 16);
-  EXPECT_TRUE(best.front()["held_out_t"].is_null() || best.size() == 1);
+  EXPECT_TRUE(best.front()["held_out_tortuosity"].is_null() || best.size() == 1);
   const Result e = run("export --db " + db + " --run 1 -o " + fresh("validate_end.json"));
   EXPECT_NE(e.err.find("its held-out T is"), std::string::npos) << e.err;
   // validate stores what it computes for any generation; the same again replaces it.

@@ -34,7 +34,7 @@ db = os.path.join(tempfile.mkdtemp(), "search.db")
 
 def report(event):
     if event["generation"] % 10 == 0:
-        print(f"  generation {event['generation']}: best T {event['best_t']:.4f}")
+        print(f"  generation {event['generation']}: best T {event['best_tortuosity']:.4f}")
     return True  # False would stop the search here (resume it with softdrop.optimize(db, resume=run))
 
 
@@ -52,11 +52,11 @@ if plt is not None:
     fig, ax = plt.subplots(figsize=(6, 6))
     for x, y, r in medium.grains:
         ax.add_patch(plt.Circle((x, y), r, color="0.6"))
-    ax.plot(run.path[:, 1] % medium.width, run.path[:, 2], ".", markersize=1, color="crimson")
+    ax.plot(run.path[:, 0] % medium.width, run.path[:, 1], ".", markersize=1, color="crimson")
     ax.set_xlim(0, medium.width), ax.set_ylim(0, medium.height), ax.set_aspect("equal")
     fig.savefig("droplet_path.png", dpi=150)
     fig, ax = plt.subplots(figsize=(6, 3.5))
-    ax.step(curve["generation"], curve["best_t"], where="post")
+    ax.step(curve["generation"], curve["best_tortuosity"], where="post")
     ax.set_xlabel("generation"), ax.set_ylabel("best T")
     fig.savefig("search_curve.png", dpi=150)
     print("wrote droplet_path.png and search_curve.png")

@@ -55,19 +55,20 @@ enum class FitErrors {
 
 /// Which mean T of a sweep's porosity is fitted.
 enum class FitAveraging {
-  pooled,      ///< mean_t: over every passed droplet of the porosity (a medium counts by its droplets)
-  per_medium,  ///< per_medium_t: each medium's mean first, then over media (each counts once),
+  pooled,      ///< mean_tortuosity: over every passed droplet of the porosity (a medium counts by its droplets)
+  per_medium,  ///< per_medium_tortuosity: each medium's mean first, then over media (each counts once),
                ///< weighed by its error over media (FitErrors::media is the only error it has)
 };
 
-/// Reads a points file: optional `#` comment lines, a header naming the columns phi, t and se
-/// (others are ignored), then one point per line; or the output of `sweep-report --format csv`
-/// (phi, mean_t, and media_standard_error or standard_error as `errors` says; with
-/// FitAveraging::per_medium per_medium_t and per_medium_standard_error; rows without that
+/// Reads a points file: optional `#` comment lines, a header naming the columns porosity,
+/// tortuosity and standard_error (others are ignored; older files' phi, t and se read too), then
+/// one point per line; or the output of `sweep-report --format csv` (porosity, mean_tortuosity,
+/// and media_standard_error or standard_error as `errors` says; with FitAveraging::per_medium
+/// per_medium_tortuosity and per_medium_standard_error; rows without that
 /// error are skipped). Throws std::runtime_error naming `name` and the line on a bad line, a
 /// sweep-report file without the chosen error's column, or more than kMaxFitPoints points (the
 /// values themselves are checked by fit_law). `*used_errors`, if given, is set to whether the file
-/// was a sweep-report's, whose errors `errors` chose (a phi,t,se file brings its own).
+/// was a sweep-report's, whose errors `errors` chose (a points file brings its own).
 std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
                                       FitErrors errors = FitErrors::media,
                                       bool* used_errors = nullptr,

@@ -20,8 +20,9 @@ namespace softdrop {
 /// refused; files with a lower one are read as they are and migrated when opened for writing
 /// (1 -> 2 adds the sweeps, 2 -> 3 the strategies' state of each generation, 3 -> 4 relocation
 /// moves, 4 -> 5 islands, 5 -> 6 the held-out values of arrangements, 6 -> 7 the robust
-/// objectives' droplet counts and re-runs).
-constexpr int kHistorySchemaVersion = 7;
+/// objectives' droplet counts and re-runs, 7 -> 8 each candidate's move, the generation kind
+/// 'mixed' and the *_view views under the names of `softdrop columns`).
+constexpr int kHistorySchemaVersion = 8;
 /// PRAGMA application_id of a softdrop database: "SDRP".
 constexpr std::int32_t kHistoryApplicationId = 0x53445250;
 
@@ -70,6 +71,7 @@ ValidationRecord validation_record(std::int64_t generation, const HeldOutOptions
 /// A candidate's row.
 struct CandidateRecord {
   int index = 0;
+  std::string kind;  ///< its move (MoveKind's name); empty where an older file does not tell it
   int moved_grain = -1;
   int moved = 0;
   std::string outcome;

@@ -31,10 +31,11 @@ enum class MoveKind {
   all,      ///< every grain jumps by a small random step
   single,   ///< one grain, chosen among those the parent's droplet touched, jumps
   relocate, ///< one grain the parent's droplet did not touch is put next to the droplet's path
-  migrate   ///< islands: another island's best arrangement, kept if it beats this island's best
+  migrate,  ///< islands: another island's best arrangement, kept if it beats this island's best
+  mixed     ///< a generation only: its candidates were made by different moves (es draws each one's)
 };
 const char* to_string(MoveKind kind);
-/// Parses "initial" / "all" / "single" / "relocate" / "migrate"; throws std::invalid_argument naming
+/// Parses "initial" / "all" / "single" / "relocate" / "migrate" / "mixed"; throws std::invalid_argument naming
 /// the value.
 MoveKind parse_move_kind(const std::string& name);
 

@@ -17,13 +17,14 @@ from ._core import DropletParams, Medium, RunOptions, StoreError, __version__  #
 from . import _core
 
 __all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "tortuosity", "optimize",
-           "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "__version__"]
+           "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "columns", "__version__"]
 
 
 class Result(dict):
     """One droplet's run: outcome, reason, tortuosity (NaN unless passed), steps, start_x,
-    touched (grain indices), min_area_ratio, max_penetration, and path and trace if asked (see
-    simulate). Keys read as attributes too: run.tortuosity."""
+    touched (how many grains it touched) and touched_grains (their indices), min_area_ratio,
+    max_penetration, and path and trace if asked (see simulate). The names are the program's
+    (softdrop.columns() lists them). Keys read as attributes too: run.tortuosity."""
 
     def __getattr__(self, name):
         try:
@@ -34,8 +35,9 @@ class Result(dict):
 
 def simulate(medium, x0=None, params=None, run=None, path=False, trace=False, trace_interval=100):
     """Pushes one droplet from x = x0 (default: the middle of the box) above the medium to an
-    outcome. path=True adds `path`, rows of t, x, y (every run.path_interval steps, 100 if unset).
-    trace=True adds the area trace as `softdrop simulate --trace` records it: `trace`, rows of t,
+    outcome. path=True adds `path`, rows of x, y of the droplet's centre (every run.path_interval
+    steps, 100 if unset; the shape of every path softdrop gives), and `path_time`, their times.
+    trace=True adds the area trace as `softdrop simulate --trace` records it: `trace`, rows of time,
     area, area_ratio (S / S0, every trace_interval steps), with `enter`, `leave` (times the droplet
     reached and left the medium, NaN: never), `s0`, and `inside_min_area_ratio`,
     `inside_max_area_ratio` (over every step inside the medium). Releases the GIL while it runs;
@@ -61,7 +63,7 @@ def held_out(medium, starts=200, seed=1, half_dt=True, threads=0, params=None, r
     """The held-out value of a medium, as `softdrop validate` gives it: `starts` droplets from random
     starts across the top (drawn as simulate_many draws them), and with half_dt the same starts at
     dt / 2 (twice the step budget). Returns a Result with at_dt and at_half_dt (dicts: dt, starts,
-    passed, pass_fraction, mean_t, standard_error, q1, median, q3; None where nothing passed),
+    passed, pass_fraction, mean_tortuosity, standard_error, q1, median, q3; None where nothing passed),
     dt_shift and dt_shift_error (the mean of T(dt/2) - T(dt) over the `paired` starts that passed
     at both), and runs, a pandas DataFrame with one row a droplet and time step. Ctrl-C stops it
     after the droplets in flight."""
@@ -78,10 +80,11 @@ def tortuosity(medium, pixels=500, pixel_size=1.0, periodic=True):
     `medium` is a Medium (drawn `pixels` across its width, a pixel being pore where its centre lies
     in no grain), or a grain file's name, or a 2D binary image: a numpy array, True (or 1) in the
     pore space, rows from the top (PoreSpy's convention, and Medium.to_image's), of pixels of side
-    `pixel_size`, periodic in x or not. Returns a Result: geometric_t (the shortest path from each
-    pore pixel of the top row to the bottom, over the height, averaged over them: fast marching),
-    geometric_standard_error, starts and connected (top pixels, and those with a path down), tau
-    (phi D / D_eff from a steady diffusion between the top and the bottom: PoreSpy's tortuosity_fd),
+    `pixel_size`, periodic in x or not. Returns a Result: geometric_tortuosity (the shortest path
+    from each pore pixel of the top row to the bottom, over the height, averaged over them: fast
+    marching), geometric_standard_error, starts and connected (top pixels, and those with a path
+    down), diffusive_tortuosity (porosity D / D_eff from a steady diffusion between the top and the
+    bottom: PoreSpy's tortuosity_fd),
     formation_factor, effective_diffusivity, porosity (of the image), pixel, and the fields as arrays
     of the image's shape, rows from the top: distance (to the bottom edge, length units; inf where
     no path) and concentration (NaN in the solid). Both values converge at first order in the pixel
@@ -123,7 +126,6 @@ def _runs_frame(rows):
 
     frame = pd.DataFrame(rows)
     frame.insert(0, "droplet", range(len(frame)))
-    frame["touched"] = frame["touched"].map(len)
     return frame[["droplet", "start_x", "outcome", "tortuosity", "steps", "touched", "min_area_ratio",
                   "max_penetration", "reason"]]
 
@@ -225,9 +227,9 @@ def _with_progress(callback, progress, unit, done_and_total):
 
 
 def _postfix(event):
-    if "best_t" in event:
-        return f"best T {event['best_t']:.4f}"
-    mean = event.get("mean_t")
+    if "best_tortuosity" in event:
+        return f"best T {event['best_tortuosity']:.4f}"
+    mean = event.get("mean_tortuosity")
     return f"<T> {mean:.4f}" if isinstance(mean, float) and mean == mean else ""
 
 
@@ -247,7 +249,7 @@ def optimize(db="softdrop.db", callback=None, progress=False, **options):
     ...), with the same defaults and checks, and the history file is the one the program writes.
 
     `callback(event)`, if given, is called after each generation is committed, with a dict: run,
-    generation, kind, accepted_candidate (None: none kept), candidates, seconds, best_t,
+    generation, kind, accepted_candidate (None: none kept), candidates, seconds, best_tortuosity,
     best_generation, target_generations. Returning False stops the search there; the run is marked
     interrupted and `optimize(db, resume=run)` continues it exactly. Ctrl-C stops it the same way,
     then raises KeyboardInterrupt; an exception in the callback stops it and is raised again.
@@ -268,9 +270,9 @@ def sweep(db="sweep.db", callback=None, progress=False, **options):
     store is the program's: running it again goes on with the media not yet stored.
 
     `callback(event)` is called after each medium is committed, with a dict: sweep,
-    porosity_index, medium_index, target_porosity, passed, mean_t, media_done, media_to_do.
+    porosity_index, medium_index, target_porosity, passed, mean_tortuosity, media_done, media_to_do.
     Returning False stops after the media in flight (they are stored); Ctrl-C does too, then
-    raises KeyboardInterrupt. Returns a summary: sweep, status, media, media_stored,
+    raises KeyboardInterrupt. Returns a summary: sweep, status, media, done (media stored),
     media_this_session, droplets_this_session, wall_seconds. read_sweep(db) has the records.
     progress=True shows a progress bar over the media, as for optimize."""
     return _run_with_progress("sweep", db, callback, progress, options, "medium",
@@ -279,12 +281,12 @@ def sweep(db="sweep.db", callback=None, progress=False, **options):
 
 def read_history(db, arrangements=True):
     """A search history (the SQLite file of `softdrop optimize`), read by the program's own store:
-    a dict of pandas DataFrames with the columns of the database's tables (see the README):
-    `runs`, `generations`, `candidates`, `grains` and `paths` (the arrangements the search kept:
-    generation 0's and each accepted one; arrangements=False leaves these two empty),
-    `validations` (held-out values of arrangements: `softdrop validate`, and the end of a search), and
-    `params` (one row a run: run_id and the options stored with it). A file the store refuses
-    raises StoreError naming it."""
+    a dict of pandas DataFrames with the columns of the database's views (runs_view, ...; the
+    names of softdrop.columns()): `runs`, `generations`, `candidates`, `grains` and `paths` (the
+    arrangements the search kept: generation 0's and each accepted one; arrangements=False leaves
+    these two empty), `validations` (held-out values of arrangements: `softdrop validate`, and the
+    end of a search), and `params` (one row a run: run and the options stored with it, typed). A
+    file the store refuses raises StoreError naming it."""
     import json
 
     import pandas as pd
@@ -296,7 +298,7 @@ def read_history(db, arrangements=True):
         frames[name][column] = frames[name][column].astype("Int64")  # missing: <NA>
     frames["grains"]["touched"] = frames["grains"]["touched"].astype(bool)
     rows = []
-    for run_id, text in zip(frames["runs"]["id"], frames["runs"]["params"]):
+    for run_id, text in zip(frames["runs"]["run"], frames["runs"]["params"]):
         try:
             row = json.loads(text)
         except ValueError as e:  # JSONDecodeError, or text that is not UTF-8
@@ -305,7 +307,7 @@ def read_history(db, arrangements=True):
             raise StoreError(f"--db '{os.fspath(db)}': run {run_id}: its params are not a JSON object")
         rows.append(row)
     params = pd.json_normalize(rows)
-    params.insert(0, "run_id", frames["runs"]["id"].to_numpy())
+    params.insert(0, "run", frames["runs"]["run"].to_numpy())
     frames["params"] = params
     return frames
 
@@ -313,9 +315,9 @@ def read_history(db, arrangements=True):
 def read_sweep(db, sweep=None):
     """The records of `softdrop sweep` (all sweeps of the file, or the one with id `sweep`), read
     by the program's own store: a dict of pandas DataFrames `sweeps`, `media` and `droplets` (the
-    database's tables; mean_t, standard_error and tortuosity are NaN where nothing passed), and
-    `points` (per target porosity, as `softdrop sweep-report` aggregates them, with the standard
-    error over droplets and, in media_standard_error, over media as clusters; per_medium_t is the
+    database's views; mean_tortuosity, standard_error and tortuosity are NaN where nothing passed),
+    and `points` (per target porosity, as `softdrop sweep-report` aggregates them, with the standard
+    error over droplets and, in media_standard_error, over media as clusters; per_medium_tortuosity is the
     other averaging, each medium's <T> first and then their mean, with per_medium_standard_error).
     A file the store refuses raises StoreError naming it."""
     import pandas as pd
@@ -326,9 +328,20 @@ def read_sweep(db, sweep=None):
     return {name: pd.DataFrame(columns) for name, columns in tables.items()}
 
 
+def columns():
+    """The names softdrop writes, one per quantity, in its CSV, JSON, database views and the frames
+    and results here: a pandas DataFrame of name, unit ("1": dimensionless; length, time and mass in
+    the model's units; "s": wall-clock seconds) and meaning, as `softdrop columns` prints it. Droplet
+    parameters (DropletParams' attributes) are named by their option and are not listed."""
+    import pandas as pd
+
+    return pd.DataFrame(_core._columns())
+
+
 def best_arrangement(db, run=1, generation=-1):
     """The arrangement a search kept as of `generation` (-1: the latest; the best for the paper's
-    strategy): a Result with medium (a Medium), generation, tortuosity, touched and path (x, y rows)."""
+    strategy): a Result with medium (a Medium), generation, tortuosity, touched (a count),
+    touched_grains (their indices) and path (rows of x, y, as simulate's)."""
     if isinstance(run, bool) or not isinstance(run, numbers.Integral) or run < 1:
         raise ValueError(f"run = {run!r}: run ids are whole numbers from 1")
     return Result(_core._arrangement(_db_path(db), int(run), int(generation)))

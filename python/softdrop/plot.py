@@ -66,11 +66,11 @@ def medium(m, ax=None, touched=(), color="0.55", touched_color="0.25"):
 
 
 def _xy(path):
-    """x and y columns of a path: rows of t, x, y (simulate) or x, y (best_arrangement)."""
+    """x and y columns of a path: rows of x, y (every path softdrop gives)."""
     p = np.asarray(path, dtype=float)
-    if p.ndim != 2 or p.shape[1] not in (2, 3):
-        raise ValueError(f"path: rows of (t, x, y) or (x, y) expected, not an array of shape {p.shape}")
-    return p[:, -2], p[:, -1]
+    if p.ndim != 2 or p.shape[1] != 2:
+        raise ValueError(f"path: rows of (x, y) expected, not an array of shape {p.shape}")
+    return p[:, 0], p[:, 1]
 
 
 def _pieces(x, y, width):
@@ -81,7 +81,7 @@ def _pieces(x, y, width):
 
 def paths(m, runs, ax=None, color="tab:blue", linewidth=0.8, alpha=0.7):
     """Medium `m` with the centre-of-mass paths of `runs`: results of simulate(..., path=True),
-    or path arrays (rows of t, x, y or x, y). A path that wraps across a periodic side is drawn
+    or path arrays (rows of x, y). A path that wraps across a periodic side is drawn
     in pieces. Returns the Figure."""
     ax = _axes(ax)
     medium(m, ax=ax)
@@ -95,24 +95,25 @@ def paths(m, runs, ax=None, color="tab:blue", linewidth=0.8, alpha=0.7):
 
 def best_curve(history, run=1, ax=None):
     """A search's best T against generation, from read_history's frames or a database path; with a
-    robust objective also each generation's re-run of the arrangement it stood on (parent_t), and
+    robust objective also each generation's re-run of the arrangement it stood on
+    (parent_tortuosity), and
     any held-out values (validations) with their standard errors. Returns the Figure."""
     if not isinstance(history, dict):
         from . import read_history
 
         history = read_history(history, arrangements=False)
     g = history["generations"]
-    g = g[g["run_id"] == run]
+    g = g[g["run"] == run]
     if g.empty:
         raise ValueError(f"run = {run}: no such run in the history")
     ax = _axes(ax)
-    ax.step(g["generation"], g["best_t"], where="post", color="black", label="best T (in search)")
-    if "parent_t" in g and g["parent_t"].notna().any():
-        ax.plot(g["generation"], g["parent_t"], ".", color="0.6", markersize=2, label="re-run on fresh starts")
+    ax.step(g["generation"], g["best_tortuosity"], where="post", color="black", label="best T (in search)")
+    if "parent_tortuosity" in g and g["parent_tortuosity"].notna().any():
+        ax.plot(g["generation"], g["parent_tortuosity"], ".", color="0.6", markersize=2, label="re-run on fresh starts")
     v = history.get("validations")
     if v is not None and not v.empty:
-        v = v[v["run_id"] == run]
-        ax.errorbar(v["generation"], v["mean_t"], yerr=v["standard_error"], fmt="o", color="tab:red",
+        v = v[v["run"] == run]
+        ax.errorbar(v["generation"], v["mean_tortuosity"], yerr=v["standard_error"], fmt="o", color="tab:red",
                     label="held-out ⟨T⟩")
     ax.set_xlabel("generation")
     ax.set_ylabel("T")
@@ -120,20 +121,21 @@ def best_curve(history, run=1, ax=None):
     return ax.figure
 
 
-def porosity(points, ax=None, paper=True, mean="mean_t", error="media_standard_error", residuals=False,
+def porosity(points, ax=None, paper=True, mean="mean_tortuosity", error="media_standard_error", residuals=False,
              label="softdrop"):
     """<T> against porosity: read_sweep's `points` with error bars, and the paper's fit
-    (paper=True). `mean` is the column of <T> (mean_t, pooled over the droplets; per_medium_t,
-    each medium's first) and `error` its error (media_standard_error, the media as clusters, or
-    standard_error over droplets; per_medium_standard_error goes with per_medium_t). A table
-    without `error` (a phi,t,se file read by pandas, say) may name its own columns.
+    (paper=True). `mean` is the column of <T> (mean_tortuosity, pooled over the droplets;
+    per_medium_tortuosity, each medium's first) and `error` its error (media_standard_error, the
+    media as clusters, or standard_error over droplets; per_medium_standard_error goes with
+    per_medium_tortuosity). A table of other columns (a points file read by pandas, say) may name
+    its own, beside its porosity column.
 
     residuals=True adds a panel below with (<T> - f(phi)) / error against the paper's f, with the
     band of +-2; it needs a new figure (ax=None). Returns the Figure."""
-    for column in ("phi", mean, error):
+    for column in ("porosity", mean, error):
         if column not in points:
             raise ValueError(f"points: no column {column!r} (columns: {', '.join(map(str, points.columns))})")
-    phi, t, se = (np.asarray(points[c], dtype=float) for c in ("phi", mean, error))
+    phi, t, se = (np.asarray(points[c], dtype=float) for c in ("porosity", mean, error))
     if residuals:
         if ax is not None:
             raise ValueError("residuals=True draws two panels of a new figure: leave ax out")
@@ -170,7 +172,7 @@ def area_trace(run, ax=None):
     for key, style in (("enter", "--"), ("leave", ":")):
         if key in run and np.isfinite(run[key]):
             ax.axvline(run[key], color="0.5", linestyle=style, label=f"{key}s the medium")
-    ax.set_xlabel("t")
+    ax.set_xlabel("time")
     ax.set_ylabel("S / S₀")
     if ax.get_legend_handles_labels()[0]:
         ax.legend(loc="best", frameon=False)

@@ -179,11 +179,11 @@ Table points_table(const std::vector<const Row*>& rows) {
               "passed",
               "stuck",
               "diverged",
-              "mean_t",
+              "mean_tortuosity",
               "standard_error",
               "media_passed",
               "media_standard_error",
-              "paper_t",
+              "paper_tortuosity",
               "within"};
   for (const Row* r : rows)
     for (const CalibrationPoint& p : r->result.points)

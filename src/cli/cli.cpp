@@ -101,6 +101,7 @@ Cli::Cli() {
   calibrate_cmd_ = add_calibrate_command(app, calibrate_);
   validate_cmd_ = add_validate_command(app, validate_);
   tortuosity_cmd_ = add_tortuosity_command(app, tortuosity_);
+  columns_cmd_ = add_columns_command(app, columns_);
   add_value_checks(app);
 }
 
@@ -165,6 +166,7 @@ int Cli::run() {
   if (calibrate_cmd_->parsed()) return run_calibrate(calibrate_);
   if (validate_cmd_->parsed()) return run_validate(validate_, *validate_cmd_);
   if (tortuosity_cmd_->parsed()) return run_tortuosity(tortuosity_);
+  if (columns_cmd_->parsed()) return run_columns(columns_);
   return 0;
 }
 

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cli/calibrate_command.hpp"
+#include "cli/columns.hpp"
 #include "cli/history_command.hpp"
 #include "cli/host.hpp"
 #include "cli/optimize_command.hpp"
@@ -58,6 +59,7 @@ class Cli {
   CalibrateArgs calibrate_;
   ValidateArgs validate_;
   TortuosityArgs tortuosity_;
+  ColumnsArgs columns_;
   CLI::App* simulate_cmd_ = nullptr;
   CLI::App* optimize_cmd_ = nullptr;
   CLI::App* history_cmd_ = nullptr;
@@ -66,6 +68,7 @@ class Cli {
   CLI::App* calibrate_cmd_ = nullptr;
   CLI::App* validate_cmd_ = nullptr;
   CLI::App* tortuosity_cmd_ = nullptr;
+  CLI::App* columns_cmd_ = nullptr;
 };
 
 /// The whole program: parses, runs, and turns every error into one line on stderr. Returns the

@@ -44,7 +44,7 @@ int run_fit(const FitArgs& a) {
     throw std::invalid_argument("--errors droplets: a per-medium mean has only its error over the media "
                                 "(leave --errors out, or fit --mean pooled)");
   std::vector<FitPoint> points;
-  bool used_errors = true;  // false: a phi,t,se file, which brings its own
+  bool used_errors = true;  // false: a porosity,tortuosity,standard_error file, which brings its own
   if (!a.points.empty()) {
     std::ifstream in(a.points);
     if (!in) throw std::runtime_error("--points '" + a.points + "': cannot read");
@@ -218,7 +218,7 @@ int run_averagings(const AveragingArgs& args) {
   const auto by_t = group_averages(points, AveragingType::by_t, a.group, leftover);
   const auto by_phi = group_averages(points, AveragingType::by_phi, a.group, leftover);
   Table t;
-  t.header = {"type", "phi", "t", "phi_se", "t_se", "count"};
+  t.header = {"averaging", "porosity", "mean_tortuosity", "porosity_standard_error", "standard_error", "count"};
   for (const auto& [type, groups] : {std::pair{1, &by_t}, std::pair{2, &by_phi}})
     for (const GroupAverage& g : *groups) t.rows.push_back({type, g.phi, g.t, g.phi_se, g.t_se, g.count});
   t.print(std::cout, "table");

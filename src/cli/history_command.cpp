@@ -30,25 +30,28 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
       ->capture_default_str()
       ->check(CLI::IsMember({"table", "csv", "json"}));
   s->footer(
-      "Columns. Runs: island = I of R for island I of the islands whose first run is R (optimize --islands; "
-      "empty otherwise); evaluations = candidates evaluated so far (generation 0's included); droplets = droplet "
-      "runs so far (evaluations x --starts, and the parents' re-runs); objective = what a candidate scores "
-      "(optimize --objective); best_generation = where the best was found. With a robust objective (mean, "
-      "quantile, lower-bound) every T below is the objective's value over the evaluation's droplets, and the "
-      "best is the arrangement the search stands on, its best_t the mean of its re-runs on fresh starts. Generations: kind = all (every grain moved), single (one touched grain), relocate "
-      "(one untouched grain put next to the path) or migrate (another island's best, accepted if it beat this "
-      "island's); "
-      "accepted = 1 if the strategy kept a candidate; candidate_t = the best T among the generation's passing "
-      "candidates (empty if none passed); outcomes = each candidate's outcome, in order; best_t = the best T "
-      "after it; touched = grains the best arrangement's droplet touched; seconds = wall time; state = the "
-      "strategy's state (JSON); parent_t = the value of the arrangement the candidates were made from, re-run on "
-      "their starts (robust objectives). Candidates: moved_grain = the grain a single or relocate move moved (empty for all); "
-      "moved = grains moved; t = T if passed; steps = time steps simulated; reason = why its run ended; droplets, "
-      "passed = its droplets and how many passed. "
-      "--best: held_out_t, held_out_se = the mean T and its standard error over held_out_starts random starts of "
-      "that generation's arrangement (softdrop validate, or the end of the search; empty where none was "
-      "computed); re_runs = robust objectives: the re-runs on fresh starts that its best_t is the mean of (0: the "
-      "value it was kept with).");
+      "Columns (softdrop columns lists every name, with its unit). Runs: island = this run's island and "
+      "archipelago = the run id of its islands' first run (optimize --islands; empty otherwise); evaluations = "
+      "candidates evaluated so far (generation 0's included); droplets = droplet runs so far (evaluations x "
+      "--starts, and the parents' re-runs); objective = what a candidate scores (optimize --objective); "
+      "best_generation = where the best was found. With a robust objective (mean, quantile, lower-bound) every "
+      "tortuosity below is the objective's value over the evaluation's droplets, and the best is the arrangement "
+      "the search stands on, its best_tortuosity the mean of its re-runs on fresh starts. Generations: kind = the "
+      "move that made its candidates: all (every grain jumps), single (one touched grain), relocate (one "
+      "untouched grain put next to the path), migrate (another island's best, accepted if it beat this "
+      "island's), or mixed (es draws each candidate's move: see --candidates); accepted = 1 if the strategy kept "
+      "a candidate; best_candidate_tortuosity = the best among the generation's passing candidates (empty if "
+      "none passed); outcomes = each candidate's outcome, in order; best_tortuosity = the best after it; touched "
+      "= grains the best arrangement's droplet touched; seconds = wall time; state = the strategy's state (JSON); "
+      "parent_tortuosity = the value of the arrangement the candidates were made from, re-run on their starts "
+      "(robust objectives). Candidates: kind = its move (as above; empty where an older file "
+      "cannot tell single from relocate); moved_grain = the grain a single or relocate move moved; "
+      "moved = grains moved; tortuosity = its value if passed; steps = time steps simulated; reason = why its "
+      "run ended; droplets, passed = its droplets and how many passed. --best: held_out_tortuosity, "
+      "held_out_standard_error = the mean T and its standard error over held_out_starts random starts of that "
+      "generation's arrangement (softdrop validate, or the end of the search; empty where none was computed); "
+      "re_runs = robust objectives: the re-runs on fresh starts that its best_tortuosity is the mean of (0: the "
+      "value it was kept with). --params: the options with their types in --format json.");
   return s;
 }
 
@@ -70,6 +73,14 @@ namespace {
 
 nlohmann::json or_null(bool present, double v) { return present ? nlohmann::json(v) : nlohmann::json(); }
 
+// A strategy's stored state as JSON (an object in --format json, its text in CSV); null where the
+// generation has none (generation 0, and the strategies that keep no state).
+nlohmann::json state_json(const std::string& state) {
+  if (state.empty()) return nlohmann::json();
+  nlohmann::json j = nlohmann::json::parse(state, nullptr, false);
+  return j.is_discarded() ? nlohmann::json(state) : j;
+}
+
 }  // namespace
 
 void check_stored_generation(std::int64_t generation, const RunRecord& run) {
@@ -85,16 +96,17 @@ int run_history(const HistoryArgs& a) {
   auto history = open_history(a.db, OpenMode::read_only);
   Table t;
   if (a.run == 0) {
-    t.header = {"run", "created", "status", "strategy", "island", "grains", "generations", "evaluations", "best_t",
-                "best_generation", "lambda", "seed", "version", "objective", "droplets"};
+    t.header = {"run", "created", "status", "strategy", "island", "archipelago", "grains", "generations",
+                "evaluations", "best_tortuosity", "best_generation", "lambda", "seed", "version", "objective",
+                "droplets"};
     for (const RunRecord& r : history->runs()) {
       const auto params = nlohmann::json::parse(r.params, nullptr, false);
       const std::string strategy = params.is_object() ? params.value("strategy", "paper") : "?";
-      const nlohmann::json island = r.island >= 0 ? nlohmann::json(std::to_string(r.island) + " of " + std::to_string(r.archipelago))
-                                                  : nlohmann::json();
       const std::string objective = params.is_object() ? params.value("objective", "single") : "?";
-      t.rows.push_back({r.id, r.created, r.status, strategy, island, r.grains, r.generations, r.evaluations, r.best_t,
-                        r.best_generation, r.lambda, r.seed, r.version, objective, r.droplets});
+      t.rows.push_back({r.id, r.created, r.status, strategy, r.island >= 0 ? nlohmann::json(r.island) : nlohmann::json(),
+                        r.island >= 0 ? nlohmann::json(r.archipelago) : nlohmann::json(), r.grains, r.generations,
+                        r.evaluations, r.best_t, r.best_generation, r.lambda, r.seed, r.version, objective,
+                        r.droplets});
     }
   } else if (a.params) {
     t.header = {"option", "value"};
@@ -102,13 +114,14 @@ int run_history(const HistoryArgs& a) {
     if (!params.is_object())
       throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(a.run) + " has no readable options");
     for (const auto& [key, value] : params.items())
-      t.rows.push_back({key, value.is_string() ? value.get<std::string>() : value.dump()});
+      t.rows.push_back({key, value});  // typed in JSON; CSV and the table write it as text
   } else if (a.candidates) {
-    t.header = {"generation", "candidate", "accepted", "outcome", "t", "steps", "touched", "moved_grain", "moved",
-                "seconds", "reason", "droplets", "passed"};
+    t.header = {"generation", "candidate", "kind", "accepted", "outcome", "tortuosity", "steps", "touched",
+                "moved_grain", "moved", "seconds", "reason", "droplets", "passed"};
     for (const GenerationRecord& g : history->generations(a.run))
       for (const CandidateRecord& c : g.candidates)
-        t.rows.push_back({g.generation, c.index, c.index == g.accepted ? 1 : 0, c.outcome,
+        t.rows.push_back({g.generation, c.index, c.kind.empty() ? nlohmann::json() : nlohmann::json(c.kind),
+                          c.index == g.accepted ? 1 : 0, c.outcome,
                           or_null(c.outcome == "passed", c.tortuosity), c.steps, c.touched,
                           c.moved_grain >= 0 ? nlohmann::json(c.moved_grain) : nlohmann::json(nullptr), c.moved,
                           c.seconds, c.reason, c.droplets, c.passed});
@@ -117,7 +130,8 @@ int run_history(const HistoryArgs& a) {
     // was stored (the latest of its validations). A robust objective's best is the arrangement
     // the search stands on: one row for each arrangement kept, with its value where its tenure
     // ended (the mean of its re-runs on fresh starts) and how many re-runs that mean holds.
-    t.header = {"generation", "kind", "best_t", "touched", "held_out_t", "held_out_se", "held_out_starts", "re_runs"};
+    t.header = {"generation", "kind", "best_tortuosity", "touched", "held_out_tortuosity", "held_out_standard_error",
+                "held_out_starts", "re_runs"};
     std::map<std::int64_t, ValidationRecord> held_out;
     for (const ValidationRecord& v : history->validations(a.run)) held_out[v.generation] = v;
     const auto params = nlohmann::json::parse(history->run(a.run).params, nullptr, false);
@@ -141,8 +155,8 @@ int run_history(const HistoryArgs& a) {
       }
     }
   } else {
-    t.header = {"generation", "kind", "accepted", "candidate_t", "outcomes", "best_t", "touched", "seconds", "state",
-                "parent_t"};
+    t.header = {"generation", "kind", "accepted", "best_candidate_tortuosity", "outcomes", "best_tortuosity", "touched",
+                "seconds", "state", "parent_tortuosity"};
     for (const GenerationRecord& g : history->generations(a.run)) {
       // The generation's best passing candidate, and every candidate's outcome.
       bool any = false;
@@ -153,7 +167,7 @@ int run_history(const HistoryArgs& a) {
         outcomes += (outcomes.empty() ? "" : ";") + c.outcome;
       }
       t.rows.push_back({g.generation, g.kind, g.accepted >= 0 ? 1 : 0, or_null(any, top), outcomes, g.best_t,
-                        g.touched, g.seconds, g.state, finite_or_null(g.parent_t)});
+                        g.touched, g.seconds, state_json(g.state), finite_or_null(g.parent_t)});
     }
   }
   t.print(std::cout, a.format);

@@ -58,7 +58,7 @@ Configuration get_configuration(ByteReader& r) {
 }
 MoveKind get_kind(ByteReader& r) {
   const auto k = r.get<std::int32_t>();
-  if (k < 0 || k > static_cast<std::int32_t>(MoveKind::migrate)) r.fail("bad move kind");
+  if (k < 0 || k > static_cast<std::int32_t>(MoveKind::mixed)) r.fail("bad move kind");
   return static_cast<MoveKind>(k);
 }
 void put(ByteWriter& w, const Generation& g) {

@@ -1,5 +1,7 @@
 #include "cli/output.hpp"
 
+#include "cli/columns.hpp"
+
 #include "util/temp_files.hpp"
 #include "util/validation.hpp"
 
@@ -116,6 +118,7 @@ void Table::write_csv(const std::string& path) const {
 }
 
 void Table::print(std::ostream& out, const std::string& format) const {
+  check_column_names(header);
   if (format == "json") {
     nlohmann::ordered_json j = nlohmann::ordered_json::array();
     for (const auto& row : rows) {
@@ -160,7 +163,7 @@ void Table::print(std::ostream& out, const std::string& format) const {
 
 void write_area_traces(const std::string& path, const std::vector<AreaTrace>& traces) {
   std::ostringstream out;
-  out << "droplet,t,area,area_ratio,phase\n";
+  out << "droplet,time,area,area_ratio,phase\n";
   for (std::size_t d = 0; d < traces.size(); ++d) {
     const AreaTrace& tr = traces[d];
     for (std::size_t i = 0; i < tr.t.size(); ++i) {

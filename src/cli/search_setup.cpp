@@ -134,21 +134,21 @@ nlohmann::json validate_best(const OptimizeArgs& a, History& history, std::int64
   const nlohmann::json objective =
       a.search.objective.robust() ? nlohmann::json(objective_value(a.search.objective, v.at_dt.runs)) : nlohmann::json();
   return {{"objective_value", objective}, {"generation", r.generation}, {"starts", r.starts}, {"seed", r.seed}, {"passed", r.passed},
-          {"mean_t", finite_or_null(r.mean_t)}, {"standard_error", finite_or_null(r.standard_error)},
-          {"half_dt_mean_t", finite_or_null(r.half_dt_mean_t)}, {"half_dt_standard_error", finite_or_null(r.half_dt_standard_error)},
+          {"mean_tortuosity", finite_or_null(r.mean_t)}, {"standard_error", finite_or_null(r.standard_error)},
+          {"half_dt_mean_tortuosity", finite_or_null(r.half_dt_mean_t)}, {"half_dt_standard_error", finite_or_null(r.half_dt_standard_error)},
           {"dt_shift", finite_or_null(r.dt_shift)}, {"dt_shift_error", finite_or_null(r.dt_shift_error)}};
 }
 
 void print_held_out(std::ostream& out, const nlohmann::json& held_out) {
   if (!held_out.is_object()) return;
-  if (!held_out["mean_t"].is_number()) {
+  if (!held_out["mean_tortuosity"].is_number()) {
     out << "held-out T   none of " << held_out["starts"] << " random starts passed\n";
     return;
   }
-  out << "held-out T   " << fmt(held_out["mean_t"].get<double>(), 6)
+  out << "held-out T   " << fmt(held_out["mean_tortuosity"].get<double>(), 6)
       << (held_out["standard_error"].is_number() ? " +- " + fmt(held_out["standard_error"].get<double>(), 2) : "")
       << " over " << held_out["starts"] << " random starts (" << held_out["passed"] << " passed)"
-      << (held_out["half_dt_mean_t"].is_number() ? "; at dt/2 " + fmt(held_out["half_dt_mean_t"].get<double>(), 6) : "")
+      << (held_out["half_dt_mean_tortuosity"].is_number() ? "; at dt/2 " + fmt(held_out["half_dt_mean_tortuosity"].get<double>(), 6) : "")
       << " (softdrop validate)\n";
   if (held_out["objective_value"].is_number())
     out << "held-out obj " << fmt(held_out["objective_value"].get<double>(), 6)
@@ -197,7 +197,7 @@ nlohmann::json generation_event(std::int64_t run, const Generation& g, const Con
           {"accepted_candidate", g.accepted >= 0 ? nlohmann::json(g.accepted) : nlohmann::json()},
           {"candidates", g.candidates.size()},
           {"seconds", g.seconds},
-          {"best_t", best.eval.tortuosity},
+          {"best_tortuosity", best.eval.tortuosity},
           {"best_generation", best.generation},
           {"target_generations", target}};
 }

@@ -1,5 +1,7 @@
 #include "cli/simulate_command.hpp"
 
+#include "cli/columns.hpp"
+
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -35,14 +37,14 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
 
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
   o->add_option("--runs", a.runs_csv, "CSV, one row per droplet: start, outcome, T, steps, touched");
-  o->add_option("--paths", a.paths_csv, "CSV of centre-of-mass paths (droplet,t,x,y)");
+  o->add_option("--paths", a.paths_csv, "CSV of centre-of-mass paths (droplet,time,x,y)");
   o->add_option("--path-interval", a.run.path_interval, "Steps between path samples (default 100 with --paths)");
   o->add_option("--trace", a.trace_csv,
-                "CSV of the ring area S(t), each droplet replayed to its exit (droplet,t,area,area_ratio,phase; "
+                "CSV of the ring area S(t), each droplet replayed to its exit (droplet,time,area,area_ratio,phase; "
                 "as render trace --csv)");
   o->add_option("--trace-interval", a.run.area_interval, "Steps between area samples (default 100 with --trace)")
       ->check(positive_check());
-  o->add_option("--snapshots", a.snapshots_csv, "CSV of ring boundaries at --snapshot-times (droplet,t,mass,x,y)");
+  o->add_option("--snapshots", a.snapshots_csv, "CSV of ring boundaries at --snapshot-times (droplet,time,mass,x,y)");
   o->add_option("--snapshot-times", a.run.snapshot_times, "Times (time units) of boundary snapshots")
       ->delimiter(',');
   return s;
@@ -163,6 +165,7 @@ int run_simulate(SimulateArgs& a) {
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   auto csv = [&](const std::string& path, const std::string& header, auto&& rows) {
     if (path.empty()) return;
+    check_csv_header(header);
     std::ostringstream out;
     out << header << '\n';
     for (std::size_t i = 0; i < runs.size(); ++i) rows(out, static_cast<int>(i), runs[i]);
@@ -174,7 +177,7 @@ int run_simulate(SimulateArgs& a) {
           << (r.outcome == Outcome::passed ? fmt(r.tortuosity) : "") << ',' << r.steps << ',' << r.touched.size()
           << ',' << fmt(r.min_area_ratio) << ',' << fmt(r.max_penetration) << '\n';
       });
-  csv(a.paths_csv, "droplet,t,x,y", [](std::ostream& o, int i, const RunSummary& r) {
+  csv(a.paths_csv, "droplet,time,x,y", [](std::ostream& o, int i, const RunSummary& r) {
     for (std::size_t k = 0; k < r.path_t.size(); ++k)
       o << i << ',' << fmt(r.path_t[k]) << ',' << fmt(r.path_x[k]) << ',' << fmt(r.path_y[k]) << '\n';
   });
@@ -184,7 +187,7 @@ int run_simulate(SimulateArgs& a) {
       traces.push_back(trace_area(a.droplet, medium, r.start_x, a.run, a.run.area_interval));
     write_area_traces(a.trace_csv, traces);
   }
-  csv(a.snapshots_csv, "droplet,t,mass,x,y", [](std::ostream& o, int i, const RunSummary& r) {
+  csv(a.snapshots_csv, "droplet,time,mass,x,y", [](std::ostream& o, int i, const RunSummary& r) {
     for (const Snapshot& sn : r.snapshots)
       for (std::size_t k = 0; k < sn.x.size(); ++k)
         o << i << ',' << fmt(sn.time) << ',' << k << ',' << fmt(sn.x[k]) << ',' << fmt(sn.y[k]) << '\n';

@@ -67,26 +67,29 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   rp->add_flag("--media", r.media, "One row per medium instead of one per porosity");
   rp->add_option("--format", r.format, "table, csv or json")->capture_default_str()->check(CLI::IsMember({"table", "csv", "json"}));
   rp->footer(
-      "Columns. Points: phi = mean exact porosity of the media; mean_t = <T> over the passed droplets; "
+      "Columns (softdrop columns lists every name, with its unit). Points: target_porosity = the porosity asked "
+      "for; porosity = mean exact porosity of the media; mean_tortuosity = <T> over the passed droplets; "
       "standard_error = its error taking every passed droplet as independent; media_passed = media where a "
       "droplet passed; media_standard_error = its error taking each medium's droplets as one cluster (they share "
-      "its throats and dead ends: the error to quote, larger); stuck_fraction over all droplets; per_medium_t = "
+      "its throats and dead ends: the error to quote, larger); stuck_fraction over all droplets; "
+      "per_medium_tortuosity = "
       "the other averaging, each medium's <T> first, then their plain mean over the media_passed media, with "
       "per_medium_standard_error over those media. Media (--media): "
-      "one row per medium, mean_t and standard_error over its own passed droplets; seconds = its wall time.");
+      "one row per medium, mean_tortuosity and standard_error over its own passed droplets; seconds = its wall "
+      "time.");
 
   CLI::App* ft = app.add_subcommand("fit", "Weighted least-squares fits of <T>(phi): a - c phi^b and 1 - p ln phi (NLopt)");
   ft->fallthrough();
   auto* src = ft->add_option_group("Data");
   src->add_option("--db", f.db, "Sweep store: fit its per-porosity points");
-  src->add_option("--points", f.points, "Or a CSV file with columns phi,t,se (or the output of sweep-report --format csv)")->check(CLI::ExistingFile);
+  src->add_option("--points", f.points, "Or a CSV file with columns porosity,tortuosity,standard_error (or the output of sweep-report --format csv)")->check(CLI::ExistingFile);
   src->require_option(1);
   ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)")->check(id_check());
   ft->add_option(
         "--errors", f.errors,
         "Weights of a sweep's points: the standard error of each porosity's <T> with its media as "
         "clusters (media), or with every droplet taken as independent (droplets: smaller, as droplets "
-        "of one medium share its dead ends); a phi,t,se file brings its own")
+        "of one medium share its dead ends); a porosity,tortuosity,standard_error file brings its own")
       ->capture_default_str()
       ->check(CLI::IsMember({"media", "droplets"}));
   ft->add_option("--mean", f.mean,
@@ -114,7 +117,7 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
                  "paper's) or keep (averaged as a last, smaller group)")
       ->capture_default_str()
       ->check(CLI::IsMember({"drop", "keep"}));
-  av->add_option("--csv", v.csv, "Write the groups (type,phi,t,phi_se,t_se,count) to this CSV");
+  av->add_option("--csv", v.csv, "Write the groups (averaging,porosity,mean_tortuosity,porosity_standard_error,standard_error,count) to this CSV");
   av->add_option("--plot", v.plot, "Draw the per-medium points and both averagings");
   av->add_option("--size", v.size, "Plot width in points (1/72 inch)")->capture_default_str();
   av->add_option("--dpi", v.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
@@ -176,10 +179,10 @@ std::pair<int, int> parse_shard(const std::string& text) {
 
 Table points_table(const std::vector<SweepPoint>& points) {
   Table t;
-  t.header = {"target_phi",     "phi",          "media",
-              "droplets",       "passed",       "mean_t",
-              "standard_error", "media_passed", "media_standard_error",
-              "stuck_fraction", "per_medium_t",  "per_medium_standard_error"};
+  t.header = {"target_porosity", "porosity",       "media",
+              "droplets",        "passed",         "mean_tortuosity",
+              "standard_error",  "media_passed",   "media_standard_error",
+              "stuck_fraction",  "per_medium_tortuosity", "per_medium_standard_error"};
   for (const SweepPoint& p : points)
     t.rows.push_back(
         {p.target_porosity, p.porosity, p.media, p.droplets, p.passed,
@@ -313,7 +316,7 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     if (host && host->on_progress &&
         !host->on_progress({{"sweep", id}, {"porosity_index", m.unit.porosity}, {"medium_index", m.unit.medium},
                             {"target_porosity", m.target_porosity}, {"passed", m.passed},
-                            {"mean_t", m.passed ? nlohmann::json(m.mean_t) : nlohmann::json()},
+                            {"mean_tortuosity", m.passed ? nlohmann::json(m.mean_t) : nlohmann::json()},
                             {"media_done", units_done}, {"media_to_do", todo.size()}}))
       host_stop = true;
   };
@@ -337,7 +340,7 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (host) {
     host->summary = {{"version", kVersion}, {"db", a.db}, {"sweep", id}, {"status", status}, {"media", rec.units},
-                     {"media_stored", rec.done}, {"media_this_session", units_done - units_elsewhere},
+                     {"done", rec.done}, {"media_this_session", units_done - units_elsewhere},
                      {"media_by_another_process", units_elsewhere}, {"droplets_this_session", droplets_done},
                      {"wall_seconds", seconds}, {"commit_seconds", commit_seconds}};
     return 0;
@@ -372,8 +375,8 @@ int run_sweep_report(const SweepReportArgs& a) {
     return 0;
   }
   Table t;
-  t.header = {"porosity_index", "medium_index", "target_phi", "phi", "grains", "droplets", "passed", "stuck",
-              "timeout", "diverged", "mean_t", "standard_error", "stuck_fraction", "seconds"};
+  t.header = {"porosity_index", "medium_index", "target_porosity", "porosity", "grains", "droplets", "passed", "stuck",
+              "timeout", "diverged", "mean_tortuosity", "standard_error", "stuck_fraction", "seconds"};
   for (const SweepMedium& m : media)
     t.rows.push_back({m.unit.porosity, m.unit.medium, m.target_porosity, m.porosity, m.grains, m.droplets.size(), m.passed,
                       m.stuck, m.timeout, m.diverged, m.passed ? nlohmann::json(m.mean_t) : nlohmann::json(),

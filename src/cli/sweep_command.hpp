@@ -45,7 +45,7 @@ struct SweepReportArgs {
 struct FitArgs {
   std::string db;           ///< sweep store ...
   std::int64_t sweep = 0;
-  std::string points;       ///< ... or a CSV with columns phi,t,se
+  std::string points;       ///< ... or a CSV with columns porosity,tortuosity,standard_error
   std::string errors =
       "media";              ///< a sweep's points weighed by media_standard_error, or "droplets"
   std::string mean = "pooled";  ///< the porosity's mean over its droplets, or "per-medium" first

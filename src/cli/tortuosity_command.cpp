@@ -144,28 +144,28 @@ int run_tortuosity(TortuosityArgs& a) {
                   {"height", medium.height}, {"periodic", medium.periodic}}},
       {"pixels_per_smallest_radius", medium.grains.empty() ? nlohmann::json() : nlohmann::json({per_radius, 2 * per_radius})},
       {"image_porosity", {coarse.diffusive.porosity, fine.diffusive.porosity}},
-      {"geometric", pair_json(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels)},
-      {"diffusive", pair_json(coarse.diffusive.tau, fine.diffusive.tau, a.pixels)}};
-  j["geometric"]["starts"] = fine.geometric.starts;
-  j["geometric"]["connected"] = fine.geometric.connected;
-  j["diffusive"]["formation_factor"] = {coarse.diffusive.formation_factor, fine.diffusive.formation_factor};
+      {"geometric_tortuosity", pair_json(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels)},
+      {"diffusive_tortuosity", pair_json(coarse.diffusive.tau, fine.diffusive.tau, a.pixels)}};
+  j["geometric_tortuosity"]["starts"] = fine.geometric.starts;
+  j["geometric_tortuosity"]["connected"] = fine.geometric.connected;
+  j["diffusive_tortuosity"]["formation_factor"] = {coarse.diffusive.formation_factor, fine.diffusive.formation_factor};
   if (a.droplets.starts > 0)
-    j["droplet"] = {{"starts", d.starts}, {"seed", a.droplets.seed}, {"passed", d.passed},
-                    {"mean_t", finite_or_null(d.mean_t)}, {"standard_error", finite_or_null(d.standard_error)}};
+    j["droplet_tortuosity"] = {{"starts", d.starts}, {"seed", a.droplets.seed}, {"passed", d.passed},
+                    {"mean_tortuosity", finite_or_null(d.mean_t)}, {"standard_error", finite_or_null(d.standard_error)}};
   if (!a.picture.empty()) draw_pore_space(medium, coarse, a);
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (!a.csv_file.empty()) {
     std::ostringstream out;
     out << "quantity,pixels,pixel,value,standard_error\n";
     for (const Resolved* r : {&coarse, &fine}) {
-      out << "geometric," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->geometric.tortuosity) << ','
+      out << "geometric_tortuosity," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->geometric.tortuosity) << ','
           << fmt(r->geometric.standard_error) << '\n';
-      out << "diffusive," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->diffusive.tau) << ",\n";
+      out << "diffusive_tortuosity," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->diffusive.tau) << ",\n";
     }
-    out << "geometric,,," << fmt(2 * fine.geometric.tortuosity - coarse.geometric.tortuosity) << ",\n";
-    out << "diffusive,,," << fmt(2 * fine.diffusive.tau - coarse.diffusive.tau) << ",\n";
+    out << "geometric_tortuosity,,," << fmt(2 * fine.geometric.tortuosity - coarse.geometric.tortuosity) << ",\n";
+    out << "diffusive_tortuosity,,," << fmt(2 * fine.diffusive.tau - coarse.diffusive.tau) << ",\n";
     if (a.droplets.starts > 0 && d.passed > 0)
-      out << "droplet,,," << fmt(d.mean_t) << ',' << (d.passed > 1 ? fmt(d.standard_error) : "") << '\n';
+      out << "droplet_tortuosity,,," << fmt(d.mean_t) << ',' << (d.passed > 1 ? fmt(d.standard_error) : "") << '\n';
     write_file_atomically(a.csv_file, out.str());
   }
   if (a.format == "json") {

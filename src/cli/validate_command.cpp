@@ -68,7 +68,7 @@ namespace {
 nlohmann::json runs_json(const HeldOutRuns& r) {
   return {{"dt", r.dt},         {"starts", r.starts},       {"passed", r.passed},
           {"stuck", r.stuck},   {"timeout", r.timeout},     {"diverged", r.diverged},
-          {"pass_fraction", r.pass_fraction}, {"mean_t", finite_or_null(r.mean_t)},
+          {"pass_fraction", r.pass_fraction}, {"mean_tortuosity", finite_or_null(r.mean_t)},
           {"standard_error", finite_or_null(r.standard_error)},    {"q1", finite_or_null(r.q1)},
           {"median", finite_or_null(r.median)}, {"q3", finite_or_null(r.q3)}};
 }
@@ -115,7 +115,7 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
     if (objective.robust()) {
       // Its value in the search: the mean of its re-runs on fresh starts (objective.hpp).
       const KeptValue kept = kept_value(history->generations(a.run), c.generation);
-      source["in_search_t"] = kept.value;
+      source["in_search_tortuosity"] = kept.value;
       source["re_runs"] = kept.re_runs;
       in_search = "in-search    " + fmt(kept.value, 6) + " (" + to_string(objective.kind) + " over " +
                   std::to_string(objective.starts) + " starts, a droplet that did not pass counted as T = 1; " +
@@ -123,7 +123,7 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
                                     : std::string("the value it was kept with")) +
                   ", generation " + std::to_string(c.generation) + ")\n";
     } else {
-      source["in_search_t"] = c.eval.tortuosity;
+      source["in_search_tortuosity"] = c.eval.tortuosity;
       in_search = "in-search T  " + fmt(c.eval.tortuosity, 6) + " (one droplet from x0 = W/2, generation " +
                   std::to_string(c.generation) + ")\n";
     }

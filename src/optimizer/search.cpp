@@ -27,7 +27,8 @@ constexpr detail::EnumName<MoveKind> kMoveKinds[] = {{MoveKind::initial, "initia
                                                      {MoveKind::all, "all"},
                                                      {MoveKind::single, "single"},
                                                      {MoveKind::relocate, "relocate"},
-                                                     {MoveKind::migrate, "migrate"}};
+                                                     {MoveKind::migrate, "migrate"},
+                                                     {MoveKind::mixed, "mixed"}};
 constexpr detail::EnumName<Termination> kTerminations[] = {{Termination::generations, "generations"},
                                                            {Termination::time_limit, "time-limit"},
                                                            {Termination::interrupted, "interrupted"},
@@ -350,8 +351,12 @@ Generation Search::immigrate(const Configuration& immigrant) {
 Generation Search::open_generation(std::vector<Candidate> candidates) const {
   Generation g;
   g.number = last_ + 1;
-  g.kind = move_kind(g.number, options_);
   g.candidates = std::move(candidates);
+  // The generation's kind is its candidates' move, or mixed where they differ (es draws each
+  // candidate's move on its own), so that grouping generations by kind groups like moves.
+  g.kind = g.candidates.empty() ? move_kind(g.number, options_) : g.candidates.front().kind;
+  for (const Candidate& c : g.candidates)
+    if (c.kind != g.kind) g.kind = MoveKind::mixed;
   if (static_cast<int>(g.candidates.size()) != options_.lambda)
     throw std::logic_error("Search::complete: " + std::to_string(g.candidates.size()) + " candidates for lambda " +
                            std::to_string(options_.lambda));

@@ -19,13 +19,13 @@
 namespace softdrop::detail {
 namespace {
 
-// Version 4 lets a generation's kind be 'relocate', version 5 'migrate'. Earlier files have a
+// Version 4 lets a generation's kind be 'relocate', version 5 'migrate', version 8 'mixed'. Earlier files have a
 // narrower CHECK, which no stored row can break when widened: it is rewritten in place by SQLite's
 // documented procedure for constraint changes that leave the stored rows valid (the table's SQL in
 // sqlite_master, and schema_version bumped so that every connection rereads it), in the caller's
 // transaction.
 void widen_generation_kinds(SQLite::Database& db) {
-  const std::string open = "CHECK (kind IN (", after = "CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate'))";
+  const std::string open = "CHECK (kind IN (", after = "CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate', 'mixed'))";
   std::string sql = db.execAndGet("SELECT sql FROM sqlite_master WHERE type = 'table' AND name = 'generations'").getString();
   const auto at = sql.find(open);
   const auto end = at == std::string::npos ? at : sql.find("))", at);
@@ -318,6 +318,11 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     if (version < 6) db->exec(kSchemaV6);  // migration 5 -> 6: the held-out values
     if (version < 7)  // migration 6 -> 7: the robust objectives' counts
       for (const AddedColumn& c : kSchemaV7) add_column(*db, c);
+    if (version < 8) {  // migration 7 -> 8: candidates' moves, the kind 'mixed', the views
+      if (version >= 1) widen_generation_kinds(*db);
+      for (const AddedColumn& c : kSchemaV8) add_column(*db, c);
+      db->exec(kViews);
+    }
     if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));
     t.commit();
     return db;

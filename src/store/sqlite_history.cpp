@@ -131,6 +131,7 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       SQLite::Statement c(db_, std::string("SELECT generation, candidate, moved_grain, moved, outcome, reason, "
                                            "tortuosity, steps, touched, seconds, ") +
                                    (version >= 7 ? "droplets, passed" : "NULL, NULL") +
+                                   (version >= 8 ? ", kind" : ", NULL") +
                                    " FROM candidates WHERE run_id = ? ORDER BY generation, candidate");
       c.bind(1, run_id);
       std::size_t k = 0;
@@ -151,6 +152,13 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
         r.seconds = detail::as_real(c.getColumn(9));
         r.droplets = c.getColumn(10).isNull() ? 1 : detail::as_int(c.getColumn(10));
         r.passed = c.getColumn(11).isNull() ? (r.outcome == "passed" ? 1 : 0) : detail::as_int(c.getColumn(11));
+        // Before version 8 the generation's kind tells a candidate's move, except in an 'all'
+        // generation of es, whose candidates with a moved grain moved one grain (single or relocate).
+        const std::string& gk = out[k].kind;
+        r.kind = !c.getColumn(12).isNull()                       ? detail::as_text(c.getColumn(12))
+                 : gk != "all" && gk != "mixed"                  ? gk
+                 : r.moved_grain < 0                             ? std::string("all")
+                                                                 : std::string();
         out[k].candidates.push_back(std::move(r));
       }
       for (const GenerationRecord& g : out)
@@ -421,14 +429,14 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
                        detail::value_if(rerun && g.parent.passed > 0, g.parent.tortuosity),
                        detail::value_if(rerun, g.parent.passed));
     SQLite::Statement c(db_, "INSERT INTO candidates (run_id, generation, candidate, moved_grain, moved, outcome, "
-                             "reason, tortuosity, steps, touched, seconds, droplets, passed) "
-                             "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                             "reason, tortuosity, steps, touched, seconds, droplets, passed, kind) "
+                             "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     for (const Candidate& k : g.candidates)
       detail::insert_row(c, rid, gen, k.index, detail::value_if(k.moved_grain >= 0, k.moved_grain), k.moved,
                          to_string(k.eval.outcome), k.eval.reason,
                          detail::value_if(k.eval.outcome == Outcome::passed, k.eval.tortuosity),
                          static_cast<std::int64_t>(k.eval.steps), static_cast<int>(k.eval.touched.size()),
-                         k.eval.seconds, k.eval.droplets, k.eval.passed);
+                         k.eval.seconds, k.eval.droplets, k.eval.passed, to_string(k.kind));
     if (g.accepted < 0) return;
     const Candidate& kept = g.candidates.at(static_cast<std::size_t>(g.accepted));
     if (kept.eval.outcome != Outcome::passed) throw std::logic_error("append: the kept candidate did not pass");

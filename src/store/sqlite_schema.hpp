@@ -31,7 +31,7 @@ CREATE TABLE IF NOT EXISTS runs (
 CREATE TABLE IF NOT EXISTS generations (
   run_id             INTEGER NOT NULL REFERENCES runs(id) ON DELETE CASCADE,
   generation         INTEGER NOT NULL,
-  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate')),
+  kind               TEXT NOT NULL CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate', 'mixed')),
   accepted_candidate INTEGER,
   best_t             REAL NOT NULL,
   touched            INTEGER NOT NULL,
@@ -164,5 +164,60 @@ inline constexpr AddedColumn kSchemaV7[] = {{"runs", "droplets", "INTEGER"},
                                             {"generations", "parent_passed", "INTEGER"},
                                             {"candidates", "droplets", "INTEGER"},
                                             {"candidates", "passed", "INTEGER"}};
+
+// Version 8: each candidate's move (NULL before: the generation's kind tells it, except for es,
+// which drew each candidate's own), a generation kind 'mixed' for those, and the views below.
+inline constexpr AddedColumn kSchemaV8[] = {{"candidates", "kind", "TEXT"}};
+
+// The views: each table under the names the program's CSV and JSON and the Python frames use
+// (`softdrop columns` lists them), for queries in SQL. Dropped and made again at each migration
+// that changes them; a view holds no data.
+inline constexpr const char* kViews = R"sql(
+DROP VIEW IF EXISTS runs_view;
+CREATE VIEW runs_view AS SELECT
+  id AS run, created, updated, version, status,
+  coalesce(json_extract(params, '$.strategy'), 'paper') AS strategy,
+  coalesce(json_extract(params, '$.objective'), 'single') AS objective,
+  seed, lambda, grains, width, height, periodic, generations, evaluations, droplets,
+  best_t AS best_tortuosity, best_generation, island, archipelago, params
+FROM runs;
+DROP VIEW IF EXISTS generations_view;
+CREATE VIEW generations_view AS SELECT
+  run_id AS run, generation, kind, accepted_candidate, best_t AS best_tortuosity, touched, seconds,
+  finished, state, parent_t AS parent_tortuosity, parent_passed
+FROM generations;
+DROP VIEW IF EXISTS candidates_view;
+CREATE VIEW candidates_view AS SELECT
+  c.run_id AS run, c.generation, c.candidate,
+  coalesce(c.kind, CASE WHEN g.kind NOT IN ('all', 'mixed') OR c.moved_grain IS NULL THEN g.kind END) AS kind,
+  c.moved_grain, c.moved, c.outcome, c.reason, c.tortuosity, c.steps, c.touched, c.seconds,
+  coalesce(c.droplets, 1) AS droplets, coalesce(c.passed, c.outcome = 'passed') AS passed
+FROM candidates c JOIN generations g USING (run_id, generation);
+DROP VIEW IF EXISTS grains_view;
+CREATE VIEW grains_view AS SELECT run_id AS run, generation, grain, x, y, r, touched FROM grains;
+DROP VIEW IF EXISTS paths_view;
+CREATE VIEW paths_view AS SELECT run_id AS run, generation, point, x, y FROM paths;
+DROP VIEW IF EXISTS validations_view;
+CREATE VIEW validations_view AS SELECT
+  run_id AS run, generation, seed, starts, created, version, dt, passed, mean_t AS mean_tortuosity,
+  standard_error, q1, median, q3, half_dt, half_dt_passed, half_dt_mean_t AS half_dt_mean_tortuosity,
+  half_dt_standard_error, paired, dt_shift, dt_shift_error
+FROM validations;
+DROP VIEW IF EXISTS sweeps_view;
+CREATE VIEW sweeps_view AS SELECT
+  id AS sweep, created, updated, version, status, params, units,
+  (SELECT count(*) FROM sweep_media m WHERE m.sweep_id = sweeps.id) AS done
+FROM sweeps;
+DROP VIEW IF EXISTS sweep_media_view;
+CREATE VIEW sweep_media_view AS SELECT
+  sweep_id AS sweep, porosity_index, medium_index, target_porosity, porosity, grains, medium_seed,
+  droplets, passed, stuck, timeout, diverged, mean_t AS mean_tortuosity, standard_error, stuck_fraction,
+  seconds
+FROM sweep_media;
+DROP VIEW IF EXISTS sweep_droplets_view;
+CREATE VIEW sweep_droplets_view AS SELECT
+  sweep_id AS sweep, porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps
+FROM sweep_droplets;
+)sql";
 
 }  // namespace softdrop::detail

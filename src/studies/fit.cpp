@@ -49,24 +49,32 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty() || line[0] == '#') continue;
     const std::vector<std::string> f = split(line);
-    if (!header) {  // phi,t,se; or sweep-report --format csv: phi, mean_t and both errors
-      auto at = [&](const char* column) { return std::size_t(std::find(f.begin(), f.end(), column) - f.begin()); };
-      sweep_report = at("t") == f.size() && at("mean_t") < f.size();
-      const char* error = !sweep_report                ? "se"
-                          : per_medium                 ? "per_medium_standard_error"
-                          : errors == FitErrors::media ? "media_standard_error"
-                                                       : "standard_error";
-      const char* mean = !sweep_report ? "t" : per_medium ? "per_medium_t" : "mean_t";
-      phi = at("phi"), t = at(mean), se = at(error);
-      if (sweep_report && phi < f.size() && per_medium && (t == f.size() || se == f.size()))
-        throw bad("no per_medium_t and per_medium_standard_error columns (a sweep-report of an older "
-                  "softdrop? fit its pooled mean)");
-      if (sweep_report && phi < f.size() && se == f.size())
-        throw bad(std::string("no ") + error +
-                  " column (a sweep-report of an older softdrop? fit it with --errors " +
-                  (errors == FitErrors::media ? "droplets" : "media") + ")");
+    if (!header) {
+      // porosity,tortuosity,standard_error; or sweep-report --format csv: porosity, mean_tortuosity
+      // and both errors. The names of older softdrops (phi,t,se; phi, mean_t, per_medium_t) still read.
+      auto at = [&](const char* column, const char* older) {
+        const auto i = std::size_t(std::find(f.begin(), f.end(), column) - f.begin());
+        return i < f.size() ? i : std::size_t(std::find(f.begin(), f.end(), older) - f.begin());
+      };
+      sweep_report = at("tortuosity", "t") == f.size() && at("mean_tortuosity", "mean_t") < f.size();
+      phi = at("porosity", "phi");
+      if (!sweep_report) {
+        t = at("tortuosity", "t"), se = at("standard_error", "se");
+      } else {
+        t = per_medium ? at("per_medium_tortuosity", "per_medium_t") : at("mean_tortuosity", "mean_t");
+        const char* error = per_medium                   ? "per_medium_standard_error"
+                            : errors == FitErrors::media ? "media_standard_error"
+                                                         : "standard_error";
+        se = at(error, error);
+        if (phi < f.size() && per_medium && (t == f.size() || se == f.size()))
+          throw bad("no per_medium_tortuosity and per_medium_standard_error columns (a sweep-report of an "
+                    "older softdrop? fit its pooled mean)");
+        if (phi < f.size() && se == f.size())
+          throw bad(std::string("no ") + error + " column (a sweep-report of an older softdrop? fit it with --errors " +
+                    (errors == FitErrors::media ? "droplets" : "media") + ")");
+      }
       if (phi == f.size() || t == f.size() || se == f.size())
-        throw bad("expected the header phi,t,se (or sweep-report --format csv's columns)");
+        throw bad("expected the header porosity,tortuosity,standard_error (or sweep-report --format csv's columns)");
       header = true;
       columns = f.size();
       if (used_errors) *used_errors = sweep_report;
@@ -86,7 +94,7 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
       p.se = std::stod(f[se], &used);
       if (used != f[se].size()) throw std::invalid_argument("");
     } catch (const std::exception&) {
-      throw bad("expected numbers for phi, t and se");
+      throw bad("expected numbers for porosity, tortuosity and standard_error");
     }
     if (const std::string why = point_problem(p); !why.empty()) throw bad(why);
     out.push_back(p);

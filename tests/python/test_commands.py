@@ -41,7 +41,7 @@ def without_clocks(frame):
 def assert_same_history(a, b):
     for name in ("generations", "candidates", "grains", "paths"):
         pd.testing.assert_frame_equal(without_clocks(a[name]), without_clocks(b[name]), check_exact=True, obj=name)
-    for column in ("generations", "evaluations", "best_t", "best_generation", "status"):
+    for column in ("generations", "evaluations", "best_tortuosity", "best_generation", "status"):
         assert a["runs"][column].tolist() == b["runs"][column].tolist(), column
 
 
@@ -52,7 +52,7 @@ def test_optimize_writes_the_programs_history(tmp_path):
     assert summary.termination == "generations" and summary.last_generation == 8
     a, b = softdrop.read_history(ours), softdrop.read_history(theirs)
     assert_same_history(a, b)
-    assert summary.best_tortuosity == b["runs"].loc[0, "best_t"]
+    assert summary.best_tortuosity == b["runs"].loc[0, "best_tortuosity"]
     pd.testing.assert_frame_equal(a["params"], b["params"])
     assert a["params"].loc[0, "strategy"] == "es" and a["params"].loc[0, "relocate-every"] == 3
 
@@ -68,7 +68,7 @@ def test_a_search_stopped_by_the_callback_resumes_as_if_never_stopped(tmp_path):
     first = softdrop.optimize(stopped, callback=stop_at_4, generations=10, **SEARCH)
     assert first.termination == "callback" and first.last_generation == 4
     assert [e["generation"] for e in events] == [1, 2, 3, 4]
-    assert events[-1]["best_t"] == first.best_tortuosity and events[-1]["target_generations"] == 10
+    assert events[-1]["best_tortuosity"] == first.best_tortuosity and events[-1]["target_generations"] == 10
     assert softdrop.read_history(stopped)["runs"].loc[0, "status"] == "interrupted"
     second = softdrop.optimize(stopped, resume=1, quiet=True)  # goes on to the run's own target
     assert second.termination == "generations" and second.last_generation == 10
@@ -122,11 +122,12 @@ def test_restarts_from_python_start_from_media_of_their_own(tmp_path):
     summary = softdrop.optimize(db, islands=2, migrate_every=0, island_starts="own", generations=3, **SEARCH)
     assert summary.last_generation == 3 and summary.migrate_every == 0
     history = softdrop.read_history(db)
-    assert set(history["generations"]["kind"]) <= {"initial", "all", "single", "relocate"}  # no migration
+    assert set(history["generations"]["kind"]) <= {"initial", "all", "single", "relocate", "mixed"}  # no migration
+    assert set(history["candidates"]["kind"]) <= {"initial", "all", "single", "relocate"}
     grains = history["grains"]
     start = grains[grains.generation == 0]
-    assert not start[start.run_id == 1][["x", "y"]].reset_index(drop=True).equals(
-        start[start.run_id == 2][["x", "y"]].reset_index(drop=True))
+    assert not start[start.run == 1][["x", "y"]].reset_index(drop=True).equals(
+        start[start.run == 2][["x", "y"]].reset_index(drop=True))
 
 
 def test_sweep_writes_the_programs_store(tmp_path):
@@ -134,7 +135,7 @@ def test_sweep_writes_the_programs_store(tmp_path):
     seen = []
     summary = softdrop.sweep(ours, callback=seen.append, threads=2, **SWEEP)
     cli("sweep", "--db", str(theirs), "--threads", "1", *SWEEP_ARGS)
-    assert summary.status == "complete" and summary.media_stored == summary.media == 4
+    assert summary.status == "complete" and summary.done == summary.media == 4
     assert summary.droplets_this_session == 16
     assert sorted((e["porosity_index"], e["medium_index"]) for e in seen) == [(0, 0), (0, 1), (1, 0), (1, 1)]
     assert [e["media_done"] for e in seen] == [1, 2, 3, 4]
@@ -143,13 +144,13 @@ def test_sweep_writes_the_programs_store(tmp_path):
         pd.testing.assert_frame_equal(without_clocks(a[name]), without_clocks(b[name]), check_exact=True, obj=name)
     # The points are sweep-report's.
     rows = json.loads(cli("sweep-report", "--db", str(theirs), "--format", "json"))
-    assert a["points"]["mean_t"].tolist() == [r["mean_t"] for r in rows]
-    assert a["points"]["phi"].tolist() == [r["phi"] for r in rows]
+    assert a["points"]["mean_tortuosity"].tolist() == [r["mean_tortuosity"] for r in rows]
+    assert a["points"]["porosity"].tolist() == [r["porosity"] for r in rows]
     assert a["points"]["media_passed"].tolist() == [r["media_passed"] for r in rows]
     np.testing.assert_array_equal(  # NaN where fewer than two media had a droplet pass
         a["points"]["media_standard_error"].to_numpy(),
         np.array([np.nan if r["media_standard_error"] is None else r["media_standard_error"] for r in rows]))
-    for column in ("per_medium_t", "per_medium_standard_error"):  # the other averaging, also sweep-report's
+    for column in ("per_medium_tortuosity", "per_medium_standard_error"):  # the other averaging, also sweep-report's
         np.testing.assert_array_equal(a["points"][column].to_numpy(),
                                       np.array([np.nan if r[column] is None else r[column] for r in rows]))
 
@@ -158,9 +159,9 @@ def test_a_sweep_stopped_by_the_callback_goes_on_where_it_stopped(tmp_path):
     db = tmp_path / "s.db"
     options = dict(SWEEP, media=8, droplets=8)  # 16 media: more than are in flight at once
     first = softdrop.sweep(db, callback=lambda e: False, threads=1, **options)
-    assert first.status == "interrupted" and 1 <= first.media_stored < 16
+    assert first.status == "interrupted" and 1 <= first.done < 16
     second = softdrop.sweep(db, threads=1, **options)
-    assert second.status == "complete" and second.media_this_session == 16 - first.media_stored
+    assert second.status == "complete" and second.media_this_session == 16 - first.done
     whole = tmp_path / "whole.db"
     softdrop.sweep(whole, **options)
     a, b = softdrop.read_sweep(db), softdrop.read_sweep(whole)
@@ -172,8 +173,8 @@ def test_tables_have_the_databases_columns_and_types(tmp_path):
     db = tmp_path / "s.db"
     softdrop.optimize(db, generations=4, **SEARCH)
     h = softdrop.read_history(db)
-    assert list(h["grains"].columns) == ["run_id", "generation", "grain", "x", "y", "r", "touched"]
-    assert list(h["paths"].columns) == ["run_id", "generation", "point", "x", "y"]
+    assert list(h["grains"].columns) == ["run", "generation", "grain", "x", "y", "r", "touched"]
+    assert list(h["paths"].columns) == ["run", "generation", "point", "x", "y"]
     assert h["grains"].dtypes["touched"] == bool and h["grains"].dtypes["x"] == np.float64
     kept = h["generations"].dropna(subset=["accepted_candidate"])["generation"].tolist()  # with generation 0
     assert kept[0] == 0 and len(kept) > 1
@@ -182,12 +183,13 @@ def test_tables_have_the_databases_columns_and_types(tmp_path):
     best = softdrop.best_arrangement(db, run=1)
     last = h["grains"][h["grains"].generation == best.generation]
     assert np.array_equal(last[["x", "y", "r"]].to_numpy(), best.medium.grains)
-    assert sorted(last.loc[last.touched, "grain"].tolist()) == list(best.touched)
-    assert h["params"].loc[0, "run_id"] == 1 and h["params"].loc[0, "grains"] == 16
+    assert sorted(last.loc[last.touched, "grain"].tolist()) == list(best.touched_grains)
+    assert best.touched == len(best.touched_grains) and best.path.shape[1] == 2
+    assert h["params"].loc[0, "run"] == 1 and h["params"].loc[0, "grains"] == 16
     assert softdrop.read_history(db, arrangements=False)["grains"].empty
     softdrop.sweep(tmp_path / "w.db", **SWEEP)
     w = softdrop.read_sweep(tmp_path / "w.db")
-    assert list(w["droplets"].columns) == ["sweep_id", "porosity_index", "medium_index", "droplet", "start_x", "outcome",
+    assert list(w["droplets"].columns) == ["sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome",
                                            "tortuosity", "steps"]
     assert w["droplets"].dtypes["steps"] == np.int64 and w["droplets"].dtypes["tortuosity"] == np.float64
     passed = w["droplets"]["outcome"] == "passed"

@@ -35,10 +35,10 @@ def test_a_medium_is_drawn_with_the_periodic_copies_of_grains_that_cross_a_side(
 def test_paths_are_cut_where_they_wrap_and_drawn_into_the_callers_axes():
     m = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
     run = softdrop.simulate(m, x0=20, path=True)
-    x = run.path[:, 1]
+    x = run.path[:, 0]
     wraps = int(np.sum(np.abs(np.diff(x)) > 0.5 * m.width))
     fig, ax = plt.subplots()
-    assert softdrop.plot.paths(m, [run, run.path[:, 1:]], ax=ax) is fig
+    assert softdrop.plot.paths(m, [run, run.path], ax=ax) is fig
     assert len(ax.lines) == 2 * (wraps + 1)
     drawn = np.concatenate([line.get_xdata() for line in ax.lines[: wraps + 1]])
     assert np.array_equal(drawn, x)
@@ -58,8 +58,8 @@ def test_the_best_curve_is_the_stored_best_t_with_the_re_runs_and_held_out_value
     fig = softdrop.plot.best_curve(db, run=1)
     ax = fig.axes[0]
     best, reruns = ax.lines[0], ax.lines[1]
-    assert np.array_equal(best.get_ydata(), h["generations"]["best_t"].to_numpy())
-    assert np.array_equal(reruns.get_ydata(), h["generations"]["parent_t"].to_numpy(), equal_nan=True)
+    assert np.array_equal(best.get_ydata(), h["generations"]["best_tortuosity"].to_numpy())
+    assert np.array_equal(reruns.get_ydata(), h["generations"]["parent_tortuosity"].to_numpy(), equal_nan=True)
     assert len(ax.containers) == 1  # the held-out value, with its error bar
     with pytest.raises(ValueError, match="run = 2"):
         softdrop.plot.best_curve(h, run=2)
@@ -67,8 +67,8 @@ def test_the_best_curve_is_the_stored_best_t_with_the_re_runs_and_held_out_value
 
 
 def test_porosity_has_the_points_and_the_papers_fit():
-    points = pd.DataFrame({"phi": [0.6, 0.8], "mean_t": [1.4, 1.2], "standard_error": [0.02, 0.01],
-                           "media_standard_error": [0.04, 0.03], "per_medium_t": [1.45, 1.22],
+    points = pd.DataFrame({"porosity": [0.6, 0.8], "mean_tortuosity": [1.4, 1.2], "standard_error": [0.02, 0.01],
+                           "media_standard_error": [0.04, 0.03], "per_medium_tortuosity": [1.45, 1.22],
                            "per_medium_standard_error": [0.05, 0.02]})
     fig = softdrop.plot.porosity(points)
     fit = fig.axes[0].lines[-1]
@@ -86,15 +86,15 @@ def test_porosity_has_the_points_and_the_papers_fit():
     plt.close(fig)
 
     # Per medium first, with the residuals against the paper's f in units of the error.
-    fig = softdrop.plot.porosity(points, mean="per_medium_t", error="per_medium_standard_error", residuals=True)
+    fig = softdrop.plot.porosity(points, mean="per_medium_tortuosity", error="per_medium_standard_error", residuals=True)
     top, low = fig.axes
     assert np.array_equal(top.containers[0].lines[0].get_ydata(), [1.45, 1.22])
     pull = low.lines[-1].get_ydata()
     f = 1.58 - 0.58 * np.array([0.6, 0.8]) ** 3.87
     assert pull == pytest.approx((np.array([1.45, 1.22]) - f) / np.array([0.05, 0.02]))
     plt.close(fig)
-    with pytest.raises(ValueError, match="no column 'per_medium_t'"):
-        softdrop.plot.porosity(points.drop(columns="per_medium_t"), mean="per_medium_t")
+    with pytest.raises(ValueError, match="no column 'per_medium_tortuosity'"):
+        softdrop.plot.porosity(points.drop(columns="per_medium_tortuosity"), mean="per_medium_tortuosity")
     with pytest.raises(ValueError, match="leave ax out"):
         softdrop.plot.porosity(points, ax=plt.figure().add_subplot(), residuals=True)
     plt.close("all")

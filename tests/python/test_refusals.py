@@ -130,7 +130,7 @@ def test_held_out_is_simulate_many_from_the_same_starts():
     many = softdrop.simulate_many(medium, 12, seed=4)
     passed = many[many["outcome"] == "passed"]
     assert v.at_dt["passed"] == len(passed)
-    assert v.at_dt["mean_t"] == pytest.approx(passed["tortuosity"].mean(), rel=1e-12)
+    assert v.at_dt["mean_tortuosity"] == pytest.approx(passed["tortuosity"].mean(), rel=1e-12)
     assert v.at_dt["median"] == pytest.approx(passed["tortuosity"].quantile(0.5), rel=1e-12)
     assert v.at_half_dt["dt"] == v.at_dt["dt"] / 2
     assert list(v.runs.columns) == ["start", "start_x", "dt", "outcome", "tortuosity", "steps"]
@@ -144,7 +144,7 @@ def test_read_history_has_the_held_out_values(tmp_path):
     end = softdrop.optimize(db, generations=2, **{**SEARCH, "validate_starts": 8})
     v = softdrop.read_history(db)["validations"]
     assert len(v) == 1 and v["starts"][0] == 8 and v["generation"][0] == end["best_generation"]
-    assert v["mean_t"][0] == end["held_out"]["mean_t"]
+    assert v["mean_tortuosity"][0] == end["held_out"]["mean_tortuosity"]
     assert str(v["paired"].dtype) == "Int64"
 
 

@@ -30,8 +30,10 @@ def test_one_droplet_has_the_programs_bits():
     assert run.outcome == theirs["run"]["outcome"] == "passed"
     assert run.tortuosity == theirs["run"]["tortuosity"]  # exactly
     assert run.steps == theirs["run"]["steps"]
-    assert len(run.touched) == theirs["run"]["touched"]
-    assert run.path.shape[1] == 3 and run.path.shape[0] > 10
+    assert run.touched == len(run.touched_grains) == theirs["run"]["touched"]
+    # every path is rows of x, y; its times beside it, a path interval apart
+    assert run.path.shape[1] == 2 and run.path.shape[0] > 10 and run.path_time.shape == (run.path.shape[0],)
+    assert np.all(np.diff(run.path_time) > 0)
     assert medium.porosity() == theirs["medium"]["porosity"]
 
 
@@ -108,10 +110,10 @@ def test_the_area_trace_is_the_programs(tmp_path):
         "--quiet")
     theirs = pd.read_csv(csv, float_precision="round_trip")
     assert run.trace.shape == (len(theirs), 3)
-    assert run.trace[:, 0].tolist() == theirs["t"].tolist() and run.trace[:, 1].tolist() == theirs["area"].tolist()
+    assert run.trace[:, 0].tolist() == theirs["time"].tolist() and run.trace[:, 1].tolist() == theirs["area"].tolist()
     assert np.allclose(run.trace[:, 2], theirs["area_ratio"], rtol=1e-15, equal_nan=True)
     inside = theirs["phase"] == "inside"
-    assert (theirs.loc[inside, "t"] >= run.enter).all() and run.s0 > 0
+    assert (theirs.loc[inside, "time"] >= run.enter).all() and run.s0 > 0
     assert run.inside_min_area_ratio <= theirs.loc[inside, "area_ratio"].min()
     assert run.outcome == softdrop.simulate(medium, x0=100).outcome  # the trace is of the same run
     # Asked for both, the path is the run's own, as with path=True alone.
@@ -236,13 +238,13 @@ def test_a_search_history_reads_as_the_program_reads_it(tmp_path):
     assert len(h["runs"]) == 1 and h["runs"].loc[0, "generations"] == 6
     assert h["runs"].loc[0, "evaluations"] == len(h["candidates"]) == 1 + 6 * 2
     assert h["runs"].loc[0, "droplets"] == 1 + 6 * 2 and (h["candidates"]["droplets"] == 1).all()
-    assert h["generations"]["parent_t"].isna().all() and h["generations"]["parent_passed"].isna().all()
-    assert h["generations"]["best_t"].tolist() == [g["best_t"] for g in theirs]
+    assert h["generations"]["parent_tortuosity"].isna().all() and h["generations"]["parent_passed"].isna().all()
+    assert h["generations"]["best_tortuosity"].tolist() == [g["best_tortuosity"] for g in theirs]
     assert h["generations"].dtypes["accepted_candidate"] == "Int64"
     passed = h["candidates"]["outcome"] == "passed"
     assert h["candidates"].loc[~passed, "tortuosity"].isna().all()
     best = softdrop.best_arrangement(db, run=1)
-    assert best.tortuosity == h["runs"].loc[0, "best_t"]
+    assert best.tortuosity == h["runs"].loc[0, "best_tortuosity"]
     # The stored arrangement pushes the same droplet to the same T.
     params = softdrop.DropletParams.balloon()
     again = softdrop.simulate(best.medium, run=softdrop.RunOptions(stuck_window=0.1, stuck_distance=1), params=params)
@@ -298,7 +300,7 @@ def test_a_robust_search_reads_with_its_droplets_and_re_runs(tmp_path):
     assert (h["candidates"]["droplets"] == 4).all()
     later = h["generations"]["generation"] > 0
     assert h["generations"].loc[later, "parent_passed"].between(0, 4).all()
-    assert h["generations"].loc[~later, "parent_t"].isna().all()
+    assert h["generations"].loc[~later, "parent_tortuosity"].isna().all()
 
 
 def _tortuosity_in_a_worker(medium, params):
@@ -342,18 +344,18 @@ def test_pore_space_tortuosities_of_a_medium_and_of_its_image_are_the_programs(t
     r = softdrop.tortuosity(medium, pixels=100)
     image = medium.to_image(100)  # True in the pore space, rows from the top
     s = softdrop.tortuosity(image, pixel_size=2.0)
-    assert (r.geometric_t, r.tau, r.porosity) == (s.geometric_t, s.tau, s.porosity)
+    assert (r.geometric_tortuosity, r.diffusive_tortuosity, r.porosity) == (s.geometric_tortuosity, s.diffusive_tortuosity, s.porosity)
     assert r.porosity == image.mean()
     # The program's coarser resolution is this one.
     path = tmp_path / "m.json"
     medium.save(path)
     out = json.loads(subprocess.run([CLI, "tortuosity", "--medium", str(path), "--pixels", "100", "--starts", "0",
                                      "--quiet", "--format", "json"], capture_output=True, text=True, check=True).stdout)
-    assert out["geometric"]["values"][0] == r.geometric_t and out["diffusive"]["values"][0] == r.tau
+    assert out["geometric_tortuosity"]["values"][0] == r.geometric_tortuosity and out["diffusive_tortuosity"]["values"][0] == r.diffusive_tortuosity
     # The fields: the top row's distances give the geometric T; the concentration runs from 1 to 0.
     assert r.distance.shape == r.concentration.shape == image.shape
     top = r.distance[0][np.isfinite(r.distance[0])]
-    assert np.isclose((top + r.pixel / 2).mean() / medium.height, r.geometric_t, rtol=1e-12, atol=0)
+    assert np.isclose((top + r.pixel / 2).mean() / medium.height, r.geometric_tortuosity, rtol=1e-12, atol=0)
     assert np.all(np.isnan(r.concentration[~image]))
     assert np.nanmin(r.concentration) > 0 and np.nanmax(r.concentration) < 1
     assert np.nanmean(r.concentration[0]) > 0.9 and np.nanmean(r.concentration[-1]) < 0.1
