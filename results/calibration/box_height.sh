@@ -39,7 +39,7 @@ fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
 phi = np.linspace(0.45, 1, 200)
 left.plot(phi, 1.58 - 0.58 * phi**3.87, "k-", label="paper: 1.58 - 0.58 φ^3.87")
 for h, group in points.groupby("height"):
-    left.errorbar(group.porosity, group.mean_t, yerr=group.standard_error, marker="o", ms=3,
+    left.errorbar(group.porosity, group.mean_tortuosity, yerr=group.standard_error, marker="o", ms=3,
                   capsize=2, label=f"H = {h}")
 left.set_xlabel("porosity φ")
 left.set_ylabel("⟨T⟩ of the droplets that pass")

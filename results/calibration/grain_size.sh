@@ -74,7 +74,7 @@ left.set_ylabel("rms of ⟨T⟩ − f(φ) over the 6 porosities")
 left.legend(fontsize=7)
 for lo, hi in [(16, 48), (24, 40), (28, 48), (24, 72), (16, 72)]:
     group = points[(points.r_min == lo) & (points.r_max == hi)]
-    right.errorbar(group.porosity, group.mean_t - group.paper_t, yerr=group.media_standard_error,
+    right.errorbar(group.porosity, group.mean_tortuosity - group.paper_tortuosity, yerr=group.media_standard_error,
                    marker="o", ms=3, capsize=2, label=f"grains {lo} to {hi}")
 right.axhline(0, color="k", lw=0.8)
 right.set_xlabel("porosity φ")

@@ -50,7 +50,7 @@ phi = np.linspace(0.45, 1, 200)
 left.plot(phi, 1.58 - 0.58 * phi**3.87, "k-", label="paper: 1.58 - 0.58 φ^3.87")
 for (droplet, seed), group in points.groupby(["droplet", "seed"]):
     label = f"{droplet}, seed {seed}"
-    left.errorbar(group.porosity, group.mean_t, yerr=group.media_standard_error, marker="o", ms=3,
+    left.errorbar(group.porosity, group.mean_tortuosity, yerr=group.media_standard_error, marker="o", ms=3,
                   capsize=2, label=label)
     right.plot(group.target_porosity, group.passed_fraction, "o-", ms=3, label=label)
 left.set_xlabel("porosity φ")

@@ -50,7 +50,7 @@ def main():
     phi = np.linspace(0.45, 1.0, 100)
     ax_t.plot(phi, 1.58 - 0.58 * phi ** 3.87, "k-", lw=2, label="paper: 1.58 - 0.58 phi^3.87")
     shown = defaults[defaults.passed >= 2]
-    ax_t.errorbar(shown.porosity, shown.mean_t, yerr=shown.standard_error, fmt="ks--", mfc="white", capsize=3,
+    ax_t.errorbar(shown.porosity, shown.mean_tortuosity, yerr=shown.standard_error, fmt="ks--", mfc="white", capsize=3,
                   label="defaults: balloon, grains 8-16")
     ax_p.plot(defaults.porosity, defaults.passed / defaults.droplets, "ks--", mfc="white", label="defaults")
     for scale, g1, g2, label in DRAWN:
@@ -61,7 +61,7 @@ def main():
         name = (f"balloon, {label.replace('viscosity=', 'nu ')}" if scale == 1 else f"S = {scale}, {label}") + \
             f", grains {g1}-{g2}" + (" S" if scale > 1 else "")
         shown = rows[rows.passed >= 2]
-        line = ax_t.errorbar(shown.porosity, shown.mean_t, yerr=shown.standard_error, fmt="o-", capsize=3, label=name)
+        line = ax_t.errorbar(shown.porosity, shown.mean_tortuosity, yerr=shown.standard_error, fmt="o-", capsize=3, label=name)
         ax_p.plot(rows.porosity, rows.passed / rows.droplets, "o-", color=line[0].get_color(), label=name)
     ax_t.set(xlabel="porosity phi", ylabel="<T> of the droplets that passed (2 or more)",
              title="Mean tortuosity against the paper")

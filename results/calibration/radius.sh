@@ -35,7 +35,7 @@ for (left, right), name, kind in zip(axes, ["radius", "radius_non_overlapping"],
     points = points.merge(rows[["setting", "radius"]], on="setting")
     for r, group in points.groupby("radius"):
         measured = group[group.passed >= 2]
-        left.errorbar(measured.porosity, measured.mean_t - measured.paper_t,
+        left.errorbar(measured.porosity, measured.mean_tortuosity - measured.paper_tortuosity,
                       yerr=measured.media_standard_error, marker="o", ms=3, capsize=2, label=f"R = {r:g}")
         right.plot(group.porosity, group.passed / group.droplets, "o-", ms=3, label=f"R = {r:g}")
     left.axhspan(-0.03, 0.03, color="0.9", label="within 0.03")

@@ -37,7 +37,7 @@ KINDS = ["overlapping", "non-overlapping"]
 MEDIA, STARTS = 200, 20
 
 
-def paper_t(phi):
+def paper_tortuosity(phi):
     return 1.58 - 0.58 * phi ** 3.87
 
 
@@ -59,8 +59,8 @@ def measure():
                     "pass_fraction": per_medium.mean(),
                     "pass_standard_error": per_medium.std(ddof=1) / np.sqrt(MEDIA),
                     "media_none_passed": int((per_medium == 0).sum()),
-                    "mean_t": passed.tortuosity.mean() if len(passed) else float("nan"),
-                    "paper_t": paper_t(phi),
+                    "mean_tortuosity": passed.tortuosity.mean() if len(passed) else float("nan"),
+                    "paper_tortuosity": paper_tortuosity(phi),
                 })
             done = (k * len(POROSITIES) + p + 1) / (len(KINDS) * len(POROSITIES))
             elapsed = time.time() - began

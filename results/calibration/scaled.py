@@ -69,7 +69,7 @@ def run(scale, mass, strain, viscosity, dilation, kind, porosity, droplets, seed
         "kc": 2e8 * mass, "cc": cc_per_mass * mass, "viscosity": viscosity, "viscosity_dilation": dilation, "kind": kind, "porosity": porosity,
         "droplets": droplets, "passed": int(counts.get("passed", 0)), "stuck": int(counts.get("stuck", 0)),
         "timeout": int(counts.get("timeout", 0)), "diverged": int(counts.get("diverged", 0)),
-        "mean_t": passed.tortuosity.mean() if len(passed) else "",
+        "mean_tortuosity": passed.tortuosity.mean() if len(passed) else "",
         "area_min": inside["min"].min(), "area_max": inside["max"].max(),
         "above_1_02": int((inside["max"] > 1.02).sum()), "below_0_95": int((inside["min"] < 0.95).sum()),
         "mean_steps": runs.steps.mean(), "seconds": round(seconds, 2),
@@ -109,7 +109,7 @@ def scan(settings, out):
                 r = rows[-1]
                 print(f"[{i + 1}/{len(settings)}] S={scale} R={r['radius']:g} m={mass} strain={strain} nu={viscosity} dilation={dilation} {kind}: "
                       f"passed {r['passed']} stuck {r['stuck']} timeout {r['timeout']} diverged {r['diverged']}, "
-                      f"T {r['mean_t']}, area {r['area_min']:.3f}-{r['area_max']:.3f}", file=sys.stderr)
+                      f"T {r['mean_tortuosity']}, area {r['area_min']:.3f}-{r['area_max']:.3f}", file=sys.stderr)
                 with open(out + ".tmp", "w", newline="") as f:
                     w = csv.DictWriter(f, fieldnames=list(rows[0].keys()))
                     w.writeheader()

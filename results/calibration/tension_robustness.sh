@@ -20,7 +20,7 @@ DROPLET=()
 [[ $CONFIG == defaults ]] || DROPLET=(--config "$CONFIG")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-echo "porosity_target,kind,medium_seed,droplets,passed,stuck,timeout,diverged,mean_t" > "$tmp/out.csv"
+echo "porosity_target,kind,medium_seed,droplets,passed,stuck,timeout,diverged,mean_tortuosity" > "$tmp/out.csv"
 POROSITIES="0.5 0.6 0.7 0.8 0.9 0.95"
 for kind in overlapping non-overlapping; do
   porosities=$POROSITIES
@@ -39,9 +39,9 @@ import pandas as pd
 runs = pd.read_csv(sys.argv[1])
 count = runs.outcome.value_counts()
 passed = runs[runs.outcome == "passed"]
-mean_t = f"{passed.tortuosity.mean():.6f}" if len(passed) else ""
+mean_tortuosity = f"{passed.tortuosity.mean():.6f}" if len(passed) else ""
 print(",".join([sys.argv[2], sys.argv[3], sys.argv[4], str(len(runs))] +
-               [str(int(count.get(k, 0))) for k in ("passed", "stuck", "timeout", "diverged")] + [mean_t]))
+               [str(int(count.get(k, 0))) for k in ("passed", "stuck", "timeout", "diverged")] + [mean_tortuosity]))
 PY
     done
   done

@@ -43,12 +43,12 @@ defaults = pd.read_csv("radius_points.csv")
 defaults = defaults[defaults.setting == radius.setting[radius.radius == 8].iloc[0]]
 fig, (left, right) = plt.subplots(1, 2, figsize=(10, 4))
 for dt, group in points.groupby("dt"):
-    left.errorbar(group.porosity, group.mean_t - group.paper_t, yerr=group.media_standard_error, marker="o", ms=3,
+    left.errorbar(group.porosity, group.mean_tortuosity - group.paper_tortuosity, yerr=group.media_standard_error, marker="o", ms=3,
                   capsize=2, label=f"exponential, ν = 1.8656e5, δt = {dt:.3g}")
-left.plot(defaults.porosity, defaults.mean_t - defaults.paper_t, "k--", lw=1, label="explicit.toml (explicit, 3.5e-06)")
+left.plot(defaults.porosity, defaults.mean_tortuosity - defaults.paper_tortuosity, "k--", lw=1, label="explicit.toml (explicit, 3.5e-06)")
 nu_rows, nu_points = pd.read_csv("time_step_viscosity.csv"), pd.read_csv("time_step_viscosity_points.csv")
 fast = nu_points[nu_points.setting == nu_rows.setting[nu_rows.viscosity == 2.8e5].iloc[0]]
-left.plot(fast.porosity, fast.mean_t - fast.paper_t, "k-", lw=2, label="the defaults (exponential, 6e-06, ν = 2.8e5)")
+left.plot(fast.porosity, fast.mean_tortuosity - fast.paper_tortuosity, "k-", lw=2, label="the defaults (exponential, 6e-06, ν = 2.8e5)")
 left.axhspan(-0.03, 0.03, color="0.9", label="within 0.03")
 left.axhline(0, color="k", lw=0.8)
 left.set_xlabel("porosity φ")

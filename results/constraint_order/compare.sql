@@ -23,7 +23,7 @@ groups AS (
 SELECT
   CASE g WHEN 'all' THEN 'all' ELSE (SELECT printf('%.2f', target_porosity) FROM main.sweep_media m
                                      WHERE m.sweep_id = 1 AND m.porosity_index = CAST(g AS INTEGER) LIMIT 1) END
-    AS target_phi,
+    AS target_porosity,
   COUNT(*) AS droplets,
   SUM(same_start) AS same_start,
   SUM(seq_outcome = rb_outcome) AS same_outcome,

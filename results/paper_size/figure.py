@@ -38,10 +38,10 @@ grid = np.linspace(0.42, 0.92, 200)
 top.plot(grid, paper(grid), color="0.5", lw=2, label="paper: 1.58 − 0.58 φ^3.87")
 top.plot(grid, ours(grid), color="tab:red", lw=1.2,
          label="ours (pooled): " + ", ".join(quoted(k) for k in ("a", "b", "c")))
-series = (("mean_t", "media_standard_error", "o", "black", "pooled over droplets", -0.004),
-          ("per_medium_t", "per_medium_standard_error", "s", "tab:blue", "per medium first", +0.004))
+series = (("mean_tortuosity", "media_standard_error", "o", "black", "pooled over droplets", -0.004),
+          ("per_medium_tortuosity", "per_medium_standard_error", "s", "tab:blue", "per medium first", +0.004))
 for mean, error, marker, colour, label, shift in series:
-    phi, t, se = points["phi"], points[mean], points[error]
+    phi, t, se = points["porosity"], points[mean], points[error]
     top.errorbar(phi + shift, t, yerr=se, fmt=marker, ms=4, color=colour, capsize=2, label=f"⟨T⟩ {label}")
     low.plot(phi + shift, (t - paper(phi)) / se, marker, ms=4, color=colour)
 top.set_ylabel("tortuosity ⟨T⟩")

@@ -47,11 +47,11 @@ for path in sorted(p for p in glob.glob(f"{out}/db/*.json") if not p.endswith("-
     lam = round((j["evaluations"] - 1) / int(generations))  # generation 0 is one evaluation
     rows.append(dict(problem="default", objective=objective, strategy=j["strategy"], **{"lambda": lam},
                      generations=int(generations),
-                     seed=int(seed), droplets=j["droplets"], start_held_out_t=start["mean_t"],
-                     start_held_out_passed=start["passed"], in_search_t=j["best_tortuosity"],
-                     best_generation=j["best_generation"], held_out_t=h.get("mean_t"),
-                     held_out_se=h.get("standard_error"), held_out_passed=h.get("passed"),
-                     held_out_objective=h.get("objective_value"), half_dt_t=h.get("half_dt_mean_t"),
+                     seed=int(seed), droplets=j["droplets"], start_held_out_t=start.get("mean_tortuosity", start.get("mean_t")),
+                     start_held_out_passed=start["passed"], in_search_tortuosity=j["best_tortuosity"],
+                     best_generation=j["best_generation"], held_out_tortuosity=h.get("mean_tortuosity", h.get("mean_t")),
+                     held_out_standard_error=h.get("standard_error"), held_out_passed=h.get("passed"),
+                     held_out_objective=h.get("objective_value"), half_dt_t=h.get("half_dt_mean_tortuosity", h.get("half_dt_mean_t")),
                      wall_seconds=round(j["wall_seconds"], 1)))
 with open(f"{out}/runs.csv", "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0]))
@@ -66,17 +66,17 @@ with open(f"{out}/summary.csv", "w", newline="") as f:
                 "median_held_out_t", "min_held_out_t", "max_held_out_t", "median_held_out_passed", "median_gap",
                 "max_gap_in_se", "median_wall_seconds"])
     for (objective, generations, strategy, lam), rs in sorted(groups.items()):
-        held = [r["held_out_t"] for r in rs]
+        held = [r["held_out_tortuosity"] for r in rs]
         # The in-search value against its held-out counterpart: the objective over the held-out
         # starts (a robust objective), or the held-out <T> (single).
-        ref = [r["held_out_objective"] if r["held_out_objective"] is not None else r["held_out_t"] for r in rs]
-        gaps = [r["in_search_t"] - x for r, x in zip(rs, ref)]
+        ref = [r["held_out_objective"] if r["held_out_objective"] is not None else r["held_out_tortuosity"] for r in rs]
+        gaps = [r["in_search_tortuosity"] - x for r, x in zip(rs, ref)]
         w.writerow([objective, generations, strategy, lam, len(rs), statistics.median(r["droplets"] for r in rs),
                     round(statistics.median(r["start_held_out_t"] for r in rs), 4),
-                    round(statistics.median(r["in_search_t"] for r in rs), 4), round(statistics.median(held), 4),
+                    round(statistics.median(r["in_search_tortuosity"] for r in rs), 4), round(statistics.median(held), 4),
                     round(min(held), 4), round(max(held), 4), statistics.median(r["held_out_passed"] for r in rs),
                     round(statistics.median(gaps), 4),
-                    round(max(abs(g) / r["held_out_se"] for g, r in zip(gaps, rs)), 1),
+                    round(max(abs(g) / r["held_out_standard_error"] for g, r in zip(gaps, rs)), 1),
                     statistics.median(r["wall_seconds"] for r in rs)])
 print(open(f"{out}/summary.csv").read(), end="")
 PY

@@ -26,7 +26,7 @@ def band(runs, column, grid):
     values = np.full((len(runs), grid.size), np.nan)
     for k, run in enumerate(runs):
         x = run[column].to_numpy()
-        t = run["best_t"].to_numpy()
+        t = run["best_tortuosity"].to_numpy()
         at = np.searchsorted(x, grid, side="right") - 1  # the last generation at or before x
         ok = (at >= 0) & (grid <= x[-1])
         values[k, ok] = t[at[ok]]
@@ -62,7 +62,7 @@ def draw(curves, problems, column, label, png):
             for r in runs:
                 beyond = r[r[column] >= grid[common][-1]]
                 if len(beyond) > 1:
-                    ax.step(beyond[column], beyond["best_t"], where="post", linewidth=0.7, **style)
+                    ax.step(beyond[column], beyond["best_tortuosity"], where="post", linewidth=0.7, **style)
         ax.set_xlabel(label)
         ax.set_ylabel("best T")
         ax.set_title(problem, fontsize=10)

@@ -17,7 +17,7 @@ OUT=results/search
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 "$S" "${DROPLET[@]}" optimize --db "$tmp/g0.db" --generations 0 --quiet --validate-starts 0 > /dev/null
 "$S" export --db "$tmp/g0.db" --run 1 --generation 0 -o "$tmp/g0.json" 2> /dev/null
-echo "order,angle_degrees,spacing_ok,passed,mean_t,standard_error,q1,median,q3" > "$OUT/ramp_media.csv"
+echo "order,angle_degrees,spacing_ok,passed,mean_tortuosity,standard_error,q1,median,q3" > "$OUT/ramp_media.csv"
 for order in up down; do
   for angle in 8 12 16 20 24 28 32 40 50; do
     ok=$(python3 - "$tmp/g0.json" "$angle" "$order" "$tmp/ramp.json" <<'PY'
@@ -52,7 +52,7 @@ PY
 import json, sys
 d = json.loads(sys.argv[1])['at_dt']
 f = lambda k: '' if d[k] is None else '%.4f' % d[k]
-print(','.join(['$order', '$angle', '$ok', str(d['passed']), f('mean_t'), f('standard_error'), f('q1'), f('median'), f('q3')]))
+print(','.join(['$order', '$angle', '$ok', str(d['passed']), f('mean_tortuosity'), f('standard_error'), f('q1'), f('median'), f('q3')]))
 " "$v" >> "$OUT/ramp_media.csv"
   done
 done

@@ -3,7 +3,7 @@
 # seeds, on several problems. Each search is one database under results/search/db/ (not committed);
 # running the script again resumes every search to the budget given, so a long comparison can be
 # run in parts. Writes curves.csv (problem, strategy, seed, generation, evaluations, seconds,
-# best_t), summary.csv (per problem and strategy: the median, least and largest best T over the
+# best_tortuosity), summary.csv (per problem and strategy: the median, least and largest best T over the
 # seeds after 750, 3 000, 5 000, 8 000 and 20 000 evaluations, for the seeds that got that far) and
 # curves.png and curves_seconds.png (every search's best T against evaluations, and wall seconds).
 #   bash results/search/run.sh [EVALUATIONS [SEEDS [PROBLEMS [STRATEGIES]]]]
@@ -91,7 +91,7 @@ trap 'rm -f "$kept"' EXIT
 [[ -f $OUT/curves.csv ]] && awk -F, -v have="$have" '
   BEGIN { n = split(have, names, " "); for (i = 1; i <= n; i++) here[names[i]] = 1 }
   NR > 1 && !(($1 "-" $2 "-" $3) in here)' "$OUT/curves.csv" > "$kept"
-echo "problem,strategy,seed,generation,evaluations,seconds,best_t" > "$OUT/curves.csv"
+echo "problem,strategy,seed,generation,evaluations,seconds,best_tortuosity" > "$OUT/curves.csv"
 cat "$kept" >> "$OUT/curves.csv"
 for db in "$OUT"/db/*.db; do
   [[ -f $db ]] || continue
@@ -114,7 +114,7 @@ WITH checkpoints(e) AS (VALUES (750), (3000), (5000), (8000), (20000)),
 reached AS (SELECT problem, strategy, seed, max(CAST(evaluations AS INTEGER)) AS last FROM curves
             GROUP BY problem, strategy, seed),
 at AS (  -- best T of each search once it had spent e evaluations
-  SELECT c.problem, c.strategy, c.seed, k.e, max(CAST(c.best_t AS REAL)) AS t, max(CAST(c.seconds AS REAL)) AS s
+  SELECT c.problem, c.strategy, c.seed, k.e, max(CAST(c.best_tortuosity AS REAL)) AS t, max(CAST(c.seconds AS REAL)) AS s
   FROM curves c JOIN reached r ON r.problem = c.problem AND r.strategy = c.strategy AND r.seed = c.seed
   JOIN checkpoints k ON CAST(c.evaluations AS INTEGER) <= k.e AND r.last >= k.e
   GROUP BY c.problem, c.strategy, c.seed, k.e),
