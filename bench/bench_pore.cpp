@@ -29,6 +29,20 @@ void BM_DiffusiveTortuosity(benchmark::State& state) {
 }
 BENCHMARK(BM_DiffusiveTortuosity)->Arg(500)->Arg(1000)->Unit(benchmark::kMillisecond);
 
+// The creeping flow: two sparse Cholesky factorisations (CHOLMOD) and a dozen pressure iterations.
+void BM_HydrodynamicTortuosity(benchmark::State& state) {
+  const softdrop::PoreImage im = image(static_cast<int>(state.range(0)));
+  int iterations = 0;
+  for (auto _ : state) {
+    const softdrop::HydrodynamicTortuosity f = softdrop::hydrodynamic_tortuosity(im);
+    iterations = f.iterations;
+    benchmark::DoNotOptimize(f.tortuosity);
+  }
+  state.counters["pixels"] = static_cast<double>(im.pore.size());
+  state.counters["iterations"] = iterations;
+}
+BENCHMARK(BM_HydrodynamicTortuosity)->Arg(500)->Arg(1000)->Unit(benchmark::kMillisecond)->Iterations(1)->Repetitions(3);
+
 }  // namespace
 
 BENCHMARK_MAIN();

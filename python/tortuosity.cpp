@@ -1,4 +1,5 @@
-// softdrop.tortuosity: the pore space's geometric and diffusive tortuosities of a medium or of a
+// softdrop.tortuosity: the pore space's geometric, diffusive and hydrodynamic tortuosities (and the
+// permeability) of a medium or of a
 // binary image (True in the pore space, rows from the top: PoreSpy's convention and
 // Medium.to_image's), with their fields as numpy arrays.
 #include <pybind11/numpy.h>
@@ -23,13 +24,19 @@ py::array_t<double> field(const PoreImage& im, const std::vector<double>& values
   return a;
 }
 
-py::dict measure(const PoreImage& im) {
+py::dict measure(const PoreImage& im, bool flow, int buffer_rows) {
   GeometricTortuosity g;
   DiffusiveTortuosity d;
+  HydrodynamicTortuosity h;
   {
     py::gil_scoped_release release;
     g = geometric_tortuosity(im);
     d = diffusive_tortuosity(im);
+    if (flow) {
+      FlowOptions o;
+      o.buffer_rows = buffer_rows;
+      h = hydrodynamic_tortuosity(im, o);
+    }
   }
   py::dict out;
   out["pixel"] = im.pixel;
@@ -43,6 +50,14 @@ py::dict measure(const PoreImage& im) {
   out["effective_diffusivity"] = d.effective_diffusivity;
   out["distance"] = field(im, g.distance);
   out["concentration"] = field(im, d.concentration);
+  if (flow) {
+    out["hydrodynamic_tortuosity"] = h.tortuosity;
+    out["permeability"] = h.permeability;
+    out["buffer_rows"] = h.buffer_rows;
+    out["velocity_x"] = field(im, h.ux);
+    out["velocity_y"] = field(im, h.uy);
+    out["pressure"] = field(im, h.pressure);
+  }
   return out;
 }
 
@@ -51,11 +66,13 @@ py::dict measure(const PoreImage& im) {
 void bind_tortuosity(py::module_& m) {
   m.def(
       "_tortuosity_of_medium",
-      [](const Medium& medium, int pixels) { return measure(pore_image(medium, pixels)); }, py::arg("medium"),
-      py::arg("pixels"));
+      [](const Medium& medium, int pixels, bool flow, int buffer_rows) {
+        return measure(pore_image(medium, pixels), flow, buffer_rows);
+      },
+      py::arg("medium"), py::arg("pixels"), py::arg("flow"), py::arg("buffer_rows"));
   m.def(
       "_tortuosity_of_image",
-      [](const py::array& image, double pixel_size, bool periodic) {
+      [](const py::array& image, double pixel_size, bool periodic, bool flow, int buffer_rows) {
         if (image.ndim() != 2) throw std::invalid_argument("image: a 2D array, not " + std::to_string(image.ndim()) + "D");
         if (image.shape(0) < 1 || image.shape(1) < 1) throw std::invalid_argument("image: empty");
         if (!(pixel_size > 0) || !std::isfinite(pixel_size))
@@ -77,9 +94,9 @@ void bind_tortuosity(py::module_& m) {
                                           ", column " + std::to_string(c) + "); True or 1 is pore space");
             im.pore[static_cast<std::size_t>(c + im.nx * (im.ny - 1 - r))] = x == 1;
           }
-        return measure(im);
+        return measure(im, flow, buffer_rows);
       },
-      py::arg("image"), py::arg("pixel_size"), py::arg("periodic"));
+      py::arg("image"), py::arg("pixel_size"), py::arg("periodic"), py::arg("flow"), py::arg("buffer_rows"));
 }
 
 }  // namespace softdrop::python

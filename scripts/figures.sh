@@ -21,8 +21,9 @@ $S render paths --porosity 0.85 --droplets 300 --seed 1 --size 600 --path-colour
 # A relaxed medium with wide gaps at porosity 0.5, and one of sequential addition at 0.5.
 $S render medium --kind relaxed --porosity 0.5 --gap 0.4 --size 400 -o $out/medium_relaxed.png
 $S render medium --kind non-overlapping --porosity 0.5 --size 400 -o $out/medium_sequential.png
-# The pore space's diffusion and shortest paths, beside the droplet's T (softdrop tortuosity).
-$S tortuosity --porosity 0.7 --medium-seed 3 --starts 0 --quiet --picture $out/pore_space.png > /dev/null
+# The pore space's diffusion, its creeping flow and shortest paths (softdrop tortuosity).
+$S tortuosity --porosity 0.7 --medium-seed 3 --starts 0 --quiet --picture $out/pore_space.png \
+  --flow-picture $out/pore_flow.png > /dev/null
 # The area trace of one droplet through non-overlapping grains at porosity 0.79 (the paper's figure).
 $S render trace --kind non-overlapping --porosity 0.79 --medium-seed 4 --size 600 -o $out/trace.png 2> /dev/null
 # Two 2000-evaluation searches, the paper's hill climb (lambda 2) and the default strategy: the best

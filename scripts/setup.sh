@@ -4,7 +4,7 @@
 set -euo pipefail
 PKGS=(
   build-essential cmake ninja-build ccache pkg-config clang libclang-rt-dev
-  libeigen3-dev libnlopt-cxx-dev libnlopt-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
+  libeigen3-dev libsuitesparse-dev libopenblas0-pthread libnlopt-cxx-dev libnlopt-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libsqlite3-dev sqlite3 libsqlitecpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libpagmo-dev libcli11-dev nlohmann-json3-dev libtomlplusplus-dev libcairo2-dev libpng-dev libgif-dev fonts-dejavu-core libtinyxml2-dev ffmpeg libtbb-dev

@@ -46,15 +46,27 @@ TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
   EXPECT_NE(r.out.find("diffusive    tau = "), std::string::npos) << r.out;
   const test::CsvTable t = test::read_csv_table(csv);
   ASSERT_EQ(t.header, (std::vector<std::string>{"quantity", "pixels", "pixel", "value", "standard_error"}));
-  ASSERT_EQ(t.rows.size(), 7u);  // two resolutions and the extrapolation of each, and the droplet
+  ASSERT_EQ(t.rows.size(), 13u);  // four values at two resolutions and the extrapolation of each, and the droplet
   EXPECT_EQ(std::stod(t.rows[1][3]), j["diffusive_tortuosity"]["values"][0].get<double>());
-  EXPECT_EQ(t.rows[6][0], "droplet_tortuosity");
+  EXPECT_EQ(t.rows[2][0], "hydrodynamic_tortuosity");
+  EXPECT_EQ(std::stod(t.rows[7][3]), j["permeability"]["values"][1].get<double>());
+  EXPECT_EQ(t.rows[12][0], "droplet_tortuosity");
+  // The flow bends round the grains, its T converged to 1 % between the two resolutions, and its
+  // permeability to 10 % at these coarse pixels (it converges at first order with the staircase).
+  const double flow = j["hydrodynamic_tortuosity"]["values"][1];
+  EXPECT_GT(flow, 1.0);
+  EXPECT_LT(std::abs(j["hydrodynamic_tortuosity"]["change"].get<double>()), 0.01);
+  EXPECT_LT(std::abs(j["permeability"]["change"].get<double>()), 0.1);  // 4 and 8 pixels a smallest radius
+  EXPECT_GT(j["permeability"]["values"][0].get<double>(), 0.0);
+  EXPECT_NE(r.out.find("flow T       "), std::string::npos) << r.out;
 
   const std::string png = fresh_path("pore_space.png");
   const auto drawn = run("tortuosity --porosity 0.75 --width 200 --height 200 --r-min 8 --r-max 16 --pixels 100 "
-                         "--starts 0 --quiet --size 300 --picture " + png);
+                         "--starts 0 --quiet --size 300 --picture " + png + " --flow-picture " + png + ".flow.png");
   ASSERT_EQ(drawn.code, 0) << drawn.err;
   EXPECT_GT(std::filesystem::file_size(png), 5000u);  // the field, the grains, the paths, the caption
+  EXPECT_GT(std::filesystem::file_size(png + ".flow.png"), 5000u);
+  EXPECT_NE(std::filesystem::file_size(png + ".flow.png"), std::filesystem::file_size(png));
 
   const auto empty = run("tortuosity --medium " + grain_file("empty.json", "") + " --pixels 50 --starts 4 --quiet "
                          "--format json");
@@ -62,6 +74,8 @@ TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
   const auto e = nlohmann::json::parse(empty.out);
   EXPECT_NEAR(e["geometric_tortuosity"]["values"][1].get<double>(), 1.0, 1e-12);
   EXPECT_NEAR(e["diffusive_tortuosity"]["values"][1].get<double>(), 1.0, 1e-9);
+  EXPECT_EQ(e["hydrodynamic_tortuosity"]["values"][1].get<double>(), 1.0);
+  EXPECT_TRUE(e["permeability"]["values"][1].is_null());  // infinite: nothing holds the flow back
   EXPECT_NEAR(e["droplet_tortuosity"]["mean_tortuosity"].get<double>(), 1.0, 0.02);  // straight down, but for its own wobble
 }
 
@@ -84,6 +98,16 @@ TEST(TortuosityCli, NoPorePathOrTooCoarsePixelsGetOneLineAndWriteNothing) {
     EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(json));
   }
+  // --check finds a resolution too coarse for the medium it would make, and a picture of the flow
+  // without the flow, without running.
+  for (const Case& c : {Case{"--porosity 0.8 --pixels 20", "pixels = 20: 0.681 pixels a radius of the smallest grain"},
+                        Case{"--porosity 0.8 --no-flow --flow-picture " + fresh_path("f.png"), "flow-picture: needs the flow"}}) {
+    SCOPED_TRACE(c.args);
+    const auto r = run("--check tortuosity " + c.args);
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find(c.says), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(run("--check tortuosity --porosity 0.8 --pixels 200").code, 0);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #pragma once
 /// \file pore_tortuosity.hpp
 /// Tortuosities of a medium's pore space on a pixel grid, beside the droplet's: the geometric
-/// tortuosity (shortest paths through the pores) and the diffusive one (a steady diffusion solve,
-/// PoreSpy's tortuosity_fd definition). The medium is drawn as a binary image, pixel centres
+/// tortuosity (shortest paths through the pores), the diffusive one (a steady diffusion solve,
+/// PoreSpy's tortuosity_fd definition) and the hydrodynamic one with the permeability (a creeping
+/// flow solve). The medium is drawn as a binary image, pixel centres
 /// inside no grain being pore, as PoreSpy's and TauFactor's images are.
 
 #include <cstdint>
@@ -74,5 +75,40 @@ struct DiffusiveTortuosity {
 };
 /// Throws std::invalid_argument naming the problem when no pore path joins the top and bottom.
 DiffusiveTortuosity diffusive_tortuosity(const PoreImage& image);
+
+/// How the creeping flow is solved (hydrodynamic_tortuosity).
+struct FlowOptions {
+  /// Rows of open fluid added above and below the image, the box then periodic in y, so that the
+  /// flow leaving the bottom enters the top spread over the width, as from a reservoir; -1: the
+  /// larger of 4 and 4 % of the image's rows. 0: the image itself is periodic in y (a unit cell).
+  int buffer_rows = -1;
+  double tolerance = 1e-8;    ///< relative residual of the pressure solve
+  int max_iterations = 20000;  ///< conjugate-gradient iterations before giving up
+  bool IsValid(std::string* why) const;
+};
+
+/// The hydrodynamic tortuosity and the permeability: creeping (Stokes) flow through the pore
+/// space driven along -y by a uniform force on the fluid inside the image, no slip on the solid
+/// pixels' faces (and on the walls, if the image has them), periodic in x if the image is; a
+/// staggered grid (the velocities on the pixels' faces), solved exactly up to `tolerance`. As
+/// Matyka 2008 and Duda, Koza and Matyka 2011 define it, T = <|u|> / <-u_y> over the image's
+/// pore pixels (u at their centres). Both converge as the pixels shrink (the solid's edge is a
+/// staircase of pixel faces): compare a resolution with its double.
+struct HydrodynamicTortuosity {
+  double tortuosity = 0;            ///< <|u|> / <-u_y> over the pore pixels
+  double permeability = 0;          ///< Darcy's k = mu q / (f + dp/dy), length units squared; inf: nothing holds the flow
+  double superficial_velocity = 0;  ///< q, the mean of -u_y over the image (solid at 0), in units of f h^2 / mu
+  double porosity = 0;              ///< of the image (all pore pixels)
+  int buffer_rows = 0;              ///< the buffer used
+  int iterations = 0;               ///< of the pressure solve
+  double residual = 0;              ///< its relative residual at the end
+  std::int64_t unknowns = 0;        ///< velocities and pressures solved for
+  /// Velocity (units of f h^2 / mu, h the pixel) and pressure (units of f h) at every pixel's
+  /// centre, as the image's pixels; NaN in the solid and in closed pockets.
+  std::vector<double> ux, uy, pressure;
+};
+/// Throws std::invalid_argument naming the problem when no pore path joins the top and bottom, or
+/// for bad options; std::runtime_error if the solve does not converge.
+HydrodynamicTortuosity hydrodynamic_tortuosity(const PoreImage& image, const FlowOptions& options = {});
 
 }  // namespace softdrop

@@ -75,7 +75,7 @@ def held_out(medium, starts=200, seed=1, half_dt=True, threads=0, params=None, r
     return Result(out)
 
 
-def tortuosity(medium, pixels=500, pixel_size=1.0, periodic=True):
+def tortuosity(medium, pixels=500, pixel_size=1.0, periodic=True, flow=True, buffer_rows=-1):
     """The pore space's tortuosities, as `softdrop tortuosity` measures them at one resolution.
     `medium` is a Medium (drawn `pixels` across its width, a pixel being pore where its centre lies
     in no grain), or a grain file's name, or a 2D binary image: a numpy array, True (or 1) in the
@@ -87,14 +87,21 @@ def tortuosity(medium, pixels=500, pixel_size=1.0, periodic=True):
     bottom: PoreSpy's tortuosity_fd),
     formation_factor, effective_diffusivity, porosity (of the image), pixel, and the fields as arrays
     of the image's shape, rows from the top: distance (to the bottom edge, length units; inf where
-    no path) and concentration (NaN in the solid). Both values converge at first order in the pixel
+    no path) and concentration (NaN in the solid). flow=True adds the creeping flow driven
+    downwards (Stokes, no slip on the solid): hydrodynamic_tortuosity (<|u|> / <-u_y> over the pore
+    pixels, Matyka 2008's definition), permeability (Darcy's k, length units squared), buffer_rows
+    (rows of open fluid added above and below, the box then periodic in y; buffer_rows=0 treats the
+    image itself as periodic in y, a unit cell), and the fields velocity_x, velocity_y (units of
+    f h^2 / mu: force per volume f, pixel h, viscosity mu) and pressure. Both values converge at first order in the pixel
     size: compare a resolution with its double. Raises ValueError for an image that is not binary
     or is empty, a bad pixel size, or no pore path from the top to the bottom."""
     import numpy as np
 
     if isinstance(medium, np.ndarray):
-        return Result(_core._tortuosity_of_image(medium, float(pixel_size), bool(periodic)))
-    return Result(_core._tortuosity_of_medium(_medium(medium), _whole(pixels, "pixels", 2)))
+        return Result(_core._tortuosity_of_image(medium, float(pixel_size), bool(periodic), bool(flow),
+                                                 _whole(buffer_rows, "buffer_rows", -1)))
+    return Result(_core._tortuosity_of_medium(_medium(medium), _whole(pixels, "pixels", 2), bool(flow),
+                                              _whole(buffer_rows, "buffer_rows", -1)))
 
 
 def rigid_descent(medium, x0, radius=0.0, path=False):

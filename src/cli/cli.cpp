@@ -18,6 +18,7 @@
 #include "cli/output.hpp"
 #include "cli/suggest.hpp"
 #include "softdrop/history.hpp"
+#include "softdrop/grain_file.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/sweep.hpp"
 #include "softdrop/version.hpp"
@@ -141,6 +142,10 @@ void Cli::check() {
   if (tortuosity_cmd_->parsed()) {
     check_tortuosity(tortuosity_);
     if (tortuosity_.medium.file.empty()) check_placement(tortuosity_.medium.options);
+    // The medium as the run makes it, for the resolution it needs.
+    (void)check_resolution(tortuosity_.medium.file.empty() ? generate_medium(tortuosity_.medium.options)
+                                                           : load_medium(tortuosity_.medium.file),
+                           tortuosity_.pixels);
   }
 }
 

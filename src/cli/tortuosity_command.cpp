@@ -26,7 +26,8 @@ CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& a) {
   CLI::App* s = app.add_subcommand(
       "tortuosity",
       "A medium's tortuosities side by side: the droplet's, and its pore space's on a pixel image (geometric: "
-      "shortest paths; diffusive: tau = phi D / D_eff), each at a resolution and its double");
+      "shortest paths; diffusive: tau = phi D / D_eff; hydrodynamic: <|u|> / <-u_y> of creeping flow, with the "
+      "permeability), each at a resolution and its double");
   s->fallthrough();
   add_medium_options(s, a.medium, false);
   auto* g = s->add_option_group("Tortuosity");
@@ -37,16 +38,22 @@ CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& a) {
   g->add_option("--starts", a.droplets.starts, "Droplets from random starts for the droplet's T (0: none)")
       ->capture_default_str();
   g->add_option("--seed", a.droplets.seed, "Seed of the droplets' starts")->capture_default_str()->check(seed_check());
+  g->add_flag("--flow,!--no-flow", a.flow,
+              "Solve the creeping flow for the hydrodynamic T and the permeability (the slowest part: --no-flow "
+              "leaves it out)");
   g->add_option("--threads", a.droplets.threads, "Worker threads for the droplets (0 = all cores)")->capture_default_str();
   auto* d = add_droplet_options(s, a.droplet);
   add_exit_options(d, a.run);
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
   o->add_option("--csv", a.csv_file,
-                "CSV, one row a value: quantity (geometric, diffusive, droplet), pixels (empty: extrapolated or the "
-                "droplet's), pixel (length units), value, standard_error");
+                "CSV, one row a value: quantity (geometric_tortuosity, diffusive_tortuosity, hydrodynamic_tortuosity, "
+                "permeability, droplet_tortuosity), pixels (empty: extrapolated or the droplet's), pixel (length "
+                "units), value, standard_error");
   o->add_option("--picture", a.picture,
                 "Draw the pore space at the coarser resolution: the diffusion's concentration and shortest paths "
                 "(.png, .svg or .pdf)");
+  o->add_option("--flow-picture", a.flow_picture,
+                "Draw the flow at the coarser resolution: its speed and shortest paths (.png, .svg or .pdf)");
   o->add_option("--size", a.size, "The picture's width in points")->capture_default_str();
   return s;
 }
@@ -62,6 +69,8 @@ void check_tortuosity(TortuosityArgs& a) {
   for (const auto& [option, path] : {std::pair{"--json", a.json_file}, {"--csv", a.csv_file}})
     if (!path.empty()) check_output_path(option, path);
   if (!a.picture.empty()) check_picture_path("--picture", a.picture);
+  if (!a.flow_picture.empty()) check_picture_path("--flow-picture", a.flow_picture);
+  if (!a.flow && !a.flow_picture.empty()) throw std::invalid_argument("flow-picture: needs the flow (--no-flow was given)");
   if (a.size < 100 || a.size > 5000) throw std::invalid_argument("size = " + std::to_string(a.size) + ": must be in [100, 5000]");
 }
 
@@ -73,14 +82,16 @@ struct Resolved {
   PoreImage image;
   GeometricTortuosity geometric;
   DiffusiveTortuosity diffusive;
+  HydrodynamicTortuosity flow;  // empty without --flow
 };
 
-// Both tortuosities at `pixels` across; a medium with no pore path says so in one line.
-Resolved at_resolution(const Medium& m, int pixels, bool quiet) {
-  if (!quiet) std::cerr << "tortuosity: the pore space at " << pixels << " pixels across\n";
+// The tortuosities at `pixels` across; a medium with no pore path says so in one line.
+Resolved at_resolution(const Medium& m, int pixels, bool flow, bool quiet) {
+  if (!quiet) std::cerr << "tortuosity: the pore space at " << pixels << " pixels across" << (flow ? " (with the flow)" : "") << "\n";
   const PoreImage image = pore_image(m, pixels);
   try {
-    return {pixels, image.pixel, image, geometric_tortuosity(image), diffusive_tortuosity(image)};
+    return {pixels, image.pixel, image, geometric_tortuosity(image), diffusive_tortuosity(image),
+            flow ? hydrodynamic_tortuosity(image) : HydrodynamicTortuosity{}};
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error("tortuosity: the medium at " + std::to_string(pixels) + " pixels across: " + e.what() +
                              "; every tortuosity is undefined");
@@ -117,19 +128,47 @@ void draw_pore_space(const Medium& medium, const Resolved& r, const TortuosityAr
   render_scene(scene, style, a.picture);
 }
 
+// The flow picture: the speed |u| from 0 (dark blue) to its largest (yellow) in the pore space,
+// the grains over it, and the shortest paths beside it.
+void draw_flow(const Medium& medium, const Resolved& r, const TortuosityArgs& a) {
+  Scene scene;
+  scene.medium = medium;
+  std::vector<double> speed(r.flow.ux.size());
+  double top = 0;
+  for (std::size_t k = 0; k < speed.size(); ++k) {
+    speed[k] = std::hypot(r.flow.ux[k], r.flow.uy[k]);  // NaN in the solid
+    if (speed[k] > top) top = speed[k];
+  }
+  scene.field = {r.image.nx, r.image.ny, speed, 0, top > 0 ? top : 1};
+  for (const PorePath& p : shortest_paths(r.image, r.geometric, 24))
+    scene.lines.push_back({p.x, p.y, Rgba{1, 1, 1, 0.9}, 1.2});
+  scene.caption = "creeping flow (speed, 0 to its largest) and 24 shortest paths at " + std::to_string(r.pixels) +
+                  " pixels across: hydrodynamic T = " + fmt(r.flow.tortuosity, 4) + ", k = " + fmt(r.flow.permeability, 4);
+  scene.top_room = 0;
+  RenderStyle style;
+  style.width = a.size;
+  style.solid_grains = true;
+  render_scene(scene, style, a.flow_picture);
+}
+
 }  // namespace
+
+double check_resolution(const Medium& medium, int pixels) {
+  double r_min = medium.width;
+  for (const Grain& g : medium.grains) r_min = std::min(r_min, g.r);
+  const double per_radius = r_min / (medium.width / pixels);
+  if (!medium.grains.empty() && per_radius < kMinPixelsPerRadius)
+    throw std::invalid_argument("pixels = " + std::to_string(pixels) + ": " + fmt(per_radius, 3) +
+                                " pixels a radius of the smallest grain (r = " + fmt(r_min) + "), fewer than 4");
+  return per_radius;
+}
 
 int run_tortuosity(TortuosityArgs& a) {
   check_tortuosity(a);
   const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
-  double r_min = medium.width;
-  for (const Grain& g : medium.grains) r_min = std::min(r_min, g.r);
-  const double per_radius = r_min / (medium.width / a.pixels);
-  if (!medium.grains.empty() && per_radius < kMinPixelsPerRadius)
-    throw std::invalid_argument("pixels = " + std::to_string(a.pixels) + ": " + fmt(per_radius, 3) +
-                                " pixels a radius of the smallest grain (r = " + fmt(r_min) + "), fewer than 4");
-  const Resolved coarse = at_resolution(medium, a.pixels, a.quiet);
-  const Resolved fine = at_resolution(medium, 2 * a.pixels, a.quiet);
+  const double per_radius = check_resolution(medium, a.pixels);
+  const Resolved coarse = at_resolution(medium, a.pixels, a.flow, a.quiet);
+  const Resolved fine = at_resolution(medium, 2 * a.pixels, a.flow, a.quiet);
   HeldOutValue droplets;
   if (a.droplets.starts > 0) {
     Progress progress("tortuosity: droplets");
@@ -149,10 +188,16 @@ int run_tortuosity(TortuosityArgs& a) {
   j["geometric_tortuosity"]["starts"] = fine.geometric.starts;
   j["geometric_tortuosity"]["connected"] = fine.geometric.connected;
   j["diffusive_tortuosity"]["formation_factor"] = {coarse.diffusive.formation_factor, fine.diffusive.formation_factor};
+  if (a.flow) {
+    j["hydrodynamic_tortuosity"] = pair_json(coarse.flow.tortuosity, fine.flow.tortuosity, a.pixels);
+    j["hydrodynamic_tortuosity"]["buffer_rows"] = {coarse.flow.buffer_rows, fine.flow.buffer_rows};
+    j["permeability"] = pair_json(coarse.flow.permeability, fine.flow.permeability, a.pixels);
+  }
   if (a.droplets.starts > 0)
     j["droplet_tortuosity"] = {{"starts", d.starts}, {"seed", a.droplets.seed}, {"passed", d.passed},
                     {"mean_tortuosity", finite_or_null(d.mean_t)}, {"standard_error", finite_or_null(d.standard_error)}};
   if (!a.picture.empty()) draw_pore_space(medium, coarse, a);
+  if (!a.flow_picture.empty()) draw_flow(medium, coarse, a);
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (!a.csv_file.empty()) {
     std::ostringstream out;
@@ -161,9 +206,15 @@ int run_tortuosity(TortuosityArgs& a) {
       out << "geometric_tortuosity," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->geometric.tortuosity) << ','
           << fmt(r->geometric.standard_error) << '\n';
       out << "diffusive_tortuosity," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->diffusive.tau) << ",\n";
+      if (a.flow)
+        out << "hydrodynamic_tortuosity," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->flow.tortuosity)
+            << ",\npermeability," << r->pixels << ',' << fmt(r->pixel) << ',' << fmt(r->flow.permeability) << ",\n";
     }
     out << "geometric_tortuosity,,," << fmt(2 * fine.geometric.tortuosity - coarse.geometric.tortuosity) << ",\n";
     out << "diffusive_tortuosity,,," << fmt(2 * fine.diffusive.tau - coarse.diffusive.tau) << ",\n";
+    if (a.flow)
+      out << "hydrodynamic_tortuosity,,," << fmt(2 * fine.flow.tortuosity - coarse.flow.tortuosity)
+          << ",\npermeability,,," << fmt(2 * fine.flow.permeability - coarse.flow.permeability) << ",\n";
     if (a.droplets.starts > 0 && d.passed > 0)
       out << "droplet_tortuosity,,," << fmt(d.mean_t) << ',' << (d.passed > 1 ? fmt(d.standard_error) : "") << '\n';
     write_file_atomically(a.csv_file, out.str());
@@ -180,6 +231,10 @@ int run_tortuosity(TortuosityArgs& a) {
             << "geometric T  " << pair_line(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels) << "; "
             << fine.geometric.connected << " of " << fine.geometric.starts << " top pixels reach the bottom\n"
             << "diffusive    tau = " << pair_line(coarse.diffusive.tau, fine.diffusive.tau, a.pixels) << "\n";
+  if (a.flow)
+    std::cout << "flow T       " << pair_line(coarse.flow.tortuosity, fine.flow.tortuosity, a.pixels) << "\n"
+              << "permeability " << pair_line(coarse.flow.permeability, fine.flow.permeability, a.pixels)
+              << " (length units squared)\n";
   if (a.droplets.starts > 0) {
     std::cout << "droplet T    ";
     if (d.passed == 0)

@@ -1,7 +1,7 @@
 #pragma once
 // `softdrop tortuosity`: one medium's tortuosities side by side: the droplet's (held-out starts),
-// and its pore space's on a pixel image, geometric and diffusive, each at a resolution and at its
-// double, with the value extrapolated from the two.
+// and its pore space's on a pixel image, geometric, diffusive and hydrodynamic (with the
+// permeability), each at a resolution and at its double, with the value extrapolated from the two.
 
 #include <CLI/CLI.hpp>
 #include <string>
@@ -21,7 +21,9 @@ struct TortuosityArgs {
   RunOptions run;
   std::string format = "table";
   std::string json_file, csv_file;
+  bool flow = true;      ///< solve the creeping flow (hydrodynamic T, permeability)
   std::string picture;  ///< the pore space drawn: the concentration and shortest paths
+  std::string flow_picture;  ///< the flow drawn: the speed and shortest paths
   int size = 600;       ///< its width in points
   bool quiet = false;
 };
@@ -31,5 +33,8 @@ CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& args);
 /// Checks the options without running; throws std::invalid_argument naming the bad one.
 void check_tortuosity(TortuosityArgs& args);
 int run_tortuosity(TortuosityArgs& args);
+/// Throws std::invalid_argument naming --pixels when the smallest grain's radius would span fewer
+/// than 4 pixels (the solves' first-order error is then tens of percent); returns how many it spans.
+double check_resolution(const Medium& medium, int pixels);
 
 }  // namespace softdrop::cli

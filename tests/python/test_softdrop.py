@@ -359,6 +359,28 @@ def test_pore_space_tortuosities_of_a_medium_and_of_its_image_are_the_programs(t
     assert np.all(np.isnan(r.concentration[~image]))
     assert np.nanmin(r.concentration) > 0 and np.nanmax(r.concentration) < 1
     assert np.nanmean(r.concentration[0]) > 0.9 and np.nanmean(r.concentration[-1]) < 0.1
+    # The flow: the program's numbers, and its fields in the pore space only, running down.
+    assert out["hydrodynamic_tortuosity"]["values"][0] == r.hydrodynamic_tortuosity == s.hydrodynamic_tortuosity
+    assert out["permeability"]["values"][0] == r.permeability == s.permeability
+    assert r.velocity_x.shape == r.velocity_y.shape == r.pressure.shape == image.shape
+    assert np.array_equal(np.isnan(r.velocity_y), np.isnan(r.concentration))  # the solid and closed pockets
+    assert np.all(np.isnan(r.velocity_y[~image]))
+    open_ = ~np.isnan(r.velocity_y)
+    speed = np.hypot(r.velocity_x, r.velocity_y)[open_]
+    assert np.isclose(speed.mean() / -r.velocity_y[open_].mean(), r.hydrodynamic_tortuosity, rtol=1e-12, atol=0)
+    assert "hydrodynamic_tortuosity" not in softdrop.tortuosity(image, pixel_size=2.0, flow=False)
+
+
+def test_the_flow_through_slits_is_plane_poiseuille():
+    """Slits w pixels wide in a unit cell periodic in y (buffer_rows=0): the staggered grid's
+    permeability is phi (w^2 + 2) h^2 / 12 exactly, the continuum's phi w^2 h^2 / 12 plus h^2 / 6."""
+    w, h = 12, 0.25
+    image = np.tile(np.arange(4 * w) % (2 * w) < w, (30, 1))  # columns: w open, w solid
+    r = softdrop.tortuosity(image, pixel_size=h, buffer_rows=0)
+    assert r.permeability == pytest.approx(0.5 * (w * w + 2) * h * h / 12, rel=1e-9)
+    assert r.hydrodynamic_tortuosity == pytest.approx(1.0, abs=1e-12)
+    with pytest.raises(ValueError, match="buffer_rows = -2: must be >= -1"):
+        softdrop.tortuosity(image, buffer_rows=-2)
 
 
 @pytest.mark.parametrize("image, says", [
