@@ -8,25 +8,15 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "pore_images.hpp"
 #include "softdrop/pore_tortuosity.hpp"
 
 namespace softdrop {
 namespace {
 
-// n x n pixels of side `pixel`: pore where (x - s y) mod period < width (x, y at pixel centres,
-// in pixels). With n s a multiple of the period the image is periodic in y too.
+// Channels at slope s (pore_images.hpp).
 PoreImage channels(int n, double s, int period, int width, double pixel = 1) {
-  PoreImage im;
-  im.nx = im.ny = n;
-  im.pixel = pixel;
-  im.pore.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      double u = std::fmod(i + 0.5 - s * (j + 0.5), static_cast<double>(period));
-      if (u < 0) u += period;
-      im.pore[static_cast<std::size_t>(i + n * j)] = u < width;
-    }
-  return im;
+  return test::slanted_channels(n, s, period, width, pixel);
 }
 
 // One disc of solid fraction c at the centre of an n x n unit cell of side 1: periodic in both

@@ -11,24 +11,13 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "pore_images.hpp"
 #include "softdrop/pore_tortuosity.hpp"
 
 namespace softdrop {
 namespace {
 
-// n x n pixels of side 1: pore where (x - s y) mod period < width, x and y at the pixel's centre.
-PoreImage slanted_channels(int n, double s, int period, int width) {
-  PoreImage im;
-  im.nx = im.ny = n;
-  im.pore.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), 0);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      double u = std::fmod(i + 0.5 - s * (j + 0.5), static_cast<double>(period));
-      if (u < 0) u += period;
-      im.pore[static_cast<std::size_t>(i + n * j)] = u < width;
-    }
-  return im;
-}
+using test::slanted_channels;
 
 // 2 x 2 cells of side 100, a disc of solid fraction f in each (periodic in x): the lines between
 // rows of discs are equipotentials by symmetry, so the Dirichlet edges cut the infinite array.

@@ -111,44 +111,43 @@ std::string pair_line(double coarse, double fine, int pixels) {
          " %), extrapolated " + fmt(2 * fine - coarse, 5);
 }
 
-// The picture: the concentration of the diffusion (dark blue at the bottom, yellow at the top) in
-// the pore space, the grains over it, and shortest paths from starts spread over the top.
-void draw_pore_space(const Medium& medium, const Resolved& r, const TortuosityArgs& a) {
+// A pore field of resolution `r` drawn under the grains (their solid union, as the solves saw it)
+// from `lo` (dark blue) to `hi` (yellow), with 24 shortest paths from starts spread over the top.
+// `what` names the field; the caption adds the paths and `values`.
+void draw_field(const Medium& medium, const Resolved& r, const Field& field, const std::string& what,
+                const std::string& values, int size, const std::string& path) {
+  const std::string caption =
+      what + " and 24 shortest paths at " + std::to_string(r.pixels) + " pixels across: " + values;
   Scene scene;
   scene.medium = medium;
-  scene.field = {r.image.nx, r.image.ny, r.diffusive.concentration, 0, 1};
+  scene.field = field;
   for (const PorePath& p : shortest_paths(r.image, r.geometric, 24))
     scene.lines.push_back({p.x, p.y, Rgba{1, 1, 1, 0.9}, 1.2});
-  scene.caption = "diffusion (concentration, 0 to 1) and 24 shortest paths at " + std::to_string(r.pixels) +
-                  " pixels across: tau = " + fmt(r.diffusive.tau, 4) + ", geometric T = " + fmt(r.geometric.tortuosity, 4);
+  scene.caption = caption;
   scene.top_room = 0;
   RenderStyle style;
-  style.width = a.size;
-  style.solid_grains = true;  // the solid the solves saw: the union of the grains
-  render_scene(scene, style, a.picture);
+  style.width = size;
+  style.solid_grains = true;
+  render_scene(scene, style, path);
 }
 
-// The flow picture: the speed |u| from 0 (dark blue) to its largest (yellow) in the pore space,
-// the grains over it, and the shortest paths beside it.
-void draw_flow(const Medium& medium, const Resolved& r, const TortuosityArgs& a) {
-  Scene scene;
-  scene.medium = medium;
+// The pictures: the diffusion's concentration (0 at the bottom, 1 at the top), and the flow's
+// speed |u| from 0 to its largest.
+void draw_pictures(const Medium& medium, const Resolved& r, const TortuosityArgs& a) {
+  if (!a.picture.empty())
+    draw_field(medium, r, {r.image.nx, r.image.ny, r.diffusive.concentration, 0, 1},
+               "diffusion (concentration, 0 to 1)",
+               "tau = " + fmt(r.diffusive.tau, 4) + ", geometric T = " + fmt(r.geometric.tortuosity, 4), a.size, a.picture);
+  if (a.flow_picture.empty()) return;
   std::vector<double> speed(r.flow.ux.size());
   double top = 0;
   for (std::size_t k = 0; k < speed.size(); ++k) {
     speed[k] = std::hypot(r.flow.ux[k], r.flow.uy[k]);  // NaN in the solid
     if (speed[k] > top) top = speed[k];
   }
-  scene.field = {r.image.nx, r.image.ny, speed, 0, top > 0 ? top : 1};
-  for (const PorePath& p : shortest_paths(r.image, r.geometric, 24))
-    scene.lines.push_back({p.x, p.y, Rgba{1, 1, 1, 0.9}, 1.2});
-  scene.caption = "creeping flow (speed, 0 to its largest) and 24 shortest paths at " + std::to_string(r.pixels) +
-                  " pixels across: hydrodynamic T = " + fmt(r.flow.tortuosity, 4) + ", k = " + fmt(r.flow.permeability, 4);
-  scene.top_room = 0;
-  RenderStyle style;
-  style.width = a.size;
-  style.solid_grains = true;
-  render_scene(scene, style, a.flow_picture);
+  draw_field(medium, r, {r.image.nx, r.image.ny, speed, 0, top > 0 ? top : 1}, "creeping flow (speed, 0 to its largest)",
+             "hydrodynamic T = " + fmt(r.flow.tortuosity, 4) + ", k = " + fmt(r.flow.permeability, 4), a.size,
+             a.flow_picture);
 }
 
 }  // namespace
@@ -196,8 +195,7 @@ int run_tortuosity(TortuosityArgs& a) {
   if (a.droplets.starts > 0)
     j["droplet_tortuosity"] = {{"starts", d.starts}, {"seed", a.droplets.seed}, {"passed", d.passed},
                     {"mean_tortuosity", finite_or_null(d.mean_t)}, {"standard_error", finite_or_null(d.standard_error)}};
-  if (!a.picture.empty()) draw_pore_space(medium, coarse, a);
-  if (!a.flow_picture.empty()) draw_flow(medium, coarse, a);
+  draw_pictures(medium, coarse, a);
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (!a.csv_file.empty()) {
     std::ostringstream out;
