@@ -2,7 +2,7 @@
 // The balloon on the command line: the droplet the defaults were before the calibration, which the
 // tests of the machinery run on the small scenes laid out for it. Its one command-line spelling is
 // results/calibration/balloon.toml (droplet, grains of radii 8 to 16, step budget); fixtures.hpp's
-// balloon_droplet() is DropletParams::balloon(), and calibration_test.cpp checks that the two agree
+// balloon_droplet() is DropletParams::balloon(), and config_files_test.cpp checks that the two agree
 // to the bit.
 
 #include <string>

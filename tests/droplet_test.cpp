@@ -451,7 +451,7 @@ TEST(Droplet, ParamsValidation) {
   EXPECT_FALSE(p.IsValid(&why));
   EXPECT_NE(why.find("nrt"), std::string::npos);
   p = {};
-  p.dt = 1e-3;  // far too large for k_c = 1e8 at m = 1
+  p.dt = 1e-3;  // far too large for the default k_c at m = 1
   EXPECT_FALSE(p.IsValid(&why));
   EXPECT_NE(why.find("dt"), std::string::npos);
   p = {};

@@ -1,6 +1,6 @@
 #pragma once
 /// \file search.hpp
-/// The maximum-tortuosity search (section 6 of DESIGN.md). Each generation makes candidates from
+/// The maximum-tortuosity search (docs/search.md). Each generation makes candidates from
 /// the current arrangement (all grains jiggle, or one grain the droplet touched moves), pushes the
 /// droplet through each, and its strategy (strategy.hpp) keeps one or none. The paper's strategy
 /// is a hill climb: it keeps the best candidate whose tortuosity is strictly higher.
