@@ -1,6 +1,9 @@
 #pragma once
 // Shared scenes for the tests.
 
+#include <set>
+#include <string>
+
 #include "balloon.hpp"
 #include "softdrop/calibration.hpp"
 #include "softdrop/droplet.hpp"
@@ -35,6 +38,29 @@ class VectorWidthLimit {
 
  private:
   VectorWidth in_use_;
+};
+
+/// The widths a test could not check because this processor lacks them. A test notes each width
+/// as it tries it, checks the ones the processor has, and then skips with their names, so that a
+/// run on a smaller processor does not pass as if it had checked every width.
+class LackedWidths {
+ public:
+  /// Whether `limit` holds `width` (it clamps to what the processor has); notes it if not.
+  bool has(const VectorWidthLimit& limit, VectorWidth width) {
+    if (limit.in_use() == width) return true;
+    lacked_.insert(static_cast<int>(width));
+    return false;
+  }
+  bool any() const { return !lacked_.empty(); }
+  /// "vector width 4, 8", for the skip message.
+  std::string message() const {
+    std::string m = "this processor lacks vector width";
+    for (const int w : lacked_) m += (m.back() == 'h' ? " " : ", ") + std::to_string(w);
+    return m + " (the widths it has were checked)";
+  }
+
+ private:
+  std::set<int> lacked_;
 };
 
 /// Every vector width the constraint has.
