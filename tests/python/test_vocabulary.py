@@ -224,3 +224,11 @@ def test_an_older_file_without_candidates_moves_reads_what_it_can_tell(written, 
     assert view["kind"].tolist() == [None if pd.isna(k) else k for k in frame["kind"]]
     text = cli("history", "--db", str(old), "--run", "1", "--candidates", "--format", "json")
     assert [r["kind"] for r in json.loads(text)] == view[view.run == 1]["kind"].tolist()
+
+
+def test_columns_shows_the_names_asked_for_and_refuses_others():
+    table = pd.read_csv(pd.io.common.StringIO(cli("columns", "porosity", "radius", "--format", "csv")))
+    assert table["name"].tolist() == ["porosity", "radius"]  # a quantity, and a droplet parameter
+    assert table.loc[0, "unit"] == 1 or table.loc[0, "unit"] == "1"
+    r = subprocess.run([CLI, "columns", "phi"], capture_output=True, text=True)
+    assert r.returncode == 1 and r.stderr == "softdrop: error: names: 'phi' is not a name softdrop writes\n"
