@@ -6,9 +6,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 export CCACHE_DIR="${CCACHE_DIR:-$PWD/.ccache}"
-cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DSOFTDROP_SANITIZE=address,undefined -DSOFTDROP_FUZZ=ON -DSOFTDROP_BUILD_BENCH=OFF -DSOFTDROP_WERROR=ON \
-  -DSOFTDROP_TEST_HOOKS=ON
+cmake --preset asan  # CMakePresets.json
 cmake --build build-asan -j "$(nproc)"
 source scripts/sanitizer_env.sh
 cd build-asan

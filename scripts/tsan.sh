@@ -8,8 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/setup.sh
 export CCACHE_DIR="${CCACHE_DIR:-$PWD/.ccache}"
-cmake -S . -B build-tsan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DSOFTDROP_SANITIZE=thread -DSOFTDROP_BUILD_BENCH=OFF -DSOFTDROP_WERROR=ON -DSOFTDROP_TEST_HOOKS=ON
+cmake --preset tsan  # CMakePresets.json
 cmake --build build-tsan -j "$(nproc)" --target softdrop_tests
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" build-tsan/tests/softdrop_tests \
   --gtest_filter='Interleaved.*:Sweep*:Determinism.*:Search.Speculative*:Search.Predicted*:Search.PredictionsAhead*:Search.EvolutionStrategySpeculates*:Search.ASlowCompletion*:Islands.Driven*:Objective.TheRobust*:Objective.ARobust*'
