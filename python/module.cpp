@@ -132,17 +132,12 @@ py::dict summary_dict(const RunSummary& s, bool with_path) {
 // with its help as the docstring; the constraint order as its name ("sequential", "red-black").
 template <class Field>
 using Value = std::decay_t<Field>;
-// A droplet option's attribute name: its key with '_' for '-'.
-std::string field_name(std::string key) {
-  std::replace(key.begin(), key.end(), '-', '_');
-  return key;
-}
 void bind_droplet_fields(py::class_<DropletParams>& cls) {
   DropletParams defaults;
   visit_droplet_fields(
       [&](const DropletField& field, const auto& proto) {
         using T = Value<decltype(proto)>;
-        const std::string name = field_name(field.key);
+        const std::string name = cli::column_name(field.key);
         const std::string key = field.key;
         // The field `key` of p, for reading or writing.
         auto with_field = [key](auto& p, const auto& use) {
@@ -213,7 +208,7 @@ PYBIND11_MODULE(_core, m) {
   bind_droplet_fields(droplet);
   std::vector<std::string> droplet_fields;
   DropletParams defaults;
-  visit_droplet_fields([&](const DropletField& f, const auto&) { droplet_fields.push_back(field_name(f.key)); },
+  visit_droplet_fields([&](const DropletField& f, const auto&) { droplet_fields.push_back(cli::column_name(f.key)); },
                        defaults);
   python::def_value_semantics(droplet, droplet_fields, "DropletParams");
 

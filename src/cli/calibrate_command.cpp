@@ -1,5 +1,7 @@
 #include "cli/calibrate_command.hpp"
 
+#include "cli/columns.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -126,13 +128,6 @@ struct Row {
   CalibrationResult result;
   double seconds = 0;
 };
-
-// A droplet field's CSV column: its option name with '_' for '-' (max-strain: max_strain), so
-// that pandas can name it as an attribute.
-std::string column_name(std::string key) {
-  std::replace(key.begin(), key.end(), '-', '_');
-  return key;
-}
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <iostream>
-#include <set>
+#include <map>
 #include <stdexcept>
 
 #include "cli/output.hpp"
@@ -230,23 +230,23 @@ const std::vector<ColumnName> kColumns = {
     {"y", "length", "height (0 at the bottom of the medium)"},
 };
 
-const std::set<std::string, std::less<>>& droplet_columns() {
-  static const std::set<std::string, std::less<>> names = [] {
-    std::set<std::string, std::less<>> s;
+// The droplet parameters' columns, each with its option's key.
+const std::map<std::string, std::string, std::less<>>& droplet_columns() {
+  static const std::map<std::string, std::string, std::less<>> names = [] {
+    std::map<std::string, std::string, std::less<>> m;
     const DropletParams p;
-    visit_droplet_fields(
-        [&](const DropletField& field, const auto&) {
-          std::string n = field.key;
-          std::replace(n.begin(), n.end(), '-', '_');
-          s.insert(n);
-        },
-        p);
-    return s;
+    visit_droplet_fields([&](const DropletField& field, const auto&) { m.emplace(column_name(field.key), field.key); }, p);
+    return m;
   }();
   return names;
 }
 
 }  // namespace
+
+std::string column_name(std::string option_key) {
+  std::replace(option_key.begin(), option_key.end(), '-', '_');
+  return option_key;
+}
 
 const std::vector<ColumnName>& column_names() {
   static const std::vector<ColumnName> sorted = [] {
@@ -300,13 +300,9 @@ int run_columns(const ColumnsArgs& a) {
   for (const ColumnName& c : column_names())
     if (a.names.empty() || std::find(a.names.begin(), a.names.end(), c.name) != a.names.end())
       t.rows.push_back({c.name, c.unit, c.meaning});
-  for (const std::string& n : droplet_columns())
-    if (a.names.empty() || std::find(a.names.begin(), a.names.end(), n) != a.names.end())
-      t.rows.push_back({n, "", "droplet parameter (--" + [&] {
-                          std::string o = n;
-                          std::replace(o.begin(), o.end(), '_', '-');
-                          return o;
-                        }() + "; docs/model.md)"});
+  for (const auto& [name, key] : droplet_columns())
+    if (a.names.empty() || std::find(a.names.begin(), a.names.end(), name) != a.names.end())
+      t.rows.push_back({name, "", "droplet parameter (--" + key + "; docs/model.md)"});
   t.print(std::cout, a.format);
   return 0;
 }

@@ -16,6 +16,10 @@ struct ColumnName {
   const char* meaning;
 };
 
+/// A droplet parameter's column (and Python attribute): its long option name with '_' for '-'
+/// (max-strain: max_strain), so that pandas can name it as an attribute.
+std::string column_name(std::string option_key);
+
 /// Every name, sorted. Droplet parameters (calibrate's columns) are named by their long option
 /// with '_' for '-' and are not listed here: see is_column_name.
 const std::vector<ColumnName>& column_names();

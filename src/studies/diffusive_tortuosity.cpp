@@ -13,11 +13,8 @@
 #include "softdrop/pore_tortuosity.hpp"
 
 namespace softdrop {
-namespace {
+namespace detail {
 
-// The pore pixels joined through pore faces (periodic in x if the image is) to the top or the
-// bottom row: the others are closed pockets, which carry no flux and would leave the system
-// singular.
 std::vector<std::uint8_t> open_pores(const PoreImage& im, bool* joined) {
   const int nx = im.nx, ny = im.ny;
   std::vector<std::uint8_t> from_top(im.pore.size(), 0), open(im.pore.size(), 0);
@@ -32,7 +29,7 @@ std::vector<std::uint8_t> open_pores(const PoreImage& im, bool* joined) {
       queue.pop_front();
       const int i = static_cast<int>(k % nx), j = static_cast<int>(k / nx);
       for (int n = 0; n < 4; ++n) {
-        const std::int64_t m = detail::face_neighbour(im, i, j, n);
+        const std::int64_t m = face_neighbour(im, i, j, n);
         if (m >= 0 && im.pore[static_cast<std::size_t>(m)] && !seen[static_cast<std::size_t>(m)])
           seen[static_cast<std::size_t>(m)] = 1, queue.push_back(m);
       }
@@ -46,13 +43,13 @@ std::vector<std::uint8_t> open_pores(const PoreImage& im, bool* joined) {
   return open;
 }
 
-}  // namespace
+}  // namespace detail
 
 DiffusiveTortuosity diffusive_tortuosity(const PoreImage& image) {
   std::string why;
   if (!image.IsValid(&why)) throw std::invalid_argument(why);
   bool joined = false;
-  const std::vector<std::uint8_t> open = open_pores(image, &joined);
+  const std::vector<std::uint8_t> open = detail::open_pores(image, &joined);
   if (!joined) throw std::invalid_argument("image: no pore path from the top to the bottom");
   const int nx = image.nx, ny = image.ny;
   std::vector<std::int64_t> index(image.pore.size(), -1);

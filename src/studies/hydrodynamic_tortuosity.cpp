@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "pore_grid.hpp"
 #include "softdrop/pore_tortuosity.hpp"
 
 namespace softdrop {
@@ -64,31 +65,6 @@ Box make_box(const PoreImage& image, int buffer) {
   }
   b.fluid = seen;
   return b;
-}
-
-// Whether a pore path joins the image's top row to its bottom row inside the image (not around
-// through the buffers).
-bool spans(const PoreImage& im) {
-  std::vector<std::uint8_t> seen(im.pore.size(), 0);
-  std::deque<Index> queue;
-  for (int i = 0; i < im.nx; ++i) {
-    const Index k = i + static_cast<Index>(im.nx) * (im.ny - 1);
-    if (im.pore[static_cast<std::size_t>(k)]) seen[static_cast<std::size_t>(k)] = 1, queue.push_back(k);
-  }
-  while (!queue.empty()) {
-    const Index k = queue.front();
-    queue.pop_front();
-    const int i = static_cast<int>(k % im.nx), j = static_cast<int>(k / im.nx);
-    if (j == 0) return true;
-    const int li = i > 0 ? i - 1 : im.periodic ? im.nx - 1 : -1, ri = i < im.nx - 1 ? i + 1 : im.periodic ? 0 : -1;
-    const Index next[] = {li >= 0 ? li + static_cast<Index>(im.nx) * j : -1,
-                          ri >= 0 ? ri + static_cast<Index>(im.nx) * j : -1, k - im.nx,
-                          j + 1 < im.ny ? k + im.nx : -1};
-    for (const Index m : next)
-      if (m >= 0 && im.pore[static_cast<std::size_t>(m)] && !seen[static_cast<std::size_t>(m)])
-        seen[static_cast<std::size_t>(m)] = 1, queue.push_back(m);
-  }
-  return false;
 }
 
 // The unknowns: u on the face left of cell (i, j), v on the face below it, each where both cells
@@ -190,7 +166,9 @@ HydrodynamicTortuosity hydrodynamic_tortuosity(const PoreImage& image, const Flo
   std::string why;
   if (!image.IsValid(&why)) throw std::invalid_argument(why);
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
-  if (!spans(image)) throw std::invalid_argument("image: no pore path from the top to the bottom");
+  bool joined = false;  // inside the image, not around through the buffers
+  (void)detail::open_pores(image, &joined);
+  if (!joined) throw std::invalid_argument("image: no pore path from the top to the bottom");
   const int buffer = options.buffer_rows >= 0 ? options.buffer_rows : std::max(4, image.ny / 25);
   HydrodynamicTortuosity out;
   out.buffer_rows = buffer;

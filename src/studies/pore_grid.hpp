@@ -2,6 +2,7 @@
 // The face neighbours of a pixel of a pore image (pore_tortuosity.hpp), shared by its solves.
 // Internal to softdrop_studies.
 #include <cstdint>
+#include <vector>
 
 #include "softdrop/pore_tortuosity.hpp"
 
@@ -19,5 +20,10 @@ inline std::int64_t face_neighbour(const PoreImage& im, int i, int j, int n) {
   }
   return ii + static_cast<std::int64_t>(im.nx) * jj;
 }
+
+// The pore pixels joined through pore faces (periodic in x if the image is) to the top or the
+// bottom row: the others are closed pockets, which carry no flux and would leave a solve
+// singular. `*joined`: whether a pore path joins the top row to the bottom row.
+std::vector<std::uint8_t> open_pores(const PoreImage& im, bool* joined);
 
 }  // namespace softdrop::detail
