@@ -2,7 +2,8 @@
 repository's folders (docs/model.md, src/cli/columns.cpp, ...), and a bare file name of a source
 or a document (simulation.hpp, README.md) in a comment or a Markdown file. Files that commands
 write when they run (results/run/, the studies' db/ folders) and the generated version header are
-named on purpose and listed below.
+named on purpose: those that .gitignore names count as written, the others are listed below. A path
+counts as present only if git lists it, so a file left on one disk does not hide a stale name.
 
     python3 tests/repository_paths.py SOURCE_DIR     (exit 1 and one line a stale path)
 """
@@ -20,6 +21,26 @@ else:  # not a git checkout (a source archive): every file but the build folders
     files = [os.path.relpath(os.path.join(d, n)) for d, sub, found in os.walk(".") for n in found
              if not os.path.relpath(d).startswith(("build", ".git", ".ccache"))]
 names = {os.path.basename(f) for f in files}
+# What a fresh clone holds: the listed files and their folders. A file on this disk that git
+# ignores (a study's database, a build) is not in a fresh clone, so it does not count.
+present = set(files) | {os.path.dirname(f) for f in files}
+for f in list(present):
+    while f:
+        f = os.path.dirname(f)
+        present.add(f)
+
+
+def ignored(named):
+    """True for a path that .gitignore marks as written by a command (results/**/*.db, ...)."""
+    if listed.returncode != 0:
+        return os.path.exists(named)
+    return subprocess.run(["git", "check-ignore", "-q", "--no-index", named]).returncode == 0
+
+
+def exists(named):
+    folder = named.endswith("/")  # a .gitignore pattern "dir/" matches only a name that says it is one
+    named = os.path.normpath(named)
+    return named in present or ignored(named + "/" if folder else named)
 
 # Written by commands when they run, or made by the build: named before they exist.
 WRITTEN = (re.compile(r"^results/run(/|$)"), re.compile(r"^results/\w+/db(/|$)"),
@@ -56,7 +77,7 @@ for path in files:
         named = match.group(1)
         if any(w.search(named) for w in WRITTEN):
             continue
-        if not (os.path.exists(named) or os.path.exists(os.path.join(os.path.dirname(path), named))):
+        if not (exists(named) or exists(os.path.join(os.path.dirname(path), named))):
             stale.append(f"{path}: names {named}, which is not in the repository")
     for match in BARE.finditer(comments(path, text)):
         if match.group(1) not in names:
