@@ -12,7 +12,8 @@ namespace softdrop::bench {
 
 /// medium-200, or the same grain density in a box `side` wide and high (medium-5000: 2500), of
 /// the default grain radii or others.
-inline Medium medium_200(double side = 500, double r_min = MediumOptions{}.r_min, double r_max = MediumOptions{}.r_max) {
+inline Medium medium_200(double side = 500, double r_min = MediumOptions{}.r_min,
+                         double r_max = MediumOptions{}.r_max) {
   MediumOptions mo;
   mo.porosity = 0.7;
   mo.width = mo.height = side;
@@ -33,8 +34,7 @@ inline std::unique_ptr<Simulation> droplet_in_contact(const DropletParams& param
   sim->place_above(428);
   const auto step_to_contact = [&sim] {
     for (int steps = 0; sim->last_penetration() <= 0; ++steps) {
-      if (steps == 100000)
-        throw std::runtime_error("droplet_in_contact: no grain touched in 100 000 steps");
+      if (steps == 100000) throw std::runtime_error("droplet_in_contact: no grain touched in 100 000 steps");
       sim->step();
     }
   };

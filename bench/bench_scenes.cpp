@@ -209,10 +209,14 @@ std::string machine() {
   std::string line, model = "unknown CPU", family, number, flags;
   auto value = [&] { return line.substr(line.find(':') + 2); };
   while (std::getline(cpu, line) && !line.empty()) {  // the first processor's entries
-    if (line.rfind("model name", 0) == 0) model = value();
-    else if (line.rfind("cpu family", 0) == 0) family = value();
-    else if (line.rfind("model", 0) == 0 && line.find(':') != std::string::npos) number = value();
-    else if (line.rfind("flags", 0) == 0) flags = value();
+    if (line.rfind("model name", 0) == 0)
+      model = value();
+    else if (line.rfind("cpu family", 0) == 0)
+      family = value();
+    else if (line.rfind("model", 0) == 0 && line.find(':') != std::string::npos)
+      number = value();
+    else if (line.rfind("flags", 0) == 0)
+      flags = value();
   }
   std::ostringstream s;
   s << model;
@@ -228,8 +232,8 @@ std::string machine() {
     }
   utsname u{};
   uname(&u);
-  s << ", " << std::thread::hardware_concurrency() << " hardware threads, widest vector extension "
-    << vector << ", " << u.sysname << " " << u.release;
+  s << ", " << std::thread::hardware_concurrency() << " hardware threads, widest vector extension " << vector << ", "
+    << u.sysname << " " << u.release;
   return s.str();
 }
 
@@ -253,17 +257,22 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (a == "--scene") scene = value();
-    else if (a == "--repeats") repeats = std::stoi(value());
-    else if (a == "--threads") threads = std::stoi(value());
-    else if (a == "--out") out = value();
-    else if (a == "--lanes") search_lanes = std::stoi(value());
-    else if (a == "--width") width = std::stoi(value());
+    if (a == "--scene")
+      scene = value();
+    else if (a == "--repeats")
+      repeats = std::stoi(value());
+    else if (a == "--threads")
+      threads = std::stoi(value());
+    else if (a == "--out")
+      out = value();
+    else if (a == "--lanes")
+      search_lanes = std::stoi(value());
+    else if (a == "--width")
+      width = std::stoi(value());
     else if (a == "--droplet") {
       const std::string d = value();
       if (d != "defaults" && d != "balloon" && d != "explicit" && d != "exponential") {
-        std::cerr << "bench_scenes: --droplet " << d
-                  << ": must be defaults, balloon, explicit or exponential\n";
+        std::cerr << "bench_scenes: --droplet " << d << ": must be defaults, balloon, explicit or exponential\n";
         return 2;
       }
       droplet_name = d;
@@ -336,12 +345,11 @@ int main(int argc, char** argv) {
     std::sort(ws.begin(), ws.end(), [](const Work& a, const Work& b) { return a.seconds < b.seconds; });
     const Work& best = ws.front();
     const double median = ws[ws.size() / 2].seconds;
-    const int used = name.find("1thread") != std::string::npos || name.rfind("medium", 0) == 0 || name == "free-fall"
-                         ? 1
-                         : threads;
+    const int used =
+        name.find("1thread") != std::string::npos || name.rfind("medium", 0) == 0 || name == "free-fall" ? 1 : threads;
     csv << name << ',' << used << ',' << repeats << ',' << best.grains << ',' << best.seconds << ',' << median << ','
-        << best.steps / best.seconds << ',' << best.mass_updates / best.seconds << ','
-        << best.droplets / best.seconds << ',' << best.evaluations / best.seconds << ',' << peak_rss_mb() << ','
+        << best.steps / best.seconds << ',' << best.mass_updates / best.seconds << ',' << best.droplets / best.seconds
+        << ',' << best.evaluations / best.seconds << ',' << peak_rss_mb() << ','
         << (best.steps > 0 ? best.dropped_steps / best.steps : 0.0) << '\n';
     std::cerr << name << ": " << best.steps / best.seconds << " steps/s, " << best.mass_updates / best.seconds
               << " mass updates/s (min " << best.seconds << " s, median " << median << " s)\n";
@@ -350,7 +358,9 @@ int main(int argc, char** argv) {
     std::cerr << "bench_scenes: unknown scene " << scene << "\n";
     return 2;
   }
-  if (out.empty()) std::cout << csv.str();
-  else std::ofstream(out) << csv.str();
+  if (out.empty())
+    std::cout << csv.str();
+  else
+    std::ofstream(out) << csv.str();
   return 0;
 }

@@ -65,7 +65,9 @@ void BM_SpringsAndPressure(benchmark::State& s) {
 // are skipped); bench_scenes shows what whole runs gain.
 // The collisions as a step after any change of the state runs them: every mass tested against its
 // record (after the first iteration the contact limit's recorded forces are spent).
-void BM_Collisions(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.accumulate_collisions(); }); }
+void BM_Collisions(benchmark::State& s) {
+  stage(s, [](Simulation& sim) { sim.accumulate_collisions(); });
+}
 // The contact limit and the next collisions, as a step runs them: the forces the contact limit
 // records for the masses inside one disc are added with no test.
 void BM_ContactLimitThenCollisions(benchmark::State& s) {
@@ -74,13 +76,26 @@ void BM_ContactLimitThenCollisions(benchmark::State& s) {
     sim.accumulate_collisions();
   });
 }
-void BM_Viscosity(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.accumulate_viscosity(); }); }
-void BM_Integrate(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.integrate(); }); }
+void BM_Viscosity(benchmark::State& s) {
+  stage(s, [](Simulation& sim) { sim.accumulate_viscosity(); });
+}
+void BM_Integrate(benchmark::State& s) {
+  stage(s, [](Simulation& sim) { sim.integrate(); });
+}
 void BM_ConstraintSequential(benchmark::State& s) {
-  stage(s, [](Simulation& sim) { sim.integrate(); sim.apply_constraint(); });
+  stage(s, [](Simulation& sim) {
+    sim.integrate();
+    sim.apply_constraint();
+  });
 }
 void BM_ConstraintRedBlack(benchmark::State& s) {
-  stage(s, [](Simulation& sim) { sim.integrate(); sim.apply_constraint(); }, softdrop::ConstraintOrder::red_black);
+  stage(
+      s,
+      [](Simulation& sim) {
+        sim.integrate();
+        sim.apply_constraint();
+      },
+      softdrop::ConstraintOrder::red_black);
 }
 // The red-black constraint at a given vector width (1 scalar, 2 SSE2, 4 AVX, 8 AVX-512; the same bits): what
 // each width buys where the processor has it.
@@ -88,11 +103,21 @@ void BM_ConstraintRedBlackAtWidth(benchmark::State& s) {
   const softdrop::VectorWidth used =
       softdrop::limit_constraint_vector_width(static_cast<softdrop::VectorWidth>(s.range(1)));
   s.SetLabel("width " + std::to_string(static_cast<int>(used)));
-  stage(s, [](Simulation& sim) { sim.integrate(); sim.apply_constraint(); }, softdrop::ConstraintOrder::red_black);
+  stage(
+      s,
+      [](Simulation& sim) {
+        sim.integrate();
+        sim.apply_constraint();
+      },
+      softdrop::ConstraintOrder::red_black);
   softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
-void BM_ContactLimit(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.apply_contact_limit(); }); }
-void BM_WholeStep(benchmark::State& s) { stage(s, [](Simulation& sim) { sim.step(); }); }
+void BM_ContactLimit(benchmark::State& s) {
+  stage(s, [](Simulation& sim) { sim.apply_contact_limit(); });
+}
+void BM_WholeStep(benchmark::State& s) {
+  stage(s, [](Simulation& sim) { sim.step(); });
+}
 
 // The floor under one droplet's sequential constraint: only the operations its chain of links
 // depends on (the spring's difference from the mass the previous link moved, squared length,
@@ -152,8 +177,8 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
     softdrop::apply_length_constraint_interleaved(states.data(), rings, p.rest_length(), p.max_strain,
                                                   p.constraint_iterations, corrections.data());
   });
-  state.counters["mass-updates/s"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
+  state.counters["mass-updates/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
   softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
 // The stages a batch steps lane by lane (run_interleaved with AVX-512 or AVX, src/sim/lane_layout.hpp)
@@ -177,8 +202,12 @@ void lane_stage(benchmark::State& state, std::int64_t width, const std::string& 
   for (int r = 0; r < rings; ++r) sims.push_back(softdrop::bench::droplet_in_contact(p, medium));
   const std::size_t size = static_cast<std::size_t>(p.masses) * static_cast<std::size_t>(lanes);
   std::vector<double> block(6 * size);
-  double* const a[6] = {block.data(), block.data() + size, block.data() + 2 * size, block.data() + 3 * size,
-                        block.data() + 4 * size, block.data() + 5 * size};
+  double* const a[6] = {block.data(),
+                        block.data() + size,
+                        block.data() + 2 * size,
+                        block.data() + 3 * size,
+                        block.data() + 4 * size,
+                        block.data() + 5 * size};
   std::vector<double*> in[4];
   for (int t = 0; t < lanes; ++t) {
     softdrop::DropletState& st = sims[static_cast<std::size_t>(std::min(t, rings - 1))]->mutable_state();
@@ -200,30 +229,33 @@ void lane_stage(benchmark::State& state, std::int64_t width, const std::string& 
       state.ResumeTiming();
     }
   }
-  state.counters["mass-updates/s"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
+  state.counters["mass-updates/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * p.masses * rings, benchmark::Counter::kIsRate);
   state.counters["seconds/ring"] = benchmark::Counter(static_cast<double>(state.iterations()) * rings,
-                                                 benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+                                                      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
   softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
 void BM_LaneForces(benchmark::State& s) {
   std::vector<double> area(softdrop::lanes::kMaxLanes);
-  lane_stage(s, s.range(2), "", [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
-    softdrop::lanes::forces_before_contacts(c, a[0], a[1], a[2], a[3], a[4], a[5], area.data(), n, r);
-    benchmark::DoNotOptimize(a[4][0]);
-  });
+  lane_stage(s, s.range(2), "",
+             [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+               softdrop::lanes::forces_before_contacts(c, a[0], a[1], a[2], a[3], a[4], a[5], area.data(), n, r);
+               benchmark::DoNotOptimize(a[4][0]);
+             });
 }
 void BM_LaneViscosity(benchmark::State& s) {
-  lane_stage(s, s.range(2), "", [](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
-    softdrop::lanes::viscosity(c, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
-    benchmark::DoNotOptimize(a[4][0]);
-  });
+  lane_stage(s, s.range(2), "",
+             [](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+               softdrop::lanes::viscosity(c, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
+               benchmark::DoNotOptimize(a[4][0]);
+             });
 }
 void BM_LaneCopies(benchmark::State& s) {
-  lane_stage(s, s.range(2), "", [](const softdrop::lanes::StepConstants&, double* const* a, std::vector<double*>* in, int n, int r) {
-    for (int k = 0; k < 4; ++k) softdrop::lanes::copy_in(in[k].data(), a[k], n, r);
-    for (int k = 0; k < 2; ++k) softdrop::lanes::copy_out(in[k].data(), a[k], n, r);
-  });
+  lane_stage(s, s.range(2), "",
+             [](const softdrop::lanes::StepConstants&, double* const* a, std::vector<double*>* in, int n, int r) {
+               for (int k = 0; k < 4; ++k) softdrop::lanes::copy_in(in[k].data(), a[k], n, r);
+               for (int k = 0; k < 2; ++k) softdrop::lanes::copy_out(in[k].data(), a[k], n, r);
+             });
 }
 // Integration and each constraint order lane by lane, as BM_ConstraintSequentialInterleaved but
 // without its copies in and out.
@@ -232,13 +264,15 @@ void BM_LaneConstraint(benchmark::State& s) {
   softdrop::DropletParams p;
   const double dmax = (1 + p.max_strain) * p.rest_length(), dmin = (1 - p.max_strain) * p.rest_length();
   std::vector<int> counts(softdrop::lanes::kMaxLanes);
-  lane_stage(s, s.range(3), red_black ? "red-black, " : "sequential, ", [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
-    softdrop::lanes::integrate(c.h2m, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
-    if (red_black)
-      softdrop::lanes::constrain_red_black(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
-    else
-      softdrop::lanes::constrain_sequential(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
-  });
+  lane_stage(
+      s, s.range(3), red_black ? "red-black, " : "sequential, ",
+      [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+        softdrop::lanes::integrate(c.h2m, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
+        if (red_black)
+          softdrop::lanes::constrain_red_black(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
+        else
+          softdrop::lanes::constrain_sequential(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());
+      });
 }
 BENCHMARK(BM_LaneConstraint)->ArgsProduct({{24}, {8, 16, 24}, {0, 1}, {8, 4}});
 BENCHMARK(BM_LaneForces)->ArgsProduct({{24}, {8, 24}, {8, 4}});

@@ -29,10 +29,9 @@ void BM_StepMedium200(benchmark::State& state) {
     }
   }
   state.counters["grains"] = static_cast<double>(medium.grains.size());
-  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations()),
-                                                 benchmark::Counter::kIsRate);
-  state.counters["mass-updates/s"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * p.masses, benchmark::Counter::kIsRate);
+  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["mass-updates/s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * p.masses, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_StepMedium200)->Arg(16)->Arg(24)->Arg(40)->Arg(128);
 

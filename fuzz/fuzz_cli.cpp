@@ -22,8 +22,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!current.empty()) args.push_back(current);
   // Options that would read files, print help or run are left to the other targets and tests.
   for (const std::string& a : args)
-    if (a.rfind("--config", 0) == 0 || a == "--help" || a == "-h" || a == "--help-all" || a == "--version")
-      return 0;
+    if (a.rfind("--config", 0) == 0 || a == "--help" || a == "-h" || a == "--help-all" || a == "--version") return 0;
   std::vector<const char*> argv;
   for (const std::string& a : args) argv.push_back(a.c_str());
   parse_and_check(argv);

@@ -1,5 +1,7 @@
 // softdrop.held_out: the held-out value of a medium, as `softdrop validate` gives it, with every
 // droplet as columns for a DataFrame.
+#include "softdrop/held_out.hpp"
+
 #include <pybind11/stl.h>
 
 #include <cmath>
@@ -7,7 +9,6 @@
 #include <string>
 
 #include "bindings.hpp"
-#include "softdrop/held_out.hpp"
 
 namespace softdrop::python {
 namespace {

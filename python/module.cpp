@@ -16,7 +16,7 @@
 #include <type_traits>
 
 #include "bindings.hpp"
-#include "values.hpp"
+#include "cli/columns.hpp"
 #include "cli/common_options.hpp"
 #include "softdrop/area_trace.hpp"
 #include "softdrop/batch.hpp"
@@ -25,17 +25,17 @@
 #include "softdrop/medium.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/rigid_descent.hpp"
-#include "cli/columns.hpp"
 #include "softdrop/simulation.hpp"
 #include "softdrop/version.hpp"
+#include "values.hpp"
 
 namespace py = pybind11;
 using namespace softdrop;
 namespace cli = softdrop::cli;
 using softdrop::python::bind_commands;
 using softdrop::python::bind_held_out;
-using softdrop::python::stop_on_ctrl_c;
 using softdrop::python::bind_stores;
+using softdrop::python::stop_on_ctrl_c;
 
 namespace {
 
@@ -44,7 +44,8 @@ void set_keywords(py::object self, const py::kwargs& kwargs) {
   for (const auto& [key, value] : kwargs) {
     const std::string name = py::str(key);
     if (!py::hasattr(self, name.c_str()))
-      throw std::invalid_argument(name + ": not a parameter of " + std::string(py::str(self.get_type().attr("__name__"))));
+      throw std::invalid_argument(name + ": not a parameter of " +
+                                  std::string(py::str(self.get_type().attr("__name__"))));
     py::setattr(self, name.c_str(), value);
   }
 }
@@ -84,7 +85,8 @@ py::array_t<double> grain_array(const Medium& m) {
 
 // A boolean image of the box, rows from the top: True in the pore space (PoreSpy's convention).
 py::array_t<bool> pore_image(const Medium& m, int pixels) {
-  if (pixels < 1 || pixels > 20000) throw std::invalid_argument("pixels = " + std::to_string(pixels) + ": must be in [1, 20000]");
+  if (pixels < 1 || pixels > 20000)
+    throw std::invalid_argument("pixels = " + std::to_string(pixels) + ": must be in [1, 20000]");
   const double scale = pixels / m.width;
   const auto rows = static_cast<py::ssize_t>(std::max(1.0, std::round(m.height * scale)));
   py::array_t<bool> image({rows, static_cast<py::ssize_t>(pixels)});
@@ -156,9 +158,7 @@ void bind_droplet_fields(py::class_<DropletParams>& cls) {
                 with_field(p, [&](const T& v) { out = to_string(v); });
                 return out;
               },
-              [with_field](DropletParams& p, const std::string& v) {
-                with_field(p, [&](T& f) { parse_name(v, &f); });
-              },
+              [with_field](DropletParams& p, const std::string& v) { with_field(p, [&](T& f) { parse_name(v, &f); }); },
               field.help);
         } else {
           cls.def_property(
@@ -191,20 +191,17 @@ PYBIND11_MODULE(_core, m) {
   droplet.def_static("balloon", &DropletParams::balloon,
                      "The balloon: the droplet held at its stretch limit, as results/calibration/balloon.toml "
                      "(whose grains, radii 8 to 16, go to Medium.generate)");
-  droplet.def_static(
-      "explicit_step", &DropletParams::explicit_step,
-      "The defaults' droplet with the explicit viscosity step (the reference) at the dt it needs, "
-      "3.5e-6, and the defaults' nu = 1.37e5, as results/calibration/explicit.toml, at 1.7 times the "
-      "steps");
-  droplet.def_static(
-      "exponential_step", &DropletParams::exponential_step,
-      "The droplet calibrated for the exponential viscosity step, nu = 2.8e5 at dt = 6e-6, as "
-      "results/calibration/exponential.toml: the defaults' <T>(phi) within 0.02, but not converged "
-      "in dt (its <T> rises by 0.015 to 0.04 at dt / 2)");
-  droplet.def_static(
-      "passage", &DropletParams::passage,
-      "A smaller droplet with a stiffer ring, for more passage at low porosity, as "
-      "results/calibration/passage.toml (whose grains, radii 26 to 50, go to Medium.generate)");
+  droplet.def_static("explicit_step", &DropletParams::explicit_step,
+                     "The defaults' droplet with the explicit viscosity step (the reference) at the dt it needs, "
+                     "3.5e-6, and the defaults' nu = 1.37e5, as results/calibration/explicit.toml, at 1.7 times the "
+                     "steps");
+  droplet.def_static("exponential_step", &DropletParams::exponential_step,
+                     "The droplet calibrated for the exponential viscosity step, nu = 2.8e5 at dt = 6e-6, as "
+                     "results/calibration/exponential.toml: the defaults' <T>(phi) within 0.02, but not converged "
+                     "in dt (its <T> rises by 0.015 to 0.04 at dt / 2)");
+  droplet.def_static("passage", &DropletParams::passage,
+                     "A smaller droplet with a stiffer ring, for more passage at low porosity, as "
+                     "results/calibration/passage.toml (whose grains, radii 26 to 50, go to Medium.generate)");
   bind_droplet_fields(droplet);
   std::vector<std::string> droplet_fields;
   DropletParams defaults;
@@ -220,8 +217,9 @@ PYBIND11_MODULE(_core, m) {
       .def_readwrite("rest_window", &RunOptions::rest_window)
       .def_readwrite("rest_distance", &RunOptions::rest_distance)
       .def_readwrite("path_interval", &RunOptions::path_interval);
-  python::def_value_semantics(run_options, {"max_steps", "stuck_window", "stuck_distance", "rest_window",
-                                            "rest_distance", "path_interval"}, "RunOptions");
+  python::def_value_semantics(
+      run_options, {"max_steps", "stuck_window", "stuck_distance", "rest_window", "rest_distance", "path_interval"},
+      "RunOptions");
 
   const MediumOptions kMedium;  // the program's defaults are the module's
   py::class_<Medium>(m, "Medium", "A box of disc grains (length units)")
@@ -316,7 +314,8 @@ PYBIND11_MODULE(_core, m) {
   m.def("_columns", [] {
     py::dict d;
     py::list names, units, meanings;
-    for (const cli::ColumnName& c : cli::column_names()) names.append(c.name), units.append(c.unit), meanings.append(c.meaning);
+    for (const cli::ColumnName& c : cli::column_names())
+      names.append(c.name), units.append(c.unit), meanings.append(c.meaning);
     d["name"] = names, d["unit"] = units, d["meaning"] = meanings;
     return d;
   });
@@ -329,8 +328,10 @@ PYBIND11_MODULE(_core, m) {
       [](const Medium& medium, double x0, const DropletParams& params, const RunOptions& run, bool path,
          int trace_interval) {
         check(params, run);
-        if (!(x0 >= 0 && x0 <= medium.width)) throw std::invalid_argument("x0 = " + std::to_string(x0) + ": must be in [0, width]");
-        if (trace_interval < 0) throw std::invalid_argument("trace_interval = " + std::to_string(trace_interval) + ": must be >= 1");
+        if (!(x0 >= 0 && x0 <= medium.width))
+          throw std::invalid_argument("x0 = " + std::to_string(x0) + ": must be in [0, width]");
+        if (trace_interval < 0)
+          throw std::invalid_argument("trace_interval = " + std::to_string(trace_interval) + ": must be >= 1");
         RunOptions options = run;
         if (path && options.path_interval == 0) options.path_interval = 100;
         bool interrupted = false;
@@ -370,7 +371,8 @@ PYBIND11_MODULE(_core, m) {
       [](const Medium& medium, int droplets, std::uint64_t seed, int threads, const DropletParams& params,
          const RunOptions& run) {
         check(params, run);
-        if (droplets < 1 || droplets > 10'000'000) throw std::invalid_argument("n = " + std::to_string(droplets) + ": must be in [1, 1e7]");
+        if (droplets < 1 || droplets > 10'000'000)
+          throw std::invalid_argument("n = " + std::to_string(droplets) + ": must be in [1, 1e7]");
         cli::check_threads(threads);  // the program's rule and message
         BatchOptions batch;
         batch.droplets = droplets, batch.seed = seed, batch.threads = threads;

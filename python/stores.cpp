@@ -1,9 +1,9 @@
 // Search histories and sweep stores read into columns (a dict of equal-length lists per table,
 // which pandas takes as a DataFrame), through the store interfaces the program reads them with.
-#include <cmath>
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
@@ -57,18 +57,35 @@ auto in_store(Read&& read) {
 
 py::dict history_tables(History& h, bool arrangements) {
   // The columns of the database's views (runs_view, ...), in their order.
-  Columns runs({"run", "created", "updated", "version", "status", "strategy", "objective", "seed", "lambda", "grains",
-                "width", "height", "periodic", "generations", "evaluations", "droplets", "best_tortuosity",
-                "best_generation", "island", "archipelago", "params"});
+  Columns runs({"run",         "created",  "updated",         "version",         "status", "strategy",    "objective",
+                "seed",        "lambda",   "grains",          "width",           "height", "periodic",    "generations",
+                "evaluations", "droplets", "best_tortuosity", "best_generation", "island", "archipelago", "params"});
   Columns gens({"run", "generation", "kind", "accepted_candidate", "best_tortuosity", "touched", "seconds", "finished",
                 "state", "parent_tortuosity", "parent_passed"});
   Columns cands({"run", "generation", "candidate", "kind", "moved_grain", "moved", "outcome", "reason", "tortuosity",
                  "steps", "touched", "seconds", "droplets", "passed"});
   Columns grains({"run", "generation", "grain", "x", "y", "r", "touched"});
   Columns paths({"run", "generation", "point", "x", "y"});
-  Columns held({"run", "generation", "seed", "starts", "created", "version", "dt", "passed", "mean_tortuosity",
-                "standard_error", "q1", "median", "q3", "half_dt", "half_dt_passed", "half_dt_mean_tortuosity",
-                "half_dt_standard_error", "paired", "dt_shift", "dt_shift_error"});
+  Columns held({"run",
+                "generation",
+                "seed",
+                "starts",
+                "created",
+                "version",
+                "dt",
+                "passed",
+                "mean_tortuosity",
+                "standard_error",
+                "q1",
+                "median",
+                "q3",
+                "half_dt",
+                "half_dt_passed",
+                "half_dt_mean_tortuosity",
+                "half_dt_standard_error",
+                "paired",
+                "dt_shift",
+                "dt_shift_error"});
   for (const RunRecord& r : h.runs()) {
     for (const ValidationRecord& v : h.validations(r.id)) {
       held["run"].append(r.id), held["generation"].append(v.generation), held["seed"].append(v.seed);
@@ -86,7 +103,7 @@ py::dict history_tables(History& h, bool arrangements) {
     const auto params = nlohmann::json::parse(r.params, nullptr, false);
     const auto param = [&](const char* key, const char* otherwise) {
       return params.is_object() && params.contains(key) && params[key].is_string() ? params[key].get<std::string>()
-                                                                                    : std::string(otherwise);
+                                                                                   : std::string(otherwise);
     };
     runs["run"].append(r.id), runs["created"].append(r.created), runs["updated"].append(r.updated);
     runs["version"].append(r.version), runs["status"].append(r.status);
@@ -94,7 +111,8 @@ py::dict history_tables(History& h, bool arrangements) {
     runs["seed"].append(r.seed);
     runs["lambda"].append(r.lambda), runs["grains"].append(r.grains), runs["width"].append(r.width);
     runs["height"].append(r.height), runs["periodic"].append(r.periodic), runs["generations"].append(r.generations);
-    runs["evaluations"].append(r.evaluations), runs["droplets"].append(r.droplets), runs["best_tortuosity"].append(r.best_t);
+    runs["evaluations"].append(r.evaluations), runs["droplets"].append(r.droplets),
+        runs["best_tortuosity"].append(r.best_t);
     runs["best_generation"].append(r.best_generation), runs["params"].append(r.params);
     runs["island"].append(or_none(r.island >= 0, py::int_(r.island)));
     runs["archipelago"].append(or_none(r.archipelago > 0, py::int_(r.archipelago)));
@@ -140,14 +158,13 @@ py::dict history_tables(History& h, bool arrangements) {
 
 py::dict sweep_tables(SweepStore& store, std::int64_t only) {
   Columns sweeps({"sweep", "created", "updated", "version", "status", "params", "units", "done"});
-  Columns media({"sweep", "porosity_index", "medium_index", "target_porosity", "porosity", "grains",
-                 "medium_seed", "droplets", "passed", "stuck", "timeout", "diverged", "mean_tortuosity", "standard_error",
+  Columns media({"sweep", "porosity_index", "medium_index", "target_porosity", "porosity", "grains", "medium_seed",
+                 "droplets", "passed", "stuck", "timeout", "diverged", "mean_tortuosity", "standard_error",
                  "stuck_fraction", "seconds"});
-  Columns droplets({"sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity",
-                    "steps"});
+  Columns droplets({"sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity", "steps"});
   Columns points({"sweep", "target_porosity", "porosity", "media", "droplets", "passed", "mean_tortuosity",
-                  "standard_error", "media_passed", "media_standard_error", "stuck_fraction",
-                  "per_medium_tortuosity", "per_medium_standard_error"});
+                  "standard_error", "media_passed", "media_standard_error", "stuck_fraction", "per_medium_tortuosity",
+                  "per_medium_standard_error"});
   const std::vector<SweepRecord> all = only > 0 ? std::vector<SweepRecord>{store.sweep(only)} : store.sweeps();
   for (const SweepRecord& s : all) {
     sweeps["sweep"].append(s.id), sweeps["created"].append(s.created), sweeps["updated"].append(s.updated);
@@ -157,7 +174,8 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
     for (const SweepMedium& m : stored) {
       media["sweep"].append(s.id), media["porosity_index"].append(m.unit.porosity);
       media["medium_index"].append(m.unit.medium), media["target_porosity"].append(m.target_porosity);
-      media["porosity"].append(m.porosity), media["grains"].append(m.grains), media["medium_seed"].append(m.medium_seed);
+      media["porosity"].append(m.porosity), media["grains"].append(m.grains),
+          media["medium_seed"].append(m.medium_seed);
       media["droplets"].append(m.droplets.size()), media["passed"].append(m.passed), media["stuck"].append(m.stuck);
       media["timeout"].append(m.timeout), media["diverged"].append(m.diverged);
       media["mean_tortuosity"].append(m.passed ? m.mean_t : kNaN);
@@ -195,7 +213,8 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
 py::array_t<double> xy_array(const std::vector<double>& x, const std::vector<double>& y) {
   py::array_t<double> a({static_cast<py::ssize_t>(x.size()), py::ssize_t{2}});
   auto v = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < x.size(); ++i) v(static_cast<py::ssize_t>(i), 0) = x[i], v(static_cast<py::ssize_t>(i), 1) = y[i];
+  for (std::size_t i = 0; i < x.size(); ++i)
+    v(static_cast<py::ssize_t>(i), 0) = x[i], v(static_cast<py::ssize_t>(i), 1) = y[i];
   return a;
 }
 
@@ -204,7 +223,8 @@ PyObject* store_error() { return g_store_error; }
 void bind_stores(py::module_& m) {
   // A file the store refuses (missing, foreign, damaged), wherever it is opened: the store's one
   // line, naming the file.
-  static py::exception<DatabaseError> error = py::register_exception<DatabaseError>(m, "StoreError", PyExc_RuntimeError);
+  static py::exception<DatabaseError> error =
+      py::register_exception<DatabaseError>(m, "StoreError", PyExc_RuntimeError);
   g_store_error = error.ptr();
 
   m.def(

@@ -19,8 +19,7 @@ py::array_t<double> field(const PoreImage& im, const std::vector<double>& values
   py::array_t<double> a({static_cast<py::ssize_t>(im.ny), static_cast<py::ssize_t>(im.nx)});
   auto v = a.mutable_unchecked<2>();
   for (int j = 0; j < im.ny; ++j)
-    for (int i = 0; i < im.nx; ++i)
-      v(im.ny - 1 - j, i) = values[static_cast<std::size_t>(i + im.nx * j)];
+    for (int i = 0; i < im.nx; ++i) v(im.ny - 1 - j, i) = values[static_cast<std::size_t>(i + im.nx * j)];
   return a;
 }
 
@@ -73,7 +72,8 @@ void bind_tortuosity(py::module_& m) {
   m.def(
       "_tortuosity_of_image",
       [](const py::array& image, double pixel_size, bool periodic, bool flow, int buffer_rows) {
-        if (image.ndim() != 2) throw std::invalid_argument("image: a 2D array, not " + std::to_string(image.ndim()) + "D");
+        if (image.ndim() != 2)
+          throw std::invalid_argument("image: a 2D array, not " + std::to_string(image.ndim()) + "D");
         if (image.shape(0) < 1 || image.shape(1) < 1) throw std::invalid_argument("image: empty");
         if (!(pixel_size > 0) || !std::isfinite(pixel_size))
           throw std::invalid_argument("pixel_size = " + std::to_string(pixel_size) + ": must be finite and > 0");

@@ -1,9 +1,8 @@
 // Values a command used to take without a word, or refuse with a line the user never wrote: each
 // is now refused with one line naming the option or file, and nothing is written.
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
-
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <filesystem>
 #include <fstream>
@@ -63,13 +62,15 @@ TEST(BadInputLines, OptionsACommandWouldIgnoreAreRefused) {
   const std::string medium = fresh("ignored.json"), store = fresh("ignored_sweep.db");
   ASSERT_EQ(run("simulate --x0 250 --save-medium " + medium).code, 0);
   ASSERT_EQ(run("sweep --db " + store + " --porosities 0.8 --media 4 --droplets 2 --quiet").code, 0);
-  expect_lines({{"simulate --medium " + medium + " --porosity 0.5", "porosity: has no effect with --medium"},
-                {"simulate --medium " + medium + " --walls", "walls: has no effect with --medium"},
-                {"simulate --snapshot-times 0.1", "snapshot-times: has no effect without --snapshots"},
-                {"simulate --trace-interval 50", "trace-interval: has no effect without --trace"},
-                {"simulate --trace-interval 0 --trace " + temp_path("t.csv"), "--trace-interval: '0' is not a whole number >= 1"},
-                {"averagings --db " + store + " --group 0", "--group: '0' is not a whole number >= 1"},
-                {"render snapshots --times 0.01,1e308 -o " + temp_path("t.png"), "times: 1e+308 is after the run's last step"}});
+  expect_lines(
+      {{"simulate --medium " + medium + " --porosity 0.5", "porosity: has no effect with --medium"},
+       {"simulate --medium " + medium + " --walls", "walls: has no effect with --medium"},
+       {"simulate --snapshot-times 0.1", "snapshot-times: has no effect without --snapshots"},
+       {"simulate --trace-interval 50", "trace-interval: has no effect without --trace"},
+       {"simulate --trace-interval 0 --trace " + temp_path("t.csv"),
+        "--trace-interval: '0' is not a whole number >= 1"},
+       {"averagings --db " + store + " --group 0", "--group: '0' is not a whole number >= 1"},
+       {"render snapshots --times 0.01,1e308 -o " + temp_path("t.png"), "times: 1e+308 is after the run's last step"}});
   // A config file may name a generated medium's grains (the installed droplets' configs do).
   const Result r = run("simulate --medium " + medium + " --x0 250 --config " + SOFTDROP_SOURCE_DIR +
                        "/results/calibration/passage.toml");
@@ -84,13 +85,16 @@ TEST(BadInputLines, GrainFilesNameTheFieldNotTheJsonLibrary) {
            {R"({"format": 3, "version": 1})", "\"format\" must be \"softdrop-medium\""},
            {head + R"("height": 10, "grains": []})", "\"width\" is missing"},
            {head + R"("width": "wide", "height": 10, "grains": []})", "\"width\" must be a number, not string"},
-           {head + R"("width": 100, "height": 10, "periodic": 1, "grains": []})", "\"periodic\" must be true or false, not number"},
+           {head + R"("width": 100, "height": 10, "periodic": 1, "grains": []})",
+            "\"periodic\" must be true or false, not number"},
            {head + R"("width": 100, "height": 10})", "\"grains\" is missing"},
            {head + R"("width": 100, "height": 10, "grains": {}})", "\"grains\" must be an array"},
            {head + R"("width": 100, "height": 10, "grains": [3]})", "grain 0: must be an object"},
            {head + R"("width": 100, "height": 10, "grains": [{"x": 1, "y": 2}]})", "grain 0: \"r\" is missing"},
-           {head + R"("width": 100, "height": 10, "grains": [{"x": 1, "y": null, "r": 2}]})", "grain 0: \"y\" must be a number, not null"},
-           {head + R"("width": 1e308, "height": 100, "grains": [{"x": 1, "y": 2, "r": 3}]})", "width = 1e+308: must be in (0, 1e9]"}}) {
+           {head + R"("width": 100, "height": 10, "grains": [{"x": 1, "y": null, "r": 2}]})",
+            "grain 0: \"y\" must be a number, not null"},
+           {head + R"("width": 1e308, "height": 100, "grains": [{"x": 1, "y": 2, "r": 3}]})",
+            "width = 1e+308: must be in (0, 1e9]"}}) {
     write(f, text);
     SCOPED_TRACE(text);
     const Result r = run("simulate --medium " + f);
@@ -117,8 +121,9 @@ TEST(BadInputLines, MessagesSayWhatIsWrong) {
     f.seekp(18);
     f.put(static_cast<char>(7));
   }
-  expect_lines({{"optimize --db " + db + " --resume 1 --generations 3 --quiet", "damaged SQLite header (file format versions 7"},
-                {"history --db " + db, "damaged SQLite header"}});
+  expect_lines(
+      {{"optimize --db " + db + " --resume 1 --generations 3 --quiet", "damaged SQLite header (file format versions 7"},
+       {"history --db " + db, "damaged SQLite header"}});
 }
 
 TEST(BadInputLines, AFileTheUserCannotReadIsSaidSo) {
@@ -174,7 +179,8 @@ TEST(BadInputLines, DamagedRowsAreRefused) {
   // An edited copy of a medium no longer merges: every summary column is compared.
   const std::string edited = fresh("rows_edited.db"), into = fresh("rows_into.db");
   fs::copy_file(store_seed, edited);
-  SQLite::Database(edited, SQLite::OPEN_READWRITE).exec("UPDATE sweep_media SET mean_t = mean_t + 0.25 WHERE mean_t IS NOT NULL");
+  SQLite::Database(edited, SQLite::OPEN_READWRITE)
+      .exec("UPDATE sweep_media SET mean_t = mean_t + 0.25 WHERE mean_t IS NOT NULL");
   const Result r = run("sweep-merge --into " + into + " " + store_seed + " " + edited);
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("differs from the copy in '" + store_seed + "'"), std::string::npos) << r.err;

@@ -28,7 +28,8 @@ TEST(BadValues, GetOneLineNamingTheOption) {
            Case{"simulate --x0 nan", "--x0: 'nan' is not a finite number", 2},
            Case{"simulate --x0 inf", "--x0: 'inf' is not a finite number", 2},
            Case{"simulate --x0 -1e300", "x0 = -1e+300: the droplet must start inside the box", 1},
-           Case{"simulate --walls --x0 600 --width 500", "x0 = 600: the droplet must start inside the box, x0 in [8, 492]", 1},
+           Case{"simulate --walls --x0 600 --width 500",
+                "x0 = 600: the droplet must start inside the box, x0 in [8, 492]", 1},
            Case{"render snapshots --times 0.01 -o " + temp_path("s.png") + " --x0 -3", "x0 = -3", 1},
            Case{"optimize --db " + db + " --seed -1", "--seed: '-1' is not a whole number in [0, 2^64 - 1]", 2},
            Case{"optimize --db " + db + " --seed 18446744073709551616", "is more than 2^64 - 1", 2},
@@ -60,14 +61,15 @@ TEST(Check, CatchesGrainCountsAndPorositiesTheRunCannotPlace) {
   struct Case {
     std::string args, says;
   };
-  for (const Case& c : {Case{"optimize --db " + db + " --grains 100000",
-                             "grains = 100000: cannot fit in 500 x 500: even the smallest grains (radius 16, gap 0.13) "
-                             "would need more than the box's area; at most 275"},
-                        Case{"optimize --db " + db + " --grains 100", "grains = 100: do not fit in the box"},
-                        Case{"simulate --kind non-overlapping --porosity 0.35 --width 200 --height 200",
-                             "porosity = 0.35: unreachable for non-overlapping grains"},
-                        Case{"sweep --db " + db + " --kind non-overlapping --porosities 0.8,0.4 --width 200 --height 200",
-                             "porosity = 0.4: unreachable"}}) {
+  for (const Case& c :
+       {Case{"optimize --db " + db + " --grains 100000",
+             "grains = 100000: cannot fit in 500 x 500: even the smallest grains (radius 16, gap 0.13) "
+             "would need more than the box's area; at most 275"},
+        Case{"optimize --db " + db + " --grains 100", "grains = 100: do not fit in the box"},
+        Case{"simulate --kind non-overlapping --porosity 0.35 --width 200 --height 200",
+             "porosity = 0.35: unreachable for non-overlapping grains"},
+        Case{"sweep --db " + db + " --kind non-overlapping --porosities 0.8,0.4 --width 200 --height 200",
+             "porosity = 0.4: unreachable"}}) {
     SCOPED_TRACE(c.args);
     const Result r = run("--check " + c.args);
     EXPECT_EQ(r.code, 1) << r.err;
@@ -203,7 +205,8 @@ TEST(GrainFiles, ByteOrderMarkJunkAndGrainsOutsideTheBox) {
   EXPECT_EQ(read_csv("\xEF\xBB\xBF" + body).grains.size(), 1u);
   EXPECT_EQ(refusal("# width=100\n# height=50\nx,y,r\n4\x01\xff,25,3\n"),
             "grain file 'm.csv': line 4: '4\\x01\\xff' is not a number");
-  EXPECT_EQ(refusal("\x80\x81z\n"), "grain file 'm.csv': line 1: expected header x,y,r,width,height,periodic (or x,y,r), got '\\x80\\x81z'");
+  EXPECT_EQ(refusal("\x80\x81z\n"),
+            "grain file 'm.csv': line 1: expected header x,y,r,width,height,periodic (or x,y,r), got '\\x80\\x81z'");
   // A grain reaching into the box is a grain of the medium; one wholly above or below is refused.
   EXPECT_EQ(read_csv("# width=100\n# height=50\nx,y,r\n40,52,3\n40,-2,3\n").grains.size(), 2u);
   for (const std::string y : {"53.5", "-3", "1e300"}) {

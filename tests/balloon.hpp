@@ -17,7 +17,6 @@ inline constexpr double kBalloonRMin = 8, kBalloonRMax = 16;
 
 /// The small search scene of search_fixtures.hpp (16 non-overlapping grains in 160 x 120, medium
 /// seed 2) with the balloon.
-inline const std::string kSmallScene =
-    " --grains 16 --width 160 --height 120 --medium-seed 2 " + kBalloonOptions;
+inline const std::string kSmallScene = " --grains 16 --width 160 --height 120 --medium-seed 2 " + kBalloonOptions;
 
 }  // namespace softdrop::test

@@ -1,20 +1,20 @@
 // The calibration against the paper: scan grids, area traces, one setting's figures and score,
 // determinism, and the command's bad input.
+#include "softdrop/calibration.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <type_traits>
-
-#include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
 #include "fixtures.hpp"
 #include "softdrop/area_trace.hpp"
-#include "softdrop/calibration.hpp"
 
 namespace {
 using namespace softdrop;
@@ -36,13 +36,13 @@ TEST(ScanAxis, BadAxesNameWhatIsWrong) {
   struct Case {
     std::string text, says;
   };
-  for (const Case& c : {Case{"mass", "expected name=values"}, Case{"colour=1", "unknown parameter 'colour'"},
-                        Case{"mass=", "no values"}, Case{"mass=1,,2", "'' is not a finite number"},
-                        Case{"mass=nan", "'nan' is not a finite number"}, Case{"mass=1,inf", "'inf' is not"},
-                        Case{"mass=1:0.1:3", "inverted range"}, Case{"mass=0.1:1:1", "n must be a whole number"},
-                        Case{"mass=0.1:1:2.5", "n must be"}, Case{"nrt=0:1e6:3:log", "log range needs lo > 0"},
-                        Case{"mass=1:2", "lo:hi:n"}, Case{"masses=20.5", "whole numbers"},
-                        Case{"masses=1e300", "whole numbers"}}) {
+  for (const Case& c :
+       {Case{"mass", "expected name=values"}, Case{"colour=1", "unknown parameter 'colour'"},
+        Case{"mass=", "no values"}, Case{"mass=1,,2", "'' is not a finite number"},
+        Case{"mass=nan", "'nan' is not a finite number"}, Case{"mass=1,inf", "'inf' is not"},
+        Case{"mass=1:0.1:3", "inverted range"}, Case{"mass=0.1:1:1", "n must be a whole number"},
+        Case{"mass=0.1:1:2.5", "n must be"}, Case{"nrt=0:1e6:3:log", "log range needs lo > 0"},
+        Case{"mass=1:2", "lo:hi:n"}, Case{"masses=20.5", "whole numbers"}, Case{"masses=1e300", "whole numbers"}}) {
     SCOPED_TRACE(c.text);
     try {
       parse_scan_axis(c.text);
@@ -58,8 +58,8 @@ TEST(ScanAxis, BadAxesNameWhatIsWrong) {
 // setting of it changes that field and no other; the enum constraint-order cannot.
 TEST(ScanAxis, EveryNumericDropletFieldCanBeScanned) {
   const std::vector<std::string> names = scan_parameter_names();
-  for (const std::string key : {"masses", "radius", "gravity", "dt", "max-strain", "constraint-iterations",
-                                 "viscosity-dilation"})
+  for (const std::string key :
+       {"masses", "radius", "gravity", "dt", "max-strain", "constraint-iterations", "viscosity-dilation"})
     EXPECT_NE(std::find(names.begin(), names.end(), key), names.end()) << key;
   EXPECT_EQ(std::find(names.begin(), names.end(), "constraint-order"), names.end());
   const DropletParams base;
@@ -187,8 +187,7 @@ TEST(Calibration, FiguresAddUpAndDoNotDependOnThreads) {
     const double miss = p1.passed >= 2 ? p1.mean_t - p1.paper_t : p1.paper_t - 1;
     sum2 += miss * miss;
     if (p1.passed >= 2) measured2 += miss * miss, ++measured;
-    EXPECT_EQ(p1.within,
-              p1.passed >= 2 && std::abs(miss) <= std::max(0.03, 2 * p1.media_standard_error));
+    EXPECT_EQ(p1.within, p1.passed >= 2 && std::abs(miss) <= std::max(0.03, 2 * p1.media_standard_error));
     within += p1.within;
   }
   EXPECT_DOUBLE_EQ(a.rms_distance, std::sqrt(sum2 / 2));
@@ -272,9 +271,11 @@ TEST(Calibration, RefusesBadOptionsAndUnstableDroplets) {
 
 TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
   const std::string csv = temp_path("cal.csv"), points = temp_path("cal_points.csv"), plot = temp_path("cal.png");
-  const auto r = run("calibrate --porosities 0.8 --media 1 --droplets 2 --width 200 --height 200 --trace-media 1 "
-                     "--trace-droplets 1 --scan nrt=1e8,6e8 --scan mass=1,1e-4 --skip-unstable --quiet --format csv "
-                     "--csv " + csv + " --points " + points + " --plot " + plot);
+  const auto r =
+      run("calibrate --porosities 0.8 --media 1 --droplets 2 --width 200 --height 200 --trace-media 1 "
+          "--trace-droplets 1 --scan nrt=1e8,6e8 --scan mass=1,1e-4 --skip-unstable --quiet --format csv "
+          "--csv " +
+          csv + " --points " + points + " --plot " + plot);
   ASSERT_EQ(r.code, 0) << r.err;
   std::ifstream in(csv);
   std::string header, line;
@@ -296,9 +297,11 @@ TEST(CalibrateCommand, WritesRankedSettingsAndPoints) {
   EXPECT_EQ(point_rows, 1 + 2);  // the two settings that ran, one porosity each
   EXPECT_TRUE(std::filesystem::exists(plot));
   // Explicit settings instead of a grid: one row each, in the order given.
-  const auto two = run("calibrate --porosities 0.8 --media 1 --droplets 2 --width 200 --height 200 --trace-media 0 "
-                       "--quiet --setting 'radius=8 nrt=3e8' --setting 'wider: radius=9' --setting 'as given:' "
-                       "--radius 7 --csv " + csv);
+  const auto two =
+      run("calibrate --porosities 0.8 --media 1 --droplets 2 --width 200 --height 200 --trace-media 0 "
+          "--quiet --setting 'radius=8 nrt=3e8' --setting 'wider: radius=9' --setting 'as given:' "
+          "--radius 7 --csv " +
+          csv);
   ASSERT_EQ(two.code, 0) << two.err;
   std::ifstream again(csv);
   std::vector<std::string> lines;
@@ -331,17 +334,14 @@ TEST(CalibrateCommand, BadInputIsOneLineNamingIt) {
   };
   for (const Case& c :
        {Case{"--scan mass=1:0.1:3", "scan 'mass=1:0.1:3': inverted range"},
-        Case{"--scan mass=", "scan 'mass=': no values"},
-        Case{"--scan viscosity=nan", "'nan' is not a finite number"},
+        Case{"--scan mass=", "scan 'mass=': no values"}, Case{"--scan viscosity=nan", "'nan' is not a finite number"},
         Case{"--scan mass=1 --scan mass=2", "mass scanned twice"},
         Case{"--scan mass=1,1e-4", "setting 1: dt = 6e-06: too large for the stiffness"},
         Case{"--porosities 0.5,1.2", "porosit"}, Case{"--trace-media -1", "trace-media = -1"},
-        Case{"--best 0", "best = 0"},
-        Case{"--setting mass=1 --scan nrt=1e8", "--setting and --scan do not mix"},
+        Case{"--best 0", "best = 0"}, Case{"--setting mass=1 --scan nrt=1e8", "--setting and --scan do not mix"},
         Case{"--setting 'mass=1,2'", "must give one value"},
         Case{"--setting 'soft m=1: mass=1'", "'soft' is not name=value (a label goes before"},
-        Case{"--setting ' : '", "an empty name and no assignments"},
-        Case{"--medium x.json", "--medium is not used"}}) {
+        Case{"--setting ' : '", "an empty name and no assignments"}, Case{"--medium x.json", "--medium is not used"}}) {
     SCOPED_TRACE(c.args);
     const auto r = run("calibrate --quiet " + c.args);
     EXPECT_NE(r.code, 0);

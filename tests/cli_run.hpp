@@ -35,8 +35,7 @@ struct Result {
 
 /// A path in the temporary directory, unique to this test process.
 inline std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() /
-          ("softdrop_" + std::to_string(::getpid()) + "_" + name)).string();
+  return (std::filesystem::temp_directory_path() / ("softdrop_" + std::to_string(::getpid()) + "_" + name)).string();
 }
 
 /// temp_path(name) with no file there, nor SQLite's -wal and -shm companions.

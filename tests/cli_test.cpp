@@ -2,15 +2,15 @@
 // output file; good input gives a parseable summary.
 #include <gtest/gtest.h>
 
-#include "balloon.hpp"
-#include "cli_run.hpp"
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
+
+#include "balloon.hpp"
+#include "cli_run.hpp"
 
 namespace {
 using softdrop::test::Result;
@@ -27,12 +27,11 @@ TEST(Cli, BadInputGivesOneLineNamingTheParameterAndNoOutput) {
   };
   for (const Case& c :
        {Case{"--r-min -1", "r-min"}, Case{"--radius -1", "radius"}, Case{"--porosity 1.5", "porosity"},
-        Case{"--porosity 0", "porosity"}, Case{"--dt 0", "dt"}, Case{"--dt -1e-5", "dt"},
-        Case{"--dt nan", "dt"}, Case{"--nrt nan", "nrt"}, Case{"--porosity nan", "porosity"},
-        Case{"--bogus 3", "bogus"}, Case{"--droplets abc", "droplets"},
-        Case{"--medium " + temp("does_not_exist.json"), "does_not_exist.json"},
-        Case{"--medium " + bad_grains, "bad.csv"}, Case{"--kind lattice", "kind"},
-        Case{"--x0 inf", "x0"}, Case{"--width 1e12 --height 1e12", "width = 1e+12: must be in (0, 1e9]"},
+        Case{"--porosity 0", "porosity"}, Case{"--dt 0", "dt"}, Case{"--dt -1e-5", "dt"}, Case{"--dt nan", "dt"},
+        Case{"--nrt nan", "nrt"}, Case{"--porosity nan", "porosity"}, Case{"--bogus 3", "bogus"},
+        Case{"--droplets abc", "droplets"}, Case{"--medium " + temp("does_not_exist.json"), "does_not_exist.json"},
+        Case{"--medium " + bad_grains, "bad.csv"}, Case{"--kind lattice", "kind"}, Case{"--x0 inf", "x0"},
+        Case{"--width 1e12 --height 1e12", "width = 1e+12: must be in (0, 1e9]"},
         Case{"--width 1e6 --height 1e6", "1e7"}}) {
     std::filesystem::remove(out);
     const Result r = run("simulate --droplets 2 --runs " + out + " " + c.args);
@@ -68,16 +67,13 @@ TEST(Cli, OutputIntoMissingDirectoryFailsBeforeRunning) {
 }
 
 TEST(Cli, SimulateWritesJsonSummaryAndCsvFiles) {
-  const std::string runs = temp("ok_runs.csv"), medium = temp("ok_medium.json"),
-                    paths = temp("ok_paths.csv");
-  const Result r = run("simulate --droplets 3 --seed 4 --format json --runs " + runs +
-                       " --save-medium " + medium + " --paths " + paths);
+  const std::string runs = temp("ok_runs.csv"), medium = temp("ok_medium.json"), paths = temp("ok_paths.csv");
+  const Result r = run("simulate --droplets 3 --seed 4 --format json --runs " + runs + " --save-medium " + medium +
+                       " --paths " + paths);
   ASSERT_EQ(r.code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   EXPECT_EQ(j["droplets"], 3);
-  EXPECT_EQ(j["passed"].get<int>() + j["stuck"].get<int>() + j["timeout"].get<int>() +
-                j["diverged"].get<int>(),
-            3);
+  EXPECT_EQ(j["passed"].get<int>() + j["stuck"].get<int>() + j["timeout"].get<int>() + j["diverged"].get<int>(), 3);
   std::ifstream in(runs);
   std::string line;
   int lines = 0;
@@ -102,14 +98,12 @@ TEST(Cli, SimulateGivesNoStandardErrorForOnePassedDroplet) {
   const auto j = nlohmann::json::parse(json.out);
   ASSERT_EQ(j["passed"], 1) << "the scene no longer passes exactly one droplet: pick another";
   EXPECT_TRUE(j["standard_error"].is_null());
-  EXPECT_NE(table.out.find(" (one droplet passed: no standard error)\n"), std::string::npos)
-      << table.out;
+  EXPECT_NE(table.out.find(" (one droplet passed: no standard error)\n"), std::string::npos) << table.out;
   EXPECT_EQ(table.out.find("+-"), std::string::npos) << table.out;
 
   const Result many = run("simulate --porosity 0.9 --droplets 5 --seed 3");
   ASSERT_EQ(many.code, 0) << many.err;
-  const auto k =
-      nlohmann::json::parse(run("simulate --porosity 0.9 --droplets 5 --seed 3 --format json").out);
+  const auto k = nlohmann::json::parse(run("simulate --porosity 0.9 --droplets 5 --seed 3 --format json").out);
   ASSERT_GT(k["passed"].get<int>(), 1);
   std::ostringstream se;
   se << " +- " << k["standard_error"].get<double>() << " (standard error)\n";

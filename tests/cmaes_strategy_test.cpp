@@ -98,8 +98,7 @@ TEST(Cmaes, ReplayingItsStoredStatesRebuildsItBitForBit) {
   // Another strategy's state, a state of another population size, one without its start, or no
   // array at all: refused, naming the strategy.
   for (const std::string& bad : {std::string(R"({"step": 1})"), std::string(R"([{"step": 1}])"),
-                                 std::string(R"([{"generation": 1, "values": [1, 2]}])"),
-                                 "[" + states[1] + "]"}) {
+                                 std::string(R"([{"generation": 1, "values": [1, 2]}])"), "[" + states[1] + "]"}) {
     SCOPED_TRACE(bad.substr(0, 60));
     try {
       make_strategy(o, start(o), bad);

@@ -19,8 +19,8 @@ using test::run;
 
 // `softdrop --config results/calibration/FILE simulate --x0 250` as JSON.
 nlohmann::json simulate_with(const std::string& file) {
-  const auto r = run("--config " + std::string(SOFTDROP_SOURCE_DIR) + "/results/calibration/" +
-                     file + " simulate --x0 250 --format json");
+  const auto r = run("--config " + std::string(SOFTDROP_SOURCE_DIR) + "/results/calibration/" + file +
+                     " simulate --x0 250 --format json");
   EXPECT_EQ(r.code, 0) << r.err;
   return nlohmann::json::parse(r.out);
 }

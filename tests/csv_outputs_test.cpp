@@ -81,8 +81,8 @@ TEST(CsvOutputs, StoresReportPlainTablesAndFitReadsSweepReportPoints) {
 
   const std::string search = fresh("o_search.db");
   ASSERT_EQ(run("optimize --db " + search + test::kScene + " --generations 3").code, 0);
-  for (const std::string& args : {std::string(" --run 1"), std::string(" --run 1 --candidates"), std::string(" --run 1 --best"),
-                                  std::string("")}) {
+  for (const std::string& args : {std::string(" --run 1"), std::string(" --run 1 --candidates"),
+                                  std::string(" --run 1 --best"), std::string("")}) {
     SCOPED_TRACE(args);
     const std::string out = fresh("o_history.csv");
     std::ofstream(out) << run("history --db " + search + args + " --format csv").out;

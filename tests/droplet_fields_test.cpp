@@ -5,12 +5,11 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <type_traits>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
 #include "sim/lane_block_step.hpp"
@@ -25,11 +24,9 @@ namespace {
 std::map<std::string, FieldUse> uses() {
   std::map<std::string, FieldUse> out;
   DropletParams p;
-  visit_droplet_fields(
-      [&](const DropletField& field, const auto&) {
-        EXPECT_TRUE(out.emplace(field.key, field.use).second) << field.key;
-      },
-      p);
+  visit_droplet_fields([&](const DropletField& field,
+                           const auto&) { EXPECT_TRUE(out.emplace(field.key, field.use).second) << field.key; },
+                       p);
   return out;
 }
 
@@ -59,8 +56,7 @@ TEST(DropletFields, TheContactFieldsAloneMayDifferWithinALaneBlock) {
     if (use == FieldUse::constraint) constraint.insert(key);
     if (use == FieldUse::contacts) contacts.insert(key);
   }
-  EXPECT_EQ(constraint,
-            (std::set<std::string>{"masses", "radius", "max-strain", "constraint-iterations"}));
+  EXPECT_EQ(constraint, (std::set<std::string>{"masses", "radius", "max-strain", "constraint-iterations"}));
   EXPECT_EQ(contacts, (std::set<std::string>{"kc", "cc", "max-depth"}));
   const DropletParams p;
   for (const auto& [key, use] : all) {
@@ -104,8 +100,8 @@ TEST(DropletFields, StoredParametersWithoutTheNewerKeysReadAsOlderBuildsRanThem)
   o.droplet.viscosity_step = ViscosityStep::exponential;
   nlohmann::json j = nlohmann::json::parse(search_params_to_json(o));
   EXPECT_EQ(j.at("viscosity-step"), "exponential");
-  for (const char* key : {"viscosity-dilation", "rest-window", "rest-distance", "constraint-order",
-                          "viscosity-step", "strategy"}) {
+  for (const char* key :
+       {"viscosity-dilation", "rest-window", "rest-distance", "constraint-order", "viscosity-step", "strategy"}) {
     ASSERT_TRUE(j.contains(key)) << key;
     j.erase(key);
   }

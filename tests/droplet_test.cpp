@@ -38,7 +38,8 @@ TEST(Droplet, InflatedRingIsCounterClockwiseWithTheStatedArea) {
 TEST(Droplet, TheRingStartsWhereItsSpringsBalanceTheGas) {
   const DropletParams balloon = test::balloon_droplet();
   EXPECT_EQ(balloon.resting_radius(), balloon.radius);
-  EXPECT_EQ(std::bit_cast<std::uint64_t>(balloon.resting_area()), std::bit_cast<std::uint64_t>(balloon.inflated_area()));
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(balloon.resting_area()),
+            std::bit_cast<std::uint64_t>(balloon.inflated_area()));
 
   DropletParams springs;  // the defaults: the gas holds the springs at 5 % strain, well inside the limit
   springs.gravity = 0, springs.viscosity = 0;
@@ -121,7 +122,8 @@ TEST(Droplet, SelfIntersectionMatchesThePlainPairByPairTest) {
     for (int masses : {3, 4, 5, 6, 8, 13, 40}) {
       for (double amplitude : {0.5, 3.0, 8.0}) {
         for (std::uint64_t seed = 0; seed < 150; ++seed) {
-          const DropletState s = test::jiggled_ring(masses, 1000 * seed + static_cast<std::uint64_t>(masses), amplitude);
+          const DropletState s =
+              test::jiggled_ring(masses, 1000 * seed + static_cast<std::uint64_t>(masses), amplitude);
           int closing = 0;
           const int pairs = crossing_pairs(s, &closing);
           ASSERT_EQ(ring_self_intersects(s), pairs > 0) << masses << " masses, amplitude " << amplitude << ", seed "
@@ -200,10 +202,8 @@ TEST(Droplet, TheViscositySparesTheRingsDilationOnlyWhenAsked) {
   // Damped as any deformation: each mass feels -m rate delta r_i (rate: viscous_rate(), nu's
   // coefficient for the step).
   std::vector<double> f = viscous_forces(1.0, delta, &torque, &size);
-  const double expected =
-      p.mass * p.viscous_rate() * delta * p.resting_radius();  // (the ring starts at rest)
-  for (std::size_t k = 0; k < f.size(); k += 2)
-    EXPECT_NEAR(std::hypot(f[k], f[k + 1]), expected, 1e-6 * expected);
+  const double expected = p.mass * p.viscous_rate() * delta * p.resting_radius();  // (the ring starts at rest)
+  for (std::size_t k = 0; k < f.size(); k += 2) EXPECT_NEAR(std::hypot(f[k], f[k + 1]), expected, 1e-6 * expected);
   EXPECT_LT(std::abs(torque), 1e-9 * size * p.radius);
   // Spared: translation, rotation and dilation are all "rigid" now, so no force at all.
   f = viscous_forces(0.0, delta, &torque, &size);

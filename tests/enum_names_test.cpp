@@ -1,6 +1,8 @@
 // The names of enum values: every to_string and its parse read one table, so each value's name
 // reads back as that value, and a name no table has is refused in one line that names the option
 // and offers every name.
+#include "util/enum_names.hpp"
+
 #include <gtest/gtest.h>
 
 #include <stdexcept>
@@ -12,7 +14,6 @@
 #include "softdrop/medium.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/simulation.hpp"
-#include "util/enum_names.hpp"
 
 namespace softdrop {
 namespace {
@@ -29,8 +30,7 @@ void expect_round_trips(std::initializer_list<E> values, Parse parse) {
 TEST(EnumNames, EveryValueReadsBackFromItsName) {
   expect_round_trips({MoveKind::initial, MoveKind::all, MoveKind::single, MoveKind::relocate, MoveKind::migrate},
                      parse_move_kind);
-  expect_round_trips({StrategyKind::paper, StrategyKind::es, StrategyKind::lahc, StrategyKind::anneal},
-                     parse_strategy);
+  expect_round_trips({StrategyKind::paper, StrategyKind::es, StrategyKind::lahc, StrategyKind::anneal}, parse_strategy);
   expect_round_trips({Migration::ring, Migration::broadcast}, parse_migration);
   expect_round_trips({MediumKind::overlapping, MediumKind::non_overlapping}, parse_medium_kind);
   expect_round_trips({RadiusDistribution::uniform, RadiusDistribution::lognormal}, parse_radius_distribution);
@@ -50,18 +50,19 @@ TEST(EnumNames, AnUnknownNameIsRefusedWithTheOptionAndEveryName) {
     return "accepted";
   };
   EXPECT_EQ(message(parse_strategy, "tabu"), "strategy = 'tabu': must be paper, es, lahc, anneal or cmaes");
-  EXPECT_EQ(message(parse_constraint_order, "zigzag"),
-            "constraint-order = 'zigzag': must be sequential or red-black");
+  EXPECT_EQ(message(parse_constraint_order, "zigzag"), "constraint-order = 'zigzag': must be sequential or red-black");
   EXPECT_EQ(message(parse_medium_kind, "Overlapping"),
             "kind = 'Overlapping': must be overlapping, non-overlapping or relaxed");
   EXPECT_EQ(message(parse_outcome, ""), "outcome = '': must be passed, stuck, timeout or diverged");
-  EXPECT_EQ(message(parse_move_kind, "all "), "move kind = 'all ': must be initial, all, single, relocate, migrate or mixed");
+  EXPECT_EQ(message(parse_move_kind, "all "),
+            "move kind = 'all ': must be initial, all, single, relocate, migrate or mixed");
 }
 
 TEST(EnumNames, TheTableHelpersNameOneValueAndListAll) {
   enum class Colour { red, green, blue, grey };
   constexpr detail::EnumName<Colour> kOne[] = {{Colour::red, "red"}};
-  constexpr detail::EnumName<Colour> kThree[] = {{Colour::red, "red"}, {Colour::green, "green"}, {Colour::blue, "blue"}};
+  constexpr detail::EnumName<Colour> kThree[] = {
+      {Colour::red, "red"}, {Colour::green, "green"}, {Colour::blue, "blue"}};
   EXPECT_EQ(detail::names_of(kOne), "red");
   EXPECT_EQ(detail::names_of(kThree), "red, green or blue");
   static_assert(std::string_view(detail::name_of(kThree, Colour::blue)) == "blue");

@@ -14,8 +14,8 @@ namespace softdrop::test {
 namespace {
 
 // The plan, read once from the environment (see fault_vfs.hpp).
-std::int64_t kill_at = 0;        // kill before this main-database write (1-based); 0: never
-std::int64_t full_after = -1;    // bytes that may be written before every write fails; -1: no limit
+std::int64_t kill_at = 0;      // kill before this main-database write (1-based); 0: never
+std::int64_t full_after = -1;  // bytes that may be written before every write fails; -1: no limit
 std::atomic<std::int64_t> main_writes{0};
 std::atomic<std::int64_t> bytes_written{0};
 
@@ -53,16 +53,21 @@ int shim_device(sqlite3_file* f) { return io(f)->xDeviceCharacteristics(shim(f)-
 int shim_shm_map(sqlite3_file* f, int page, int size, int extend, void volatile** p) {
   return io(f)->xShmMap(shim(f)->real(), page, size, extend, p);
 }
-int shim_shm_lock(sqlite3_file* f, int offset, int n, int flags) { return io(f)->xShmLock(shim(f)->real(), offset, n, flags); }
+int shim_shm_lock(sqlite3_file* f, int offset, int n, int flags) {
+  return io(f)->xShmLock(shim(f)->real(), offset, n, flags);
+}
 void shim_shm_barrier(sqlite3_file* f) { io(f)->xShmBarrier(shim(f)->real()); }
 int shim_shm_unmap(sqlite3_file* f, int del) { return io(f)->xShmUnmap(shim(f)->real(), del); }
-int shim_fetch(sqlite3_file* f, sqlite3_int64 off, int n, void** p) { return io(f)->xFetch(shim(f)->real(), off, n, p); }
+int shim_fetch(sqlite3_file* f, sqlite3_int64 off, int n, void** p) {
+  return io(f)->xFetch(shim(f)->real(), off, n, p);
+}
 int shim_unfetch(sqlite3_file* f, sqlite3_int64 off, void* p) { return io(f)->xUnfetch(shim(f)->real(), off, p); }
 
-const sqlite3_io_methods shim_io = {3,           shim_close,      shim_read,        shim_write,     shim_truncate,
-                                    shim_sync,   shim_size,       shim_lock,        shim_unlock,    shim_check,
-                                    shim_control, shim_sector,    shim_device,      shim_shm_map,   shim_shm_lock,
-                                    shim_shm_barrier, shim_shm_unmap, shim_fetch,   shim_unfetch};
+const sqlite3_io_methods shim_io = {
+    3,           shim_close,   shim_read,     shim_write,       shim_truncate,  shim_sync,
+    shim_size,   shim_lock,    shim_unlock,   shim_check,       shim_control,   shim_sector,
+    shim_device, shim_shm_map, shim_shm_lock, shim_shm_barrier, shim_shm_unmap, shim_fetch,
+    shim_unfetch};
 
 int shim_open(sqlite3_vfs*, sqlite3_filename name, sqlite3_file* f, int flags, int* out_flags) {
   ShimFile* s = shim(f);
@@ -77,7 +82,9 @@ int shim_open(sqlite3_vfs*, sqlite3_filename name, sqlite3_file* f, int flags, i
 // keeps its locking style in pAppData).
 int shim_delete(sqlite3_vfs*, const char* n, int sync) { return real_vfs->xDelete(real_vfs, n, sync); }
 int shim_access(sqlite3_vfs*, const char* n, int flags, int* out) { return real_vfs->xAccess(real_vfs, n, flags, out); }
-int shim_full(sqlite3_vfs*, const char* n, int size, char* out) { return real_vfs->xFullPathname(real_vfs, n, size, out); }
+int shim_full(sqlite3_vfs*, const char* n, int size, char* out) {
+  return real_vfs->xFullPathname(real_vfs, n, size, out);
+}
 void* shim_dlopen(sqlite3_vfs*, const char* n) { return real_vfs->xDlOpen(real_vfs, n); }
 void shim_dlerror(sqlite3_vfs*, int n, char* out) { real_vfs->xDlError(real_vfs, n, out); }
 void (*shim_dlsym(sqlite3_vfs*, void* h, const char* s))(void) { return real_vfs->xDlSym(real_vfs, h, s); }
@@ -147,8 +154,7 @@ void install_fault_vfs() {
   shim_vfs.xNextSystemCall = nullptr;
   shim_vfs.iVersion = 2;
   sqlite3_vfs_register(&shim_vfs, 1);
-  if (autocheckpoint_pages > 0)
-    sqlite3_auto_extension(reinterpret_cast<void (*)(void)>(set_autocheckpoint));
+  if (autocheckpoint_pages > 0) sqlite3_auto_extension(reinterpret_cast<void (*)(void)>(set_autocheckpoint));
   std::atexit(report_counts);
 }
 

@@ -1,9 +1,8 @@
 // The rule of docs/reliability.md for every command that writes: a refused command (a damaged file,
 // a bad option, an output that is an input, the database or another output) exits non-zero with one
 // line naming the option or file, leaves every file byte for byte as it was, and creates none.
-#include <gtest/gtest.h>
-
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
@@ -148,8 +147,8 @@ TEST_F(FileSafety, ABadOptionWritesNothing) {
 
 // An empty array reached CLI11 as an option without a value, and crashed every command.
 TEST_F(FileSafety, ConfigArraysAreCheckedAgainstTheirOptions) {
-  for (const std::string key : {"porosity", "gravity", "x0", "droplets", "kind", "width", "seed", "medium",
-                                 "runs", "format"}) {
+  for (const std::string key :
+       {"porosity", "gravity", "x0", "droplets", "kind", "width", "seed", "medium", "runs", "format"}) {
     write(seed_ / "empty.toml", key + " = []\n");
     expect_refused("simulate --config empty.toml", "config file 'empty.toml': " + key + " = []: an empty array");
   }
@@ -169,7 +168,8 @@ TEST_F(FileSafety, ConfigArraysAreCheckedAgainstTheirOptions) {
   fs::remove(seed_ / "empty.toml");
   // A list option takes an array, and gives the same sweep as the command line.
   write(seed_ / "list.toml", "porosities = [0.8]\nmedia = 2\ndroplets = 2\nseed = 3\n");
-  const Result r = run_shell("cd " + seed_.string() + " && " + SOFTDROP_CLI + " sweep --db s.db --config list.toml --quiet");
+  const Result r =
+      run_shell("cd " + seed_.string() + " && " + SOFTDROP_CLI + " sweep --db s.db --config list.toml --quiet");
   EXPECT_EQ(r.code, 0) << r.err;
   fs::remove(seed_ / "list.toml");
 }

@@ -16,8 +16,9 @@ namespace softdrop {
 namespace {
 
 // Four porosities where some media pass few droplets, so the two averagings differ.
-const std::string kSweep = " --porosities 0.7,0.8,0.9,0.95 --media 4 --droplets 5 --width 160 --height 160 "
-                           "--stuck-window 0.1 --quiet";
+const std::string kSweep =
+    " --porosities 0.7,0.8,0.9,0.95 --media 4 --droplets 5 --width 160 --height 160 "
+    "--stuck-window 0.1 --quiet";
 
 TEST(FitAveraging, PerMediumPointsAreTheMeanOfTheMediaRows) {
   const std::string db = test::fresh_path("avg.db"), points = test::fresh_path("avg_points.csv"),
@@ -62,8 +63,8 @@ TEST(FitAveraging, FitPerMediumFitsThosePointsFromTheStoreOrItsReport) {
     out.precision(17);
     out << "porosity,tortuosity,standard_error\n";
     for (std::size_t i = 0; i < p.rows.size(); ++i)
-      out << p.cell(i, "porosity") << ',' << p.cell(i, "per_medium_tortuosity") << ',' << p.cell(i, "per_medium_standard_error")
-          << '\n';
+      out << p.cell(i, "porosity") << ',' << p.cell(i, "per_medium_tortuosity") << ','
+          << p.cell(i, "per_medium_standard_error") << '\n';
   }
   const test::Result store = test::run("fit --db " + db + " --mean per-medium --format json");
   ASSERT_EQ(store.code, 0) << store.err;
@@ -100,8 +101,7 @@ TEST(FitAveraging, FitPerMediumFitsThosePointsFromTheStoreOrItsReport) {
   // A per-medium mean has only the error over its media; an unknown averaging is a usage error.
   const test::Result both = test::run("fit --db " + db + " --mean per-medium --errors droplets");
   EXPECT_EQ(both.code, 1);
-  EXPECT_NE(both.err.find("--errors droplets: a per-medium mean has only its error over the media"),
-            std::string::npos)
+  EXPECT_NE(both.err.find("--errors droplets: a per-medium mean has only its error over the media"), std::string::npos)
       << both.err;
   const test::Result wrong = test::run("fit --db " + db + " --mean medians");
   EXPECT_EQ(wrong.code, 2);
@@ -112,7 +112,8 @@ TEST(FitAveraging, FitPerMediumFitsThosePointsFromTheStoreOrItsReport) {
                         "media_standard_error,stuck_fraction\n0.8,0.8,4,20,18,1.3,0.01,4,0.02,0.1\n";
   const test::Result older = test::run("fit --points " + old + " --mean per-medium");
   EXPECT_EQ(older.code, 1);
-  EXPECT_NE(older.err.find("no per_medium_tortuosity and per_medium_standard_error columns"), std::string::npos) << older.err;
+  EXPECT_NE(older.err.find("no per_medium_tortuosity and per_medium_standard_error columns"), std::string::npos)
+      << older.err;
 }
 
 // A reader of part of a sweep (a shard's store, a sweep stopped half way) is told whose figures it

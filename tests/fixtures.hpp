@@ -86,9 +86,7 @@ inline CalibrationOptions tiny_calibration() {
   return o;
 }
 /// An empty periodic box.
-inline Medium empty_medium(double width = 500, double height = 500) {
-  return Medium{width, height, true, {}};
-}
+inline Medium empty_medium(double width = 500, double height = 500) { return Medium{width, height, true, {}}; }
 
 /// The paper's Fig. 2 scene: two grains whose gap (14) is narrower than the droplet's diameter
 /// (20), and a third grain below the pore that the droplet must flow around.

@@ -127,7 +127,8 @@ TEST(FlowTortuosity, NoPathOrBadOptionsAreRefusedByName) {
 
 TEST(FlowTortuosity, TheFieldsHoldTheFlowAndAreTheSameBitsEveryTime) {
   const PoreImage im = channels(160, 0.5, 40, 10);  // x = y / 2 + const along a channel, periodic in y
-  const HydrodynamicTortuosity a = hydrodynamic_tortuosity(im, periodic_in_y()), b = hydrodynamic_tortuosity(im, periodic_in_y());
+  const HydrodynamicTortuosity a = hydrodynamic_tortuosity(im, periodic_in_y()),
+                               b = hydrodynamic_tortuosity(im, periodic_in_y());
   EXPECT_EQ(a.tortuosity, b.tortuosity);
   EXPECT_EQ(a.permeability, b.permeability);
   ASSERT_EQ(a.uy.size(), im.pore.size());

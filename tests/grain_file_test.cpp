@@ -77,16 +77,16 @@ TEST(GrainFile, BadFilesGiveErrorsNamingTheFile) {
   struct Bad {
     std::string name, text, expect;
   };
-  for (const Bad& b : {Bad{"a.json", "{\"format\": \"softdrop-medium\", \"version\": 1", "JSON"},
-                       Bad{"b.json", "{\"format\": \"other\"}", "format"},
-                       Bad{"c.json",
-                           R"({"format":"softdrop-medium","version":1,"width":10,"height":10,"grains":[{"x":1,"y":2}]})",
-                           "missing"},
-                       Bad{"d.csv", "# width=10\n# height=10\nx,y,r\n1,2,abc\n", "line 4"},
-                       Bad{"e.csv", "# width=10\nx,y,r\n1,2,3\n", "height"},
-                       Bad{"f.csv", "# width=10\n# height=10\nx,y,r\n1,2,-3\n", "radius"},
-                       Bad{"g.csv", "# width=10\n# height=10\nx,y\n", "header"},
-                       Bad{"h.csv", "# width=10\n# height=10\nx,y,r\n1,2,3,4\n", "3 fields"}}) {
+  for (const Bad& b :
+       {Bad{"a.json", "{\"format\": \"softdrop-medium\", \"version\": 1", "JSON"},
+        Bad{"b.json", "{\"format\": \"other\"}", "format"},
+        Bad{"c.json", R"({"format":"softdrop-medium","version":1,"width":10,"height":10,"grains":[{"x":1,"y":2}]})",
+            "missing"},
+        Bad{"d.csv", "# width=10\n# height=10\nx,y,r\n1,2,abc\n", "line 4"},
+        Bad{"e.csv", "# width=10\nx,y,r\n1,2,3\n", "height"},
+        Bad{"f.csv", "# width=10\n# height=10\nx,y,r\n1,2,-3\n", "radius"},
+        Bad{"g.csv", "# width=10\n# height=10\nx,y\n", "header"},
+        Bad{"h.csv", "# width=10\n# height=10\nx,y,r\n1,2,3,4\n", "3 fields"}}) {
     const std::string path = temp_path(b.name);
     write(path, b.text);
     const std::string error = load_error(path);

@@ -1,8 +1,7 @@
 // Hardening: absurd values are refused before any large allocation, damaged files (grain files,
 // histories) give one line naming the file and the problem, and --check validates without running.
-#include <gtest/gtest.h>
-
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <gtest/gtest.h>
 #include <sqlite3.h>
 #include <unistd.h>
 
@@ -117,8 +116,7 @@ TEST(GrainFileLimits, PeriodicCentresMustLieInTheBox) {
 TEST(FitPointsFile, BadLinesAndTooManyPointsNameTheFileAndLine) {
   std::istringstream good("# comment\nphi,t,se\n0.5,1.5,0.02\n0.9,1.1,0.01\n");
   bool used_errors = true;
-  const auto points =
-      softdrop::read_fit_points(good, "p.csv", softdrop::FitErrors::media, &used_errors);
+  const auto points = softdrop::read_fit_points(good, "p.csv", softdrop::FitErrors::media, &used_errors);
   ASSERT_EQ(points.size(), 2u);
   EXPECT_FALSE(used_errors);  // a phi,t,se file brings its own
   EXPECT_EQ(points[1].phi, 0.9);
@@ -126,10 +124,11 @@ TEST(FitPointsFile, BadLinesAndTooManyPointsNameTheFileAndLine) {
   struct Case {
     std::string text, message;
   };
-  for (const Case& c : {Case{"x,y\n", "--points 'p.csv' line 1: expected the header"},
-                        Case{"phi,t,se\n0.5;1.5;0.1\n", "--points 'p.csv' line 2: expected 3 fields, as the header"},
-                        Case{"phi,t,se\n0.5,1.5x,0.1\n", "line 2: expected numbers for porosity, tortuosity and standard_error"},
-                        Case{"phi,t,se\n0.5,1.5\n", "line 2: expected 3 fields"}}) {
+  for (const Case& c :
+       {Case{"x,y\n", "--points 'p.csv' line 1: expected the header"},
+        Case{"phi,t,se\n0.5;1.5;0.1\n", "--points 'p.csv' line 2: expected 3 fields, as the header"},
+        Case{"phi,t,se\n0.5,1.5x,0.1\n", "line 2: expected numbers for porosity, tortuosity and standard_error"},
+        Case{"phi,t,se\n0.5,1.5\n", "line 2: expected 3 fields"}}) {
     std::istringstream in(c.text);
     try {
       softdrop::read_fit_points(in, "p.csv");
@@ -160,8 +159,7 @@ TEST(FitPointsFile, ASweepReportGivesTheChosenErrorAndAnOlderOneSaysWhichToChoos
   EXPECT_EQ(m[0].se, 0.03);
   EXPECT_EQ(m[1].se, 0.017);
   bool used_errors = false;
-  const auto d =
-      softdrop::read_fit_points(droplets, "r.csv", softdrop::FitErrors::droplets, &used_errors);
+  const auto d = softdrop::read_fit_points(droplets, "r.csv", softdrop::FitErrors::droplets, &used_errors);
   EXPECT_TRUE(used_errors);
   ASSERT_EQ(d.size(), 2u);
   EXPECT_EQ(d[0].se, 0.02);
@@ -173,9 +171,8 @@ TEST(FitPointsFile, ASweepReportGivesTheChosenErrorAndAnOlderOneSaysWhichToChoos
     softdrop::read_fit_points(older, "old.csv");
     ADD_FAILURE() << "an older report was fitted with errors it does not have";
   } catch (const std::runtime_error& e) {
-    EXPECT_NE(
-        std::string(e.what()).find("--points 'old.csv' line 1: no media_standard_error column"),
-        std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("--points 'old.csv' line 1: no media_standard_error column"),
+              std::string::npos)
         << e.what();
     EXPECT_NE(std::string(e.what()).find("--errors droplets"), std::string::npos) << e.what();
   }

@@ -1,8 +1,9 @@
 // The SQLite history: what is written reads back exactly; files that are not softdrop databases
 // (missing, foreign, truncated, newer) are refused with one line and left byte-for-byte unchanged.
-#include <gtest/gtest.h>
+#include "softdrop/history.hpp"
 
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
@@ -11,7 +12,6 @@
 
 #include "cli_run.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/history.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/spacing.hpp"
 
@@ -121,7 +121,10 @@ TEST(History, TheWalIsCheckpointedAndStaysBounded) {
 
 TEST(History, SchemaIsVersionedAndForeignKeysHold) {
   const std::string path = fresh("schema.db");
-  { auto h = open_history(path, OpenMode::create); write_run(*h, test::small_search_options(), 2); }
+  {
+    auto h = open_history(path, OpenMode::create);
+    write_run(*h, test::small_search_options(), 2);
+  }
   SQLite::Database db(path, SQLite::OPEN_READWRITE);
   EXPECT_EQ(db.execAndGet("PRAGMA user_version").getInt(), kHistorySchemaVersion);
   EXPECT_EQ(db.execAndGet("PRAGMA application_id").getInt(), kHistoryApplicationId);
@@ -137,9 +140,16 @@ TEST(History, TwoWritersOnOneFileLoseNothing) {
   const std::string path = fresh("two_writers.db");
   { auto h = open_history(path, OpenMode::create); }
   std::int64_t ids[2] = {0, 0};
-  std::thread a([&] { auto h = open_history(path, OpenMode::create); ids[0] = write_run(*h, test::small_search_options(), 10); });
-  std::thread b([&] { SearchOptions o = test::small_search_options(); o.seed = 8;
-                      auto h = open_history(path, OpenMode::create); ids[1] = write_run(*h, o, 10); });
+  std::thread a([&] {
+    auto h = open_history(path, OpenMode::create);
+    ids[0] = write_run(*h, test::small_search_options(), 10);
+  });
+  std::thread b([&] {
+    SearchOptions o = test::small_search_options();
+    o.seed = 8;
+    auto h = open_history(path, OpenMode::create);
+    ids[1] = write_run(*h, o, 10);
+  });
   a.join();
   b.join();
   EXPECT_NE(ids[0], ids[1]);
@@ -181,14 +191,20 @@ TEST(History, BadFilesAreRefusedAndLeftUntouched) {
   expect_refused(foreign, OpenMode::create, "not a softdrop database");
 
   const std::string good = fresh("good.db");
-  { auto h = open_history(good, OpenMode::create); write_run(*h, test::small_search_options(), 3); }
+  {
+    auto h = open_history(good, OpenMode::create);
+    write_run(*h, test::small_search_options(), 3);
+  }
   {  // fold the WAL into the file, so the copies below are self-contained
     SQLite::Database db(good, SQLite::OPEN_READWRITE);
     db.exec("PRAGMA wal_checkpoint(TRUNCATE); PRAGMA journal_mode = DELETE");
   }
   const std::string newer = fresh("newer.db");
   std::filesystem::copy_file(good, newer);
-  { SQLite::Database db(newer, SQLite::OPEN_READWRITE); db.exec("PRAGMA user_version = 99"); }
+  {
+    SQLite::Database db(newer, SQLite::OPEN_READWRITE);
+    db.exec("PRAGMA user_version = 99");
+  }
   expect_refused(newer, OpenMode::create, "newer softdrop");
   expect_refused(newer, OpenMode::read_only, "newer softdrop");
 

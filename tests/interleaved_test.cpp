@@ -6,14 +6,14 @@
 #include <cstring>
 #include <latch>
 #include <map>
-#include <mutex>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <thread>
 #include <tuple>
 
-#include "sim/lane_layout.hpp"
 #include "fixtures.hpp"
+#include "sim/lane_layout.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -73,8 +73,8 @@ TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
     for (auto& s : together) rings.push_back(&s);
     std::vector<int> corrections(rings.size());
     // The same rest length for all, as run_interleaved groups them; 3 passes, some rings converge first.
-    apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), p.rest_length(), p.max_strain,
-                                        3, corrections.data());
+    apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), p.rest_length(), p.max_strain, 3,
+                                        corrections.data());
     for (std::size_t r = 0; r < alone.size(); ++r) {
       const int c = apply_length_constraint(&alone[r], p.rest_length(), p.max_strain, 3);
       EXPECT_EQ(corrections[r], c) << "ring " << r;
@@ -222,15 +222,13 @@ TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
   // (the implicit one reads the other stages' forces, so their order and sums must agree too).
   const ViscosityStep ex = ViscosityStep::explicit_euler;
   for (auto [viscosity, order, masses, dilation, step] :
-       {std::tuple{1.0e4, seq, 40, 1.0, ex}, std::tuple{0.0, seq, 40, 1.0, ex},
-        std::tuple{1.0e4, rb, 40, 1.0, ex}, std::tuple{1.0e4, rb, 41, 1.0, ex},
-        std::tuple{1.0e4, seq, 40, 0.0, ex},
+       {std::tuple{1.0e4, seq, 40, 1.0, ex}, std::tuple{0.0, seq, 40, 1.0, ex}, std::tuple{1.0e4, rb, 40, 1.0, ex},
+        std::tuple{1.0e4, rb, 41, 1.0, ex}, std::tuple{1.0e4, seq, 40, 0.0, ex},
         std::tuple{1.0e5, seq, 40, 0.0, ViscosityStep::exponential},
         std::tuple{1.37e5, seq, 40, 0.0, ViscosityStep::implicit},
         std::tuple{1.37e5, rb, 41, 1.0, ViscosityStep::implicit}}) {
-    SCOPED_TRACE("viscosity " + std::to_string(viscosity) + ", " + to_string(order) + ", " +
-                 std::to_string(masses) + " masses, dilation share " + std::to_string(dilation) +
-                 ", " + to_string(step) + " step");
+    SCOPED_TRACE("viscosity " + std::to_string(viscosity) + ", " + to_string(order) + ", " + std::to_string(masses) +
+                 " masses, dilation share " + std::to_string(dilation) + ", " + to_string(step) + " step");
     std::vector<DropletParams> params;
     std::vector<double> x0;
     for (int i = 0; i < 30; ++i) {
@@ -367,7 +365,8 @@ TEST(Interleaved, DropletsHandedToAnIdleThreadKeepTheirBits) {
       nullptr, &exchange);
   a.join();
   ASSERT_EQ(got.size(), static_cast<std::size_t>(kDroplets));
-  for (int i = 0; i < kDroplets; ++i) expect_same(got.at(i), solo[static_cast<std::size_t>(i)], "droplet " + std::to_string(i));
+  for (int i = 0; i < kDroplets; ++i)
+    expect_same(got.at(i), solo[static_cast<std::size_t>(i)], "droplet " + std::to_string(i));
   EXPECT_GE(exchange.handovers(), 1);
   EXPECT_GE(finished_by_b, 1);
 }
@@ -412,7 +411,8 @@ TEST(Interleaved, ACancelledRunLeavesTheDriver) {
                    [&](std::int64_t, RunSummary&&) { ++finished; }),
                RunCancelled);
   EXPECT_EQ(finished, 0);
-  EXPECT_THROW(run_interleaved(0, [](DropletJob*, bool) { return false; }, [](std::int64_t, RunSummary&&) {}),
+  EXPECT_THROW(run_interleaved(
+                   0, [](DropletJob*, bool) { return false; }, [](std::int64_t, RunSummary&&) {}),
                std::invalid_argument);
 }
 

@@ -1,8 +1,9 @@
 // The island model: islands' seeds and migrations, the same histories on any thread count, a kill
 // at random instants resumed bit for bit, and the store's island columns on old and new files.
-#include <gtest/gtest.h>
+#include "softdrop/islands.hpp"
 
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <gtest/gtest.h>
 
 #include <bit>
 #include <chrono>
@@ -13,7 +14,6 @@
 #include "search_cli.hpp"
 #include "search_fixtures.hpp"
 #include "softdrop/history.hpp"
-#include "softdrop/islands.hpp"
 #include "softdrop/random.hpp"
 #include "softdrop/strategy.hpp"
 
@@ -128,8 +128,10 @@ TEST(Islands, DrivenOnTwoThreadsTheyMakeWhatOneThreadMakes) {
   // The order of the islands' reports may differ; what each island reported may not.
   auto sorted = [](std::string s) {
     std::vector<std::string> lines;
-    for (std::size_t at = 0, end; (end = s.find('\n', at)) != std::string::npos; at = end + 1) lines.push_back(s.substr(at, end - at));
-    std::stable_sort(lines.begin(), lines.end(), [](const std::string& x, const std::string& y) { return x[0] < y[0]; });
+    for (std::size_t at = 0, end; (end = s.find('\n', at)) != std::string::npos; at = end + 1)
+      lines.push_back(s.substr(at, end - at));
+    std::stable_sort(lines.begin(), lines.end(),
+                     [](const std::string& x, const std::string& y) { return x[0] < y[0]; });
     std::ostringstream joined;
     for (const std::string& l : lines) joined << l << '\n';
     return joined.str();
@@ -166,11 +168,14 @@ TEST(Islands, OwnStartsGiveEachIslandTheMediumOfItsOwnSeed) {
   // --island-starts own: island i starts from the medium a plain run with medium seed
   // derive_seed(medium seed, i) starts from; a resume that says otherwise is refused untouched.
   const std::string db = fresh("islands_own.db"), alone = fresh("islands_own_alone.db");
-  ASSERT_EQ(run("optimize --db " + db + kScene + " --islands 3 --migrate-every 0 --island-starts own --generations 2").code, 0);
+  ASSERT_EQ(
+      run("optimize --db " + db + kScene + " --islands 3 --migrate-every 0 --island-starts own --generations 2").code,
+      0);
   std::string starts;
   for (int island = 0; island < 3; ++island) {
     std::string args = kScene;
-    args.replace(args.find("--medium-seed 2"), 15, "--medium-seed " + std::to_string(derive_seed(2, static_cast<std::uint64_t>(island))));
+    args.replace(args.find("--medium-seed 2"), 15,
+                 "--medium-seed " + std::to_string(derive_seed(2, static_cast<std::uint64_t>(island))));
     std::filesystem::remove(alone);
     ASSERT_EQ(run("optimize --db " + alone + args + " --generations 0").code, 0);
     EXPECT_EQ(dump(db, island + 1, 0), dump(alone, 1, 0)) << "island " << island;
@@ -223,7 +228,8 @@ TEST(Islands, CmaesStoppedAfterAMigrationResumesToTheSameHistory) {
 }
 
 TEST(Islands, KilledAtRandomInstantsTheyResumeBitForBit) {
-  const std::string args = kScene + " --islands 3 --migrate-every 5 --generations 40 --lambda 2 --threads 2 --strategy lahc";
+  const std::string args =
+      kScene + " --islands 3 --migrate-every 5 --generations 40 --lambda 2 --threads 2 --strategy lahc";
   const std::string ref = fresh("islands_ref.db"), killed = fresh("islands_killed.db");
   ASSERT_EQ(run("optimize --db " + ref + args).code, 0);
   std::mt19937 rng(5);
@@ -232,12 +238,13 @@ TEST(Islands, KilledAtRandomInstantsTheyResumeBitForBit) {
     if (lowest_committed(killed, 3) < 0) std::filesystem::remove(killed);  // killed while the islands were being made
     const bool resume = test::has_run(killed);
     const pid_t pid = test::spawn("optimize --db " + killed + args + (resume ? " --resume 2" : ""));
-    std::this_thread::sleep_for(std::chrono::milliseconds(
-        std::uniform_int_distribution<int>(20, test::kAddressSanitizer ? 900 : 300)(rng)));
+    std::this_thread::sleep_for(
+        std::chrono::milliseconds(std::uniform_int_distribution<int>(20, test::kAddressSanitizer ? 900 : 300)(rng)));
     kill(pid, SIGKILL);
     const int code = test::wait_for(pid);
     ASSERT_TRUE(code == -SIGKILL || code == 0) << code;
-    if (const std::int64_t g = lowest_committed(killed, 3); g >= 0) committed.emplace_back(g, islands_dump(killed, 3, g));
+    if (const std::int64_t g = lowest_committed(killed, 3); g >= 0)
+      committed.emplace_back(g, islands_dump(killed, 3, g));
   }
   if (lowest_committed(killed, 3) < 0) std::filesystem::remove(killed);  // killed while the islands were being made
   const auto fin = run("optimize --db " + killed + args + (test::has_run(killed) ? " --resume 1" : ""));
@@ -254,7 +261,8 @@ TEST(Islands, BadOptionsAndContradictionsGetOneLine) {
            {" --islands 3 --migrate-every -4", "migrate-every = -4: must be 0 (never) or >= 2"},
            {" --islands 3 --migration star", "star"},
            {" --island-starts own", "island-starts = own: an option of --islands K (K > 1)"},
-           {" --islands 2 --island-starts own --medium grains.json", "island-starts = own: needs generated media, not --medium grains.json"},
+           {" --islands 2 --island-starts own --medium grains.json",
+            "island-starts = own: needs generated media, not --medium grains.json"},
            {" --islands 2 --island-starts mine", "mine"}}) {
     // (with --medium, the scene's medium options would be refused first)
     const bool file = args.find("--medium") != std::string::npos;
@@ -284,9 +292,10 @@ TEST(Islands, AVersionFourHistoryGainsTheIslandColumnsAndKeepsItsRuns) {
     w.exec("DROP VIEW runs_view");  // the views came with version 8
     w.exec("ALTER TABLE runs DROP COLUMN island; ALTER TABLE runs DROP COLUMN archipelago");
     const int v = w.execAndGet("PRAGMA schema_version").getInt();
-    w.exec("PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, ', ''migrate''', '') "
-           "WHERE name = 'generations'; PRAGMA schema_version = " + std::to_string(v + 1) +
-           "; PRAGMA writable_schema = OFF; PRAGMA user_version = 4");
+    w.exec(
+        "PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, ', ''migrate''', '') "
+        "WHERE name = 'generations'; PRAGMA schema_version = " +
+        std::to_string(v + 1) + "; PRAGMA writable_schema = OFF; PRAGMA user_version = 4");
   }
   const std::string before = dump(db, 1);
   const auto old = open_history(db, OpenMode::read_only)->runs();  // read as it is

@@ -1,9 +1,8 @@
 // `optimize --objective`: the single objective gives the histories it always gave, a robust run
 // resumes bit for bit, and every bad objective option gets one line and leaves the history as it
 // was.
-#include <gtest/gtest.h>
-
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
 #include <fstream>
@@ -53,7 +52,8 @@ TEST(ObjectiveCli, TheSingleObjectiveGivesTheStoredComparisonsCurve) {
   SQLite::Statement q(d, "SELECT generation, printf('%.15g', best_t) FROM generations ORDER BY generation");
   int n = 0;
   while (q.executeStep()) {
-    EXPECT_EQ(q.getColumn(1).getString(), stored.at(q.getColumn(0).getInt())) << "generation " << q.getColumn(0).getInt();
+    EXPECT_EQ(q.getColumn(1).getString(), stored.at(q.getColumn(0).getInt()))
+        << "generation " << q.getColumn(0).getInt();
     ++n;
   }
   EXPECT_EQ(n, 13);
@@ -69,7 +69,8 @@ TEST(ObjectiveCli, ARobustRunResumedGoesOnBitForBit) {
   EXPECT_EQ(a, b);
   // Every generation re-ran its parent on its 4 starts, and counts 2 x 4 + 4 droplets.
   SQLite::Database d(whole, SQLite::OPEN_READONLY);
-  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM generations WHERE generation > 0 AND parent_passed IS NOT NULL").getInt(), 6);
+  EXPECT_EQ(
+      d.execAndGet("SELECT count(*) FROM generations WHERE generation > 0 AND parent_passed IS NOT NULL").getInt(), 6);
   EXPECT_EQ(d.execAndGet("SELECT droplets FROM runs").getInt64(), 4 + 6 * 12);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM candidates WHERE droplets != 4").getInt(), 0);
   EXPECT_EQ(d.execAndGet("SELECT json_extract(params, '$.objective') FROM runs").getString(), "mean");
@@ -79,7 +80,8 @@ TEST(ObjectiveCli, ARobustRunResumedGoesOnBitForBit) {
 // the generation's starts; threads and a resume change nothing.
 TEST(ObjectiveCli, RobustIslandsAreTheSameOnAnyThreadCountAndThroughAResume) {
   const std::string args = kRobust + " --islands 2 --migrate-every 2";
-  const std::string one = fresh("robust_islands_1.db"), two = fresh("robust_islands_2.db"), parts = fresh("robust_islands_r.db");
+  const std::string one = fresh("robust_islands_1.db"), two = fresh("robust_islands_2.db"),
+                    parts = fresh("robust_islands_r.db");
   ASSERT_EQ(run("optimize --db " + one + args + " --generations 5 --threads 1").code, 0);
   ASSERT_EQ(run("optimize --db " + two + args + " --generations 5 --threads 2").code, 0);
   ASSERT_EQ(run("optimize --db " + parts + args + " --generations 3").code, 0);
@@ -90,7 +92,9 @@ TEST(ObjectiveCli, RobustIslandsAreTheSameOnAnyThreadCountAndThroughAResume) {
     EXPECT_EQ(dump(one, island), dump(parts, island)) << "island " << island;
   }
   SQLite::Database d(one, SQLite::OPEN_READONLY);
-  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM generations WHERE kind = 'migrate' AND parent_passed IS NOT NULL").getInt(), 4);
+  EXPECT_EQ(
+      d.execAndGet("SELECT count(*) FROM generations WHERE kind = 'migrate' AND parent_passed IS NOT NULL").getInt(),
+      4);
 }
 
 TEST(ObjectiveCli, BadObjectiveOptionsGetOneLineAndChangeNothing) {
@@ -100,11 +104,14 @@ TEST(ObjectiveCli, BadObjectiveOptionsGetOneLineAndChangeNothing) {
   for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
            {"--db " + fresh_db + kBase + " --objective mean --starts 0", "starts = 0: must be in [1, 4096]"},
            {"--db " + fresh_db + kBase + " --objective mean --starts 5000", "starts = 5000: must be in [1, 4096]"},
-           {"--db " + fresh_db + kBase + " --objective median", "--objective: median not in {single,mean,quantile,lower-bound}"},
+           {"--db " + fresh_db + kBase + " --objective median",
+            "--objective: median not in {single,mean,quantile,lower-bound}"},
            {"--db " + fresh_db + kBase + " --objective quantile --quantile 1", "quantile = 1: must be in (0, 1)"},
            {"--db " + fresh_db + kBase + " --objective quantile --quantile 0", "quantile = 0: must be in (0, 1)"},
-           {"--db " + fresh_db + kBase + " --objective mean --quantile 0.5", "quantile: not an option of --objective mean"},
-           {"--db " + fresh_db + kBase + " --objective single --starts 8", "starts: not an option of --objective single"},
+           {"--db " + fresh_db + kBase + " --objective mean --quantile 0.5",
+            "quantile: not an option of --objective mean"},
+           {"--db " + fresh_db + kBase + " --objective single --starts 8",
+            "starts: not an option of --objective single"},
            {"--db " + fresh_db + kBase + " --preset paper --margin 1", "margin: not an option of --objective single"},
            {"--db " + fresh_db + kBase + " --objective lower-bound --margin -1", "margin = -1: must be >= 0"},
            {"--db " + db + " --resume 1 --objective single", "--objective \"single\" (stored \"mean\")"},

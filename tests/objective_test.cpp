@@ -1,6 +1,8 @@
 // The robust objectives: their starts, their values over K droplets, and a search on them that
 // compares every candidate with its parent re-run on the same fresh starts, deterministically at
 // any thread count and through a resume.
+#include "softdrop/objective.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +11,6 @@
 
 #include "optimizer/evaluation.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/objective.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/strategy.hpp"

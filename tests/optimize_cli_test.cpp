@@ -1,13 +1,12 @@
 // `softdrop optimize / history / export` end to end: a search killed with SIGKILL at random
 // instants and resumed each time writes exactly the history of one that never stopped; an exported
 // configuration re-simulated gives the stored T bit for bit; two searches share one file.
-#include <gtest/gtest.h>
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
-
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <chrono>
 #include <filesystem>
@@ -69,8 +68,8 @@ TEST(Optimize, LambdaFourWritesTheSameHistoryOnOneAndTwoThreads) {
   EXPECT_NE(a.find("|8|33|"), std::string::npos) << "8 generations of 4 candidates plus the start";
   // Lanes set by hand: the same history, and the summary says what ran.
   const std::string three = fresh("lambda_l3.db");
-  const Result r =
-      run("optimize --db " + three + kScene + paper + " --generations 8 --lambda 4 --threads 2 --lanes 3 --format json");
+  const Result r = run("optimize --db " + three + kScene + paper +
+                       " --generations 8 --lambda 4 --threads 2 --lanes 3 --format json");
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(dump(three, 1), a);
   const nlohmann::json j = nlohmann::json::parse(r.out);
@@ -99,8 +98,8 @@ TEST(Optimize, ExportedGenerationsReproduceTheStoredTBitForBit) {
   for (const auto& point : {curve.front(), curve.back()}) {
     const std::string g = std::to_string(point["generation"].get<int>());
     const std::string grains = fresh("export_" + g + ".json"), config = fresh("export_" + g + ".toml");
-    const Result e = run("export --db " + db + " --run 1 --generation " + g + " -o " + grains +
-                         " --simulate-config " + config);
+    const Result e =
+        run("export --db " + db + " --run 1 --generation " + g + " -o " + grains + " --simulate-config " + config);
     ASSERT_EQ(e.code, 0) << e.err;
     const Result s = run("simulate --config " + config + " --format json");
     ASSERT_EQ(s.code, 0) << s.err;
@@ -178,7 +177,7 @@ TEST(Optimize, CtrlCFinishesTheGenerationInFlightAndTimeLimitStops) {
 TEST(Optimize, BadOptionsAndFailedStartsLeaveNoDatabase) {
   const std::string db = fresh("never.db");
   for (const std::string args : {"--lambda 0", "--step -1", "--grains -5", "--constraint-order shuffled",
-                                  "--grains 100000 --width 100 --height 100", "--time-limit -3", "--lanes 65"}) {
+                                 "--grains 100000 --width 100 --height 100", "--time-limit -3", "--lanes 65"}) {
     const Result r = run("optimize --db " + db + " " + args);
     SCOPED_TRACE(args);
     EXPECT_NE(r.code, 0);
@@ -275,8 +274,9 @@ TEST(Optimize, HistoryListsCandidatesAndTheStoredOptions) {
   std::istringstream lines(c.out);
   std::string line;
   std::getline(lines, line);
-  EXPECT_EQ(line, "generation,candidate,kind,accepted,outcome,tortuosity,steps,touched,moved_grain,moved,seconds,reason,"
-                  "droplets,passed");
+  EXPECT_EQ(line,
+            "generation,candidate,kind,accepted,outcome,tortuosity,steps,touched,moved_grain,moved,seconds,reason,"
+            "droplets,passed");
   int rows = 0, accepted = 0;
   while (std::getline(lines, line)) {
     ++rows;
@@ -323,7 +323,9 @@ TEST(Optimize, HistoryListsCandidatesAndTheStoredOptions) {
 TEST(Optimize, PresetPaperIsThePapersAlgorithm) {
   const std::string preset = fresh("preset_paper.db"), spelled = fresh("preset_spelled.db");
   ASSERT_EQ(run("optimize --db " + preset + kScene + " --generations 6 --preset paper").code, 0);
-  ASSERT_EQ(run("optimize --db " + spelled + kScene + " --generations 6 --strategy paper --lambda 1 --relocate-every 0").code, 0);
+  ASSERT_EQ(
+      run("optimize --db " + spelled + kScene + " --generations 6 --strategy paper --lambda 1 --relocate-every 0").code,
+      0);
   EXPECT_EQ(dump(preset, 1), dump(spelled, 1));
   ASSERT_EQ(run("optimize --db " + preset + kScene + " --generations 2 --preset paper --lambda 2").code, 0);
   const Result p = run("history --db " + preset + " --run 2 --params --format csv");

@@ -3,6 +3,8 @@
 // Rayleigh's (1892) effective diffusivity; slanted channels give the straight path's length. Both
 // converge at first order in the pixel size, so the value extrapolated from a resolution and its
 // double (2 T(2n) - T(n), Richardson) is within a few tenths of a percent.
+#include "softdrop/pore_tortuosity.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include <stdexcept>
 
 #include "pore_images.hpp"
-#include "softdrop/pore_tortuosity.hpp"
 
 namespace softdrop {
 namespace {
@@ -61,9 +62,9 @@ TEST(PoreTortuosity, ASquareArrayOfDiscsDiffusesAsRayleighFound) {
     const double tau = (1 - f) / d_eff;
     const double coarse = diffusive_tortuosity(pore_image(m, 200)).tau;
     const double fine = diffusive_tortuosity(pore_image(m, 400)).tau;
-    EXPECT_NEAR(fine, tau, 0.01 * tau);                // 1 % at 100 pixels a radius of 0.5's disc
+    EXPECT_NEAR(fine, tau, 0.01 * tau);                       // 1 % at 100 pixels a radius of 0.5's disc
     EXPECT_LT(std::abs(fine - tau), std::abs(coarse - tau));  // and closer at the finer pixels
-    EXPECT_NEAR(2 * fine - coarse, tau, 0.002 * tau);  // extrapolated: 0.2 %
+    EXPECT_NEAR(2 * fine - coarse, tau, 0.002 * tau);         // extrapolated: 0.2 %
   }
 }
 

@@ -53,8 +53,7 @@ TEST(Porosity, ExactAgreesWithMonteCarloOnRandomMedia) {
     bool periodic;
   };
   for (const Case c : {Case{MediumKind::overlapping, 0.5, true}, Case{MediumKind::overlapping, 0.8, true},
-                       Case{MediumKind::overlapping, 0.6, false},
-                       Case{MediumKind::non_overlapping, 0.75, true}}) {
+                       Case{MediumKind::overlapping, 0.6, false}, Case{MediumKind::non_overlapping, 0.75, true}}) {
     MediumOptions o;
     o.kind = c.kind;
     o.porosity = c.porosity;
@@ -64,8 +63,7 @@ TEST(Porosity, ExactAgreesWithMonteCarloOnRandomMedia) {
     const double exact = exact_porosity(m);
     const PorosityEstimate mc = monte_carlo_porosity(m, 1'000'000, 99);
     EXPECT_LT(std::abs(exact - mc.porosity), 3 * mc.standard_error)
-        << "phi " << c.porosity << ": exact " << exact << " mc " << mc.porosity << " +- "
-        << mc.standard_error;
+        << "phi " << c.porosity << ": exact " << exact << " mc " << mc.porosity << " +- " << mc.standard_error;
   }
 }
 

@@ -91,8 +91,7 @@ TEST(RelaxedMedium, TooManyGrainsForTheGapIsAClearError) {
     FAIL() << "expected an error";
   } catch (const std::runtime_error& e) {
     const std::string what = e.what();
-    EXPECT_EQ(what.rfind("porosity = 0.5: unreachable for relaxed grains with gap 0.6", 0), 0u)
-        << what;
+    EXPECT_EQ(what.rfind("porosity = 0.5: unreachable for relaxed grains with gap 0.6", 0), 0u) << what;
   }
   EXPECT_EQ(parse_medium_kind("relaxed"), MediumKind::relaxed);
   EXPECT_STREQ(to_string(MediumKind::relaxed), "relaxed");

@@ -1,9 +1,9 @@
 // The relocation move: a grain the droplet did not touch is put next to its path. Where it goes,
 // its place in the generation schedule, every strategy using it deterministically, and histories
 // written before it existed (schema version 3) widened in place to hold it.
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 
-#include <SQLiteCpp/SQLiteCpp.h>
 #include <algorithm>
 #include <cmath>
 
@@ -92,9 +92,10 @@ TEST(Relocation, AVersionThreeHistoryIsWidenedInPlaceAndKeepsItsRuns) {
   {  // make it the file an earlier softdrop wrote: the narrower CHECK, schema version 3
     SQLite::Database w(db, SQLite::OPEN_READWRITE);
     const int v = w.execAndGet("PRAGMA schema_version").getInt();
-    w.exec("PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, ', ''relocate''', '') "
-           "WHERE name = 'generations'; PRAGMA schema_version = " + std::to_string(v + 1) +
-           "; PRAGMA writable_schema = OFF; PRAGMA user_version = 3");
+    w.exec(
+        "PRAGMA writable_schema = ON; UPDATE sqlite_master SET sql = replace(sql, ', ''relocate''', '') "
+        "WHERE name = 'generations'; PRAGMA schema_version = " +
+        std::to_string(v + 1) + "; PRAGMA writable_schema = OFF; PRAGMA user_version = 3");
     EXPECT_THROW(w.exec("UPDATE generations SET kind = 'relocate' WHERE generation = 1"), SQLite::Exception);
   }
   const std::string before = dump(db, 1);
@@ -110,8 +111,10 @@ TEST(Relocation, AVersionThreeHistoryIsWidenedInPlaceAndKeepsItsRuns) {
   const int lambda = d.execAndGet("SELECT lambda FROM runs WHERE id = 2").getInt();
   int relocations = 0;
   for (int n = 1; n <= 4 * lambda; ++n) relocations += n % 10 != 0 && n % 2 == 0;
-  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM candidates WHERE run_id = 2 AND kind = 'relocate'").getInt(), relocations);
-  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM candidates_view WHERE run = 2 AND kind = 'relocate'").getInt(), relocations);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM candidates WHERE run_id = 2 AND kind = 'relocate'").getInt(),
+            relocations);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM candidates_view WHERE run = 2 AND kind = 'relocate'").getInt(),
+            relocations);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM generations WHERE run_id = 2 AND kind = 'mixed'").getInt(), 4);
   EXPECT_EQ(dump(db, 1), before);
   // The history shows the move, and a resume keeps the stored option.

@@ -1,5 +1,7 @@
 // Pictures: every kind renders for a small scene at the asked size and is not blank; the SVG
 // parses and holds one circle per grain (plus periodic copies); bad inputs leave no file.
+#include "softdrop/render.hpp"
+
 #include <cairo.h>
 #include <gif_lib.h>
 #include <gtest/gtest.h>
@@ -10,10 +12,9 @@
 #include <functional>
 #include <sstream>
 
-#include "csv_table.hpp"
 #include "balloon.hpp"
 #include "cli_run.hpp"
-#include "softdrop/render.hpp"
+#include "csv_table.hpp"
 
 namespace softdrop {
 namespace {
@@ -36,8 +37,7 @@ double png_dpi(const std::string& path) {
   };
   for (std::size_t at = 8; at + 8 <= bytes.size();) {  // chunks after the 8-byte signature
     const std::uint32_t length = be32(at);
-    if (bytes.compare(at + 4, 4, "pHYs") == 0 && length == 9 && bytes[at + 16] == 1)
-      return be32(at + 8) * 0.0254;
+    if (bytes.compare(at + 4, 4, "pHYs") == 0 && length == 9 && bytes[at + 16] == 1) return be32(at + 8) * 0.0254;
     at += 12 + length;
   }
   return 0;
@@ -97,8 +97,9 @@ TEST(Render, PngHasTheAskedWidthAndIsNotBlank) {
 // pixel of it in the right margin, at any of these widths.
 TEST(Render, ALongCaptionStaysInsideTheRightMargin) {
   Scene scene = small_scene();
-  scene.caption = "run 1, generation 3: T = 1.4711, 19 grains touched (filled); 20 grains, porosity 0.7611, "
-                  "500 x 500, periodic in x";
+  scene.caption =
+      "run 1, generation 3: T = 1.4711, 19 grains touched (filled); 20 grains, porosity 0.7611, "
+      "500 x 500, periodic in x";
   for (const int width : {200, 400, 800}) {
     SCOPED_TRACE(width);
     const std::string out = fresh("long_caption.png");
@@ -161,7 +162,8 @@ TEST(Render, SvgKeepsItsTextAsText) {
     tinyxml2::XMLDocument doc;
     EXPECT_EQ(doc.LoadFile(path.c_str()), tinyxml2::XML_SUCCESS);
     std::vector<std::pair<std::string, std::string>> out;  // text, transform
-    for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e; e = e->NextSiblingElement("text"))
+    for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e;
+         e = e->NextSiblingElement("text"))
       out.emplace_back(e->GetText() ? e->GetText() : "", e->Attribute("transform") ? e->Attribute("transform") : "");
     return out;
   };
@@ -189,8 +191,8 @@ TEST(Render, TheLegendSitsWhereTheDataAreNot) {
     std::vector<double> y;
     bool legend_left, legend_top;
   };
-  for (const Case& c : {Case{{1, 2, 3, 4, 5}, true, true}, Case{{5, 4, 3, 2, 1}, false, true},
-                        Case{{5, 5, 1, 5, 5}, false, false}}) {
+  for (const Case& c :
+       {Case{{1, 2, 3, 4, 5}, true, true}, Case{{5, 4, 3, 2, 1}, false, true}, Case{{5, 5, 1, 5, 5}, false, false}}) {
     const std::string svg = fresh("legend.svg");
     Chart chart;
     Series line;
@@ -204,8 +206,10 @@ TEST(Render, TheLegendSitsWhereTheDataAreNot) {
     tinyxml2::XMLDocument doc;
     ASSERT_EQ(doc.LoadFile(svg.c_str()), tinyxml2::XML_SUCCESS);
     double x = -1, y = -1;
-    for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e; e = e->NextSiblingElement("text"))
-      if (e->GetText() && std::string(e->GetText()) == "a legend entry") x = e->DoubleAttribute("x"), y = e->DoubleAttribute("y");
+    for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e;
+         e = e->NextSiblingElement("text"))
+      if (e->GetText() && std::string(e->GetText()) == "a legend entry")
+        x = e->DoubleAttribute("x"), y = e->DoubleAttribute("y");
     ASSERT_GE(x, 0) << "no legend";
     SCOPED_TRACE(c.y[0]);
     EXPECT_EQ(x < 200, c.legend_left) << x;
@@ -256,11 +260,14 @@ TEST(Render, AnimationIsALoopingGifWithOneImagePerFrame) {
   const std::string out = fresh("anim.gif");
   RenderStyle style;
   style.width = 200;
-  render_animation(7, 10, [](int f, Scene& s) {
-    s = small_scene();
-    s.top_room = 20;
-    s.lines[0].x.resize(static_cast<std::size_t>(1 + f % 4));
-  }, style, out);
+  render_animation(
+      7, 10,
+      [](int f, Scene& s) {
+        s = small_scene();
+        s.top_room = 20;
+        s.lines[0].x.resize(static_cast<std::size_t>(1 + f % 4));
+      },
+      style, out);
   int error = 0;
   GifFileType* gif = DGifOpenFileName(out.c_str(), &error);
   ASSERT_NE(gif, nullptr);
@@ -270,7 +277,7 @@ TEST(Render, AnimationIsALoopingGifWithOneImagePerFrame) {
   GraphicsControlBlock gcb;
   ASSERT_EQ(DGifSavedExtensionToGCB(gif, 1, &gcb), GIF_OK);
   EXPECT_EQ(gcb.DelayTime, 10);  // centiseconds at 10 fps
-  bool loops = false;  // the NETSCAPE2.0 application extension, before the first frame
+  bool loops = false;            // the NETSCAPE2.0 application extension, before the first frame
   for (int i = 0; i < gif->SavedImages[0].ExtensionBlockCount; ++i) {
     const ExtensionBlock& b = gif->SavedImages[0].ExtensionBlocks[i];
     loops |= b.Function == APPLICATION_EXT_FUNC_CODE && b.ByteCount == 11 &&
@@ -279,7 +286,8 @@ TEST(Render, AnimationIsALoopingGifWithOneImagePerFrame) {
   EXPECT_TRUE(loops);
   long coloured = 0;
   const SavedImage& frame = gif->SavedImages[3];
-  for (int i = 0; i < frame.ImageDesc.Width * frame.ImageDesc.Height; ++i) coloured += frame.RasterBits[i] != frame.RasterBits[0];
+  for (int i = 0; i < frame.ImageDesc.Width * frame.ImageDesc.Height; ++i)
+    coloured += frame.RasterBits[i] != frame.RasterBits[0];
   EXPECT_GT(coloured, 500);
   DGifCloseFile(gif, &error);
 }
@@ -314,15 +322,19 @@ TEST(RenderCli, EveryPictureKindRenders) {
   expect_png("paths --medium " + kPore + " --droplets 6 --seed 2", fresh("cli_paths.png"), 300);
 
   const std::string db = fresh("cli_search.db");
-  ASSERT_EQ(test::run("optimize --db " + db + test::kSmallScene + " --seed 7 "
-                      "--stuck-window 0.1 --stuck-distance 1 --generations 8 --quiet").code, 0);
+  ASSERT_EQ(test::run("optimize --db " + db + test::kSmallScene +
+                      " --seed 7 "
+                      "--stuck-window 0.1 --stuck-distance 1 --generations 8 --quiet")
+                .code,
+            0);
   const std::string curve = fresh("cli_curve.svg");
   expect_png("search --db " + db + " --run 1 --curve " + curve, fresh("cli_search.png"), 320);
   tinyxml2::XMLDocument doc;
   EXPECT_EQ(doc.LoadFile(curve.c_str()), tinyxml2::XML_SUCCESS);
 
   const std::string gif = fresh("cli_anim.gif");
-  const test::Result r = test::run("render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 -o " + gif + " --size 160");
+  const test::Result r =
+      test::run("render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 -o " + gif + " --size 160");
   ASSERT_EQ(r.code, 0) << r.err;
   int error = 0;
   GifFileType* g = DGifOpenFileName(gif.c_str(), &error);
@@ -362,7 +374,8 @@ TEST(RenderCli, AConfigFileReachesTheNestedCommand) {
 
 TEST(RenderCli, AnimationAsMp4ThroughFfmpeg) {
   const std::string mp4 = fresh("anim.mp4");
-  const std::string args = "render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 --size 160 -o " + mp4;
+  const std::string args =
+      "render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 --size 160 -o " + mp4;
   // Without ffmpeg on the PATH: one clear line, no file.
   const test::Result missing = test::run_shell("PATH=/nonexistent " + std::string(SOFTDROP_CLI) + " " + args);
   EXPECT_EQ(missing.code, 1);
@@ -378,7 +391,8 @@ TEST(RenderCli, AnimationAsMp4ThroughFfmpeg) {
   EXPECT_GT(std::filesystem::file_size(mp4), 1000u);
   // An odd --size gives even frames whose added column and row are background, not dark padding.
   const std::string odd = fresh("odd.mp4"), first = fresh("odd_frame.png");
-  ASSERT_EQ(test::run("render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 --size 161 -o " + odd).code, 0);
+  ASSERT_EQ(
+      test::run("render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 --size 161 -o " + odd).code, 0);
   ASSERT_EQ(std::system(("ffmpeg -loglevel error -y -i " + odd + " -vframes 1 " + first).c_str()), 0);
   cairo_surface_t* s = cairo_image_surface_create_from_png(first.c_str());
   ASSERT_EQ(cairo_surface_status(s), CAIRO_STATUS_SUCCESS);
@@ -403,8 +417,8 @@ struct PoreTrace {
 };
 PoreTrace trace_through_pore(const std::string& options) {
   const std::string csv = fresh("trace.csv"), png = fresh("trace.png");
-  const test::Result r = test::run("render trace --medium " + kPore + " --x0 100 --csv " + csv + " -o " + png +
-                                   " --size 400" + options);
+  const test::Result r =
+      test::run("render trace --medium " + kPore + " --x0 100 --csv " + csv + " -o " + png + " --size 400" + options);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(read_png(png).width, 400);
   EXPECT_NEAR(png_dpi(png), 72, 0.01);  // the default --dpi, written into the file
@@ -418,14 +432,18 @@ PoreTrace trace_through_pore(const std::string& options) {
     const std::string& phase = table.cell(i, "phase");
     if (phase == "inside" && p.enter < 0) p.enter = t.back();
     if (phase == "below" && p.leave < 0) p.leave = t.back();
-    EXPECT_TRUE(phase == "above" ? p.enter < 0 : phase == "inside" ? p.enter >= 0 && p.leave < 0 : p.leave >= 0) << phase;
+    EXPECT_TRUE(phase == "above"    ? p.enter < 0
+                : phase == "inside" ? p.enter >= 0 && p.leave < 0
+                                    : p.leave >= 0)
+        << phase;
   }
   EXPECT_GT(t.size(), 50u);
   EXPECT_GT(p.enter, 0);
   EXPECT_GT(p.leave, p.enter);
   EXPECT_LE(p.leave, t.back() + 1e-12);
   for (std::size_t i = 0; i < t.size(); ++i)
-    if (t[i] > p.enter && t[i] < p.leave) p.lowest = std::min(p.lowest, ratio[i]), p.highest = std::max(p.highest, ratio[i]);
+    if (t[i] > p.enter && t[i] < p.leave)
+      p.lowest = std::min(p.lowest, ratio[i]), p.highest = std::max(p.highest, ratio[i]);
   return p;
 }
 
@@ -446,7 +464,10 @@ TEST(RenderCli, AreaTraceMarksEntryAndExitAndTheDropletShrinksAndSwells) {
 TEST(RenderCli, OverlappingGrainsAreDrawnAsTheirSolidUnion) {
   auto colours = [](const std::string& kind) {
     const std::string svg = fresh("union_" + kind + ".svg");
-    EXPECT_EQ(test::run("render medium --kind " + kind + " --porosity 0.8 --width 100 --height 100 --r-min 8 --r-max 16 -o " + svg).code, 0);
+    EXPECT_EQ(test::run("render medium --kind " + kind +
+                        " --porosity 0.8 --width 100 --height 100 --r-min 8 --r-max 16 -o " + svg)
+                  .code,
+              0);
     std::ifstream in(svg);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     int solid = 0, outlines = 0;
@@ -494,12 +515,15 @@ TEST(RenderCli, AScaleBarIsDrawnWhenAsked) {
 // reads over a grain or the path: in SVG, a stroke painted under the glyphs.
 TEST(RenderCli, SnapshotLabelsLieOnAHaloOfTheBackground) {
   const std::string svg = fresh("snapshots_halo.svg");
-  ASSERT_EQ(test::run("render snapshots --medium " + kPore + " --x0 100 --times 0.01,0.02 --background '#fafaf0' -o " +
-                      svg).code, 0);
+  ASSERT_EQ(
+      test::run("render snapshots --medium " + kPore + " --x0 100 --times 0.01,0.02 --background '#fafaf0' -o " + svg)
+          .code,
+      0);
   tinyxml2::XMLDocument doc;
   ASSERT_EQ(doc.LoadFile(svg.c_str()), tinyxml2::XML_SUCCESS);
   int labels = 0;
-  for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e; e = e->NextSiblingElement("text")) {
+  for (const tinyxml2::XMLElement* e = doc.RootElement()->FirstChildElement("text"); e;
+       e = e->NextSiblingElement("text")) {
     if (!e->GetText() || std::string(e->GetText()).rfind("t = ", 0) != 0) continue;
     ++labels;
     EXPECT_STREQ(e->Attribute("stroke"), "rgb(250,250,240)");
@@ -511,9 +535,10 @@ TEST(RenderCli, SnapshotLabelsLieOnAHaloOfTheBackground) {
 
 TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
   const std::string svg = fresh("paths_colours.svg");
-  const test::Result ok = test::run("render paths --porosity 0.75 --width 200 --height 200 --droplets 8 --seed 1 "
-                                    "--r-min 8 --r-max 16 --path-colour '#ff0000' --stuck-colour '#0000ff' -o " +
-                                    svg + test::kBalloonOptions);
+  const test::Result ok = test::run(
+      "render paths --porosity 0.75 --width 200 --height 200 --droplets 8 --seed 1 "
+      "--r-min 8 --r-max 16 --path-colour '#ff0000' --stuck-colour '#0000ff' -o " +
+      svg + test::kBalloonOptions);
   ASSERT_EQ(ok.code, 0) << ok.err;
   std::ifstream in(svg);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -525,15 +550,18 @@ TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
 // path keeps the points half a pixel apart, and the picture is drawn.
 TEST(RenderCli, PathsOfManyDropletsAreDrawn) {
   const std::string png = fresh("paths_1000.png");
-  const test::Result ok = test::run("render paths --porosity 0.75 --width 200 --height 200 --droplets 600 --seed 1 "
-                                    "--r-min 8 --r-max 16 --quiet --size 200 -o " + png + test::kBalloonOptions);
+  const test::Result ok = test::run(
+      "render paths --porosity 0.75 --width 200 --height 200 --droplets 600 --seed 1 "
+      "--r-min 8 --r-max 16 --quiet --size 200 -o " +
+      png + test::kBalloonOptions);
   ASSERT_EQ(ok.code, 0) << ok.err;
   EXPECT_GT(read_png(png).non_background, 10000);
 }
 
 TEST(RenderCli, CurvesDrawSeveralSearchesAndNameWhatTheyCannotDraw) {
   const std::string a = fresh("curves-a-1.db"), b = fresh("curves-a-2.db"), png = fresh("curves.png");
-  const std::string search = test::kSmallScene + " --stuck-window 0.1 "
+  const std::string search = test::kSmallScene +
+                             " --stuck-window 0.1 "
                              "--stuck-distance 1 --generations 3 --quiet";
   for (const auto& [db, seed] : {std::pair{a, 7}, std::pair{b, 8}})
     ASSERT_EQ(test::run("optimize --db " + db + search + " --seed " + std::to_string(seed)).code, 0);

@@ -84,8 +84,7 @@ TEST(Robustness, RedBlackOrderGivesTheSameStatistics) {
     EXPECT_EQ(c.timeout, 0);
     EXPECT_NEAR(c.passed, a.passed, 0.1 * b.droplets);
     ASSERT_GT(a.passed, 10);
-    EXPECT_LT(std::abs(c.mean_tortuosity - a.mean_tortuosity),
-              3 * std::hypot(a.standard_error, c.standard_error));
+    EXPECT_LT(std::abs(c.mean_tortuosity - a.mean_tortuosity), 3 * std::hypot(a.standard_error, c.standard_error));
   }
 }
 
@@ -97,8 +96,7 @@ namespace {
 
 // Hard cases on the defaults, checked every step: the ring must stay whole (no self-intersection,
 // no inversion, no grain inside it) and no mass may sit deeper in a grain than the contact limit.
-RunSummary run_checked(const Medium& medium, double x0, double* cx = nullptr,
-                       double* cy = nullptr) {
+RunSummary run_checked(const Medium& medium, double x0, double* cx = nullptr, double* cy = nullptr) {
   const DropletParams p;
   RunOptions o;
   o.check_interval = 1;
@@ -160,7 +158,9 @@ TEST(HardCases, TheNarrowestPoreItPasses) {
   // Two grains of radius 16 side by side: the droplet (16 across) squeezes through a gap of 12,
   // and rests on a gap of 11. Its internal viscosity keeps its shape stiff, so it squeezes less
   // than the balloon did (a gap of 7).
-  auto pore = [](double gap) { return Medium{200, 200, true, {{100 - gap / 2 - 16, 120, 16}, {100 + gap / 2 + 16, 120, 16}}}; };
+  auto pore = [](double gap) {
+    return Medium{200, 200, true, {{100 - gap / 2 - 16, 120, 16}, {100 + gap / 2 + 16, 120, 16}}};
+  };
   const RunSummary through = run_checked(pore(12), 100);
   EXPECT_EQ(through.outcome, Outcome::passed) << through.reason;
   EXPECT_LT(through.min_area_ratio, 0.9) << "it squeezes";

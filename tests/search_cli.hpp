@@ -1,13 +1,12 @@
 #pragma once
 // Driving `softdrop optimize` from tests: the small scene on the command line, processes spawned
 // and killed, and a dump of everything deterministic a run stored (to compare histories).
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
-
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -46,12 +45,17 @@ inline std::string dump(const std::string& db_path, int run, std::int64_t upto =
     }
   };
   if (upto < 0)
-    table("SELECT status, params, seed, lambda, grains, width, height, periodic, generations, evaluations, droplets, "
-          "best_t, best_generation FROM runs WHERE id = ?");
-  table("SELECT generation, kind, accepted_candidate, best_t, touched, parent_t, parent_passed FROM generations "
-        "WHERE run_id = ?" + limit + " ORDER BY generation");
-  table("SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched, droplets, "
-        "passed FROM candidates WHERE run_id = ?" + limit + " ORDER BY generation, candidate");
+    table(
+        "SELECT status, params, seed, lambda, grains, width, height, periodic, generations, evaluations, droplets, "
+        "best_t, best_generation FROM runs WHERE id = ?");
+  table(
+      "SELECT generation, kind, accepted_candidate, best_t, touched, parent_t, parent_passed FROM generations "
+      "WHERE run_id = ?" +
+      limit + " ORDER BY generation");
+  table(
+      "SELECT generation, candidate, moved_grain, moved, outcome, reason, tortuosity, steps, touched, droplets, "
+      "passed FROM candidates WHERE run_id = ?" +
+      limit + " ORDER BY generation, candidate");
   table("SELECT generation, grain, x, y, r, touched FROM grains WHERE run_id = ?" + limit +
         " ORDER BY generation, grain");
   table("SELECT generation, point, x, y FROM paths WHERE run_id = ?" + limit + " ORDER BY generation, point");
@@ -62,11 +66,12 @@ inline std::string dump(const std::string& db_path, int run, std::int64_t upto =
 inline std::string sweep_dump(const std::string& db_path) {
   SQLite::Database d(db_path, SQLite::OPEN_READONLY);
   std::ostringstream out;
-  for (const char* sql : {"SELECT params, units FROM sweeps ORDER BY id",
-                          "SELECT sweep_id, porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
-                          "droplets, passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction "
-                          "FROM sweep_media ORDER BY 1, 2, 3",
-                          "SELECT * FROM sweep_droplets ORDER BY 1, 2, 3, 4"}) {
+  for (const char* sql :
+       {"SELECT params, units FROM sweeps ORDER BY id",
+        "SELECT sweep_id, porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
+        "droplets, passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction "
+        "FROM sweep_media ORDER BY 1, 2, 3",
+        "SELECT * FROM sweep_droplets ORDER BY 1, 2, 3, 4"}) {
     SQLite::Statement q(d, sql);
     while (q.executeStep()) {
       for (int c = 0; c < q.getColumnCount(); ++c) out << q.getColumn(c).getText() << '|';

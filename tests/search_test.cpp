@@ -1,5 +1,7 @@
 // The search: generations are deterministic at any thread count and through the speculating drive,
 // the best never gets worse and is only replaced by a strictly better passing candidate.
+#include "softdrop/search.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,7 +10,6 @@
 #include "fixtures.hpp"
 #include "optimizer/drive_test_seam.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/search.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/spacing.hpp"
 
@@ -158,8 +159,7 @@ TEST(Search, SpeculativeDriveGivesTheSameHistoryAsOneGenerationAtATime) {
 
 // Drives the generations of `a` from `best` on `threads` threads with `lanes` lanes each, expects
 // a's history, and returns the summary.
-SearchSummary drive_as(const Reference& a, const SearchOptions& o, const Configuration& best, int threads,
-                       int lanes) {
+SearchSummary drive_as(const Reference& a, const SearchOptions& o, const Configuration& best, int threads, int lanes) {
   DriveOptions d;
   d.generations = static_cast<std::int64_t>(a.history.size());
   d.threads = threads;
@@ -242,23 +242,20 @@ TEST(Search, EvolutionStrategySpeculatesWithTheHistoryOfOneGenerationAtATime) {
     if (g.accepted >= 0) {
       ++accepted;
       for (const Candidate& c : g.candidates)
-        lesser_successes +=
-            c.index != g.accepted && c.eval.outcome == Outcome::passed && c.eval.tortuosity > t;
+        lesser_successes += c.index != g.accepted && c.eval.outcome == Outcome::passed && c.eval.tortuosity > t;
     }
     t = g.best_t;
   }
   ASSERT_GT(accepted, 0);
   ASSERT_GT(shrunk, 0) << "generations that keep nothing must change the state";
   ASSERT_GT(lesser_successes, 0) << "the scene must have a generation with two successes";
-  for (auto [threads, lanes] :
-       {std::pair{1, 4}, std::pair{1, 8}, std::pair{2, 3}, std::pair{2, 8}}) {
+  for (auto [threads, lanes] : {std::pair{1, 4}, std::pair{1, 8}, std::pair{2, 3}, std::pair{2, 8}}) {
     SCOPED_TRACE(std::to_string(threads) + " threads, " + std::to_string(lanes) + " lanes");
     const SearchSummary sum = drive_as(a, o, best, threads, lanes);
     EXPECT_EQ(sum.speculation.threads, threads) << "es speculates";
     EXPECT_EQ(sum.accepted, accepted);
     EXPECT_EQ(sum.speculation.predictions, sum.accepted + sum.speculation.mispredictions);
-    EXPECT_GT(sum.speculation.dropped, 0)
-        << "work made from the steps before an acceptance is dropped";
+    EXPECT_GT(sum.speculation.dropped, 0) << "work made from the steps before an acceptance is dropped";
     if (threads == 1) {
       EXPECT_GE(sum.speculation.mispredictions, 1);
     }
@@ -323,10 +320,9 @@ TEST(Search, DefaultLanesKeepTheCandidatesInFlightOfTwoThreads) {
     SCOPED_TRACE("vector width " + std::to_string(static_cast<int>(width)));
     const int l1 = width >= VectorWidth::avx ? 8 : 4;
     for (auto [lambda, threads, lanes] :
-         {std::tuple{1, 1, l1}, std::tuple{1, 2, l1}, std::tuple{1, 3, 2 * l1 / 3},
-          std::tuple{1, 4, l1 / 2}, std::tuple{1, 16, 1}, std::tuple{2, 1, 8}, std::tuple{2, 2, 8},
-          std::tuple{2, 3, 5}, std::tuple{2, 4, 4}, std::tuple{4, 1, 8}, std::tuple{8, 1, 8},
-          std::tuple{8, 2, 8}, std::tuple{4, 16, 1}}) {
+         {std::tuple{1, 1, l1}, std::tuple{1, 2, l1}, std::tuple{1, 3, 2 * l1 / 3}, std::tuple{1, 4, l1 / 2},
+          std::tuple{1, 16, 1}, std::tuple{2, 1, 8}, std::tuple{2, 2, 8}, std::tuple{2, 3, 5}, std::tuple{2, 4, 4},
+          std::tuple{4, 1, 8}, std::tuple{8, 1, 8}, std::tuple{8, 2, 8}, std::tuple{4, 16, 1}}) {
       SCOPED_TRACE("lambda " + std::to_string(lambda) + ", " + std::to_string(threads) + " threads");
       const SearchOptions o = test::small_search_options(lambda);
       Search s(o, test::small_search_start(o), 0);

@@ -26,8 +26,7 @@ TEST(Simulation, FreeFallWithoutGrainsHasTortuosityOneAndFollowsTheParabola) {
   // rounding, which grows as steps^1.5 (about 5e-7 after this fall's 60 000 steps).
   for (std::size_t k = 0; k < r.path_t.size(); ++k) {
     const double t = r.path_t[k];
-    EXPECT_NEAR(r.path_y[k], r.start_y + 0.5 * p.gravity * t * t, 1e-8 * (1 + std::abs(r.start_y)))
-        << "t = " << t;
+    EXPECT_NEAR(r.path_y[k], r.start_y + 0.5 * p.gravity * t * t, 1e-8 * (1 + std::abs(r.start_y))) << "t = " << t;
     EXPECT_NEAR(r.path_x[k], 123.0, 1e-9);
   }
   // Fall time from the start height through H = 500.
@@ -88,8 +87,7 @@ TEST(Simulation, RowOfGrainsStopsTheDroplet) {
   Simulation sim(p, floor);
   RunOptions o;
   o.stuck_window = 0.1;
-  o.rest_window =
-      0;  // the stuck test alone (the rest test, which would end it sooner, is tested below)
+  o.rest_window = 0;  // the stuck test alone (the rest test, which would end it sooner, is tested below)
   const RunSummary r = sim.run(37.0, o);
   EXPECT_EQ(r.outcome, Outcome::stuck) << r.reason;
   EXPECT_NE(r.reason.find("moved down"), std::string::npos) << r.reason;
@@ -190,7 +188,10 @@ TEST(Simulation, ACancelHookStopsTheRunAndOtherwiseChangesNothing) {
   DropletParams p;
   RunOptions plain, watched, stopping;
   int polls = 0;
-  watched.cancelled = [&] { ++polls; return false; };
+  watched.cancelled = [&] {
+    ++polls;
+    return false;
+  };
   stopping.cancelled = [] { return true; };
   Simulation a(p, m), b(p, m), c(p, m);
   const RunSummary ra = a.run(100, plain), rb = b.run(100, watched);
@@ -329,9 +330,8 @@ TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
   const Medium pore = test::pore_of_three_grains();
   // The pore a period over and a period back: a droplet that has crossed the seam keeps its
   // unwrapped positions, so all its masses are tested at wrapped positions, x - W floor(x / W).
-  const Scene scenes[] = {{"pore", &pore, 100},      {"pile", &pile, 100},
-                          {"seam", &seam, 0.5},      {"walled", &walled, 14},
-                          {"pore over", &pore, 300}, {"pore back", &pore, -100}};
+  const Scene scenes[] = {{"pore", &pore, 100},    {"pile", &pile, 100},      {"seam", &seam, 0.5},
+                          {"walled", &walled, 14}, {"pore over", &pore, 300}, {"pore back", &pore, -100}};
   auto bits = [](const std::vector<double>& v) {
     std::vector<std::uint64_t> b;
     for (double d : v) b.push_back(std::bit_cast<std::uint64_t>(d));
@@ -342,7 +342,7 @@ TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
   for (const Scene& scene : scenes) {
     SCOPED_TRACE(scene.name);
     std::vector<std::vector<std::uint64_t>> reference;  // per step: fx, fy, x, y, px, py
-    int touching = 0, across = 0;  // steps in a grain; of those, with a mass outside [0, W]
+    int touching = 0, across = 0;                       // steps in a grain; of those, with a mass outside [0, W]
     for (VectorWidth width : test::kVectorWidths) {
       const test::VectorWidthLimit limit(width);
       if (!lacked.has(limit, width)) continue;
@@ -361,7 +361,8 @@ TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
           reference.push_back(std::move(now));
           const bool in = sim.last_penetration() > 0;
           touching += in;
-          across += in && std::any_of(s.x.begin(), s.x.end(), [&](double x) { return x < 0 || x > scene.medium->width; });
+          across +=
+              in && std::any_of(s.x.begin(), s.x.end(), [&](double x) { return x < 0 || x > scene.medium->width; });
         } else {
           ASSERT_EQ(now, reference[static_cast<std::size_t>(k)]) << "step " << k;
         }

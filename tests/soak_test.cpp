@@ -1,14 +1,13 @@
 // Crash safety under a long search: many SIGKILLs at random instants, each followed by a resume.
 // Every generation committed before a kill must survive unchanged, and the final history must
 // equal a search that never stopped, with PRAGMA integrity_check ok.
-#include <gtest/gtest.h>
-
 #include <SQLiteCpp/SQLiteCpp.h>
+#include <gtest/gtest.h>
 
 #include <chrono>
 #include <fstream>
-#include <iterator>
 #include <iostream>
+#include <iterator>
 #include <random>
 #include <thread>
 #include <utility>
@@ -42,8 +41,8 @@ TEST(Soak, ManyKillsOverALongSearchLoseNoCommittedGeneration) {
     const int code = wait_for(pid);
     std::ifstream err_in(err);
     const std::string message((std::istreambuf_iterator<char>(err_in)), {});
-    ASSERT_TRUE(code == -SIGKILL || code == 0) << "attempt " << attempt << (resume ? " (resume)" : " (fresh start)")
-                                               << ": exit " << code << ": " << message;
+    ASSERT_TRUE(code == -SIGKILL || code == 0)
+        << "attempt " << attempt << (resume ? " (resume)" : " (fresh start)") << ": exit " << code << ": " << message;
     if (const std::int64_t g = committed_generations(killed); g >= 0) committed.emplace_back(g, dump(killed, 1, g));
   }
   const Result fin = run("optimize --db " + killed + kScene + gens + (has_run(killed) ? " --resume 1" : ""));
@@ -54,9 +53,9 @@ TEST(Soak, ManyKillsOverALongSearchLoseNoCommittedGeneration) {
   SQLite::Database db(killed, SQLite::OPEN_READONLY);
   const std::string integrity = db.execAndGet("PRAGMA integrity_check").getString();
   const std::int64_t at_last_kill = committed.empty() ? -1 : committed.back().first;
-  std::cout << "soak: " << kills << " SIGKILLs survived (" << resumes << " resumes, " << restarts
-            << " fresh starts), " << at_last_kill << " of 400 generations committed at the last kill, "
-            << lost << " kills lost committed generations, integrity_check " << integrity << "\n";
+  std::cout << "soak: " << kills << " SIGKILLs survived (" << resumes << " resumes, " << restarts << " fresh starts), "
+            << at_last_kill << " of 400 generations committed at the last kill, " << lost
+            << " kills lost committed generations, integrity_check " << integrity << "\n";
   RecordProperty("kills", kills);
   RecordProperty("lost", lost);
   EXPECT_EQ(kills, kKills) << "every kill must land while the search runs";

@@ -27,10 +27,9 @@ TEST(StepStages, TheListHasEveryStageOnceInTheEnumsOrderWithDistinctNames) {
 
 TEST(StepStages, APartRunsItsStagesInOrderAndNoOthers) {
   std::vector<StepStage> seen;
-  run_step_stages([&](StepStage s) { seen.push_back(s); }, StepStage::collisions,
-                  StepStage::constraint);
-  EXPECT_EQ(seen, (std::vector<StepStage>{StepStage::collisions, StepStage::viscosity,
-                                          StepStage::integrate, StepStage::constraint}));
+  run_step_stages([&](StepStage s) { seen.push_back(s); }, StepStage::collisions, StepStage::constraint);
+  EXPECT_EQ(seen, (std::vector<StepStage>{StepStage::collisions, StepStage::viscosity, StepStage::integrate,
+                                          StepStage::constraint}));
   seen.clear();
   run_step_stages([&](StepStage s) { seen.push_back(s); });
   EXPECT_EQ(seen, std::vector<StepStage>(kStepStages.begin(), kStepStages.end()));
@@ -46,24 +45,37 @@ TEST(StepStages, APartRunsItsStagesInOrderAndNoOthers) {
 // Steps `a` with step() and `b` with the stages' functions called by hand in `order`, through
 // the pore of three grains (contacts, squeezing, the contact limit at work), and returns the
 // first step after which they differ (0: none in `steps`).
-int first_difference(Simulation* a, Simulation* b, const std::vector<StepStage>& order,
-                     int steps) {
+int first_difference(Simulation* a, Simulation* b, const std::vector<StepStage>& order, int steps) {
   a->place_above(100.0);
   b->place_above(100.0);
   for (int k = 1; k <= steps; ++k) {
     a->step();
     for (StepStage s : order) {
       switch (s) {
-        case StepStage::gravity: b->accumulate_gravity(); break;
-        case StepStage::springs: b->accumulate_springs(); break;
-        case StepStage::pressure: b->accumulate_pressure(); break;
-        case StepStage::collisions: b->accumulate_collisions(); break;
+        case StepStage::gravity:
+          b->accumulate_gravity();
+          break;
+        case StepStage::springs:
+          b->accumulate_springs();
+          break;
+        case StepStage::pressure:
+          b->accumulate_pressure();
+          break;
+        case StepStage::collisions:
+          b->accumulate_collisions();
+          break;
         case StepStage::viscosity:
           if (b->params().viscosity > 0) b->accumulate_viscosity();
           break;
-        case StepStage::integrate: b->integrate(); break;
-        case StepStage::constraint: b->apply_constraint(); break;
-        case StepStage::contact_limit: b->apply_contact_limit(); break;
+        case StepStage::integrate:
+          b->integrate();
+          break;
+        case StepStage::constraint:
+          b->apply_constraint();
+          break;
+        case StepStage::contact_limit:
+          b->apply_contact_limit();
+          break;
       }
     }
     if (a->state_hash() != b->state_hash()) return k;

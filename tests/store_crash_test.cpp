@@ -3,10 +3,9 @@
 // search and a whole sweep, or finds the disk full after N bytes. Each time the file must open
 // (history, report), keep every generation or unit committed before the fault unchanged, and run
 // on to exactly the records of an uninterrupted run.
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -129,8 +128,8 @@ void kill_at_every_database_write(const Scenario& s) {
     lost += continue_after_fault(s, db, reference);
   }
   EXPECT_GE(kills, (writes - kWriteCountSlack) / kill_stride());
-  std::cout << "store crash (" << s.name << "): " << kills << " kills over " << writes << " database writes, "
-            << lost << " stored records lost\n";
+  std::cout << "store crash (" << s.name << "): " << kills << " kills over " << writes << " database writes, " << lost
+            << " stored records lost\n";
   EXPECT_EQ(lost, 0);
 }
 
@@ -147,8 +146,8 @@ void fill_the_disk(const Scenario& s, int points) {
     const std::int64_t budget = bytes * i / (points + 1);
     SCOPED_TRACE(s.name + ": disk full after " + std::to_string(budget) + " of " + std::to_string(bytes) + " bytes");
     const std::string db = fresh("full.db");
-    const Result r = run_faulty(kCheckpointEvery + "SOFTDROP_FAULT_FULL_AFTER=" + std::to_string(budget) + " ",
-                                s.command(db));
+    const Result r =
+        run_faulty(kCheckpointEvery + "SOFTDROP_FAULT_FULL_AFTER=" + std::to_string(budget) + " ", s.command(db));
     ASSERT_TRUE(r.code == 0 || r.code == 1) << r.err;
     if (r.code == 1) {
       ++full;

@@ -1,10 +1,9 @@
 // Files the store refuses are left exactly as they were found; damaged runs are refused by every
 // command that reads them, naming the file; two identical sweeps at once both finish; a database on
 // read-only media can be read.
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 #include <sys/mount.h>
-
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <filesystem>
 #include <fstream>
@@ -35,10 +34,10 @@ TEST(RefusedFiles, AreLeftAsTheyWereFoundWithNoSideFiles) {
   struct Case {
     std::string sql, names;
   };
-  for (const Case& c : {Case{"PRAGMA application_id = 5", "not a softdrop database"},
-                        Case{"PRAGMA user_version = 9", "written by a newer softdrop"},
-                        Case{"PRAGMA user_version = 99", "schema version 99"},
-                        Case{"DROP TABLE paths", "without its table paths"}}) {
+  for (const Case& c :
+       {Case{"PRAGMA application_id = 5", "not a softdrop database"},
+        Case{"PRAGMA user_version = 9", "written by a newer softdrop"},
+        Case{"PRAGMA user_version = 99", "schema version 99"}, Case{"DROP TABLE paths", "without its table paths"}}) {
     SCOPED_TRACE(c.sql);
     const std::string db = fresh("refused.db");
     std::filesystem::copy_file(seed, db);

@@ -1,6 +1,8 @@
 // The search strategies: their rules on evaluations made up for the test, the same history at any
 // thread or lane count, a stored state that resumes bit for bit (also after SIGKILLs at random
 // instants), and their options on the command line.
+#include "softdrop/strategy.hpp"
+
 #include <gtest/gtest.h>
 #include <signal.h>
 
@@ -12,7 +14,6 @@
 
 #include "search_cli.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/strategy.hpp"
 
 namespace softdrop {
 namespace {
@@ -53,7 +54,7 @@ TEST(Strategy, EvolutionStepsGrowWithSuccessesAndShrinkWithFailures) {
   SearchOptions o = test::small_search_options(4);
   o.strategy.kind = StrategyKind::es;
   o.strategy.target_success = 0.2;  // the classical 1/5
-  o.single_every = 4;  // candidate 4 of every generation is a single move
+  o.single_every = 4;               // candidate 4 of every generation is a single move
   const Configuration s0 = test::small_search_start(o);
   const double t0 = s0.eval.tortuosity;
   auto s = make_strategy(o, s0, "");
@@ -121,8 +122,7 @@ TEST(Strategy, ForeseeTakesTheCandidatesStillRunningToImproveOnNothing) {
   // The strategies that may keep a worse candidate cannot be foreseen from improvements alone.
   for (const StrategyKind kind : {StrategyKind::paper, StrategyKind::lahc, StrategyKind::anneal}) {
     o.strategy.kind = kind;
-    EXPECT_EQ(make_strategy(o, s0, "")->speculative(), kind == StrategyKind::paper)
-        << to_string(kind);
+    EXPECT_EQ(make_strategy(o, s0, "")->speculative(), kind == StrategyKind::paper) << to_string(kind);
   }
 }
 
@@ -204,8 +204,8 @@ TEST(Strategy, KilledAtRandomInstantsEveryStrategyResumesBitForBit) {
     for (int attempt = 0; attempt < 6; ++attempt) {
       const bool resume = has_run(killed);
       const pid_t pid = spawn("optimize --db " + killed + args + (resume ? " --resume 1" : ""));
-      std::this_thread::sleep_for(std::chrono::milliseconds(
-          std::uniform_int_distribution<int>(20, test::kAddressSanitizer ? 900 : 350)(rng)));
+      std::this_thread::sleep_for(
+          std::chrono::milliseconds(std::uniform_int_distribution<int>(20, test::kAddressSanitizer ? 900 : 350)(rng)));
       kill(pid, SIGKILL);
       const int code = wait_for(pid);
       ASSERT_TRUE(code == -SIGKILL || code == 0) << code;
@@ -217,8 +217,8 @@ TEST(Strategy, KilledAtRandomInstantsEveryStrategyResumesBitForBit) {
     EXPECT_EQ(dump(killed, 1), dump(ref, 1));
     // The state is stored with every generation and shown by history.
     const auto h = run("history --db " + killed + " --run 1 --format csv");
-    const char* shown = strategy == "es"     ? "single-step"
-                        : strategy == "lahc" ? "history"
+    const char* shown = strategy == "es"      ? "single-step"
+                        : strategy == "lahc"  ? "history"
                         : strategy == "cmaes" ? "values"
                                               : "temperature";
     EXPECT_NE(h.out.find(shown), std::string::npos);
@@ -231,16 +231,17 @@ TEST(StrategyCli, BadNamesUnusedOptionsAndContradictionsGetOneLine) {
   struct Case {
     std::string args, names;
   };
-  for (const Case& c : {Case{"--strategy tabu", "--strategy: tabu not in {paper,es,lahc,anneal,cmaes}"},
-                        Case{"--strategy cmaes --lambda 4", "lambda = 4: --strategy cmaes needs a population of at least 5"},
-                        Case{"--strategy es --sigma 3", "sigma: an option of --strategy cmaes, not used by --strategy es"},
-                        Case{"--strategy cmaes --lambda 6 --sigma 0", "sigma = 0: must be > 0"},
-                        Case{"--strategy lahc --temperature 0.1", "temperature: an option of --strategy anneal"},
-                        Case{"--temperature 0.3", "temperature: an option of --strategy anneal, not used by --strategy es"},
-                        Case{"--strategy paper --target-success 0.3",
-                             "target-success: an option of --strategy es, not used by --strategy paper"},
-                        Case{"--strategy es --history-length 9", "history-length: an option of --strategy lahc"},
-                        Case{"--strategy es --target-success 1.5", "target-success = 1.5: must be in (0, 1)"}}) {
+  for (const Case& c :
+       {Case{"--strategy tabu", "--strategy: tabu not in {paper,es,lahc,anneal,cmaes}"},
+        Case{"--strategy cmaes --lambda 4", "lambda = 4: --strategy cmaes needs a population of at least 5"},
+        Case{"--strategy es --sigma 3", "sigma: an option of --strategy cmaes, not used by --strategy es"},
+        Case{"--strategy cmaes --lambda 6 --sigma 0", "sigma = 0: must be > 0"},
+        Case{"--strategy lahc --temperature 0.1", "temperature: an option of --strategy anneal"},
+        Case{"--temperature 0.3", "temperature: an option of --strategy anneal, not used by --strategy es"},
+        Case{"--strategy paper --target-success 0.3",
+             "target-success: an option of --strategy es, not used by --strategy paper"},
+        Case{"--strategy es --history-length 9", "history-length: an option of --strategy lahc"},
+        Case{"--strategy es --target-success 1.5", "target-success = 1.5: must be in (0, 1)"}}) {
     SCOPED_TRACE(c.args);
     const auto r = run("optimize --db " + db + kScene + c.args);
     EXPECT_NE(r.code, 0);
@@ -258,11 +259,13 @@ TEST(StrategyCli, BadNamesUnusedOptionsAndContradictionsGetOneLine) {
   EXPECT_EQ(dump(db, 1), before);
   // A run stored before strategies existed is the paper's, and --strategy paper agrees with it.
   const std::string old = fresh("strategy_old.db");
-  ASSERT_EQ(run("optimize --db " + old + kScene + " --generations 2 --strategy paper --lambda 1 --relocate-every 0").code,
-            0);
+  ASSERT_EQ(
+      run("optimize --db " + old + kScene + " --generations 2 --strategy paper --lambda 1 --relocate-every 0").code, 0);
   {
     SQLite::Database w(old, SQLite::OPEN_READWRITE);
-    w.exec("UPDATE runs SET params = json_remove(params, '$.strategy', '$.target-success', '$.history-length', '$.relocate-every')");
+    w.exec(
+        "UPDATE runs SET params = json_remove(params, '$.strategy', '$.target-success', '$.history-length', "
+        "'$.relocate-every')");
   }
   EXPECT_EQ(run("optimize --db " + old + " --resume 1 --generations 4 --quiet --strategy paper").code, 0);
   // Without --strategy too: the program's defaults (es, lambda 8, relocation) do not apply to it.

@@ -44,8 +44,7 @@ TEST(Sweep, PointsPoolTheDropletsOfAPorosity) {
 // media pass 2, 1 and 3 droplets (T summing to 2.2, 1.5 and 3.6, mean 7.3 / 6), so
 // var = 3/2 * ((2.2 - 2 m)^2 + (1.5 - m)^2 + (3.6 - 3 m)^2) / 6^2 with m = 7.3 / 6.
 TEST(Sweep, PointsGiveTheStandardErrorOverMediaAsClusters) {
-  const auto p = sweep_points(
-      {medium({1.0, 1.2}, 1), medium({1.5}, 0), medium({}, 3), medium({1.1, 1.3, 1.2}, 0)});
+  const auto p = sweep_points({medium({1.0, 1.2}, 1), medium({1.5}, 0), medium({}, 3), medium({1.1, 1.3, 1.2}, 0)});
   ASSERT_EQ(p.size(), 1u);
   EXPECT_EQ(p[0].media, 4);
   EXPECT_EQ(p[0].media_passed, 3);  // the medium where none passed is no cluster
@@ -57,8 +56,7 @@ TEST(Sweep, PointsGiveTheStandardErrorOverMediaAsClusters) {
   EXPECT_GT(p[0].media_standard_error, p[0].standard_error);
 
   // With one passed droplet in each medium the clusters are the droplets, and the two errors agree.
-  const auto q =
-      sweep_points({medium({1.2}, 4), medium({1.45}, 0), medium({1.31}, 2), medium({1.05}, 1)});
+  const auto q = sweep_points({medium({1.2}, 4), medium({1.45}, 0), medium({1.31}, 2), medium({1.05}, 1)});
   EXPECT_EQ(q[0].media_passed, 4);
   EXPECT_NEAR(q[0].media_standard_error, q[0].standard_error, 1e-15);
   EXPECT_GT(q[0].standard_error, 0);
@@ -74,8 +72,7 @@ TEST(Sweep, PointsGiveTheStandardErrorOverMediaAsClusters) {
 // none), their plain mean 3.8 / 3 and its error sd / sqrt(3). The pooled mean 7.3 / 6 weighs the
 // three-droplet medium three times; this one counts each medium once.
 TEST(Sweep, PointsAverageEachMediumFirstAsWell) {
-  const auto p = sweep_points(
-      {medium({1.0, 1.2}, 1), medium({1.5}, 0), medium({}, 3), medium({1.1, 1.3, 1.2}, 0)});
+  const auto p = sweep_points({medium({1.0, 1.2}, 1), medium({1.5}, 0), medium({}, 3), medium({1.1, 1.3, 1.2}, 0)});
   ASSERT_EQ(p.size(), 1u);
   const double mean = 3.8 / 3;
   EXPECT_NEAR(p[0].per_medium_t, mean, 1e-15);

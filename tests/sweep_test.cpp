@@ -1,15 +1,16 @@
 // The studies: sweep units and shards, deterministic records, the store (resume after SIGKILL,
 // shards merged), fits recovering known laws, the two averagings' command.
+#include "softdrop/sweep.hpp"
+
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 
-#include <SQLiteCpp/SQLiteCpp.h>
-
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -21,7 +22,6 @@
 #include "softdrop/fit.hpp"
 #include "softdrop/history.hpp"
 #include "softdrop/params_json.hpp"
-#include "softdrop/sweep.hpp"
 #include "softdrop/sweep_store.hpp"
 
 namespace softdrop {
@@ -103,8 +103,8 @@ TEST(Sweep, UnitsRunAcrossThreadsEqualUnitsRunOneByOne) {
   // A stop request lets the units already started finish, complete, and starts no new one.
   int calls = 0;
   std::vector<SweepMedium> some;
-  run_sweep_units(o, units, 2, [&](SweepMedium&& m) { some.push_back(std::move(m)); },
-                  [&] { return ++calls > 2; });
+  run_sweep_units(
+      o, units, 2, [&](SweepMedium&& m) { some.push_back(std::move(m)); }, [&] { return ++calls > 2; });
   EXPECT_GE(some.size(), 1u);
   EXPECT_LT(some.size(), units.size());
   for (const SweepMedium& m : some) EXPECT_EQ(m.droplets.size(), 4u);
@@ -228,9 +228,13 @@ TEST(SweepCli, QuickPresetEndToEnd) {
   // Every record is complete.
   SQLite::Database d(db, SQLite::OPEN_READONLY);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_droplets").getInt(), 48);
-  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_droplets WHERE (outcome = 'passed') != (tortuosity IS NOT NULL)").getInt(), 0);
+  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_droplets WHERE (outcome = 'passed') != (tortuosity IS NOT NULL)")
+                .getInt(),
+            0);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_droplets WHERE tortuosity < 1 - 1e-9 OR steps <= 0").getInt(), 0);
-  EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_media WHERE passed + stuck + timeout + diverged != droplets").getInt(), 0);
+  EXPECT_EQ(
+      d.execAndGet("SELECT count(*) FROM sweep_media WHERE passed + stuck + timeout + diverged != droplets").getInt(),
+      0);
   EXPECT_EQ(d.execAndGet("SELECT status FROM sweeps").getString(), "complete");
   // Running it again does nothing new and reports the same points.
   EXPECT_EQ(nlohmann::json::parse(test::run("sweep --db " + db + kQuick).out), points);
@@ -257,7 +261,8 @@ TEST(SweepCli, KilledAndRunAgainGivesTheSameRecords) {
 }
 
 TEST(SweepCli, ShardsMergedEqualOneSweep) {
-  const std::string whole = fresh("whole.db"), s0 = fresh("shard0.db"), s1 = fresh("shard1.db"), merged = fresh("merged.db");
+  const std::string whole = fresh("whole.db"), s0 = fresh("shard0.db"), s1 = fresh("shard1.db"),
+                    merged = fresh("merged.db");
   ASSERT_EQ(test::run("sweep --db " + whole + " --preset quick --quiet").code, 0);
   ASSERT_EQ(test::run("sweep --db " + s0 + " --preset quick --quiet --shard 0/2").code, 0);
   ASSERT_EQ(test::run("sweep --db " + s1 + " --preset quick --quiet --shard 1/2").code, 0);
@@ -268,7 +273,10 @@ TEST(SweepCli, ShardsMergedEqualOneSweep) {
   // Merging again adds nothing; a copy that disagrees is refused and named.
   ASSERT_EQ(test::run("sweep-merge --into " + merged + " " + s0).code, 0);
   EXPECT_EQ(sweep_dump(merged), sweep_dump(whole));
-  { SQLite::Database d(s1, SQLite::OPEN_READWRITE); d.exec("UPDATE sweep_droplets SET steps = steps + 1 WHERE droplet = 0"); }
+  {
+    SQLite::Database d(s1, SQLite::OPEN_READWRITE);
+    d.exec("UPDATE sweep_droplets SET steps = steps + 1 WHERE droplet = 0");
+  }
   const test::Result bad = test::run("sweep-merge --into " + merged + " " + s1);
   EXPECT_EQ(bad.code, 1);
   EXPECT_NE(bad.err.find("differs"), std::string::npos) << bad.err;
@@ -289,9 +297,7 @@ TEST(SweepCli, FitAndAveragingsRunOnTheStore) {
   // says so.
   EXPECT_EQ(j["errors"], "media");
   EXPECT_NE(f.out.find("weighed by the media's standard errors"), std::string::npos) << f.out;
-  EXPECT_NE(f.err.find("5 of 5 points have their error from fewer than 10 media"),
-            std::string::npos)
-      << f.err;
+  EXPECT_NE(f.err.find("5 of 5 points have their error from fewer than 10 media"), std::string::npos) << f.err;
   const test::Result d = test::run("fit --db " + db + " --errors droplets --format json");
   ASSERT_EQ(d.code, 0) << d.err;
   EXPECT_EQ(d.err.find("fewer than 10 media"), std::string::npos) << d.err;
@@ -320,9 +326,10 @@ TEST(SweepCli, ASecondSweepInAFileIsToldHowItDiffersAndTheListingShowsOnlyThat) 
   EXPECT_EQ(again.err.find("other sweep"), std::string::npos) << again.err;
   const test::Result second = test::run("sweep --db " + db + " --preset quick --droplets 4 --porosities 0.8,0.9");
   ASSERT_EQ(second.code, 0);
-  EXPECT_NE(second.err.find("holds 1 other sweep(s); this is a new one, nearest sweep 1, which differs in: droplets 8 -> 4, "
-                            "porosities [0.7,0.8,0.9] -> [0.8,0.9]"),
-            std::string::npos)
+  EXPECT_NE(
+      second.err.find("holds 1 other sweep(s); this is a new one, nearest sweep 1, which differs in: droplets 8 -> 4, "
+                      "porosities [0.7,0.8,0.9] -> [0.8,0.9]"),
+      std::string::npos)
       << second.err;
   const test::Result list = test::run("sweep-report --db " + db + " --format csv");
   ASSERT_EQ(list.code, 0) << list.err;
@@ -342,9 +349,7 @@ TEST(SweepCli, TheQuickPresetAveragesAndFitsWithoutAVerdictItCannotGive) {
   EXPECT_EQ(a.err.find("left out"), std::string::npos) << a.err;
   // Groups of 4 leave 2 media over: dropped, and said; or kept as a last group of 2.
   const test::Result four = test::run("averagings --db " + db + " --group 4");
-  EXPECT_NE(four.err.find("2 of the 6 media do not fill a group of 4 and are left out"),
-            std::string::npos)
-      << four.err;
+  EXPECT_NE(four.err.find("2 of the 6 media do not fill a group of 4 and are left out"), std::string::npos) << four.err;
   EXPECT_EQ(std::count(four.out.begin(), four.out.end(), '\n'), 1 + 2 * 1) << four.out;
   const test::Result kept = test::run("averagings --db " + db + " --group 4 --leftover keep");
   EXPECT_EQ(kept.err.find("left out"), std::string::npos) << kept.err;
@@ -365,7 +370,10 @@ TEST(SweepCli, TheQuickPresetAveragesAndFitsWithoutAVerdictItCannotGive) {
 
 TEST(SweepStore, AVersionOneFileIsMigratedAndKeepsItsRuns) {
   const std::string db = fresh("v1.db");
-  ASSERT_EQ(test::run("optimize --db " + db + test::kSmallScene + " --stuck-window 0.1 --stuck-distance 1 --generations 2 --quiet").code, 0);
+  ASSERT_EQ(test::run("optimize --db " + db + test::kSmallScene +
+                      " --stuck-window 0.1 --stuck-distance 1 --generations 2 --quiet")
+                .code,
+            0);
   {
     SQLite::Database d(db, SQLite::OPEN_READWRITE);
     d.exec("DROP TABLE sweep_droplets; DROP TABLE sweep_media; DROP TABLE sweeps; PRAGMA user_version = 1");

@@ -25,8 +25,10 @@ std::string grain_file(const std::string& name, const std::string& grains) {
 
 TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
   const std::string json = fresh_path("tortuosity.json"), csv = fresh_path("tortuosity.csv");
-  const auto r = run("tortuosity --porosity 0.75 --width 200 --height 200 --r-min 8 --r-max 16 --pixels 100 "
-                     "--starts 20 --quiet --json " + json + " --csv " + csv);
+  const auto r =
+      run("tortuosity --porosity 0.75 --width 200 --height 200 --r-min 8 --r-max 16 --pixels 100 "
+          "--starts 20 --quiet --json " +
+          json + " --csv " + csv);
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(r.err.empty()) << r.err;
   const auto j = nlohmann::json::parse(std::ifstream(json));
@@ -61,14 +63,17 @@ TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
   EXPECT_NE(r.out.find("flow T       "), std::string::npos) << r.out;
 
   const std::string png = fresh_path("pore_space.png");
-  const auto drawn = run("tortuosity --porosity 0.75 --width 200 --height 200 --r-min 8 --r-max 16 --pixels 100 "
-                         "--starts 0 --quiet --size 300 --picture " + png + " --flow-picture " + png + ".flow.png");
+  const auto drawn =
+      run("tortuosity --porosity 0.75 --width 200 --height 200 --r-min 8 --r-max 16 --pixels 100 "
+          "--starts 0 --quiet --size 300 --picture " +
+          png + " --flow-picture " + png + ".flow.png");
   ASSERT_EQ(drawn.code, 0) << drawn.err;
   EXPECT_GT(std::filesystem::file_size(png), 5000u);  // the field, the grains, the paths, the caption
   EXPECT_GT(std::filesystem::file_size(png + ".flow.png"), 5000u);
   EXPECT_NE(std::filesystem::file_size(png + ".flow.png"), std::filesystem::file_size(png));
 
-  const auto empty = run("tortuosity --medium " + grain_file("empty.json", "") + " --pixels 50 --starts 4 --quiet "
+  const auto empty = run("tortuosity --medium " + grain_file("empty.json", "") +
+                         " --pixels 50 --starts 4 --quiet "
                          "--format json");
   ASSERT_EQ(empty.code, 0) << empty.err;
   const auto e = nlohmann::json::parse(empty.out);
@@ -76,21 +81,24 @@ TEST(TortuosityCli, TheTableJsonAndCsvAgreeAndAnEmptyBoxGivesOne) {
   EXPECT_NEAR(e["diffusive_tortuosity"]["values"][1].get<double>(), 1.0, 1e-9);
   EXPECT_EQ(e["hydrodynamic_tortuosity"]["values"][1].get<double>(), 1.0);
   EXPECT_TRUE(e["permeability"]["values"][1].is_null());  // infinite: nothing holds the flow back
-  EXPECT_NEAR(e["droplet_tortuosity"]["mean_tortuosity"].get<double>(), 1.0, 0.02);  // straight down, but for its own wobble
+  EXPECT_NEAR(e["droplet_tortuosity"]["mean_tortuosity"].get<double>(), 1.0,
+              0.02);  // straight down, but for its own wobble
 }
 
 TEST(TortuosityCli, NoPorePathOrTooCoarsePixelsGetOneLineAndWriteNothing) {
   // A row of overlapping grains across the periodic box: no pore path from the top to the bottom.
   std::string row;
-  for (int i = 0; i <= 10; ++i) row += std::string(i ? "," : "") + R"({"x": )" + std::to_string(10 * i) + R"(, "y": 50, "r": 8})";
+  for (int i = 0; i <= 10; ++i)
+    row += std::string(i ? "," : "") + R"({"x": )" + std::to_string(10 * i) + R"(, "y": 50, "r": 8})";
   const std::string wall = grain_file("wall.json", row), json = fresh_path("never.json");
   struct Case {
     std::string args, says;
   };
-  for (const Case& c : {Case{"--medium " + wall + " --pixels 100", "no pore path from the top to the bottom"},
-                        Case{"--medium " + wall + " --pixels 40", "pixels = 40: 3.2 pixels a radius of the smallest grain"},
-                        Case{"--porosity 0.8 --pixels 4", "pixels = 4: must be in [8, 4000]"},
-                        Case{"--porosity 0.8 --starts -1", "starts = -1"}}) {
+  for (const Case& c :
+       {Case{"--medium " + wall + " --pixels 100", "no pore path from the top to the bottom"},
+        Case{"--medium " + wall + " --pixels 40", "pixels = 40: 3.2 pixels a radius of the smallest grain"},
+        Case{"--porosity 0.8 --pixels 4", "pixels = 4: must be in [8, 4000]"},
+        Case{"--porosity 0.8 --starts -1", "starts = -1"}}) {
     SCOPED_TRACE(c.args);
     const auto r = run("tortuosity " + c.args + " --quiet --json " + json);
     EXPECT_EQ(r.code, 1);
@@ -100,8 +108,9 @@ TEST(TortuosityCli, NoPorePathOrTooCoarsePixelsGetOneLineAndWriteNothing) {
   }
   // --check finds a resolution too coarse for the medium it would make, and a picture of the flow
   // without the flow, without running.
-  for (const Case& c : {Case{"--porosity 0.8 --pixels 20", "pixels = 20: 0.681 pixels a radius of the smallest grain"},
-                        Case{"--porosity 0.8 --no-flow --flow-picture " + fresh_path("f.png"), "flow-picture: needs the flow"}}) {
+  for (const Case& c :
+       {Case{"--porosity 0.8 --pixels 20", "pixels = 20: 0.681 pixels a radius of the smallest grain"},
+        Case{"--porosity 0.8 --no-flow --flow-picture " + fresh_path("f.png"), "flow-picture: needs the flow"}}) {
     SCOPED_TRACE(c.args);
     const auto r = run("--check tortuosity " + c.args);
     EXPECT_EQ(r.code, 1);

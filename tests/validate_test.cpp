@@ -1,14 +1,13 @@
 // softdrop validate: the held-out value of a medium is the droplets of `simulate --droplets N`
 // from the same starts, at dt and at dt/2, summarised exactly; a stored run is validated with its
 // own droplet; bad input gets one line and writes nothing.
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <nlohmann/json.hpp>
-
-#include <SQLiteCpp/SQLiteCpp.h>
 #include <string>
 #include <vector>
 
@@ -38,7 +37,8 @@ TEST(Validate, IsTheSimulateBatchOfTheSameStartsAtBothTimeSteps) {
   const std::string starts = " --droplets 24 --seed 9 --format json";
   const nlohmann::json v = json_of(run("validate --medium " + medium + " --starts 24 --seed 9 --format json --quiet"));
   const nlohmann::json at_dt = json_of(run("simulate --medium " + medium + starts));
-  const nlohmann::json at_half = json_of(run("simulate --medium " + medium + starts + " --dt 3e-6 --max-steps 24000000"));
+  const nlohmann::json at_half =
+      json_of(run("simulate --medium " + medium + starts + " --dt 3e-6 --max-steps 24000000"));
   EXPECT_EQ(v["at_dt"]["dt"].get<double>(), 6e-6);
   EXPECT_EQ(v["at_half_dt"]["dt"].get<double>(), 3e-6);
   EXPECT_EQ(v["at_dt"]["passed"], at_dt["passed"]);
@@ -112,8 +112,8 @@ TEST(Validate, ASearchStoresItsBestsHeldOutValue) {
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM validations").getInt(), 2);
   // Islands: the best island's best, stored with its run.
   const std::string islands = fresh("validate_islands.db");
-  const nlohmann::json isl =
-      json_of(run("optimize --db " + islands + kScene + " --islands 2 --generations 3 --validate-starts 8 --format json"));
+  const nlohmann::json isl = json_of(
+      run("optimize --db " + islands + kScene + " --islands 2 --generations 3 --validate-starts 8 --format json"));
   ASSERT_TRUE(isl["held_out"].is_object());
   SQLite::Database di(islands, SQLite::OPEN_READONLY);
   EXPECT_EQ(di.execAndGet("SELECT count(*) FROM validations").getInt(), 1);
@@ -126,7 +126,8 @@ TEST(Validate, ASearchStoresItsBestsHeldOutValue) {
 }
 
 TEST(Validate, BadInputGetsOneLineAndWritesNothing) {
-  const std::string db = fresh("validate_bad.db"), medium = fresh("validate_bad.json"), out = fresh("validate_out.json");
+  const std::string db = fresh("validate_bad.db"), medium = fresh("validate_bad.json"),
+                    out = fresh("validate_out.json");
   ASSERT_EQ(run("optimize --db " + db + kScene + " --generations 2").code, 0);
   ASSERT_EQ(run("export --db " + db + " --run 1 -o " + medium).code, 0);
   for (const auto& [args, says] : std::vector<std::pair<std::string, std::string>>{
@@ -138,7 +139,8 @@ TEST(Validate, BadInputGetsOneLineAndWritesNothing) {
            {"validate --db " + db + " --run 1 --generation 9", "generation = 9: run 1 has stored generations 0 to 2"},
            {"validate --db " + db + " --run 7", "--run 7: no such run"},
            {"validate --medium " + db, "grain file"},
-           {"validate --medium " + medium + " --runs " + medium, "--runs '" + medium + "': the same file as --medium"}}) {
+           {"validate --medium " + medium + " --runs " + medium,
+            "--runs '" + medium + "': the same file as --medium"}}) {
     SCOPED_TRACE(args);
     const Result r = run(args + " --json " + out);
     EXPECT_GT(r.code, 0);

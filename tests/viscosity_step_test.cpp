@@ -155,8 +155,7 @@ double dt_at(DropletParams p, double level) {
   double lo = 1e-8, hi = 1e-4;
   for (int i = 0; i < 60; ++i) {
     p.dt = 0.5 * (lo + hi);
-    const double a = 4 * p.ks * p.dt * p.dt / p.mass,
-                 b = (4 * p.kd / p.mass + p.viscous_rate()) * p.dt;
+    const double a = 4 * p.ks * p.dt * p.dt / p.mass, b = (4 * p.kd / p.mass + p.viscous_rate()) * p.dt;
     (a + 2 * b < level ? lo : hi) = p.dt;
   }
   return lo;
@@ -175,16 +174,13 @@ TEST(ViscosityStep, TheRingsFastestModeBoundsDtWithTheSpringDampingAndTheViscosi
   // The bound is the boundary, not a margin: at 0.9 of it a perturbed ring stays whole, explicit
   // or exponential, with weak or strong viscosity.
   for (auto [step, nu] : {std::pair{ViscosityStep::explicit_euler, 0.0},
-                          std::pair{ViscosityStep::exponential, 1.8656e5},
-                          std::pair{ViscosityStep::exponential, 1e6},
-                          std::pair{ViscosityStep::implicit, 1.37e5},
-                          std::pair{ViscosityStep::implicit, 1e6}}) {
+                          std::pair{ViscosityStep::exponential, 1.8656e5}, std::pair{ViscosityStep::exponential, 1e6},
+                          std::pair{ViscosityStep::implicit, 1.37e5}, std::pair{ViscosityStep::implicit, 1e6}}) {
     DropletParams q;
     q.viscosity_step = step;
     q.viscosity = nu;
     q.dt = dt_at(q, 0.9 * 4);
-    SCOPED_TRACE(std::string(to_string(step)) + ", nu = " + std::to_string(nu) +
-                 ", dt = " + std::to_string(q.dt));
+    SCOPED_TRACE(std::string(to_string(step)) + ", nu = " + std::to_string(nu) + ", dt = " + std::to_string(q.dt));
     ASSERT_TRUE(q.IsValid(&why)) << why;
     EXPECT_LT(perturbed_area_drift(q, 3000), 1e-5);
     q.dt = dt_at(q, 4 * 1.0001);
@@ -201,11 +197,9 @@ TEST(ViscosityStep, TheOptionTakesItsNamesAndNamesABadOne) {
   const test::Result bad = test::run("simulate --x0 250 --viscosity-step backward");
   EXPECT_NE(bad.code, 0);
   EXPECT_NE(bad.err.find("--viscosity-step"), std::string::npos) << bad.err;
-  const test::Result refused =
-      test::run("simulate --x0 250 --viscosity 1e6 --viscosity-step explicit --dt 3.5e-6");
+  const test::Result refused = test::run("simulate --x0 250 --viscosity 1e6 --viscosity-step explicit --dt 3.5e-6");
   EXPECT_NE(refused.code, 0);
-  EXPECT_NE(refused.err.find("viscosity * dt = 3.5 must be <= 0.5"), std::string::npos)
-      << refused.err;
+  EXPECT_NE(refused.err.find("viscosity * dt = 3.5 must be <= 0.5"), std::string::npos) << refused.err;
   const test::Result ran = test::run("simulate --x0 250 --viscosity 1e6 --dt 3.5e-6 --quiet");
   EXPECT_EQ(ran.code, 0) << ran.err;
 }

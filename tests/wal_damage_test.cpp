@@ -2,10 +2,9 @@
 // committed transactions after it is refused by every command, by name, and nothing is written; an
 // uncommitted tail cut short is not damage. A reader who cannot write the file leaves no side files
 // behind for its owner to trip over.
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
-
-#include <SQLiteCpp/SQLiteCpp.h>
 
 #include <filesystem>
 #include <fstream>
@@ -77,8 +76,8 @@ TEST(WalDamage, ADamagedFrameBeforeCommitsIsRefusedByReadersAndWriters) {
   const std::string db_bytes = contents(db), wal_bytes = contents(db + "-wal");
   for (const std::string& command :
        {"history --db " + db, "optimize --db " + db + kScene + " --generations 1",
-        "optimize --db " + db + " --resume 1 --generations 4 --quiet", "export --db " + db + " --run 1 -o " + fresh("w.json"),
-        "sweep --db " + db + " --preset quick --quiet"}) {
+        "optimize --db " + db + " --resume 1 --generations 4 --quiet",
+        "export --db " + db + " --run 1 -o " + fresh("w.json"), "sweep --db " + db + " --preset quick --quiet"}) {
     SCOPED_TRACE(command);
     const Result r = run(command);
     EXPECT_EQ(r.code, 1);

@@ -34,7 +34,7 @@ enum class Leftover {
 
 /// Groups of `group` points (group >= 1); ties are broken by the other coordinate, so the result
 /// does not depend on the input order.
-std::vector<GroupAverage> group_averages(std::vector<MediumPoint> points, AveragingType type,
-                                         int group, Leftover leftover = Leftover::drop);
+std::vector<GroupAverage> group_averages(std::vector<MediumPoint> points, AveragingType type, int group,
+                                         Leftover leftover = Leftover::drop);
 
 }  // namespace softdrop

@@ -15,9 +15,9 @@
 namespace softdrop {
 
 struct BatchOptions {
-  int droplets = 1;          ///< K droplets
-  std::uint64_t seed = 1;    ///< droplet i starts at x drawn from stream derive_seed(seed, i)
-  int threads = 0;           ///< worker threads, 0 = all cores
+  int droplets = 1;        ///< K droplets
+  std::uint64_t seed = 1;  ///< droplet i starts at x drawn from stream derive_seed(seed, i)
+  int threads = 0;         ///< worker threads, 0 = all cores
   /// Droplets each thread steps together (run_interleaved). The default, interleaved_lanes(), is 24
   /// with AVX-512 or AVX (lane-by-lane blocks of three groups of eight), 6 with SSE2. Results do not
   /// depend on it.
@@ -36,22 +36,20 @@ struct BatchOptions {
 /// Aggregate over a batch: tortuosity statistics over passed droplets.
 struct BatchStats {
   int droplets = 0, passed = 0, stuck = 0, timeout = 0, diverged = 0;
-  double mean_tortuosity = 0;   ///< <T> over passed droplets (0 if none)
-  double standard_error = 0;    ///< sample standard deviation / sqrt(passed) (0 if < 2)
-  double stuck_fraction = 0;    ///< stuck / droplets
-  double mean_steps = 0;        ///< mean steps per droplet
+  double mean_tortuosity = 0;  ///< <T> over passed droplets (0 if none)
+  double standard_error = 0;   ///< sample standard deviation / sqrt(passed) (0 if < 2)
+  double stuck_fraction = 0;   ///< stuck / droplets
+  double mean_steps = 0;       ///< mean steps per droplet
 };
 
 /// Start x of droplet i of a batch (deterministic in seed and i).
-double batch_start_x(const BatchOptions& options, const Medium& medium, const DropletParams& params,
-                     int i);
+double batch_start_x(const BatchOptions& options, const Medium& medium, const DropletParams& params, int i);
 
 /// Runs options.droplets droplets, each in its own Simulation; `progress(done, total)` is called
 /// from worker threads (serialised) as droplets finish. Results are ordered by droplet index; there
 /// are fewer than options.droplets only if options.stop was raised.
-std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& medium,
-                                  const RunOptions& run_options, const BatchOptions& options,
-                                  const std::function<void(int, int)>& progress = {});
+std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& medium, const RunOptions& run_options,
+                                  const BatchOptions& options, const std::function<void(int, int)>& progress = {});
 
 BatchStats summarize(const std::vector<RunSummary>& runs);
 

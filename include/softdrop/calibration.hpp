@@ -21,7 +21,8 @@ double paper_tortuosity(double phi);
 /// What every setting of a calibration runs.
 struct CalibrationOptions {
   /// The sweep: porosities, media, droplets, seed, media options and exit conditions. Its
-  /// droplet is replaced by each setting's, and its media are always MediaStream::calibration's. Default: 6 porosities x 10 media x 20 droplets.
+  /// droplet is replaced by each setting's, and its media are always MediaStream::calibration's. Default: 6 porosities
+  /// x 10 media x 20 droplets.
   SweepOptions sweep = default_sweep();
   /// Area traces: `trace_media` non-overlapping media of porosity `trace_porosity` (the sweep's
   /// box, radii and gap), `trace_droplets` droplets each from random starts.
@@ -40,12 +41,12 @@ struct CalibrationOptions {
 struct CalibrationPoint {
   double target_porosity = 0, porosity = 0;  ///< target, and mean exact porosity of its media
   int droplets = 0, passed = 0, stuck = 0, diverged = 0;
-  double mean_t = 0, standard_error = 0;     ///< over passed droplets (0 if none; se 0 if < 2)
+  double mean_t = 0, standard_error = 0;  ///< over passed droplets (0 if none; se 0 if < 2)
   /// Media with a passed droplet, and mean_t's standard error with them as clusters (0 if < 2),
   /// as SweepPoint's.
   int media_passed = 0;
   double media_standard_error = 0;
-  double paper_t = 0;                        ///< paper_tortuosity(porosity)
+  double paper_t = 0;  ///< paper_tortuosity(porosity)
   /// |mean_t - paper_t| <= max(0.03, 2 media_standard_error), with at least two droplets passed:
   /// the media's error, since droplets in one medium share its throats.
   bool within = false;
@@ -61,20 +62,20 @@ struct CalibrationResult {
   /// how well the curve's shape matches where it was measured.
   double measured_rms = 0;
   int measured = 0;
-  int within = 0;                 ///< porosities within the target
-  double stuck_fraction = 0;      ///< over all sweep droplets
-  double diverged_fraction = 0;   ///< over all sweep and trace droplets
+  int within = 0;                ///< porosities within the target
+  double stuck_fraction = 0;     ///< over all sweep droplets
+  double diverged_fraction = 0;  ///< over all sweep and trace droplets
   /// S / S0 inside the medium over the trace droplets that entered it (NaN: none entered).
   double area_min = 0, area_max = 0;
-  bool area_both_sides = false;   ///< area_min < 0.95 and area_max > 1.02
+  bool area_both_sides = false;  ///< area_min < 0.95 and area_max > 1.02
   int trace_runs = 0, trace_passed = 0, trace_diverged = 0;
   /// Path length per time unit that the centre of a droplet resting on a floor of touching grains
   /// still travels once settled (NaN if it diverged there). A droplet that never comes to rest
   /// (its ring buzzing against the contacts) lengthens the path of every droplet that pauses in
   /// a pore, and so inflates T.
   double resting_travel = 0;
-  bool comes_to_rest = false;     ///< resting_travel <= resting_limit(rest_scale)
-  double steps = 0;               ///< steps taken by all sweep droplets
+  bool comes_to_rest = false;  ///< resting_travel <= resting_limit(rest_scale)
+  double steps = 0;            ///< steps taken by all sweep droplets
   /// rms_distance + diverged_fraction + (1 unless it comes to rest) + 0.05 (area not on both
   /// sides) + 0.05 stuck_fraction: the distance from the paper first, a diverging droplet as bad as
   /// a wrong T, a droplet that never rests ruled out, the rest tie-breaks.

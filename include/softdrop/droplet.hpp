@@ -58,17 +58,17 @@ std::vector<std::string> value_names(ViscosityStep);
 /// calibration, whose <T> rises by 0.02 to 0.04 when dt is halved. results/calibration/balloon.toml
 /// holds the balloon (held at its stretch limit).
 struct DropletParams {
-  int masses = 24;           ///< N, point masses on the ring
-  double mass = 1.0;         ///< m, mass of each point
-  double radius = 8.0;       ///< R, radius of the inflated droplet (ring at the stretch limit)
-  double nrt = 2.29e9;       ///< nRT of the ideal gas, P = nRT / V (force x length); 5 % strain at rest
-  double ks = 1.005942e9;    ///< spring stiffness k_s (force / length); the paper's 119 755 x 8 400
-  double kd = 33452.8;       ///< spring damping k_d (force x time / length); the paper's 365 x sqrt(8 400)
-  double kc = 2.0e8;         ///< collision penalty stiffness k_c (force / length)
-  double cc = 0.0;           ///< collision normal damping (force x time / length)
-  double gravity = -5.0e5;   ///< g_y, acceleration along y (length / time^2); g_x = 0; the paper's
-  double dt = 6e-6;          ///< time step (time); the ring's fastest mode bounds it (IsValid)
-  double max_strain = 0.1;   ///< Provot limit: |d - d0| / d0 <= max_strain after each step
+  int masses = 24;                ///< N, point masses on the ring
+  double mass = 1.0;              ///< m, mass of each point
+  double radius = 8.0;            ///< R, radius of the inflated droplet (ring at the stretch limit)
+  double nrt = 2.29e9;            ///< nRT of the ideal gas, P = nRT / V (force x length); 5 % strain at rest
+  double ks = 1.005942e9;         ///< spring stiffness k_s (force / length); the paper's 119 755 x 8 400
+  double kd = 33452.8;            ///< spring damping k_d (force x time / length); the paper's 365 x sqrt(8 400)
+  double kc = 2.0e8;              ///< collision penalty stiffness k_c (force / length)
+  double cc = 0.0;                ///< collision normal damping (force x time / length)
+  double gravity = -5.0e5;        ///< g_y, acceleration along y (length / time^2); g_x = 0; the paper's
+  double dt = 6e-6;               ///< time step (time); the ring's fastest mode bounds it (IsValid)
+  double max_strain = 0.1;        ///< Provot limit: |d - d0| / d0 <= max_strain after each step
   int constraint_iterations = 4;  ///< Gauss-Seidel passes of the Provot constraint per step
   /// Order of the springs within a pass. Sequential (ring order) is the reference; red-black does
   /// the even springs, then the odd ones: the springs of a half-pass share no mass, so they run
@@ -245,8 +245,8 @@ void place_droplet(const DropletParams& params, double cx, double cy, DropletSta
 /// for an odd ring, the closing edge: red-black), for up to `iterations` passes (stops early once
 /// a pass changes nothing). Previous positions are untouched, so Verlet's implied
 /// velocities follow the corrected positions. Returns the number of corrections made.
-int apply_length_constraint(DropletState* state, double rest_length, double max_strain,
-                            int iterations, ConstraintOrder order = ConstraintOrder::sequential);
+int apply_length_constraint(DropletState* state, double rest_length, double max_strain, int iterations,
+                            ConstraintOrder order = ConstraintOrder::sequential);
 
 /// The sequential order on several rings at once: each ring ends exactly as
 /// apply_length_constraint(ring, ..., ConstraintOrder::sequential) leaves it, and corrections[r]
@@ -254,9 +254,8 @@ int apply_length_constraint(DropletState* state, double rest_length, double max_
 /// the chains of different rings are independent. Rings of one size go link by link together, a
 /// ring per vector lane and up to three registers' chains side by side: up to 12 rings with AVX,
 /// 6 with SSE2.
-void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
-                                         double max_strain, int iterations, int* corrections);
-
+void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length, double max_strain,
+                                         int iterations, int* corrections);
 
 /// Vector width of the step's vector code (the constraint and the spring forces): doubles per
 /// instruction. Every width gives the same bits, since each lane does the scalar operations in the

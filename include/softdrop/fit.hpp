@@ -29,15 +29,15 @@ double fit_law_value(FitLaw law, const std::vector<double>& p, double phi);
 /// A fit and why it ended.
 struct FitResult {
   FitLaw law = FitLaw::power;
-  std::vector<std::string> names;    ///< parameter names
-  std::vector<double> values;        ///< best parameters
-  std::vector<double> errors;        ///< their standard errors
-  std::vector<double> residuals;     ///< (T_i - f(phi_i)) / se_i, per point
+  std::vector<std::string> names;  ///< parameter names
+  std::vector<double> values;      ///< best parameters
+  std::vector<double> errors;      ///< their standard errors
+  std::vector<double> residuals;   ///< (T_i - f(phi_i)) / se_i, per point
   double chi2 = 0;
-  int dof = 0;                       ///< points - parameters
-  double reduced_chi2 = 0;           ///< chi2 / dof (0 if dof = 0)
-  double aic = 0;                    ///< chi2 + 2 k
-  std::string message;               ///< how NLopt ended
+  int dof = 0;              ///< points - parameters
+  double reduced_chi2 = 0;  ///< chi2 / dof (0 if dof = 0)
+  double aic = 0;           ///< chi2 + 2 k
+  std::string message;      ///< how NLopt ended
   /// Non-empty when the result is not a usable fit although NLopt ended normally: the power law
   /// running to b -> 0, where a - c phi^b becomes (a - c) - c b ln(phi) and only a - c and c b
   /// are determined (the data prefer the log law's shape).
@@ -69,10 +69,8 @@ enum class FitAveraging {
 /// sweep-report file without the chosen error's column, or more than kMaxFitPoints points (the
 /// values themselves are checked by fit_law). `*used_errors`, if given, is set to whether the file
 /// was a sweep-report's, whose errors `errors` chose (a points file brings its own).
-std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
-                                      FitErrors errors = FitErrors::media,
-                                      bool* used_errors = nullptr,
-                                      FitAveraging averaging = FitAveraging::pooled);
+std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name, FitErrors errors = FitErrors::media,
+                                      bool* used_errors = nullptr, FitAveraging averaging = FitAveraging::pooled);
 
 /// Fits one law. Throws std::invalid_argument for fewer points than parameters, a non-finite
 /// value, phi outside (0, 1] or se <= 0 (naming the point).

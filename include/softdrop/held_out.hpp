@@ -57,7 +57,6 @@ struct HeldOutValue {
 /// from worker threads (serialised); an exception it throws stops the work after the droplets in
 /// flight and is rethrown. Throws std::invalid_argument for invalid options, droplet or medium.
 HeldOutValue held_out_value(const DropletParams& droplet, const Medium& medium, const RunOptions& run,
-                            const HeldOutOptions& options,
-                            const std::function<void(int, int)>& progress = {});
+                            const HeldOutOptions& options, const std::function<void(int, int)>& progress = {});
 
 }  // namespace softdrop

@@ -43,8 +43,8 @@ struct RunRecord {
   std::int64_t droplets = 0;     ///< droplet runs so far (evaluations x starts, and the parents' re-runs)
   double best_t = 0;
   std::int64_t best_generation = 0;
-  int island = -1;                ///< the run's island (islands.hpp); -1: not one of islands
-  std::int64_t archipelago = 0;   ///< id of its archipelago's first run (island 0); 0: none
+  int island = -1;               ///< the run's island (islands.hpp); -1: not one of islands
+  std::int64_t archipelago = 0;  ///< id of its archipelago's first run (island 0); 0: none
 };
 
 /// A held-out value of a run's arrangement (held_out.hpp), as stored: at dt, and at dt / 2 where

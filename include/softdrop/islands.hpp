@@ -30,7 +30,7 @@ Migration parse_migration(const std::string& name);
 std::vector<std::string> migration_names();
 
 struct IslandOptions {
-  int islands = 1;         ///< K
+  int islands = 1;  ///< K
   /// Generations between migrations; 0: none, the islands are independent lineages (restarts
   /// from the same start, with seeds of their own) and the search's best is the best of them.
   int migrate_every = 50;

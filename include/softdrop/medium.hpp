@@ -36,7 +36,7 @@ struct Medium {
 
 /// How grains are placed.
 enum class MediumKind {
-  overlapping,     ///< Boolean model: uniform centres, discs may overlap
+  overlapping,      ///< Boolean model: uniform centres, discs may overlap
   non_overlapping,  ///< random sequential addition with a minimum surface gap
   /// Non-overlapping by relaxation: the grains are put down at random, then pushed apart until
   /// every gap holds the same rule. It reaches lower porosities with wider gaps than random
@@ -66,17 +66,17 @@ const char* to_string(RadiusDistribution radii);
 /// Creation data of a random medium.
 struct MediumOptions {
   MediumKind kind = MediumKind::overlapping;
-  double porosity = 0.8;   ///< target void fraction of the box, in (0, 1)
+  double porosity = 0.8;  ///< target void fraction of the box, in (0, 1)
   /// If > 0, place exactly this many grains and ignore the porosity target (the search's media).
   int grains = 0;
-  double width = 500;      ///< W, length units
-  double height = 500;     ///< H, length units
-  bool periodic = true;    ///< periodic in x
-  double r_min = 16;       ///< smallest grain radius (2 droplet radii)
-  double r_max = 48;       ///< largest grain radius (6 droplet radii)
+  double width = 500;                                      ///< W, length units
+  double height = 500;                                     ///< H, length units
+  bool periodic = true;                                    ///< periodic in x
+  double r_min = 16;                                       ///< smallest grain radius (2 droplet radii)
+  double r_max = 48;                                       ///< largest grain radius (6 droplet radii)
   RadiusDistribution radii = RadiusDistribution::uniform;  ///< how radii are drawn
-  double r_median = 28;    ///< log-normal: median radius (about sqrt(r_min r_max))
-  double r_sigma = 0.4;    ///< log-normal: standard deviation of ln r
+  double r_median = 28;                                    ///< log-normal: median radius (about sqrt(r_min r_max))
+  double r_sigma = 0.4;                                    ///< log-normal: standard deviation of ln r
   double gap = 0.13;       ///< non-overlapping: min surface gap as a fraction of the larger radius
   std::uint64_t seed = 1;  ///< random seed
   /// Non-overlapping: consecutive failed placements after which the target is declared unreachable.
@@ -85,10 +85,10 @@ struct MediumOptions {
   bool IsValid(std::string* why) const;
 };
 
-/// Generates a medium. With `grains` > 0: that many grains, overlapping or not. Otherwise: overlapping: adds discs until the exact porosity first drops to or below the
-/// target. Non-overlapping: random sequential addition keeping every surface gap >= gap * larger
-/// radius and grains inside the box in y, until the target is reached; throws std::runtime_error if
-/// the target cannot be reached (jamming). Relaxed: grains drawn at random until the porosity is
+/// Generates a medium. With `grains` > 0: that many grains, overlapping or not. Otherwise: overlapping: adds discs
+/// until the exact porosity first drops to or below the target. Non-overlapping: random sequential addition keeping
+/// every surface gap >= gap * larger radius and grains inside the box in y, until the target is reached; throws
+/// std::runtime_error if the target cannot be reached (jamming). Relaxed: grains drawn at random until the porosity is
 /// nearest the target (one grain more or fewer than non-overlapping placement stops at), then
 /// relaxed to the same rule; throws std::runtime_error if relaxation cannot make room for them.
 /// Throws std::invalid_argument for invalid options.

@@ -36,10 +36,10 @@ inline constexpr std::int64_t kMaxPoreImagePixels = 64'000'000;
 /// marching on the pixel centres (Sethian), which converges to the continuous distance as the
 /// pixels shrink. Starts that reach no bottom pore pixel are left out and counted.
 struct GeometricTortuosity {
-  double tortuosity = 0;    ///< mean over the connected starts of path length / H
-  double standard_error = 0;  ///< of that mean over the starts (they are correlated: neighbours share paths)
-  int starts = 0;           ///< pore pixels of the top row
-  int connected = 0;        ///< of them, those with a path to the bottom
+  double tortuosity = 0;             ///< mean over the connected starts of path length / H
+  double standard_error = 0;         ///< of that mean over the starts (they are correlated: neighbours share paths)
+  int starts = 0;                    ///< pore pixels of the top row
+  int connected = 0;                 ///< of them, those with a path to the bottom
   double shortest = 0, longest = 0;  ///< the least and largest path length / H
   /// Every pixel's path length to the bottom edge (length units), as the image's pixels; infinite
   /// in the solid and in pores with no path down.
@@ -64,11 +64,11 @@ std::vector<PorePath> shortest_paths(const PoreImage& image, const GeometricTort
 /// to neither edge carry no flux and are left out. tau = phi D / D_eff, with phi the image's
 /// porosity and D_eff the flux through the box times H over W (PoreSpy's tortuosity_fd).
 struct DiffusiveTortuosity {
-  double tau = 0;                  ///< phi D / D_eff
-  double formation_factor = 0;     ///< D / D_eff
+  double tau = 0;                    ///< phi D / D_eff
+  double formation_factor = 0;       ///< D / D_eff
   double effective_diffusivity = 0;  ///< D_eff / D
-  double porosity = 0;             ///< of the image (all pore pixels)
-  std::int64_t unknowns = 0;       ///< pore pixels solved for
+  double porosity = 0;               ///< of the image (all pore pixels)
+  std::int64_t unknowns = 0;         ///< pore pixels solved for
   /// The concentration at every pixel, as the image's pixels (1 at the top, 0 at the bottom); NaN
   /// in the solid and in closed pockets.
   std::vector<double> concentration;
@@ -82,7 +82,7 @@ struct FlowOptions {
   /// flow leaving the bottom enters the top spread over the width, as from a reservoir; -1: the
   /// larger of 4 and 4 % of the image's rows. 0: the image itself is periodic in y (a unit cell).
   int buffer_rows = -1;
-  double tolerance = 1e-8;    ///< relative residual of the pressure solve
+  double tolerance = 1e-8;     ///< relative residual of the pressure solve
   int max_iterations = 20000;  ///< conjugate-gradient iterations before giving up
   bool IsValid(std::string* why) const;
 };
@@ -95,8 +95,8 @@ struct FlowOptions {
 /// pore pixels (u at their centres). Both converge as the pixels shrink (the solid's edge is a
 /// staircase of pixel faces): compare a resolution with its double.
 struct HydrodynamicTortuosity {
-  double tortuosity = 0;            ///< <|u|> / <-u_y> over the pore pixels
-  double permeability = 0;          ///< Darcy's k = mu q / (f + dp/dy), length units squared; inf: nothing holds the flow
+  double tortuosity = 0;    ///< <|u|> / <-u_y> over the pore pixels
+  double permeability = 0;  ///< Darcy's k = mu q / (f + dp/dy), length units squared; inf: nothing holds the flow
   double superficial_velocity = 0;  ///< q, the mean of -u_y over the image (solid at 0), in units of f h^2 / mu
   double porosity = 0;              ///< of the image (all pore pixels)
   int buffer_rows = 0;              ///< the buffer used

@@ -29,14 +29,14 @@ Rgba parse_colour(const std::string& text);
 
 /// How pictures look. Lengths are in output pixels (points for SVG and PDF).
 struct RenderStyle {
-  int width = 800;                       ///< picture width in points (1/72 inch); the height follows
+  int width = 800;  ///< picture width in points (1/72 inch); the height follows
   /// PNG resolution: a PNG is width * dpi / 72 pixels wide, drawn the same (SVG and PDF are
   /// resolution-free). 72: a pixel a point; 300 for print.
   double dpi = 72;
   Rgba background{1, 1, 1, 1};
-  Rgba grain{0.12, 0.16, 0.22, 1};       ///< grain outlines ("wire spheres")
-  Rgba touched{0.25, 0.27, 0.30, 1};     ///< fill of grains the droplet touched
-  Rgba box{0.55, 0.55, 0.55, 1};         ///< the medium's box
+  Rgba grain{0.12, 0.16, 0.22, 1};    ///< grain outlines ("wire spheres")
+  Rgba touched{0.25, 0.27, 0.30, 1};  ///< fill of grains the droplet touched
+  Rgba box{0.55, 0.55, 0.55, 1};      ///< the medium's box
   Rgba text{0, 0, 0, 1};
   double grain_line = 1.2;
   /// Draw the grains as one solid region, the union of the discs in `solid` (touched ones in
@@ -44,8 +44,8 @@ struct RenderStyle {
   bool solid_grains = false;
   Rgba solid{0.70, 0.73, 0.78, 1};
   double margin = 12;
-  bool caption = true;                   ///< a line of text under the picture
-  bool scale_bar = false;                ///< a bar of a round length, labelled, at the box's lower left
+  bool caption = true;     ///< a line of text under the picture
+  bool scale_bar = false;  ///< a bar of a round length, labelled, at the box's lower left
 
   bool IsValid(std::string* why) const;
 };
@@ -54,8 +54,8 @@ struct RenderStyle {
 struct Polyline {
   std::vector<double> x, y;
   Rgba colour{0.8, 0.1, 0.1, 1};
-  double width = 2;     ///< line width (pixels)
-  bool closed = false;  ///< join the last point to the first
+  double width = 2;       ///< line width (pixels)
+  bool closed = false;    ///< join the last point to the first
   Rgba fill{0, 0, 0, 0};  ///< fill of a closed polyline (alpha 0: none)
 };
 
@@ -80,7 +80,7 @@ struct Scene {
   Field field;                       ///< optional, under everything else
   std::vector<std::uint8_t> filled;  ///< per grain, nonzero: fill it (touched grains)
   std::vector<Polyline> lines;
-  std::vector<Label> labels;         ///< drawn on top of everything in the box
+  std::vector<Label> labels;  ///< drawn on top of everything in the box
   std::string caption;
   /// Extra room above the medium (length units) so that droplets starting above it are seen;
   /// -1: fit the polylines.
@@ -100,7 +100,7 @@ struct Series {
   std::string label;        ///< legend entry (empty: none)
   Style style = Style::line;
   Rgba colour{0.8, 0.1, 0.1, 1};
-  double width = 2;         ///< line width, or point radius for points
+  double width = 2;  ///< line width, or point radius for points
 };
 
 /// A chart: series, vertical markers, axes with ticks and labels, a legend.
@@ -119,7 +119,7 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
 /// drawn as for render_scene at `fps` frames per second and encoded by the extension: .gif with
 /// giflib (a fixed 256-colour palette, looping) or .mp4 with the ffmpeg program (H.264, yuv420p).
 /// Throws std::runtime_error naming the file on failure (ffmpeg missing included).
-void render_animation(int frames, double fps, const std::function<void(int, Scene&)>& frame,
-                      const RenderStyle& style, const std::string& path);
+void render_animation(int frames, double fps, const std::function<void(int, Scene&)>& frame, const RenderStyle& style,
+                      const std::string& path);
 
 }  // namespace softdrop

@@ -34,11 +34,10 @@ struct RigidDescent {
 /// wall (x0 is moved in if need be). Deterministic: the same inputs give the same bits. Throws
 /// std::invalid_argument naming radius or x0 if it is negative, non-finite, out of the box, or the
 /// disc is wider than the box (periodic: its diameter must be < width, as a grain's).
-RigidDescent rigid_descent(const Medium& medium, double radius, double x0,
-                           bool record_path = false);
+RigidDescent rigid_descent(const Medium& medium, double radius, double x0, bool record_path = false);
 
 /// rigid_descent for each start in `x0s`, in order (every start is checked first).
-std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius,
-                                         const std::vector<double>& x0s, bool record_paths = false);
+std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius, const std::vector<double>& x0s,
+                                         bool record_paths = false);
 
 }  // namespace softdrop

@@ -27,12 +27,12 @@ namespace softdrop {
 
 /// How a candidate was made from its parent.
 enum class MoveKind {
-  initial,  ///< generation 0: the starting arrangement itself
-  all,      ///< every grain jumps by a small random step
-  single,   ///< one grain, chosen among those the parent's droplet touched, jumps
-  relocate, ///< one grain the parent's droplet did not touch is put next to the droplet's path
-  migrate,  ///< islands: another island's best arrangement, kept if it beats this island's best
-  mixed     ///< a generation only: its candidates were made by different moves (es draws each one's)
+  initial,   ///< generation 0: the starting arrangement itself
+  all,       ///< every grain jumps by a small random step
+  single,    ///< one grain, chosen among those the parent's droplet touched, jumps
+  relocate,  ///< one grain the parent's droplet did not touch is put next to the droplet's path
+  migrate,   ///< islands: another island's best arrangement, kept if it beats this island's best
+  mixed      ///< a generation only: its candidates were made by different moves (es draws each one's)
 };
 const char* to_string(MoveKind kind);
 /// Parses "initial" / "all" / "single" / "relocate" / "migrate" / "mixed"; throws std::invalid_argument naming
@@ -41,10 +41,10 @@ MoveKind parse_move_kind(const std::string& name);
 
 /// How a search chooses its candidates and what it keeps (see strategy.hpp).
 enum class StrategyKind {
-  paper,  ///< the paper's hill climb: keep the best candidate that beats the current arrangement
-  es,     ///< (1 + lambda) evolution strategy: the paper's moves, with step sizes that adapt
-  lahc,   ///< late acceptance hill climbing: also keeps candidates no worse than L generations ago
-  anneal, ///< simulated annealing: keeps a worse candidate with probability exp(dT / temperature)
+  paper,   ///< the paper's hill climb: keep the best candidate that beats the current arrangement
+  es,      ///< (1 + lambda) evolution strategy: the paper's moves, with step sizes that adapt
+  lahc,    ///< late acceptance hill climbing: also keeps candidates no worse than L generations ago
+  anneal,  ///< simulated annealing: keeps a worse candidate with probability exp(dT / temperature)
   /// CMA-ES (pagmo2): lambda arrangements a generation drawn from a Gaussian over every grain
   /// centre, which adapts to the better ones; the best so far is kept apart
   cmaes
@@ -77,11 +77,11 @@ struct StrategyOptions {
 
 /// Everything that defines a search (and so must not change when it is resumed).
 struct SearchOptions {
-  std::uint64_t seed = 1;   ///< seed of the moves
-  int lambda = 1;           ///< candidates per generation (1: exactly the paper's algorithm)
-  int single_every = 10;    ///< every this-th generation moves a single touched grain (0: never)
-  double step = 1.0;        ///< all-grain move: each grain jumps uniformly within this radius (length)
-  double single_step = 5.0; ///< single move: the grain jumps uniformly within this radius (length)
+  std::uint64_t seed = 1;    ///< seed of the moves
+  int lambda = 1;            ///< candidates per generation (1: exactly the paper's algorithm)
+  int single_every = 10;     ///< every this-th generation moves a single touched grain (0: never)
+  double step = 1.0;         ///< all-grain move: each grain jumps uniformly within this radius (length)
+  double single_step = 5.0;  ///< single move: the grain jumps uniformly within this radius (length)
   /// Every this-th generation (0: never; single moves take precedence) one grain the droplet did
   /// not touch moves next to a point of the droplet's path: its centre within droplet radius + its
   /// radius of the point, where the droplet must meet it. A grain the droplet never touches adds
@@ -90,12 +90,12 @@ struct SearchOptions {
   /// A jump that would break the spacing rule is redrawn up to this many times; after that the
   /// grain stays where it was (which always satisfies the rule).
   int max_redraws = 20;
-  double gap = 0.13;        ///< spacing rule: surface gap >= gap x the larger radius
-  StrategyOptions strategy; ///< how candidates are chosen and kept
+  double gap = 0.13;         ///< spacing rule: surface gap >= gap x the larger radius
+  StrategyOptions strategy;  ///< how candidates are chosen and kept
   /// What a candidate's evaluation measures (objective.hpp): the paper's one droplet from the
   /// middle of the top, or K droplets from fresh starts each generation.
   ObjectiveOptions objective;
-  DropletParams droplet;    ///< the droplet pushed through every candidate
+  DropletParams droplet;  ///< the droplet pushed through every candidate
   /// Exit conditions of each evaluation. path_interval is the sampling of the stored best path
   /// (steps); traces and snapshots are not used.
   RunOptions run;
@@ -112,15 +112,15 @@ struct Evaluation {
   /// The objective's value (objective_value), meaningful when outcome == passed; for the single
   /// objective, the droplet's T.
   double tortuosity = 0;
-  std::int64_t steps = 0;            ///< summed over the droplets
-  std::vector<std::int32_t> touched; ///< grains any droplet touched, ascending
+  std::int64_t steps = 0;             ///< summed over the droplets
+  std::vector<std::int32_t> touched;  ///< grains any droplet touched, ascending
   /// The first droplet's centre-of-mass path every run.path_interval steps.
   std::vector<double> path_x, path_y;
-  int droplets = 0;                  ///< droplets pushed (0: not evaluated)
+  int droplets = 0;  ///< droplets pushed (0: not evaluated)
   /// Robust objectives: each droplet's T in start order, 1 where it did not pass (not stored).
   std::vector<double> values;
-  int passed = 0;                    ///< droplets that passed
-  double seconds = 0;                ///< wall time (not part of the deterministic result)
+  int passed = 0;      ///< droplets that passed
+  double seconds = 0;  ///< wall time (not part of the deterministic result)
 };
 
 /// Pushes the droplet from the middle of the top (x = W/2, just above the highest grain): the
@@ -133,10 +133,10 @@ Evaluation evaluate(const Medium& medium, const SearchOptions& options, std::int
 
 /// One candidate arrangement of a generation and its evaluation.
 struct Candidate {
-  int index = 0;           ///< k in [0, lambda)
+  int index = 0;  ///< k in [0, lambda)
   MoveKind kind = MoveKind::all;
-  int moved_grain = -1;    ///< single moves: the grain that was chosen
-  int moved = 0;           ///< grains that actually moved (the others' jumps kept being refused)
+  int moved_grain = -1;  ///< single moves: the grain that was chosen
+  int moved = 0;         ///< grains that actually moved (the others' jumps kept being refused)
   Medium medium;
   Evaluation eval;
 };
@@ -159,11 +159,11 @@ struct Generation {
   std::int64_t number = 0;
   MoveKind kind = MoveKind::all;
   std::vector<Candidate> candidates;
-  int accepted = -1;       ///< index of the candidate the strategy kept (paper: the improvement), -1: none
-  double best_t = 0;       ///< best tortuosity after this generation
-  int touched = 0;         ///< grains touched in the best's run after this generation
-  double seconds = 0;      ///< wall time of the generation
-  std::string state;       ///< the strategy's state after it (JSON object; empty: none)
+  int accepted = -1;   ///< index of the candidate the strategy kept (paper: the improvement), -1: none
+  double best_t = 0;   ///< best tortuosity after this generation
+  int touched = 0;     ///< grains touched in the best's run after this generation
+  double seconds = 0;  ///< wall time of the generation
+  std::string state;   ///< the strategy's state after it (JSON object; empty: none)
   /// Robust objectives: the arrangement the candidates were made from, run again on this
   /// generation's starts; the candidates were compared with this value (droplets 0: not run, the
   /// single objective). It is a fresh measurement, taken before anything was chosen on it.
@@ -176,8 +176,7 @@ MoveKind move_kind(std::int64_t generation, const SearchOptions& options);
 /// Candidate `index` of `generation` made from `parent` (not evaluated). Deterministic in (seed,
 /// generation, index). Every grain jump is checked with CGAL against the spacing rule and redrawn
 /// if refused; the result always satisfies the rule (checked again; std::logic_error if not).
-Candidate make_candidate(const Configuration& parent, std::int64_t generation, int index,
-                         const SearchOptions& options);
+Candidate make_candidate(const Configuration& parent, std::int64_t generation, int index, const SearchOptions& options);
 
 /// A candidate made from `parent` by a move of `kind` (all or single) whose jumps have radius
 /// `radius`, drawing its random numbers from the stream `stream`; make_candidate is the paper's
@@ -187,8 +186,7 @@ Candidate make_move(const Configuration& parent, MoveKind kind, double radius, s
 
 /// Evaluates the starting arrangement as generation 0. Throws std::runtime_error naming the
 /// outcome if the droplet does not pass, or if the arrangement breaks the spacing rule.
-Generation initial_generation(const Medium& medium, const SearchOptions& options,
-                              Configuration* best);
+Generation initial_generation(const Medium& medium, const SearchOptions& options, Configuration* best);
 
 class Strategy;
 
@@ -256,10 +254,10 @@ const char* to_string(Termination termination);
 
 /// When to stop.
 struct DriveOptions {
-  std::int64_t generations = 100;      ///< run up to this generation number
-  double time_limit = 0;               ///< wall seconds (0: none)
+  std::int64_t generations = 100;           ///< run up to this generation number
+  double time_limit = 0;                    ///< wall seconds (0: none)
   const std::atomic<bool>* stop = nullptr;  ///< raised asynchronously to stop after the generation
-  int threads = 0;                     ///< 0: all cores
+  int threads = 0;                          ///< 0: all cores
   /// Threads (or, on one thread, its lanes) evaluate candidates of the next generations before
   /// the current one is decided, assuming it accepts nothing (most generations), and drop them
   /// when it does accept. Once a finished candidate of a generation beats its parent, they go on
@@ -304,7 +302,7 @@ struct SpeculationStats {
 /// What a drive did and why it ended (cf. Ceres' Solver::Summary).
 struct SearchSummary {
   Termination termination = Termination::generations;
-  std::string message;            ///< one line
+  std::string message;  ///< one line
   std::int64_t last_generation = 0;
   std::int64_t generations_run = 0;
   std::int64_t evaluations = 0;

@@ -13,8 +13,8 @@
 
 #include "softdrop/contact_cache.hpp"
 #include "softdrop/droplet.hpp"
-#include "softdrop/lane_policy.hpp"
 #include "softdrop/grain_grid.hpp"
+#include "softdrop/lane_policy.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/step_stages.hpp"
 
@@ -22,10 +22,10 @@ namespace softdrop {
 
 /// Why a run ended.
 enum class Outcome {
-  passed,    ///< centre of mass went below y = 0
-  stuck,     ///< no net downward progress of stuck_distance within stuck_window (or at rest)
-  timeout,   ///< max_steps spent
-  diverged   ///< NaN, inverted (area <= 0) or self-intersecting ring
+  passed,   ///< centre of mass went below y = 0
+  stuck,    ///< no net downward progress of stuck_distance within stuck_window (or at rest)
+  timeout,  ///< max_steps spent
+  diverged  ///< NaN, inverted (area <= 0) or self-intersecting ring
 };
 const char* to_string(Outcome outcome);
 /// Parses the names to_string gives; throws std::invalid_argument naming the value.
@@ -34,8 +34,8 @@ Outcome parse_outcome(const std::string& name);
 /// What to run and what to record.
 struct RunOptions {
   std::int64_t max_steps = 12'000'000;  ///< step budget (timeout): 72 time units at the default dt
-  double stuck_window = 0.5;           ///< time window of the stuck test (time units)
-  double stuck_distance = 5.0;         ///< downward progress required per window (length)
+  double stuck_window = 0.5;            ///< time window of the stuck test (time units)
+  double stuck_distance = 5.0;          ///< downward progress required per window (length)
   /// The rest test, which ends a stuck droplet early: a centre of mass that travelled less than
   /// rest_distance in all, in any direction, within rest_window (time units; 0: no rest test) is
   /// at rest, and the run ends stuck. A droplet bouncing off a grain or squeezing slowly through a
@@ -43,13 +43,13 @@ struct RunOptions {
   /// depend on it. The default, 0.1 within 0.05, is the trade results/stuck_test/ measured: no
   /// verdict changed there, and stuck droplets end several times sooner.
   double rest_window = 0.05;
-  double rest_distance = 0.1;          ///< (length units)
-  int check_interval = 64;             ///< steps between self-intersection / grain-inside checks
+  double rest_distance = 0.1;  ///< (length units)
+  int check_interval = 64;     ///< steps between self-intersection / grain-inside checks
   /// Record the centre-of-mass path every this many steps (0: no path). The tortuosity always uses
   /// every step, whatever this is.
   int path_interval = 0;
-  int area_interval = 0;                 ///< record the ring area S(t) every this many steps (0: no)
-  std::vector<double> snapshot_times;    ///< record the ring boundary at these times (time units)
+  int area_interval = 0;               ///< record the ring area S(t) every this many steps (0: no)
+  std::vector<double> snapshot_times;  ///< record the ring boundary at these times (time units)
   /// Polled every check_interval steps; when it returns true the run stops by throwing
   /// RunCancelled (used to drop speculative work that became useless). Empty: never.
   std::function<bool()> cancelled;
@@ -71,17 +71,17 @@ struct Snapshot {
 /// The result of one run and why it ended (cf. Ceres' Solver::Summary).
 struct RunSummary {
   Outcome outcome = Outcome::timeout;
-  std::string reason;            ///< one line saying why the run ended
-  std::int64_t steps = 0;        ///< steps taken
-  double tortuosity = 0;         ///< T = path length between y = H and y = 0 over H (passed only)
-  double path_length = 0;        ///< length of the centre-of-mass path inside the medium so far
+  std::string reason;      ///< one line saying why the run ended
+  std::int64_t steps = 0;  ///< steps taken
+  double tortuosity = 0;   ///< T = path length between y = H and y = 0 over H (passed only)
+  double path_length = 0;  ///< length of the centre-of-mass path inside the medium so far
   /// Where the run began: the placement (Simulation::run's cx and the start height), so that a run
   /// from start_x gives the same bits again; the centre of mass for run_from_current.
   double start_x = 0, start_y = 0;
   std::vector<std::int32_t> touched;  ///< indices of grains touched, ascending
   // Diagnostics, checked every step (area, penetration) or every check_interval steps.
-  double min_area_ratio = 1;     ///< smallest S / S0 seen
-  double max_penetration = 0;    ///< deepest a mass went inside a grain (length)
+  double min_area_ratio = 1;       ///< smallest S / S0 seen
+  double max_penetration = 0;      ///< deepest a mass went inside a grain (length)
   bool grain_inside_ring = false;  ///< a grain centre was found inside the ring
   // Optional traces.
   std::vector<double> path_t, path_x, path_y;  ///< centre of mass every path_interval steps
@@ -137,16 +137,16 @@ class Simulation {
 
   /// The stages of a step, in the order of kStepStages (run_stage's code for each). Public so that
   /// benchmarks and tests can time and check each one.
-  void accumulate_gravity();     ///< clears the forces to the weight m g
-  void accumulate_springs();     ///< damped springs along the ring
-  void accumulate_pressure();    ///< P l_e on each edge's outward normal (updates area())
+  void accumulate_gravity();   ///< clears the forces to the weight m g
+  void accumulate_springs();   ///< damped springs along the ring
+  void accumulate_pressure();  ///< P l_e on each edge's outward normal (updates area())
   /// Grain and wall contacts (penalty and damping); the touched set. Right after
   /// apply_contact_limit() it adds the forces that stage recorded and looks at the masses it
   /// listed; otherwise (or called again) it tests every mass against its record.
   void accumulate_collisions();
-  void accumulate_viscosity();   ///< internal viscosity relative to the rigid motion
-  void integrate();              ///< position Verlet
-  void apply_constraint();       ///< the Provot length constraint (params().constraint_order)
+  void accumulate_viscosity();  ///< internal viscosity relative to the rigid motion
+  void integrate();             ///< position Verlet
+  void apply_constraint();      ///< the Provot length constraint (params().constraint_order)
   /// Inverse dynamics: masses no deeper than max_depth; records the contacts (and the forces of
   /// most) for the next collisions.
   void apply_contact_limit();
@@ -236,7 +236,6 @@ class LaneExchange {
   std::unique_ptr<Impl> impl_;
 };
 
-
 /// Runs droplets on this thread `lanes` at a time, stepped together. With AVX-512 or AVX, enough
 /// droplets of one set of parameters (3 with AVX-512, 6 with AVX) go as one block laid out lane by
 /// lane, eight to a group (one AVX-512 register, two AVX ones): every stage but the contacts
@@ -255,8 +254,7 @@ class LaneExchange {
 /// without that callback RunCancelled leaves the driver, as other exceptions do.
 void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
                      const std::function<void(std::int64_t id, RunSummary&&)>& done,
-                     const std::function<void(std::int64_t id)>& cancelled = nullptr,
-                     LaneExchange* exchange = nullptr);
+                     const std::function<void(std::int64_t id)>& cancelled = nullptr, LaneExchange* exchange = nullptr);
 
 /// Length of the polyline (xs, ys) between its first downward crossing of y = top and its first
 /// crossing of y = 0 (crossing points interpolated), divided by `top`. Returns 0 if it does not

@@ -42,9 +42,8 @@ const char* to_string(StepStage stage);
 namespace step_stages_detail {
 template <class Run, std::size_t... I>
 constexpr void run_in_order(Run& run, StepStage first, StepStage last, std::index_sequence<I...>) {
-  ((kStepStages[I] >= first && kStepStages[I] <= last
-        ? run(std::integral_constant<StepStage, kStepStages[I]>{})
-        : void()),
+  ((kStepStages[I] >= first && kStepStages[I] <= last ? run(std::integral_constant<StepStage, kStepStages[I]>{})
+                                                      : void()),
    ...);
 }
 }  // namespace step_stages_detail
@@ -57,8 +56,7 @@ constexpr void run_in_order(Run& run, StepStage first, StepStage last, std::inde
 template <class Run>
 constexpr void run_step_stages(Run&& run, StepStage first = StepStage::gravity,
                                StepStage last = StepStage::contact_limit) {
-  step_stages_detail::run_in_order(run, first, last,
-                                   std::make_index_sequence<kStepStages.size()>{});
+  step_stages_detail::run_in_order(run, first, last, std::make_index_sequence<kStepStages.size()>{});
 }
 
 }  // namespace softdrop

@@ -55,8 +55,7 @@ class Strategy {
   /// A copy told `generation` as far as its candidates are evaluated: evaluated[k] is candidate k
   /// or nullptr while it runs (taken to pass no test: for a speculative() strategy, to improve on
   /// nothing). Sets *kept to what tell() returned. Once every candidate is there, this is tell().
-  std::unique_ptr<Strategy> foresee(std::int64_t generation,
-                                    const std::vector<const Candidate*>& evaluated,
+  std::unique_ptr<Strategy> foresee(std::int64_t generation, const std::vector<const Candidate*>& evaluated,
                                     int* kept) const;
 
  protected:
@@ -68,8 +67,7 @@ class Strategy {
 /// returned ("": a new search), or, for a strategy that resumes_by_replay(), the JSON array of
 /// the state() of every generation so far, in order. Throws std::invalid_argument naming the
 /// strategy if the state is not its own.
-std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configuration current,
-                                        const std::string& state);
+std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configuration current, const std::string& state);
 
 /// Whether a resumed `kind` takes every generation's state (see make_strategy) rather than the
 /// last: cmaes, whose state is too large to store with each generation, stores the values it was

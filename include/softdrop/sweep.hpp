@@ -32,13 +32,13 @@ std::vector<std::string> media_stream_names();
 
 struct SweepOptions {
   std::vector<double> porosities{0.5, 0.6, 0.7, 0.8, 0.9};  ///< target porosities
-  int media = 10;           ///< M media per porosity
-  int droplets = 20;        ///< K droplets per medium, from random starts
-  std::uint64_t seed = 1;   ///< seed of media and start positions
-  MediaStream stream = MediaStream::held_out;  ///< which media the seed picks
-  MediumOptions medium;     ///< the media (porosity and seed are set per medium)
+  int media = 10;                                           ///< M media per porosity
+  int droplets = 20;                                        ///< K droplets per medium, from random starts
+  std::uint64_t seed = 1;                                   ///< seed of media and start positions
+  MediaStream stream = MediaStream::held_out;               ///< which media the seed picks
+  MediumOptions medium;                                     ///< the media (porosity and seed are set per medium)
   DropletParams droplet;
-  RunOptions run;           ///< exit conditions (traces are not recorded)
+  RunOptions run;  ///< exit conditions (traces are not recorded)
 
   bool IsValid(std::string* why) const;
 };
@@ -71,14 +71,14 @@ struct SweepDroplet {
 struct SweepMedium {
   SweepUnit unit;
   double target_porosity = 0;
-  double porosity = 0;        ///< exact porosity of the generated medium
+  double porosity = 0;  ///< exact porosity of the generated medium
   int grains = 0;
   std::uint64_t medium_seed = 0;
   int passed = 0, stuck = 0, timeout = 0, diverged = 0;
   double mean_t = 0;          ///< <T> over passed droplets (0 if none)
   double standard_error = 0;  ///< of <T> (0 if fewer than 2 passed)
   double stuck_fraction = 0;
-  double seconds = 0;         ///< wall time (not part of the deterministic record)
+  double seconds = 0;  ///< wall time (not part of the deterministic record)
   std::vector<SweepDroplet> droplets;
 };
 
@@ -110,7 +110,7 @@ SweepMedium decode_sweep_medium(const std::string& bytes);
 /// Per-porosity aggregate of medium records: droplets pooled over the porosity's media.
 struct SweepPoint {
   double target_porosity = 0;
-  double porosity = 0;        ///< mean exact porosity of its media
+  double porosity = 0;  ///< mean exact porosity of its media
   int media = 0, droplets = 0, passed = 0, stuck = 0, diverged = 0;
   double mean_t = 0, standard_error = 0;  ///< over all passed droplets of the porosity
   /// Media where at least one droplet passed, and the standard error of mean_t with those media as

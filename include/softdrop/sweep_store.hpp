@@ -19,9 +19,9 @@ namespace softdrop {
 struct SweepRecord {
   std::int64_t id = 0;
   std::string created, updated, version, status;
-  std::string params;       ///< JSON of the options (the sweep's identity)
-  std::int64_t units = 0;   ///< porosities x media
-  std::int64_t done = 0;    ///< media stored
+  std::string params;      ///< JSON of the options (the sweep's identity)
+  std::int64_t units = 0;  ///< porosities x media
+  std::int64_t done = 0;   ///< media stored
 };
 
 class SweepStore {

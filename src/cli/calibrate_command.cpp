@@ -1,7 +1,5 @@
 #include "cli/calibrate_command.hpp"
 
-#include "cli/columns.hpp"
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,6 +9,7 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "cli/columns.hpp"
 #include "cli/output.hpp"
 #include "softdrop/render.hpp"
 
@@ -29,7 +28,8 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
   auto* g = c->add_option_group("Calibration", "what every setting runs, and the grid");
   g->add_option("--scan", a.scans,
                 "An axis of the grid, name=v1,v2,... or name=lo:hi:n or name=lo:hi:n:log (repeat for more axes; "
-                "names: " + scan_parameter_list() + "); the other parameters come from the Droplet options")
+                "names: " +
+                    scan_parameter_list() + "); the other parameters come from the Droplet options")
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   g->add_option("--setting", a.settings,
                 "Or one setting to run, \"[label:] name=value name=value ...\" over the Droplet options, or "
@@ -76,13 +76,15 @@ CLI::App* add_calibrate_command(CLI::App& app, CalibrateArgs& a) {
 }
 
 std::vector<DropletParams> check_calibrate(CalibrateArgs& a, std::vector<std::string>* labels) {
-  if (!a.medium.file.empty()) throw std::invalid_argument("medium: calibrate generates its media; --medium is not used");
+  if (!a.medium.file.empty())
+    throw std::invalid_argument("medium: calibrate generates its media; --medium is not used");
   resolve_medium(a.medium);
   a.calibration.sweep.medium = a.medium.options;
   std::string why;
   if (!a.calibration.IsValid(&why)) throw std::invalid_argument(why);
   check_threads(a.threads);
-  if (a.best < 1 || a.best > 20) throw std::invalid_argument("best = " + std::to_string(a.best) + ": must be in [1, 20]");
+  if (a.best < 1 || a.best > 20)
+    throw std::invalid_argument("best = " + std::to_string(a.best) + ": must be in [1, 20]");
   if (!a.csv.empty()) check_output_path("--csv", a.csv);
   if (!a.points.empty()) check_output_path("--points", a.points);
   if (!a.plot.empty()) check_picture_path("--plot", a.plot);
@@ -91,7 +93,8 @@ std::vector<DropletParams> check_calibrate(CalibrateArgs& a, std::vector<std::st
   for (const std::string& text : a.scans) {
     axes.push_back(parse_scan_axis(text));
     for (const ScanAxis& earlier : std::vector<ScanAxis>(axes.begin(), axes.end() - 1))
-      if (earlier.name == axes.back().name) throw std::invalid_argument("scan '" + text + "': " + earlier.name + " scanned twice");
+      if (earlier.name == axes.back().name)
+        throw std::invalid_argument("scan '" + text + "': " + earlier.name + " scanned twice");
     count *= static_cast<double>(axes.back().values.size());
   }
   if (count > 10000) throw std::invalid_argument("scan: " + fmt(count, 6) + " settings; at most 10 000");
@@ -107,14 +110,16 @@ std::vector<DropletParams> check_calibrate(CalibrateArgs& a, std::vector<std::st
     const bool as_given = named && assignments.find_first_not_of(" \t") == std::string::npos;
     if (as_given && names.back().find_first_not_of(" \t") == std::string::npos)
       throw std::invalid_argument("setting '" + text + "': an empty name and no assignments");
-    settings.push_back(as_given ? a.calibration.sweep.droplet : apply_setting(a.calibration.sweep.droplet, assignments));
+    settings.push_back(as_given ? a.calibration.sweep.droplet
+                                : apply_setting(a.calibration.sweep.droplet, assignments));
   }
   if (a.settings.empty()) settings = scan_settings(a.calibration.sweep.droplet, axes);
   if (labels) *labels = a.settings.empty() ? scan_labels(axes) : names;
   if (!a.skip_unstable)
     for (std::size_t i = 0; i < settings.size(); ++i)
       if (!settings[i].IsValid(&why))
-        throw std::invalid_argument("setting " + std::to_string(i) + ": " + why + " (--skip-unstable records it instead)");
+        throw std::invalid_argument("setting " + std::to_string(i) + ": " + why +
+                                    " (--skip-unstable records it instead)");
   return settings;
 }
 
@@ -137,9 +142,10 @@ Table settings_table(const std::vector<const Row*>& rows) {
   const DropletParams names_only;
   visit_droplet_fields([&](const DropletField& field, const auto&) { t.header.push_back(column_name(field.key)); },
                        names_only);
-  t.header.insert(t.header.end(), {"score", "rms_distance", "measured_rms", "measured", "within", "stuck_fraction",
-              "diverged_fraction", "area_min", "area_max", "area_both_sides", "trace_passed", "trace_runs", "resting_travel", "comes_to_rest",
-              "steps_per_second", "seconds", "label"});
+  t.header.insert(t.header.end(),
+                  {"score", "rms_distance", "measured_rms", "measured", "within", "stuck_fraction", "diverged_fraction",
+                   "area_min", "area_max", "area_both_sides", "trace_passed", "trace_runs", "resting_travel",
+                   "comes_to_rest", "steps_per_second", "seconds", "label"});
   for (const Row* r : rows) {
     const DropletParams& d = r->droplet;
     const CalibrationResult& c = r->result;
@@ -148,18 +154,19 @@ Table settings_table(const std::vector<const Row*>& rows) {
     std::vector<nlohmann::json> row{r->setting, ok ? "ok" : "refused: " + r->refused};
     visit_droplet_fields(
         [&](const DropletField&, const auto& value) {
-          if constexpr (std::is_arithmetic_v<std::decay_t<decltype(value)>>) row.emplace_back(value);
-          else row.emplace_back(to_string(value));
+          if constexpr (std::is_arithmetic_v<std::decay_t<decltype(value)>>)
+            row.emplace_back(value);
+          else
+            row.emplace_back(to_string(value));
         },
         d);
-    row.insert(row.end(), {fig(c.score),
-                      fig(c.rms_distance), fig(c.measured_rms), ok ? nlohmann::json(c.measured) : nullptr,
-                      ok ? nlohmann::json(c.within) : nullptr, fig(c.stuck_fraction),
-                      fig(c.diverged_fraction), fig(c.area_min), fig(c.area_max),
-                      ok ? nlohmann::json(c.area_both_sides) : nullptr, ok ? nlohmann::json(c.trace_passed) : nullptr,
-                      ok ? nlohmann::json(c.trace_runs) : nullptr, fig(c.resting_travel),
-                      ok ? nlohmann::json(c.comes_to_rest) : nullptr,
-                      fig(r->seconds > 0 ? c.steps / r->seconds : NAN), fig(r->seconds), r->label});
+    row.insert(row.end(),
+               {fig(c.score), fig(c.rms_distance), fig(c.measured_rms), ok ? nlohmann::json(c.measured) : nullptr,
+                ok ? nlohmann::json(c.within) : nullptr, fig(c.stuck_fraction), fig(c.diverged_fraction),
+                fig(c.area_min), fig(c.area_max), ok ? nlohmann::json(c.area_both_sides) : nullptr,
+                ok ? nlohmann::json(c.trace_passed) : nullptr, ok ? nlohmann::json(c.trace_runs) : nullptr,
+                fig(c.resting_travel), ok ? nlohmann::json(c.comes_to_rest) : nullptr,
+                fig(r->seconds > 0 ? c.steps / r->seconds : NAN), fig(r->seconds), r->label});
     t.rows.push_back(std::move(row));
   }
   return t;
@@ -182,11 +189,10 @@ Table points_table(const std::vector<const Row*>& rows) {
               "within"};
   for (const Row* r : rows)
     for (const CalibrationPoint& p : r->result.points)
-      t.rows.push_back({r->setting, p.target_porosity, p.porosity, p.droplets, p.passed, p.stuck,
-                        p.diverged, p.passed > 0 ? nlohmann::json(p.mean_t) : nullptr,
+      t.rows.push_back({r->setting, p.target_porosity, p.porosity, p.droplets, p.passed, p.stuck, p.diverged,
+                        p.passed > 0 ? nlohmann::json(p.mean_t) : nullptr,
                         p.passed > 1 ? nlohmann::json(p.standard_error) : nullptr, p.media_passed,
-                        p.media_passed > 1 ? nlohmann::json(p.media_standard_error) : nullptr,
-                        p.paper_t, p.within});
+                        p.media_passed > 1 ? nlohmann::json(p.media_standard_error) : nullptr, p.paper_t, p.within});
   return t;
 }
 
@@ -201,8 +207,8 @@ void plot_best(const std::vector<const Row*>& ranked, int best, const std::strin
   paper.label = "paper: 1.58 − 0.58 φ^3.87";
   paper.colour = {0.1, 0.1, 0.1, 1};
   c.series.push_back(paper);
-  const Rgba colours[] = {{0.8, 0.1, 0.1, 1}, {0.1, 0.35, 0.8, 1}, {0.1, 0.6, 0.2, 1}, {0.7, 0.4, 0.0, 1},
-                          {0.5, 0.1, 0.6, 1}};
+  const Rgba colours[] = {
+      {0.8, 0.1, 0.1, 1}, {0.1, 0.35, 0.8, 1}, {0.1, 0.6, 0.2, 1}, {0.7, 0.4, 0.0, 1}, {0.5, 0.1, 0.6, 1}};
   int drawn = 0;
   for (const Row* r : ranked) {
     if (drawn == best) break;
@@ -212,8 +218,7 @@ void plot_best(const std::vector<const Row*>& ranked, int best, const std::strin
     s.width = 4;
     s.colour = colours[drawn % 5];
     for (const CalibrationPoint& p : r->result.points)
-      if (p.passed >= 2)
-        s.x.push_back(p.porosity), s.y.push_back(p.mean_t), s.err.push_back(p.media_standard_error);
+      if (p.passed >= 2) s.x.push_back(p.porosity), s.y.push_back(p.mean_t), s.err.push_back(p.media_standard_error);
     s.label = r->label + " (score " + fmt(r->result.score, 3) + ")";
     if (!s.x.empty()) c.series.push_back(std::move(s)), ++drawn;
   }
@@ -263,24 +268,23 @@ int run_calibrate(CalibrateArgs& a) {
         const double rest = spent / static_cast<double>(done) * static_cast<double>(total - done);
         const double per_setting = i > 0 ? before / static_cast<double>(i) : spent + rest;
         const double eta = rest + per_setting * static_cast<double>(settings.size() - i - 1);
-        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << " (" << i + 1 << " of " << settings.size() << "), droplets "
-                  << done << "/" << total << ", ETA " << fmt(eta, 3) << " s" << (tty ? "\033[K" : "\n") << std::flush;
+        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << " (" << i + 1 << " of " << settings.size()
+                  << "), droplets " << done << "/" << total << ", ETA " << fmt(eta, 3) << " s"
+                  << (tty ? "\033[K" : "\n") << std::flush;
       });
       row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
       if (!a.quiet)
-        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << ": score "
-                  << fmt(row.result.score, 4) << ", rms " << fmt(row.result.rms_distance, 4)
-                  << " (measured " << fmt(row.result.measured_rms, 4) << ")"
+        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << ": score " << fmt(row.result.score, 4)
+                  << ", rms " << fmt(row.result.rms_distance, 4) << " (measured " << fmt(row.result.measured_rms, 4)
+                  << ")"
                   << ", stuck " << fmt(row.result.stuck_fraction, 3) << ", diverged "
                   << fmt(row.result.diverged_fraction, 3)
                   << (std::isnan(row.result.area_min)
                           ? std::string(", no area trace")
-                          : ", S/S0 in [" + fmt(row.result.area_min, 4) + ", " +
-                                fmt(row.result.area_max, 4) + "]")
+                          : ", S/S0 in [" + fmt(row.result.area_min, 4) + ", " + fmt(row.result.area_max, 4) + "]")
                   << ", at rest "
-                  << (row.result.comes_to_rest
-                          ? "yes"
-                          : "no (travels " + fmt(row.result.resting_travel, 3) + " a time unit)")
+                  << (row.result.comes_to_rest ? "yes"
+                                               : "no (travels " + fmt(row.result.resting_travel, 3) + " a time unit)")
                   << (tty ? "\033[K\n" : "\n");
     }
     rows.push_back(std::move(row));

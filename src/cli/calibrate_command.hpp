@@ -16,9 +16,9 @@ struct CalibrateArgs {
   MediumArgs medium;
   std::vector<std::string> scans;     ///< "name=values", one per axis
   std::vector<std::string> settings;  ///< or explicit settings, "name=value name=value ..."
-  bool skip_unstable = false;      ///< record unstable settings as refused instead of refusing the scan
-  std::string csv, points, plot;   ///< output files
-  int best = 3;                    ///< settings drawn in the plot
+  bool skip_unstable = false;         ///< record unstable settings as refused instead of refusing the scan
+  std::string csv, points, plot;      ///< output files
+  int best = 3;                       ///< settings drawn in the plot
   int threads = 0;
   bool quiet = false;
   std::string format = "table";

@@ -1,14 +1,14 @@
 #include "cli/cli.hpp"
 
 #include <cerrno>
-#include <cstdlib>
 #include <chrono>
+#include <cstdlib>
 #include <exception>
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <thread>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "cli/common_options.hpp"
@@ -17,8 +17,8 @@
 #include "cli/mpi_job.hpp"
 #include "cli/output.hpp"
 #include "cli/suggest.hpp"
-#include "softdrop/history.hpp"
 #include "softdrop/grain_file.hpp"
+#include "softdrop/history.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/sweep.hpp"
 #include "softdrop/version.hpp"
@@ -50,8 +50,8 @@ void check_placement(MediumOptions o) {
 // number past the 64-bit range to the range's end. On the command line, in a config file and in
 // each element of a comma-separated list.
 void add_value_checks(CLI::App& command) {
-  const CLI::Validator not_empty([](std::string& value) { return value.empty() ? std::string("an empty value") : std::string(); },
-                                 "");
+  const CLI::Validator not_empty(
+      [](std::string& value) { return value.empty() ? std::string("an empty value") : std::string(); }, "");
   const CLI::Validator in_range(
       [](std::string& value) {
         const char* begin = value.c_str();

@@ -52,7 +52,8 @@ const std::vector<ColumnName> kColumns = {
     {"db", "", "the database file"},
     {"delta_aic_log_minus_power", "1", "fit: aic of the log law minus that of the power law"},
     {"differs_in", "", "the options that set this sweep apart from the others in the file"},
-    {"diffusive_tortuosity", "1", "phi D / D_eff from a steady diffusion through the pore image (PoreSpy's tortuosity_fd)"},
+    {"diffusive_tortuosity", "1",
+     "phi D / D_eff from a steady diffusion through the pore image (PoreSpy's tortuosity_fd)"},
     {"distance", "length", "tortuosity: each pore pixel's shortest pore path to the bottom (inf: none)"},
     {"diverged", "1", "droplets whose run diverged (non-finite positions)"},
     {"diverged_fraction", "1", "diverged / droplets"},
@@ -81,7 +82,8 @@ const std::vector<ColumnName> kColumns = {
     {"generations", "1", "the last generation stored"},
     {"generations_run", "1", "generations this invocation ran"},
     {"geometric_standard_error", "1", "geometric_tortuosity's standard error over its starts"},
-    {"geometric_tortuosity", "1", "shortest pore path from the top to the bottom over the height, averaged over top pixels"},
+    {"geometric_tortuosity", "1",
+     "shortest pore path from the top to the bottom over the height, averaged over top pixels"},
     {"grain", "index", "a grain's index in its medium"},
     {"grains", "1", "grains in the medium"},
     {"half_dt", "1", "1 if the held-out value was also measured at dt / 2"},
@@ -235,7 +237,8 @@ const std::map<std::string, std::string, std::less<>>& droplet_columns() {
   static const std::map<std::string, std::string, std::less<>> names = [] {
     std::map<std::string, std::string, std::less<>> m;
     const DropletParams p;
-    visit_droplet_fields([&](const DropletField& field, const auto&) { m.emplace(column_name(field.key), field.key); }, p);
+    visit_droplet_fields([&](const DropletField& field, const auto&) { m.emplace(column_name(field.key), field.key); },
+                         p);
     return m;
   }();
   return names;
@@ -251,7 +254,8 @@ std::string column_name(std::string option_key) {
 const std::vector<ColumnName>& column_names() {
   static const std::vector<ColumnName> sorted = [] {
     std::vector<ColumnName> v = kColumns;
-    std::sort(v.begin(), v.end(), [](const ColumnName& a, const ColumnName& b) { return std::string_view(a.name) < b.name; });
+    std::sort(v.begin(), v.end(),
+              [](const ColumnName& a, const ColumnName& b) { return std::string_view(a.name) < b.name; });
     return v;
   }();
   return sorted;
@@ -259,14 +263,16 @@ const std::vector<ColumnName>& column_names() {
 
 bool is_column_name(std::string_view name) {
   const std::vector<ColumnName>& all = column_names();
-  const auto at = std::lower_bound(all.begin(), all.end(), name,
-                                   [](const ColumnName& c, std::string_view n) { return std::string_view(c.name) < n; });
+  const auto at = std::lower_bound(all.begin(), all.end(), name, [](const ColumnName& c, std::string_view n) {
+    return std::string_view(c.name) < n;
+  });
   return (at != all.end() && at->name == name) || droplet_columns().count(name) > 0;
 }
 
 void check_column_names(const std::vector<std::string>& names) {
   for (const std::string& n : names)
-    if (!is_column_name(n)) throw std::logic_error("column '" + n + "' is not in softdrop's names (src/cli/columns.cpp)");
+    if (!is_column_name(n))
+      throw std::logic_error("column '" + n + "' is not in softdrop's names (src/cli/columns.cpp)");
 }
 
 void check_csv_header(std::string_view header) {
@@ -281,14 +287,18 @@ void check_csv_header(std::string_view header) {
 }
 
 CLI::App* add_columns_command(CLI::App& app, ColumnsArgs& a) {
-  CLI::App* s = app.add_subcommand("columns", "The names of softdrop's CSV columns, JSON keys, database views and Python "
-                                              "frames, with units and meanings");
+  CLI::App* s = app.add_subcommand("columns",
+                                   "The names of softdrop's CSV columns, JSON keys, database views and Python "
+                                   "frames, with units and meanings");
   s->fallthrough();
   s->add_option("names", a.names, "Only these names");
-  s->add_option("--format", a.format, "table, csv or json")->capture_default_str()->check(CLI::IsMember({"table", "csv", "json"}));
-  s->footer("One quantity has one name everywhere. Droplet parameters are named by their long option with _ for - "
-            "(calibrate's columns). Units: 1 dimensionless; length, time and mass in the model's units (docs/model.md); "
-            "s wall-clock seconds; index a 0-based number; id a database id from 1.");
+  s->add_option("--format", a.format, "table, csv or json")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"table", "csv", "json"}));
+  s->footer(
+      "One quantity has one name everywhere. Droplet parameters are named by their long option with _ for - "
+      "(calibrate's columns). Units: 1 dimensionless; length, time and mass in the model's units (docs/model.md); "
+      "s wall-clock seconds; index a 0-based number; id a database id from 1.");
   return s;
 }
 

@@ -12,7 +12,7 @@ namespace softdrop::cli {
 
 struct ColumnName {
   const char* name;
-  const char* unit;     ///< "1" dimensionless; length, time and mass in the model's units; "s" wall time
+  const char* unit;  ///< "1" dimensionless; length, time and mass in the model's units; "s" wall time
   const char* meaning;
 };
 

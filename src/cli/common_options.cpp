@@ -1,7 +1,5 @@
 #include "cli/common_options.hpp"
 
-#include "cli/output.hpp"
-
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -9,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+
+#include "cli/output.hpp"
 
 namespace softdrop::cli {
 
@@ -35,14 +35,15 @@ CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_cou
       ->check(CLI::IsMember(radius_distribution_names()));
   g->add_option("--r-median", a.options.r_median, "Log-normal: median grain radius (length units)")
       ->capture_default_str();
-  g->add_option("--r-sigma", a.options.r_sigma, "Log-normal: standard deviation of ln r")
-      ->capture_default_str();
+  g->add_option("--r-sigma", a.options.r_sigma, "Log-normal: standard deviation of ln r")->capture_default_str();
   g->add_option("--gap", a.options.gap,
                 fixed_count ? "Spacing rule: min surface gap as a fraction of the larger radius"
                             : "Non-overlapping and relaxed: min surface gap as a fraction of the larger radius")
       ->capture_default_str();
   g->add_flag("--walls", a.walls, "Solid side walls instead of periodic x");
-  g->add_option("--medium-seed", a.options.seed, "Seed of the medium generator")->capture_default_str()->check(seed_check());
+  g->add_option("--medium-seed", a.options.seed, "Seed of the medium generator")
+      ->capture_default_str()
+      ->check(seed_check());
   if (fixed_count) a.kind = "non-overlapping";
   return g;
 }
@@ -84,7 +85,8 @@ void add_exit_options(CLI::Option_group* g, RunOptions& r) {
   g->add_option("--rest-window", r.rest_window,
                 "Rest test window (time units; 0: none): a droplet at rest is stuck without waiting for the stuck test")
       ->capture_default_str();
-  g->add_option("--rest-distance", r.rest_distance, "Travel of the centre of mass, in any direction, below which a droplet is at rest (length units)")
+  g->add_option("--rest-distance", r.rest_distance,
+                "Travel of the centre of mass, in any direction, below which a droplet is at rest (length units)")
       ->capture_default_str();
 }
 
@@ -158,10 +160,10 @@ void check_recording(const RunOptions& run, long droplets, int masses) {
     if (interval <= 0) return;
     const double samples = n * (steps / interval + 1);
     if (samples > kMaxRecordedSamples)
-      throw std::invalid_argument(std::string(option) + " = " + std::to_string(interval) + ": " + std::to_string(droplets) +
-                                  " droplets of up to " + std::to_string(run.max_steps) + " steps could keep " +
-                                  fmt(samples, 3) + " " + sample + " in memory, more than the limit of 1e8; raise --" +
-                                  option + " or lower --max-steps");
+      throw std::invalid_argument(
+          std::string(option) + " = " + std::to_string(interval) + ": " + std::to_string(droplets) +
+          " droplets of up to " + std::to_string(run.max_steps) + " steps could keep " + fmt(samples, 3) + " " +
+          sample + " in memory, more than the limit of 1e8; raise --" + option + " or lower --max-steps");
   };
   check("path-interval", run.path_interval, "path points");
   check("trace-interval", run.area_interval, "area samples");
@@ -169,7 +171,8 @@ void check_recording(const RunOptions& run, long droplets, int masses) {
   if (points > kMaxRecordedSamples)
     throw std::invalid_argument("snapshot-times: " + std::to_string(run.snapshot_times.size()) + " times for " +
                                 std::to_string(droplets) + " droplets of " + std::to_string(masses) +
-                                " masses would keep " + fmt(points, 3) + " points in memory, more than the limit of 1e8");
+                                " masses would keep " + fmt(points, 3) +
+                                " points in memory, more than the limit of 1e8");
 }
 
 void resolve_medium(MediumArgs& a) {
@@ -186,8 +189,8 @@ void check_snapshot_times(const std::vector<double>& times, const RunOptions& ru
   const double end = static_cast<double>(run.max_steps) * droplet.dt;
   for (double t : times)
     if (!(t <= end))
-      throw std::invalid_argument(option + ": " + fmt(t) + " is after the run's last step (max-steps x dt = " + fmt(end) +
-                                  " time units)");
+      throw std::invalid_argument(option + ": " + fmt(t) +
+                                  " is after the run's last step (max-steps x dt = " + fmt(end) + " time units)");
 }
 
 void check_medium_file_alone(const CLI::App& command, const std::vector<std::string>& words) {
@@ -202,8 +205,9 @@ void check_medium_file_alone(const CLI::App& command, const std::vector<std::str
        command.get_subcommands([](const CLI::App* s) { return s->get_name().empty() && s->get_group() == "Medium"; }))
     for (const CLI::Option* o : group->get_options())
       if (o != file && o->count() > 0 && on_command_line(o->get_name()) && !(search && o->get_name() == "--gap"))
-        throw std::invalid_argument(o->get_name().substr(2) + ": has no effect with --medium (the grain file fixes the "
-                                                               "medium); leave it out");
+        throw std::invalid_argument(o->get_name().substr(2) +
+                                    ": has no effect with --medium (the grain file fixes the "
+                                    "medium); leave it out");
 }
 
 }  // namespace softdrop::cli

@@ -1,9 +1,10 @@
 #include "cli/config_file.hpp"
 
+#include <toml++/toml.h>
+
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
-#include <toml++/toml.h>
 
 #include "cli/suggest.hpp"
 #include "util/validation.hpp"
@@ -47,7 +48,8 @@ void collect(const toml::table& table, std::vector<std::string> parents, std::ve
 // that takes one value (the parser would keep its last element), and a key no option has.
 bool SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string& file) const {
   const std::string where = "config file '" + file + "': " + item.name;
-  if (item.inputs.empty()) throw CLI::ConversionError(where + " = []: an empty array (give a value, or leave the key out)");
+  if (item.inputs.empty())
+    throw CLI::ConversionError(where + " = []: an empty array (give a value, or leave the key out)");
   const CLI::App* command = &app_;
   for (const std::string& parent : item.parents) {
     const auto named = command->get_subcommands([&](const CLI::App* sub) { return sub->get_name() == parent; });
@@ -76,8 +78,8 @@ bool SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string
 bool SubcommandConfig::shapes_a_medium(const std::string& key) const {
   const auto simulate = app_.get_subcommands([](const CLI::App* s) { return s->get_name() == "simulate"; });
   if (simulate.empty()) return false;
-  for (const CLI::App* group :
-       simulate.front()->get_subcommands([](const CLI::App* s) { return s->get_name().empty() && s->get_group() == "Medium"; }))
+  for (const CLI::App* group : simulate.front()->get_subcommands(
+           [](const CLI::App* s) { return s->get_name().empty() && s->get_group() == "Medium"; }))
     if (group->get_option_no_throw("--" + key) != nullptr) return true;
   return false;
 }

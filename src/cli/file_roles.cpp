@@ -13,8 +13,9 @@ namespace fs = std::filesystem;
 
 // The options that name files, by name. --points is an input of fit and an output of calibrate;
 // --db is written by the commands that create or extend a store, read by the others.
-constexpr const char* kOutputs[] = {"--json", "--csv",   "--runs", "--trace", "--paths", "--snapshots", "--save-medium",
-                                    "--simulate-config", "--plot", "--curve", "--output"};
+constexpr const char* kOutputs[] = {"--json",  "--csv",       "--runs",        "--trace",
+                                    "--paths", "--snapshots", "--save-medium", "--simulate-config",
+                                    "--plot",  "--curve",     "--output"};
 constexpr const char* kInputs[] = {"--medium", "--config"};
 
 auto named_as(const std::string& name) {

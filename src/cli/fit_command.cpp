@@ -41,8 +41,9 @@ int run_fit(const FitArgs& a) {
   const FitErrors errors = a.errors == "droplets" ? FitErrors::droplets : FitErrors::media;
   const FitAveraging averaging = a.mean == "per-medium" ? FitAveraging::per_medium : FitAveraging::pooled;
   if (averaging == FitAveraging::per_medium && errors == FitErrors::droplets)
-    throw std::invalid_argument("--errors droplets: a per-medium mean has only its error over the media "
-                                "(leave --errors out, or fit --mean pooled)");
+    throw std::invalid_argument(
+        "--errors droplets: a per-medium mean has only its error over the media "
+        "(leave --errors out, or fit --mean pooled)");
   std::vector<FitPoint> points;
   bool used_errors = true;  // false: a porosity,tortuosity,standard_error file, which brings its own
   if (!a.points.empty()) {
@@ -54,23 +55,24 @@ int run_fit(const FitArgs& a) {
     int few = 0, fewest = kFewMedia;
     for (const SweepPoint& p : sweep_points(store->media(pick_sweep(*store, a.sweep, a.db)))) {
       const bool per_medium = averaging == FitAveraging::per_medium;
-      const double se = per_medium ? p.per_medium_standard_error
-                        : errors == FitErrors::media ? p.media_standard_error : p.standard_error;
+      const double se = per_medium                   ? p.per_medium_standard_error
+                        : errors == FitErrors::media ? p.media_standard_error
+                                                     : p.standard_error;
       if (p.passed < 2 || !(se > 0)) continue;
       points.push_back({p.porosity, per_medium ? p.per_medium_t : p.mean_t, se});
       if (p.media_passed < kFewMedia) ++few, fewest = std::min(fewest, p.media_passed);
     }
     if (errors == FitErrors::media && few > 0)
-      std::cerr << "fit: warning: " << few << " of " << points.size()
-                << " points have their error from fewer than " << kFewMedia
-                << " media with a passed droplet (" << fewest << " at the least), too few for the "
+      std::cerr << "fit: warning: " << few << " of " << points.size() << " points have their error from fewer than "
+                << kFewMedia << " media with a passed droplet (" << fewest << " at the least), too few for the "
                 << "error itself to be sure (sweep more media, or weigh by --errors droplets)\n";
   }
   const auto fit = [&](FitLaw law) {
     try {
       return fit_law(law, points);
     } catch (const std::invalid_argument& e) {  // too few points: say where they came from
-      throw std::invalid_argument((a.points.empty() ? "--db '" + a.db + "': " : "--points '" + a.points + "': ") + e.what());
+      throw std::invalid_argument((a.points.empty() ? "--db '" + a.db + "': " : "--points '" + a.points + "': ") +
+                                  e.what());
     }
   };
   const FitResult power = fit(FitLaw::power), log = fit(FitLaw::log);
@@ -89,7 +91,8 @@ int run_fit(const FitArgs& a) {
   for (const FitResult* r : {&power, &log}) {
     nlohmann::ordered_json f;
     f["law"] = r->law == FitLaw::power ? "T = a - c phi^b" : "T = 1 - p ln(phi)";
-    for (std::size_t i = 0; i < r->names.size(); ++i) f[r->names[i]] = {{"value", r->values[i]}, {"error", r->errors[i]}};
+    for (std::size_t i = 0; i < r->names.size(); ++i)
+      f[r->names[i]] = {{"value", r->values[i]}, {"error", r->errors[i]}};
     f["chi2"] = r->chi2;
     f["dof"] = r->dof;
     f["reduced_chi2"] = r->reduced_chi2;
@@ -107,11 +110,13 @@ int run_fit(const FitArgs& a) {
     paper_residuals.push_back((p.t - paper_tortuosity(p.phi)) / p.se);
     paper_chi2 += paper_residuals.back() * paper_residuals.back();
   }
-  j["paper"] = {{"law", "T = 1.58 - 0.58 phi^3.87"}, {"chi2", paper_chi2}, {"dof", points.size()},
+  j["paper"] = {{"law", "T = 1.58 - 0.58 phi^3.87"},
+                {"chi2", paper_chi2},
+                {"dof", points.size()},
                 {"residuals", paper_residuals}};
   j["delta_aic_log_minus_power"] = log.aic - power.aic;
   j["preferred"] = power.dof <= 0 || log.dof <= 0 ? nlohmann::ordered_json(nullptr)
-                   : nlohmann::ordered_json(log.aic > power.aic ? "power" : "log");
+                                                  : nlohmann::ordered_json(log.aic > power.aic ? "power" : "log");
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (a.format == "json") {
     std::cout << j.dump(2) << '\n';
@@ -119,8 +124,7 @@ int run_fit(const FitArgs& a) {
     std::cout << points.size() << " points";
     if (used_errors)
       std::cout << (averaging == FitAveraging::per_medium ? " (each medium's <T> first, then over media)" : "")
-                << " weighed by the " << (errors == FitErrors::media ? "media's" : "droplets'")
-                << " standard errors";
+                << " weighed by the " << (errors == FitErrors::media ? "media's" : "droplets'") << " standard errors";
     std::cout << "\n";
     for (const FitResult* r : {&power, &log}) {
       std::cout << (r->law == FitLaw::power ? "T = a - c phi^b  " : "T = 1 - p ln phi ");
@@ -139,8 +143,8 @@ int run_fit(const FitArgs& a) {
     std::cout << "phi         T          se         resid_power  resid_log  resid_paper\n";
     for (std::size_t i = 0; i < points.size(); ++i) {
       std::ostringstream row;
-      row << std::left << std::setw(12) << fmt(points[i].phi, 6) << std::setw(11) << fmt(points[i].t, 6) << std::setw(11)
-          << fmt(points[i].se, 3) << std::setw(13) << fmt(power.residuals[i], 3) << std::setw(11)
+      row << std::left << std::setw(12) << fmt(points[i].phi, 6) << std::setw(11) << fmt(points[i].t, 6)
+          << std::setw(11) << fmt(points[i].se, 3) << std::setw(13) << fmt(power.residuals[i], 3) << std::setw(11)
           << fmt(log.residuals[i], 3) << fmt(paper_residuals[i], 3);
       std::cout << row.str() << "\n";
     }
@@ -167,7 +171,9 @@ int run_fit(const FitArgs& a) {
       return s;
     };
     auto law = [](const FitResult& r) { return [&r](double phi) { return fit_law_value(r.law, r.values, phi); }; };
-    auto value = [](const FitResult& r, std::size_t i) { return r.names[i] + " = " + with_error(r.values[i], r.errors[i]); };
+    auto value = [](const FitResult& r, std::size_t i) {
+      return r.names[i] + " = " + with_error(r.values[i], r.errors[i]);
+    };
     // The paper's fit beside ours, over the same range.
     c.series = {curve(paper_tortuosity, Rgba{0.55, 0.55, 0.55, 1}, "paper: 1.58 − 0.58 φ^3.87"),
                 curve(law(power), Rgba{0.8, 0.1, 0.1, 1},
@@ -211,8 +217,7 @@ int run_averagings(const AveragingArgs& args) {
   const Leftover leftover = a.leftover == "keep" ? Leftover::keep : Leftover::drop;
   const std::size_t left = points.size() % static_cast<std::size_t>(a.group);
   if (left > 0 && leftover == Leftover::drop)
-    std::cerr << "averagings: " << left << " of the " << points.size()
-              << " media do not fill a group of " << a.group
+    std::cerr << "averagings: " << left << " of the " << points.size() << " media do not fill a group of " << a.group
               << " and are left out: the highest in T (type 1) and in phi (type 2); --leftover "
                  "keep averages them\n";
   const auto by_t = group_averages(points, AveragingType::by_t, a.group, leftover);

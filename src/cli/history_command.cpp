@@ -1,10 +1,10 @@
 #include "cli/history_command.hpp"
 
+#include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <nlohmann/json.hpp>
-#include <cmath>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <sstream>
 #include <stdexcept>
 
@@ -21,9 +21,12 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
   s->fallthrough();
   s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
   s->add_option("--run", a.run, "List this run's generations instead of the runs")->check(id_check());
-  auto* best = s->add_flag("--best", a.best, "With --run: only the generations that raised the best T (the best-T curve)");
+  auto* best =
+      s->add_flag("--best", a.best, "With --run: only the generations that raised the best T (the best-T curve)");
   auto* candidates = s->add_flag("--candidates", a.candidates, "With --run: one row per candidate of every generation");
-  auto* params = s->add_flag("--params", a.params, "With --run: the options the run was started with (long option names) and its target generation");
+  auto* params =
+      s->add_flag("--params", a.params,
+                  "With --run: the options the run was started with (long option names) and its target generation");
   best->excludes(candidates)->excludes(params);
   candidates->excludes(params);
   s->add_option("--format", a.format, "table, csv or json")
@@ -60,8 +63,7 @@ CLI::App* add_export_command(CLI::App& app, ExportArgs& a) {
   s->fallthrough();
   s->add_option("--db", a.db, "SQLite history file")->capture_default_str();
   s->add_option("--run", a.run, "Run id")->required()->check(id_check());
-  s->add_option("--generation", a.generation,
-                "The arrangement kept as of this generation (default: the run's best)")
+  s->add_option("--generation", a.generation, "The arrangement kept as of this generation (default: the run's best)")
       ->check(index_check());
   s->add_option("--output,-o", a.output, "Grain file to write (.json, otherwise CSV)")->required();
   s->add_option("--simulate-config", a.simulate_config,
@@ -96,17 +98,17 @@ int run_history(const HistoryArgs& a) {
   auto history = open_history(a.db, OpenMode::read_only);
   Table t;
   if (a.run == 0) {
-    t.header = {"run", "created", "status", "strategy", "island", "archipelago", "grains", "generations",
-                "evaluations", "best_tortuosity", "best_generation", "lambda", "seed", "version", "objective",
-                "droplets"};
+    t.header = {"run",    "created",     "status",      "strategy",        "island",          "archipelago",
+                "grains", "generations", "evaluations", "best_tortuosity", "best_generation", "lambda",
+                "seed",   "version",     "objective",   "droplets"};
     for (const RunRecord& r : history->runs()) {
       const auto params = nlohmann::json::parse(r.params, nullptr, false);
       const std::string strategy = params.is_object() ? params.value("strategy", "paper") : "?";
       const std::string objective = params.is_object() ? params.value("objective", "single") : "?";
-      t.rows.push_back({r.id, r.created, r.status, strategy, r.island >= 0 ? nlohmann::json(r.island) : nlohmann::json(),
-                        r.island >= 0 ? nlohmann::json(r.archipelago) : nlohmann::json(), r.grains, r.generations,
-                        r.evaluations, r.best_t, r.best_generation, r.lambda, r.seed, r.version, objective,
-                        r.droplets});
+      t.rows.push_back(
+          {r.id, r.created, r.status, strategy, r.island >= 0 ? nlohmann::json(r.island) : nlohmann::json(),
+           r.island >= 0 ? nlohmann::json(r.archipelago) : nlohmann::json(), r.grains, r.generations, r.evaluations,
+           r.best_t, r.best_generation, r.lambda, r.seed, r.version, objective, r.droplets});
     }
   } else if (a.params) {
     t.header = {"option", "value"};
@@ -116,13 +118,13 @@ int run_history(const HistoryArgs& a) {
     for (const auto& [key, value] : params.items())
       t.rows.push_back({key, value});  // typed in JSON; CSV and the table write it as text
   } else if (a.candidates) {
-    t.header = {"generation", "candidate", "kind", "accepted", "outcome", "tortuosity", "steps", "touched",
-                "moved_grain", "moved", "seconds", "reason", "droplets", "passed"};
+    t.header = {"generation", "candidate",   "kind",  "accepted", "outcome", "tortuosity", "steps",
+                "touched",    "moved_grain", "moved", "seconds",  "reason",  "droplets",   "passed"};
     for (const GenerationRecord& g : history->generations(a.run))
       for (const CandidateRecord& c : g.candidates)
         t.rows.push_back({g.generation, c.index, c.kind.empty() ? nlohmann::json() : nlohmann::json(c.kind),
-                          c.index == g.accepted ? 1 : 0, c.outcome,
-                          or_null(c.outcome == "passed", c.tortuosity), c.steps, c.touched,
+                          c.index == g.accepted ? 1 : 0, c.outcome, or_null(c.outcome == "passed", c.tortuosity),
+                          c.steps, c.touched,
                           c.moved_grain >= 0 ? nlohmann::json(c.moved_grain) : nlohmann::json(nullptr), c.moved,
                           c.seconds, c.reason, c.droplets, c.passed});
   } else if (a.best) {
@@ -130,8 +132,9 @@ int run_history(const HistoryArgs& a) {
     // was stored (the latest of its validations). A robust objective's best is the arrangement
     // the search stands on: one row for each arrangement kept, with its value where its tenure
     // ended (the mean of its re-runs on fresh starts) and how many re-runs that mean holds.
-    t.header = {"generation", "kind", "best_tortuosity", "touched", "held_out_tortuosity", "held_out_standard_error",
-                "held_out_starts", "re_runs"};
+    t.header = {
+        "generation",      "kind",   "best_tortuosity", "touched", "held_out_tortuosity", "held_out_standard_error",
+        "held_out_starts", "re_runs"};
     std::map<std::int64_t, ValidationRecord> held_out;
     for (const ValidationRecord& v : history->validations(a.run)) held_out[v.generation] = v;
     const auto params = nlohmann::json::parse(history->run(a.run).params, nullptr, false);
@@ -140,7 +143,8 @@ int run_history(const HistoryArgs& a) {
     const auto row = [&](const GenerationRecord& g, double best_t, const nlohmann::json& re_runs) {
       const auto v = held_out.find(g.generation);
       const bool has = v != held_out.end();
-      t.rows.push_back({g.generation, g.kind, best_t, g.touched, has ? finite_or_null(v->second.mean_t) : nlohmann::json(),
+      t.rows.push_back({g.generation, g.kind, best_t, g.touched,
+                        has ? finite_or_null(v->second.mean_t) : nlohmann::json(),
                         has ? finite_or_null(v->second.standard_error) : nlohmann::json(),
                         has ? nlohmann::json(v->second.starts) : nlohmann::json(), re_runs});
     };
@@ -155,8 +159,8 @@ int run_history(const HistoryArgs& a) {
       }
     }
   } else {
-    t.header = {"generation", "kind", "accepted", "best_candidate_tortuosity", "outcomes", "best_tortuosity", "touched",
-                "seconds", "state", "parent_tortuosity"};
+    t.header = {"generation", "kind",    "accepted", "best_candidate_tortuosity", "outcomes", "best_tortuosity",
+                "touched",    "seconds", "state",    "parent_tortuosity"};
     for (const GenerationRecord& g : history->generations(a.run)) {
       // The generation's best passing candidate, and every candidate's outcome.
       bool any = false;
@@ -166,8 +170,8 @@ int run_history(const HistoryArgs& a) {
         if (c.outcome == "passed" && (!any || c.tortuosity > top)) top = c.tortuosity, any = true;
         outcomes += (outcomes.empty() ? "" : ";") + c.outcome;
       }
-      t.rows.push_back({g.generation, g.kind, g.accepted >= 0 ? 1 : 0, or_null(any, top), outcomes, g.best_t,
-                        g.touched, g.seconds, state_json(g.state), finite_or_null(g.parent_t)});
+      t.rows.push_back({g.generation, g.kind, g.accepted >= 0 ? 1 : 0, or_null(any, top), outcomes, g.best_t, g.touched,
+                        g.seconds, state_json(g.state), finite_or_null(g.parent_t)});
     }
   }
   t.print(std::cout, a.format);
@@ -204,9 +208,9 @@ int run_export(const ExportArgs& a) {
   }
   save_medium(a.output, c.medium);
   if (!config.empty()) write_file_atomically(a.simulate_config, config);
-  std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation << " (T = "
-            << fmt(c.eval.tortuosity) << ", " << c.medium.grains.size() << " grains) written to " << a.output
-            << "\n";
+  std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation
+            << " (T = " << fmt(c.eval.tortuosity) << ", " << c.medium.grains.size() << " grains) written to "
+            << a.output << "\n";
   for (const ValidationRecord& v : history->validations(a.run))
     if (v.generation == c.generation && std::isfinite(v.mean_t))
       std::cerr << "export: its held-out T is " << fmt(v.mean_t, 6) << " over " << v.starts << " random starts ("

@@ -12,8 +12,8 @@ namespace softdrop::cli {
 
 struct HistoryArgs {
   std::string db = "softdrop.db";
-  std::int64_t run = 0;  ///< 0: list runs
-  bool best = false;     ///< with --run: only accepted generations (the best-T curve)
+  std::int64_t run = 0;     ///< 0: list runs
+  bool best = false;        ///< with --run: only accepted generations (the best-T curve)
   bool candidates = false;  ///< with --run: one row per candidate
   bool params = false;      ///< with --run: the stored options, one row each
   std::string format = "table";
@@ -24,7 +24,7 @@ struct ExportArgs {
   std::int64_t run = 0;
   std::int64_t generation = -1;  ///< -1: the run's best
   std::string output;
-  std::string simulate_config;   ///< optional TOML for `softdrop simulate --config`
+  std::string simulate_config;  ///< optional TOML for `softdrop simulate --config`
 };
 
 CLI::App* add_history_command(CLI::App& app, HistoryArgs& args);

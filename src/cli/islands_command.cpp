@@ -1,5 +1,7 @@
 // `softdrop optimize --islands K`: K searches of one archipelago, each a run of the history
 // (runs.island, runs.archipelago = the first run's id); `--resume` of any of them continues all.
+#include "cli/islands_command.hpp"
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -11,7 +13,6 @@
 #include <stdexcept>
 
 #include "cli/mpi_islands.hpp"
-#include "cli/islands_command.hpp"
 #include "cli/output.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/porosity.hpp"
@@ -50,8 +51,8 @@ std::size_t best_island(const std::vector<Configuration>& bests) {
 class IslandsProgress {
  public:
   IslandsProgress(std::int64_t target, bool quiet) : target_(target), quiet_(quiet), tty_(::isatty(2) != 0) {}
-  void update(const std::vector<std::int64_t>& last, const std::vector<Configuration>& bests,
-              std::int64_t evaluations, bool force) {
+  void update(const std::vector<std::int64_t>& last, const std::vector<Configuration>& bests, std::int64_t evaluations,
+              bool force) {
     if (quiet_) return;
     const auto now = clock::now();
     if (!force && now - last_ < (tty_ ? std::chrono::seconds(1) : std::chrono::seconds(10))) return;
@@ -112,9 +113,11 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
       if (!stored.contains(key)) stored[key] = value;
     stored.erase("island");
     if (const std::string bad = contradictions(given, stored, cmd, a.preset_keys); !bad.empty())
-      throw std::invalid_argument("resume " + std::to_string(a.resume) + ": the command line contradicts the stored run: " + bad);
+      throw std::invalid_argument("resume " + std::to_string(a.resume) +
+                                  ": the command line contradicts the stored run: " + bad);
     const bool target_given = cmd.get_option("--generations")->count() > 0;
-    if (!target_given && stored.contains("target-generations")) a.generations = stored["target-generations"].get<std::int64_t>();
+    if (!target_given && stored.contains("target-generations"))
+      a.generations = stored["target-generations"].get<std::int64_t>();
     for (const RunRecord& r : members) {
       history->check_run(r.id);
       runs.push_back(r.id);
@@ -124,7 +127,8 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     if (target_given)
       for (const RunRecord& r : members) history->set_param(r.id, "target-generations", std::to_string(a.generations));
     if (!a.quiet)
-      std::cerr << "optimize: resuming the " << runs.size() << " islands of run " << runs.front() << " in " << a.db << "\n";
+      std::cerr << "optimize: resuming the " << runs.size() << " islands of run " << runs.front() << " in " << a.db
+                << "\n";
   } else {
     check_database(a.db);  // (a new file: its folder must exist and be writable)
     // Every island starts from one medium, or each from its own, all made before the history is
@@ -155,9 +159,9 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     }
     if (!a.quiet)
       for (std::size_t s = 0; s < start_of.size(); ++s)
-        std::cerr << "optimize: " << (each ? "island " + std::to_string(s) + " of " : std::string())
-                  << runs.size() << " islands, runs " << runs.front() << " to " << runs.back() << " in " << a.db
-                  << ": " << start_of[s].medium.grains.size() << " grains, porosity "
+        std::cerr << "optimize: " << (each ? "island " + std::to_string(s) + " of " : std::string()) << runs.size()
+                  << " islands, runs " << runs.front() << " to " << runs.back() << " in " << a.db << ": "
+                  << start_of[s].medium.grains.size() << " grains, porosity "
                   << fmt(exact_porosity(start_of[s].medium), 6) << ", T0 = " << fmt(start_of[s].eval.tortuosity, 8)
                   << "\n";
   }
@@ -196,28 +200,43 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     return go_on;
   };
   const Job* job = current_job();
-  const SearchSummary summary = job && job->size() > 1 ? drive_islands_on_ranks(*job, islands, a.islands, drive, callbacks)
-                                                        : drive_islands(islands, a.islands, drive, callbacks);
+  const SearchSummary summary = job && job->size() > 1
+                                    ? drive_islands_on_ranks(*job, islands, a.islands, drive, callbacks)
+                                    : drive_islands(islands, a.islands, drive, callbacks);
   progress.update(last, best_of, evaluations, true);
   nlohmann::json per_island = nlohmann::json::array();
   const std::size_t top = best_island(best_of);
   for (std::size_t i = 0; i < runs.size(); ++i) {
     history->set_status(runs[i], last[i] >= a.generations ? "finished" : "interrupted");
-    per_island.push_back({{"island", i}, {"run", runs[i]}, {"last_generation", last[i]},
-                          {"best_tortuosity", best_of[i].eval.tortuosity}, {"best_generation", best_of[i].generation}});
+    per_island.push_back({{"island", i},
+                          {"run", runs[i]},
+                          {"last_generation", last[i]},
+                          {"best_tortuosity", best_of[i].eval.tortuosity},
+                          {"best_generation", best_of[i].generation}});
   }
   // The best island's best gets its held-out value, stored with that island's run, when every
   // island reached the target (a stopped search leaves it to `softdrop validate`).
   const nlohmann::json held_out = summary.termination == Termination::generations
                                       ? validate_best(a, *history, runs[top], best_of[top])
                                       : nlohmann::json();
-  nlohmann::json j{{"version", kVersion}, {"db", a.db}, {"run", runs.front()}, {"strategy", to_string(a.search.strategy.kind)},
-                   {"islands", per_island}, {"migrate_every", a.islands.migrate_every},
-                   {"migration", to_string(a.islands.migration)}, {"termination", to_string(summary.termination)},
-                   {"message", summary.message}, {"last_generation", summary.last_generation},
-                   {"generations_run", summary.generations_run}, {"evaluations", summary.evaluations + initial_evaluations},
-                   {"accepted", summary.accepted}, {"best_tortuosity", summary.best_t}, {"best_island", top},
-                   {"best_run", runs[top]}, {"held_out", held_out}, {"wall_seconds", summary.seconds},
+  nlohmann::json j{{"version", kVersion},
+                   {"db", a.db},
+                   {"run", runs.front()},
+                   {"strategy", to_string(a.search.strategy.kind)},
+                   {"islands", per_island},
+                   {"migrate_every", a.islands.migrate_every},
+                   {"migration", to_string(a.islands.migration)},
+                   {"termination", to_string(summary.termination)},
+                   {"message", summary.message},
+                   {"last_generation", summary.last_generation},
+                   {"generations_run", summary.generations_run},
+                   {"evaluations", summary.evaluations + initial_evaluations},
+                   {"accepted", summary.accepted},
+                   {"best_tortuosity", summary.best_t},
+                   {"best_island", top},
+                   {"best_run", runs[top]},
+                   {"held_out", held_out},
+                   {"wall_seconds", summary.seconds},
                    {"evaluations_per_second", summary.evaluations_per_second()}};
   if (!deliver_summary(a, j, host)) {
     std::cout << "runs         " << runs.front() << " to " << runs.back() << " in " << a.db << " (" << runs.size()

@@ -7,9 +7,9 @@
 #include <string>
 #include <utility>
 
-#include "util/byte_codec.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/strategy.hpp"
+#include "util/byte_codec.hpp"
 
 namespace softdrop::cli {
 namespace {
@@ -103,7 +103,8 @@ std::string encode(const std::vector<Record>& records) {
 std::vector<Record> decode_records(const std::string& bytes) {
   ByteReader r(bytes, "island records");
   std::vector<Record> out(static_cast<std::size_t>(std::min<std::uint64_t>(r.get<std::uint64_t>(), bytes.size())));
-  for (Record& rec : out) rec.island = r.get<int>(), rec.generation = get_generation(r), rec.best = get_configuration(r);
+  for (Record& rec : out)
+    rec.island = r.get<int>(), rec.generation = get_generation(r), rec.best = get_configuration(r);
   if (!r.at_end()) r.fail("trailing bytes");
   return out;
 }
@@ -169,15 +170,20 @@ SearchSummary drive_islands_on_ranks(const Job& job, std::vector<Search>& island
   };
   try {
     for (int r = 1; r < ranks; ++r) mpi::send(r, kStart, start[static_cast<std::size_t>(r)].out);
-    for (int i = 0; i < k; i += ranks) local.searches.push_back(std::move(islands[static_cast<std::size_t>(i)])), local.number.push_back(i);
+    for (int i = 0; i < k; i += ranks)
+      local.searches.push_back(std::move(islands[static_cast<std::size_t>(i)])), local.number.push_back(i);
     for (;;) {
       const std::int64_t from = *std::min_element(last.begin(), last.end());
       const std::int64_t next = io.next_stop(from, options.generations);
       int code = 1 + (next <= options.generations ? 1 : 0);  // 1: a stretch, 2: a stretch and a migration
-      if (from >= options.generations) code = 0, sum.termination = Termination::generations;
-      else if (stop_by_callback) code = 0, sum.termination = Termination::callback;
-      else if (options.stop && options.stop->load()) code = 0, sum.termination = Termination::interrupted;
-      else if (options.time_limit > 0 && elapsed() >= options.time_limit) code = 0, sum.termination = Termination::time_limit;
+      if (from >= options.generations)
+        code = 0, sum.termination = Termination::generations;
+      else if (stop_by_callback)
+        code = 0, sum.termination = Termination::callback;
+      else if (options.stop && options.stop->load())
+        code = 0, sum.termination = Termination::interrupted;
+      else if (options.time_limit > 0 && elapsed() >= options.time_limit)
+        code = 0, sum.termination = Termination::time_limit;
       std::vector<int> decision{code, static_cast<int>(next)};
       mpi::broadcast(decision);
       if (code == 0) break;
@@ -191,7 +197,8 @@ SearchSummary drive_islands_on_ranks(const Job& job, std::vector<Search>& island
       for (int r = 1; r < ranks; ++r)
         for (const Record& rec : decode_records(mpi::receive(r, kRecords))) {
           report(rec.island, rec.generation, rec.best);
-          if (callbacks.generation && !callbacks.generation(rec.island, rec.generation, rec.best)) stop_by_callback = true;
+          if (callbacks.generation && !callbacks.generation(rec.island, rec.generation, rec.best))
+            stop_by_callback = true;
         }
       // The migration, once every island has reached the generation before it.
       std::vector<int> migrate{code == 2 && *std::min_element(last.begin(), last.end()) == next - 1 ? 1 : 0};
@@ -201,7 +208,9 @@ SearchSummary drive_islands_on_ranks(const Job& job, std::vector<Search>& island
       for (const Configuration& b : bests) pointers.push_back(&b);
       const std::vector<const Configuration*> in = immigrants(pointers, io.migration);
       std::vector<ByteWriter> out(static_cast<std::size_t>(ranks));
-      for (int i = 0; i < k; ++i) out[static_cast<std::size_t>(i % ranks)].put(i), put(out[static_cast<std::size_t>(i % ranks)], *in[static_cast<std::size_t>(i)]);
+      for (int i = 0; i < k; ++i)
+        out[static_cast<std::size_t>(i % ranks)].put(i),
+            put(out[static_cast<std::size_t>(i % ranks)], *in[static_cast<std::size_t>(i)]);
       for (int r = 1; r < ranks; ++r) mpi::send(r, kImmigrants, out[static_cast<std::size_t>(r)].out);
       std::vector<Generation> gs(static_cast<std::size_t>(k));
       std::vector<Configuration> after = bests;
@@ -225,7 +234,8 @@ SearchSummary drive_islands_on_ranks(const Job& job, std::vector<Search>& island
     islands[static_cast<std::size_t>(local.number[j])] = std::move(local.searches[j]);
   sum.message = std::string(to_string(sum.termination)) + " with the islands at generations " +
                 std::to_string(*std::min_element(last.begin(), last.end())) + " and above";
-  if (sum.termination == Termination::generations) sum.message = "reached generation " + std::to_string(options.generations);
+  if (sum.termination == Termination::generations)
+    sum.message = "reached generation " + std::to_string(options.generations);
   sum.last_generation = *std::min_element(last.begin(), last.end());
   sum.best_t = bests[0].eval.tortuosity;
   for (const Configuration& b : bests) sum.best_t = std::max(sum.best_t, b.eval.tortuosity);

@@ -106,8 +106,9 @@ void broadcast(std::vector<int>& values) {
 bool built_with_mpi() { return false; }
 
 Job::Job(int*, char***) {
-  throw std::runtime_error("this softdrop was built without MPI (install libopenmpi-dev and rebuild), so it cannot run "
-                           "as one of several ranks; run it without mpirun, or use --shard i/n and sweep-merge");
+  throw std::runtime_error(
+      "this softdrop was built without MPI (install libopenmpi-dev and rebuild), so it cannot run "
+      "as one of several ranks; run it without mpirun, or use --shard i/n and sweep-merge");
 }
 Job::~Job() = default;
 void Job::abort(int code) const { std::_Exit(code); }

@@ -74,8 +74,9 @@ std::map<std::pair<int, int>, std::size_t> index_of(const std::vector<SweepUnit>
 }  // namespace
 
 RanksReport run_sweep_units_on_ranks(const Job& job, const SweepOptions& options, const std::vector<SweepUnit>& todo,
-                              int threads, const std::function<void(SweepMedium&&)>& on_done,
-                              const std::function<bool()>& stop, const std::function<bool(const SweepUnit&)>& stored) {
+                                     int threads, const std::function<void(SweepMedium&&)>& on_done,
+                                     const std::function<bool()>& stop,
+                                     const std::function<bool(const SweepUnit&)>& stored) {
   std::vector<int> list = flatten(todo);
   mpi::broadcast(list);
   Ledger ledger(todo, stop, stored);
@@ -90,7 +91,8 @@ RanksReport run_sweep_units_on_ranks(const Job& job, const SweepOptions& options
         const std::string message = mpi::receive(-1, -1, &sender, &tag);
         const auto t0 = std::chrono::steady_clock::now();
         if (tag == kClaim) {
-          mpi::send(sender, kClaimReply, int_bytes(static_cast<long>(ledger.claim(static_cast<std::size_t>(bytes_int(message))))));
+          mpi::send(sender, kClaimReply,
+                    int_bytes(static_cast<long>(ledger.claim(static_cast<std::size_t>(bytes_int(message))))));
         } else if (tag == kRecord) {
           SweepMedium record = decode_sweep_medium(message);
           std::lock_guard lock(committing);
@@ -114,7 +116,10 @@ RanksReport run_sweep_units_on_ranks(const Job& job, const SweepOptions& options
           ++ran[0];
           on_done(std::move(m));
         },
-        stop, [&](const SweepUnit& u) { return ledger.claim(index.at({u.porosity, u.medium})) != index.at({u.porosity, u.medium}); });
+        stop,
+        [&](const SweepUnit& u) {
+          return ledger.claim(index.at({u.porosity, u.medium})) != index.at({u.porosity, u.medium});
+        });
   } catch (const std::exception& e) {
     fail_job(job, e);
   }

@@ -19,12 +19,13 @@ namespace softdrop::cli {
 /// given out are finished and committed. `stored(unit)` is asked before a unit is handed out:
 /// true passes it over (another process stored it meanwhile). Returns when every rank is done.
 struct RanksReport {
-  std::vector<int> ran;     ///< units each rank ran
-  double serve_seconds = 0; ///< rank 0's time answering the other ranks and storing their records
+  std::vector<int> ran;      ///< units each rank ran
+  double serve_seconds = 0;  ///< rank 0's time answering the other ranks and storing their records
 };
 RanksReport run_sweep_units_on_ranks(const Job& job, const SweepOptions& options, const std::vector<SweepUnit>& todo,
-                              int threads, const std::function<void(SweepMedium&&)>& on_done,
-                              const std::function<bool()>& stop, const std::function<bool(const SweepUnit&)>& stored);
+                                     int threads, const std::function<void(SweepMedium&&)>& on_done,
+                                     const std::function<bool()>& stop,
+                                     const std::function<bool(const SweepUnit&)>& stored);
 
 /// The part of any other rank: the units rank 0 hands it, on `threads` threads.
 void work_on_sweep_units(const Job& job, const SweepOptions& options, int threads);

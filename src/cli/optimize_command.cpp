@@ -17,8 +17,8 @@
 #include "cli/output.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/history.hpp"
-#include "softdrop/porosity.hpp"
 #include "softdrop/params_json.hpp"
+#include "softdrop/porosity.hpp"
 #include "softdrop/version.hpp"
 
 namespace softdrop::cli {
@@ -37,9 +37,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   g->add_option("--generations", a.generations,
                 "Run up to this generation number (a resume without it goes on to the run's own target)")
       ->capture_default_str();
-  g->add_option("--time-limit", a.time_limit, "Stop after this many wall seconds (0: no limit)")
-      ->capture_default_str();
-  g->add_option("--lambda", a.search.lambda, "Candidates per generation, evaluated in parallel (1 with --strategy paper: the paper)")
+  g->add_option("--time-limit", a.time_limit, "Stop after this many wall seconds (0: no limit)")->capture_default_str();
+  g->add_option("--lambda", a.search.lambda,
+                "Candidates per generation, evaluated in parallel (1 with --strategy paper: the paper)")
       ->capture_default_str();
   g->add_option("--preset", a.preset,
                 "paper: the paper's algorithm (--strategy paper --lambda 1 --relocate-every 0, its two moves at "
@@ -88,7 +88,9 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
                 "Island model: this many searches with seeds of their own, run side by side, each a run of the "
                 "history; every --migrate-every generations each takes another's best (1: one search)")
       ->capture_default_str();
-  g->add_option("--migrate-every", a.islands.migrate_every, "Islands: generations between migrations (0: never: independent lineages from the same start, the best of them kept)")
+  g->add_option("--migrate-every", a.islands.migrate_every,
+                "Islands: generations between migrations (0: never: independent lineages from the same start, the best "
+                "of them kept)")
       ->capture_default_str();
   g->add_option_function<std::string>(
        "--migration", [&a](const std::string& v) { a.islands.migration = parse_migration(v); },
@@ -108,11 +110,10 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->capture_default_str();
   g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")
       ->capture_default_str();
-  g->add_flag(
-      "--no-speculation", a.no_speculation,
-      "Evaluate one generation at a time (by default, with --strategy paper or es, idle threads "
-      "evaluate the next generations ahead, assuming no improvement; the history is the same "
-      "either way)");
+  g->add_flag("--no-speculation", a.no_speculation,
+              "Evaluate one generation at a time (by default, with --strategy paper or es, idle threads "
+              "evaluate the next generations ahead, assuming no improvement; the history is the same "
+              "either way)");
   g->add_option("--lanes", a.lanes,
                 "Candidates each thread steps together, in [0, 64] (0: chosen for this processor, see "
                 "docs/search.md); a matter of speed only: results do not depend on it")
@@ -225,7 +226,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   check_optimize(a);
   const Job* job = current_job();
   const bool on_ranks = job && job->size() > 1;  // under mpirun: islands only
-  if (on_ranks && job->rank() != 0) {  // rank 0 has the history and gives this rank its islands
+  if (on_ranks && job->rank() != 0) {            // rank 0 has the history and gives this rank its islands
     work_on_islands(*job, a.threads, a.lanes, !a.no_speculation);
     return 0;
   }
@@ -247,8 +248,9 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     history = open_history(a.db, OpenMode::create);
     const std::vector<RunRecord> runs = history->runs();
     if (std::none_of(runs.begin(), runs.end(), [&](const RunRecord& r) { return r.id == run; }))
-      throw std::invalid_argument("resume = " + std::to_string(run) + ": '" + a.db + "' has no run " +
-                                  std::to_string(run) + (runs.empty() ? " (it has no runs)" : " (its last run is " + std::to_string(runs.back().id) + ")"));
+      throw std::invalid_argument(
+          "resume = " + std::to_string(run) + ": '" + a.db + "' has no run " + std::to_string(run) +
+          (runs.empty() ? " (it has no runs)" : " (its last run is " + std::to_string(runs.back().id) + ")"));
     history->check_run(run);
     const RunRecord rec = history->run(run);
     nlohmann::json stored = nlohmann::json::parse(rec.params);
@@ -262,7 +264,8 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     for (const auto& [key, value] : read_back.items())
       if (!stored.contains(key)) stored[key] = value;
     if (const std::string bad = contradictions(given, stored, cmd, a.preset_keys); !bad.empty())
-      throw std::invalid_argument("resume " + std::to_string(run) + ": the command line contradicts the stored run: " + bad);
+      throw std::invalid_argument("resume " + std::to_string(run) +
+                                  ": the command line contradicts the stored run: " + bad);
     // Without --generations a resume goes on to the run's own target (runs stored before targets
     // were: the default); a target at or below the last generation leaves the run as it is.
     const bool target_given = cmd.get_option("--generations")->count() > 0;
@@ -273,9 +276,16 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     if (a.generations <= rec.generations) {
       const std::string line = "nothing to do: run " + std::to_string(run) + " is at generation " +
                                std::to_string(rec.generations) + " (target " + std::to_string(a.generations) + ")";
-      nlohmann::json j{{"version", kVersion}, {"db", a.db}, {"run", run}, {"termination", "nothing to do"},
-                       {"message", line}, {"last_generation", rec.generations}, {"generations_run", 0},
-                       {"evaluations", 0}, {"best_tortuosity", rec.best_t}, {"best_generation", rec.best_generation}};
+      nlohmann::json j{{"version", kVersion},
+                       {"db", a.db},
+                       {"run", run},
+                       {"termination", "nothing to do"},
+                       {"message", line},
+                       {"last_generation", rec.generations},
+                       {"generations_run", 0},
+                       {"evaluations", 0},
+                       {"best_tortuosity", rec.best_t},
+                       {"best_generation", rec.best_generation}};
       // A run killed after its last generation but before it was marked finished is finished.
       if (stored_target && rec.generations >= *stored_target && rec.status != "finished")
         history->set_status(run, "finished");
@@ -308,20 +318,20 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     search = std::make_unique<Search>(a.search, std::move(best), 0);
     if (!a.quiet)
       std::cerr << "optimize: run " << run << " in " << a.db << ": " << search->best().medium.grains.size()
-                << " grains, porosity " << fmt(exact_porosity(search->best().medium), 6) << ", T0 = "
-                << fmt(search->best().eval.tortuosity, 8) << "\n";
+                << " grains, porosity " << fmt(exact_porosity(search->best().medium), 6)
+                << ", T0 = " << fmt(search->best().eval.tortuosity, 8) << "\n";
   }
 
   std::optional<StopOnSignal> stop;  // a host handles the signals itself
   if (!host) stop.emplace("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
   SearchProgress progress(run, search->last_generation(), a.generations, a.quiet);
   const SearchSummary summary = drive(*search, drive_options_of(a, stop ? stop->flag() : nullptr),
-                                     [&](const Generation& g, const Configuration& best) {
-                                       history->append(run, g, best);
-                                       progress.update(g, best, g.number == a.generations);
-                                       if (!host || !host->on_progress) return true;
-                                       return host->on_progress(generation_event(run, g, best, a.generations));
-                                     });
+                                      [&](const Generation& g, const Configuration& best) {
+                                        history->append(run, g, best);
+                                        progress.update(g, best, g.number == a.generations);
+                                        if (!host || !host->on_progress) return true;
+                                        return host->on_progress(generation_event(run, g, best, a.generations));
+                                      });
   history->set_status(run, summary.termination == Termination::generations ? "finished" : "interrupted");
 
   const Configuration& best = search->best();
@@ -370,9 +380,8 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
                 << (summary.last_generation == best.generation ? " (none yet: the value it was kept with)" : "")
                 << "\n";
     std::cout << "this session " << summary.generations_run << " generations, " << summary.accepted << " accepted, "
-              << summary.evaluations + initial_evaluations << " evaluations ("
-              << summary.droplets + initial_droplets << " droplets), "
-              << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
+              << summary.evaluations + initial_evaluations << " evaluations (" << summary.droplets + initial_droplets
+              << " droplets), " << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
     print_held_out(std::cout, held_out);
     if (a.verbose) {  // for those who tune --lanes and --threads
       const SpeculationStats& sp = summary.speculation;

@@ -1,13 +1,5 @@
 #include "cli/output.hpp"
 
-#include "cli/columns.hpp"
-
-#include "util/temp_files.hpp"
-#include "util/validation.hpp"
-
-#include "softdrop/grain_file.hpp"
-#include "softdrop/render.hpp"
-
 #include <unistd.h>
 
 #include <algorithm>
@@ -20,6 +12,12 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/columns.hpp"
+#include "softdrop/grain_file.hpp"
+#include "softdrop/render.hpp"
+#include "util/temp_files.hpp"
+#include "util/validation.hpp"
+
 namespace softdrop::cli {
 
 void check_output_path(const std::string& option, const std::string& path) {
@@ -29,10 +27,8 @@ void check_output_path(const std::string& option, const std::string& path) {
   if (fs::is_directory(p, ec)) throw std::runtime_error(option + " '" + path + "': is a directory");
   const fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
   if (!fs::is_directory(dir, ec))
-    throw std::runtime_error(option + " '" + path + "': directory '" + dir.string() +
-                             "' does not exist");
-  if (::access(dir.c_str(), W_OK) != 0)
-    throw std::runtime_error(option + " '" + path + "': directory is not writable");
+    throw std::runtime_error(option + " '" + path + "': directory '" + dir.string() + "' does not exist");
+  if (::access(dir.c_str(), W_OK) != 0) throw std::runtime_error(option + " '" + path + "': directory is not writable");
 }
 
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
@@ -152,7 +148,8 @@ void Table::print(std::ostream& out, const std::string& format) const {
   for (std::size_t c = 0; c < header.size(); ++c) width[c] = header[c].size();
   for (const auto& row : rows)
     for (std::size_t c = 0; c < row.size(); ++c) width[c] = std::max(width[c], cell(row[c]).size());
-  for (std::size_t c = 0; c < header.size(); ++c) out << (c ? "  " : "") << std::left << std::setw(static_cast<int>(width[c])) << header[c];
+  for (std::size_t c = 0; c < header.size(); ++c)
+    out << (c ? "  " : "") << std::left << std::setw(static_cast<int>(width[c])) << header[c];
   out << '\n';
   for (const auto& row : rows) {
     for (std::size_t c = 0; c < row.size(); ++c)

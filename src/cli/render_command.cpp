@@ -163,7 +163,8 @@ RunOptions paths_run(const RenderArgs& a) {
   if (a.batch.droplets < 1 || a.batch.droplets > 1'000'000)
     throw std::invalid_argument("droplets = " + std::to_string(a.batch.droplets) + ": must be in [1, 1e6]");
   if (!(a.alpha >= 0 && a.alpha <= 1)) throw std::invalid_argument("alpha = " + fmt(a.alpha) + ": must be in [0, 1]");
-  if (a.path_interval < 1) throw std::invalid_argument("path-interval = " + std::to_string(a.path_interval) + ": must be >= 1");
+  if (a.path_interval < 1)
+    throw std::invalid_argument("path-interval = " + std::to_string(a.path_interval) + ": must be >= 1");
   RunOptions run = a.run;
   run.path_interval = a.path_interval;
   const long threads = detail::worker_threads(a.batch.threads);
@@ -204,10 +205,9 @@ int render_paths(RenderArgs& a) {
     points += static_cast<double>(r.path_x.size());
     if (points > kMaxRecordedSamples) over = true;
   };
-  const auto runs = run_batch(a.droplet, scene.medium, run, batch,
-                              [&](int done, int total) {
-                                if (!a.quiet) progress.update(done, total);
-                              });
+  const auto runs = run_batch(a.droplet, scene.medium, run, batch, [&](int done, int total) {
+    if (!a.quiet) progress.update(done, total);
+  });
   if (over)
     throw std::runtime_error("render paths: the paths of the first " + std::to_string(runs.size()) +
                              " droplets hold more than 1e8 points as drawn; draw fewer --droplets");
@@ -258,7 +258,8 @@ int render_search(RenderArgs& a) {
   draw(scene, style, a.output);
   if (!a.curve.empty()) {
     // The curve continues flat to the last stored generation.
-    curve.x.push_back(static_cast<double>(std::max(best.generation, a.generation < 0 ? run.generations : a.generation)));
+    curve.x.push_back(
+        static_cast<double>(std::max(best.generation, a.generation < 0 ? run.generations : a.generation)));
     curve.y.push_back(best.eval.tortuosity);
     curve.style = Series::Style::steps;
     curve.colour = parse_colour(a.path_colour);
@@ -266,8 +267,8 @@ int render_search(RenderArgs& a) {
     chart.series.push_back(curve);
     chart.x_label = "generation";
     chart.y_label = "best tortuosity T";
-    chart.title = "run " + std::to_string(a.run_id) + ": " + std::to_string(run.grains) + " grains, λ = " +
-                  std::to_string(run.lambda);
+    chart.title = "run " + std::to_string(a.run_id) + ": " + std::to_string(run.grains) +
+                  " grains, λ = " + std::to_string(run.lambda);
     render_chart(chart, style, a.curve);
   }
   return 0;
@@ -275,7 +276,8 @@ int render_search(RenderArgs& a) {
 
 int render_animation_command(RenderArgs& a) {
   if (!std::isfinite(a.speed) || a.speed <= 0) throw std::invalid_argument("speed = " + fmt(a.speed) + ": must be > 0");
-  if (!std::isfinite(a.fps) || a.fps <= 0 || a.fps > 100) throw std::invalid_argument("fps = " + fmt(a.fps) + ": must be in (0, 100]");
+  if (!std::isfinite(a.fps) || a.fps <= 0 || a.fps > 100)
+    throw std::invalid_argument("fps = " + fmt(a.fps) + ": must be in (0, 100]");
   RenderStyle style = style_of(a);
   const Medium medium = medium_of(a);
   style.solid_grains = grains_overlap(medium);
@@ -287,42 +289,46 @@ int render_animation_command(RenderArgs& a) {
   const int frames = static_cast<int>(std::ceil(static_cast<double>(whole.steps) / steps_per_frame)) + 1;
   if (frames > a.max_frames)
     throw std::invalid_argument("max-frames = " + std::to_string(a.max_frames) + ": the run needs " +
-                                std::to_string(frames) + " frames at --speed " + fmt(a.speed) + " and --fps " + fmt(a.fps));
+                                std::to_string(frames) + " frames at --speed " + fmt(a.speed) + " and --fps " +
+                                fmt(a.fps));
   sim.place_above(x0);
   const double top_room = sim.start_height() - medium.height + 1.6 * a.droplet.radius;
   std::int64_t done = 0;
   std::vector<double> path_x, path_y;
   const Rgba droplet = parse_colour(a.droplet_colour), path = parse_colour(a.path_colour);
   Progress progress("render: frames");
-  render_animation(frames, a.fps, [&](int f, Scene& scene) {
-    const auto target = std::min<std::int64_t>(whole.steps, std::llround(f * steps_per_frame));
-    while (done < target) {
-      sim.step();
-      ++done;
-      if (done % 10 == 0) {
+  render_animation(
+      frames, a.fps,
+      [&](int f, Scene& scene) {
+        const auto target = std::min<std::int64_t>(whole.steps, std::llround(f * steps_per_frame));
+        while (done < target) {
+          sim.step();
+          ++done;
+          if (done % 10 == 0) {
+            double cx, cy;
+            sim.centre_of_mass(&cx, &cy);
+            path_x.push_back(cx);
+            path_y.push_back(cy);
+          }
+        }
+        scene.medium = medium;
+        scene.top_room = top_room;
+        scene.lines.push_back(path_line(path_x, path_y, path, 1.5));
+        Polyline ring = path_line(sim.state().x, sim.state().y, droplet, 2);
+        ring.closed = true;
+        ring.fill = Rgba{droplet.r, droplet.g, droplet.b, 0.25};
         double cx, cy;
         sim.centre_of_mass(&cx, &cy);
-        path_x.push_back(cx);
-        path_y.push_back(cy);
-      }
-    }
-    scene.medium = medium;
-    scene.top_room = top_room;
-    scene.lines.push_back(path_line(path_x, path_y, path, 1.5));
-    Polyline ring = path_line(sim.state().x, sim.state().y, droplet, 2);
-    ring.closed = true;
-    ring.fill = Rgba{droplet.r, droplet.g, droplet.b, 0.25};
-    double cx, cy;
-    sim.centre_of_mass(&cx, &cy);
-    if (medium.periodic) {
-      const double shift = std::floor(cx / medium.width) * medium.width;
-      for (double& x : ring.x) x -= shift;
-    }
-    scene.lines.push_back(std::move(ring));
-    scene.caption = "t = " + fmt(static_cast<double>(done) * a.droplet.dt, 3) + " (" + to_string(whole.outcome) +
-                    (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") + ")";
-    if (!a.quiet) progress.update(f + 1, frames);
-  }, style, a.output);
+        if (medium.periodic) {
+          const double shift = std::floor(cx / medium.width) * medium.width;
+          for (double& x : ring.x) x -= shift;
+        }
+        scene.lines.push_back(std::move(ring));
+        scene.caption = "t = " + fmt(static_cast<double>(done) * a.droplet.dt, 3) + " (" + to_string(whole.outcome) +
+                        (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") + ")";
+        if (!a.quiet) progress.update(f + 1, frames);
+      },
+      style, a.output);
   return 0;
 }
 
@@ -354,13 +360,14 @@ int render_trace(RenderArgs& a) {
   if (!std::isnan(leave)) c.markers.push_back(leave), c.marker_labels.push_back("leaves");
   c.x_label = "time t (time units)";
   c.y_label = "area ratio S(t) / S₀";
-  c.title = std::string(to_string(whole.outcome)) + (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") +
-            "; " + describe(medium);
+  c.title = std::string(to_string(whole.outcome)) +
+            (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") + "; " + describe(medium);
   if (!a.csv.empty()) write_area_traces(a.csv, {trace});
   render_chart(c, style, a.output);
   const double lo = trace.min_ratio, hi = trace.max_ratio;
-  std::cerr << "trace: enters at t = " << fmt(enter, 5) << ", leaves at t = " << (std::isnan(leave) ? "never" : fmt(leave, 5))
-            << "; inside the medium S/S0 spans [" << fmt(lo, 5) << ", " << fmt(hi, 5) << "]\n";
+  std::cerr << "trace: enters at t = " << fmt(enter, 5)
+            << ", leaves at t = " << (std::isnan(leave) ? "never" : fmt(leave, 5)) << "; inside the medium S/S0 spans ["
+            << fmt(lo, 5) << ", " << fmt(hi, 5) << "]\n";
   return 0;
 }
 

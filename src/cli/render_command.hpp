@@ -17,8 +17,8 @@ struct RenderArgs {
   std::string output;
   int size = 800;
   double dpi = 72;
-  std::string background = "#ffffff", grain_colour = "#1f2938", touched_colour = "#40454d",
-              path_colour = "#cc1a1a", droplet_colour = "#1f4fcc", stuck_colour = "#1f4fcc";
+  std::string background = "#ffffff", grain_colour = "#1f2938", touched_colour = "#40454d", path_colour = "#cc1a1a",
+              droplet_colour = "#1f4fcc", stuck_colour = "#1f4fcc";
   bool no_caption = false;
   bool scale_bar = false;
   bool quiet = false;  ///< no progress on stderr
@@ -26,17 +26,17 @@ struct RenderArgs {
   DropletParams droplet;
   RunOptions run;
   double x0 = std::numeric_limits<double>::quiet_NaN();  ///< default: the middle
-  std::vector<double> times;  ///< snapshots
-  BatchOptions batch;         ///< paths
-  double alpha = 0;           ///< paths: 0 = automatic
-  int path_interval = 50;     ///< paths: steps between recorded centre-of-mass points
-  std::string db;             ///< search
+  std::vector<double> times;                             ///< snapshots
+  BatchOptions batch;                                    ///< paths
+  double alpha = 0;                                      ///< paths: 0 = automatic
+  int path_interval = 50;                                ///< paths: steps between recorded centre-of-mass points
+  std::string db;                                        ///< search
   std::int64_t run_id = 0;
   std::int64_t generation = -1;
-  std::string curve;          ///< search: best-T chart
+  std::string curve;              ///< search: best-T chart
   double fps = 25, speed = 0.02;  ///< animation: frames per second, time units per second
   int max_frames = 1500;
-  std::string csv;            ///< trace: the area samples
+  std::string csv;                       ///< trace: the area samples
   std::vector<std::string> dbs, labels;  ///< curves: the searches and their legend labels
   std::string x_axis = "evaluations";    ///< curves: evaluations or seconds
 };

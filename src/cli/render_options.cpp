@@ -6,14 +6,17 @@
 namespace softdrop::cli {
 
 CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
-  CLI::App* r = app.add_subcommand("render", "Draw media, droplets, paths, searches and animations (PNG, SVG, PDF; animations GIF or MP4)");
+  CLI::App* r = app.add_subcommand(
+      "render", "Draw media, droplets, paths, searches and animations (PNG, SVG, PDF; animations GIF or MP4)");
   r->require_subcommand(1);
   r->fallthrough();  // lets `render medium --config FILE` reach the program-level --config
   auto style = [&](CLI::App* s, const char* formats) {
     s->fallthrough();
     auto* g = s->add_option_group("Picture");
-    g->add_option("--output,-o", a.output, std::string("Picture file: ") + formats + " (format from the extension)")->required();
-    g->add_option("--size", a.size, "Width in points (1/72 inch; pixels at --dpi 72); the height follows")->capture_default_str();
+    g->add_option("--output,-o", a.output, std::string("Picture file: ") + formats + " (format from the extension)")
+        ->required();
+    g->add_option("--size", a.size, "Width in points (1/72 inch; pixels at --dpi 72); the height follows")
+        ->capture_default_str();
     g->add_option("--dpi", a.dpi, "PNG resolution: pixels an inch (300 for print)")->capture_default_str();
     g->add_option("--background", a.background, "Colour #rrggbb[aa]")->capture_default_str();
     g->add_option("--grain-colour", a.grain_colour, "Grain outline colour")->capture_default_str();
@@ -47,7 +50,8 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   p->add_option("--seed", a.batch.seed, "Seed of the start positions")->capture_default_str()->check(seed_check());
   p->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
   p->add_option("--stuck-colour", a.stuck_colour, "Path colour of droplets that did not pass")->capture_default_str();
-  p->add_option("--alpha", a.alpha, "Opacity of one path (0: automatic, 10 / droplets, at least 0.03)")->capture_default_str();
+  p->add_option("--alpha", a.alpha, "Opacity of one path (0: automatic, 10 / droplets, at least 0.03)")
+      ->capture_default_str();
   p->add_option("--path-interval", a.path_interval, "Steps between recorded points of a path")->capture_default_str();
 
   CLI::App* q = r->add_subcommand("search", "A search's best configuration, its path, earlier paths, touched grains");
@@ -58,20 +62,24 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
       ->check(index_check());
   q->add_option("--curve", a.curve, "Also draw the best-T-versus-generation chart to this file");
 
-  CLI::App* v = r->add_subcommand("animation", "A droplet pushed through the medium, as an animated GIF or an MP4 video (.gif, .mp4)");
+  CLI::App* v = r->add_subcommand(
+      "animation", "A droplet pushed through the medium, as an animated GIF or an MP4 video (.gif, .mp4)");
   style(v, ".gif");
   scene_options(v);
   v->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
   v->add_option("--fps", a.fps, "Frames per second")->capture_default_str();
-  v->add_option("--speed", a.speed, "Simulated time units per second of animation (1 = real time)")->capture_default_str();
+  v->add_option("--speed", a.speed, "Simulated time units per second of animation (1 = real time)")
+      ->capture_default_str();
   v->add_option("--max-frames", a.max_frames, "Refuse animations longer than this")->capture_default_str();
-  CLI::App* t = r->add_subcommand("trace", "The area trace S(t)/S0 of one droplet, entry and exit marked (paper's area figure)");
+  CLI::App* t =
+      r->add_subcommand("trace", "The area trace S(t)/S0 of one droplet, entry and exit marked (paper's area figure)");
   style(t, ".png, .svg or .pdf");
   scene_options(t);
   t->add_option("--x0", a.x0, "Start x of the droplet centre (default: the middle)")->check(finite_check());
   t->add_option("--csv", a.csv, "Also write the samples (droplet, t, area, area_ratio, phase) to this CSV");
 
-  CLI::App* c = r->add_subcommand("curves", "The best T of several searches against evaluations (or seconds), one line each");
+  CLI::App* c =
+      r->add_subcommand("curves", "The best T of several searches against evaluations (or seconds), one line each");
   style(c, ".png, .svg or .pdf");
   c->add_option("--db", a.dbs, "A search's SQLite history (repeat for more searches)")->required();
   c->add_option("--run", a.run_id, "Run id in every file (default: each file's only run)")->check(id_check());

@@ -95,7 +95,8 @@ nlohmann::json params_of(const OptimizeArgs& a) {
     j["migration"] = to_string(a.islands.migration);
     j["island-starts"] = island_starts_name(a.own_island_starts);
   } else if (a.own_island_starts) {
-    j["island-starts"] = island_starts_name(true);  // (refused: for a new run here, on a resumed plain run as a contradiction)
+    j["island-starts"] =
+        island_starts_name(true);  // (refused: for a new run here, on a resumed plain run as a contradiction)
   }
   return j;
 }
@@ -110,9 +111,8 @@ std::string contradictions(const nlohmann::json& given, const nlohmann::json& st
     if (!preset && (!opt || opt->count() == 0)) continue;
     const bool differs = !stored.contains(key) || stored.at(key) != value;
     if (differs)
-      out += (out.empty() ? "" : ", ") + std::string("--") + key + " " + value.dump() +
-             " (stored " + (stored.contains(key) ? stored.at(key).dump() : std::string("nothing")) +
-             ")";
+      out += (out.empty() ? "" : ", ") + std::string("--") + key + " " + value.dump() + " (stored " +
+             (stored.contains(key) ? stored.at(key).dump() : std::string("nothing")) + ")";
   }
   return out;
 }
@@ -131,12 +131,20 @@ nlohmann::json validate_best(const OptimizeArgs& a, History& history, std::int64
   const ValidationRecord r = validation_record(best.generation, o, v);
   history.add_validation(run, r);
   // A robust objective over the held-out starts: the counterpart of the best's in-search value.
-  const nlohmann::json objective =
-      a.search.objective.robust() ? nlohmann::json(objective_value(a.search.objective, v.at_dt.runs)) : nlohmann::json();
-  return {{"objective_value", objective}, {"generation", r.generation}, {"starts", r.starts}, {"seed", r.seed}, {"passed", r.passed},
-          {"mean_tortuosity", finite_or_null(r.mean_t)}, {"standard_error", finite_or_null(r.standard_error)},
-          {"half_dt_mean_tortuosity", finite_or_null(r.half_dt_mean_t)}, {"half_dt_standard_error", finite_or_null(r.half_dt_standard_error)},
-          {"dt_shift", finite_or_null(r.dt_shift)}, {"dt_shift_error", finite_or_null(r.dt_shift_error)}};
+  const nlohmann::json objective = a.search.objective.robust()
+                                       ? nlohmann::json(objective_value(a.search.objective, v.at_dt.runs))
+                                       : nlohmann::json();
+  return {{"objective_value", objective},
+          {"generation", r.generation},
+          {"starts", r.starts},
+          {"seed", r.seed},
+          {"passed", r.passed},
+          {"mean_tortuosity", finite_or_null(r.mean_t)},
+          {"standard_error", finite_or_null(r.standard_error)},
+          {"half_dt_mean_tortuosity", finite_or_null(r.half_dt_mean_t)},
+          {"half_dt_standard_error", finite_or_null(r.half_dt_standard_error)},
+          {"dt_shift", finite_or_null(r.dt_shift)},
+          {"dt_shift_error", finite_or_null(r.dt_shift_error)}};
 }
 
 void print_held_out(std::ostream& out, const nlohmann::json& held_out) {
@@ -148,7 +156,9 @@ void print_held_out(std::ostream& out, const nlohmann::json& held_out) {
   out << "held-out T   " << fmt(held_out["mean_tortuosity"].get<double>(), 6)
       << (held_out["standard_error"].is_number() ? " +- " + fmt(held_out["standard_error"].get<double>(), 2) : "")
       << " over " << held_out["starts"] << " random starts (" << held_out["passed"] << " passed)"
-      << (held_out["half_dt_mean_tortuosity"].is_number() ? "; at dt/2 " + fmt(held_out["half_dt_mean_tortuosity"].get<double>(), 6) : "")
+      << (held_out["half_dt_mean_tortuosity"].is_number()
+              ? "; at dt/2 " + fmt(held_out["half_dt_mean_tortuosity"].get<double>(), 6)
+              : "")
       << " (softdrop validate)\n";
   if (held_out["objective_value"].is_number())
     out << "held-out obj " << fmt(held_out["objective_value"].get<double>(), 6)
@@ -162,16 +172,14 @@ Generation start(const OptimizeArgs& a, Configuration* best) {
   std::string last_reason;
   for (int attempt = 0; attempt < a.start_attempts; ++attempt) {
     MediumOptions m = a.medium.options;
-    if (attempt > 0)
-      m.seed = derive_seed(a.medium.options.seed, static_cast<std::uint64_t>(attempt));
+    if (attempt > 0) m.seed = derive_seed(a.medium.options.seed, static_cast<std::uint64_t>(attempt));
     const Medium medium = generate_medium(m);
     try {
       return initial_generation(medium, a.search, best);
     } catch (const std::runtime_error& e) {  // the droplet did not pass: try another medium
       last_reason = e.what();
       if (!a.quiet)
-        std::cerr << "optimize: starting medium " << attempt + 1 << ": " << last_reason
-                  << "; trying another\n";
+        std::cerr << "optimize: starting medium " << attempt + 1 << ": " << last_reason << "; trying another\n";
     }
   }
   throw std::runtime_error("start-attempts = " + std::to_string(a.start_attempts) +
@@ -189,8 +197,7 @@ DriveOptions drive_options_of(const OptimizeArgs& a, const std::atomic<bool>* st
   return d;
 }
 
-nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best,
-                                std::int64_t target) {
+nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target) {
   return {{"run", run},
           {"generation", g.number},
           {"kind", to_string(g.kind)},
@@ -223,11 +230,10 @@ Search resumed_search(History& history, const RunRecord& rec, const SearchOption
   const auto check = [&](Configuration& c) {
     const Evaluation again = evaluate(c.medium, options, c.generation);
     if (again.outcome != Outcome::passed || again.tortuosity != c.eval.tortuosity || again.touched != c.eval.touched)
-      throw std::runtime_error(
-          "resume " + std::to_string(rec.id) + ": this build gives T = " + fmt(again.tortuosity) +
-          " for the stored arrangement of generation " + std::to_string(c.generation) +
-          ", the run stored " + fmt(c.eval.tortuosity) +
-          " (built with other numerics? resuming would not continue the same history)");
+      throw std::runtime_error("resume " + std::to_string(rec.id) + ": this build gives T = " + fmt(again.tortuosity) +
+                               " for the stored arrangement of generation " + std::to_string(c.generation) +
+                               ", the run stored " + fmt(c.eval.tortuosity) +
+                               " (built with other numerics? resuming would not continue the same history)");
     c.eval = again;
   };
   check(current);
@@ -240,8 +246,8 @@ Search resumed_search(History& history, const RunRecord& rec, const SearchOption
     if (rec.best_generation != current.generation)
       throw std::runtime_error("resume " + std::to_string(rec.id) + ": the stored best (generation " +
                                std::to_string(rec.best_generation) + ") is not the last kept arrangement (generation " +
-                               std::to_string(current.generation) + "), as the " +
-                               to_string(options.objective.kind) + " objective keeps it");
+                               std::to_string(current.generation) + "), as the " + to_string(options.objective.kind) +
+                               " objective keeps it");
     best.eval.tortuosity = rec.best_t;
   }
   return Search(options, std::move(best), std::move(current),

@@ -42,8 +42,8 @@ struct OptimizeArgs {
   bool verbose = false;  ///< also print how the speculation went
   std::string format = "table";
   std::string json_file;
-  std::string preset;  ///< "paper": the paper's algorithm for the search options not given
-  int validate_starts = 200;  ///< at the end, the best's held-out value over this many starts (0: none)
+  std::string preset;                    ///< "paper": the paper's algorithm for the search options not given
+  int validate_starts = 200;             ///< at the end, the best's held-out value over this many starts (0: none)
   std::vector<std::string> preset_keys;  ///< the stored keys the preset set (compared on resume as if given)
   /// Options of one strategy given on the command line, with the strategy that uses each.
   std::vector<std::pair<std::string, StrategyKind>> strategy_options;
@@ -83,8 +83,7 @@ Search resumed_search(History& history, const RunRecord& run, const SearchOption
 DriveOptions drive_options_of(const OptimizeArgs& args, const std::atomic<bool>* stop);
 /// What a host hears after each generation of run `run` (see Host): its number, kind, kept
 /// candidate, candidates, seconds, the best T and its generation, and the target generation.
-nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best,
-                                std::int64_t target);
+nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target);
 
 /// The summary `j` written to --json's file, handed to a host, or printed with --format json;
 /// false when it is still to be printed as a table.

@@ -1,7 +1,5 @@
 #include "cli/simulate_command.hpp"
 
-#include "cli/columns.hpp"
-
 #include <chrono>
 #include <cmath>
 #include <iomanip>
@@ -10,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/columns.hpp"
 #include "cli/output.hpp"
 #include "softdrop/area_trace.hpp"
 #include "softdrop/grain_file.hpp"
@@ -19,8 +18,8 @@
 namespace softdrop::cli {
 
 CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
-  CLI::App* s = app.add_subcommand(
-      "simulate", "Push one droplet (or --droplets K) through a generated or loaded medium");
+  CLI::App* s =
+      app.add_subcommand("simulate", "Push one droplet (or --droplets K) through a generated or loaded medium");
   s->fallthrough();  // lets `simulate --config FILE` reach the program-level --config
 
   auto* g = add_medium_options(s, a.medium, false);
@@ -32,7 +31,9 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
   r->add_option("--droplets", a.batch.droplets, "K droplets from random starts, run in parallel")
       ->capture_default_str();
   r->add_option("--x0", a.x0, "Start x of the droplet centre (default: random from --seed)")->check(finite_check());
-  r->add_option("--seed", a.batch.seed, "Seed of the random start positions")->capture_default_str()->check(seed_check());
+  r->add_option("--seed", a.batch.seed, "Seed of the random start positions")
+      ->capture_default_str()
+      ->check(seed_check());
   r->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
 
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
@@ -45,8 +46,7 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
   o->add_option("--trace-interval", a.run.area_interval, "Steps between area samples (default 100 with --trace)")
       ->check(positive_check());
   o->add_option("--snapshots", a.snapshots_csv, "CSV of ring boundaries at --snapshot-times (droplet,time,mass,x,y)");
-  o->add_option("--snapshot-times", a.run.snapshot_times, "Times (time units) of boundary snapshots")
-      ->delimiter(',');
+  o->add_option("--snapshot-times", a.run.snapshot_times, "Times (time units) of boundary snapshots")->delimiter(',');
   return s;
 }
 
@@ -68,11 +68,13 @@ void check_simulate(SimulateArgs& a) {
   if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
   check_recording(a.run, a.batch.droplets, a.droplet.masses);
   resolve_medium(a.medium);
-  if (!std::isnan(a.x0) && !std::isfinite(a.x0))
-    throw std::invalid_argument("x0 = " + fmt(a.x0) + ": must be finite");
-  for (const auto& [option, path] :
-       {std::pair{"--save-medium", a.save_medium_file}, {"--runs", a.runs_csv}, {"--paths", a.paths_csv},
-        {"--trace", a.trace_csv}, {"--snapshots", a.snapshots_csv}, {"--json", a.json_file}})
+  if (!std::isnan(a.x0) && !std::isfinite(a.x0)) throw std::invalid_argument("x0 = " + fmt(a.x0) + ": must be finite");
+  for (const auto& [option, path] : {std::pair{"--save-medium", a.save_medium_file},
+                                     {"--runs", a.runs_csv},
+                                     {"--paths", a.paths_csv},
+                                     {"--trace", a.trace_csv},
+                                     {"--snapshots", a.snapshots_csv},
+                                     {"--json", a.json_file}})
     if (!path.empty()) check_output_path(option, path);
 }
 
@@ -110,9 +112,9 @@ int run_simulate(SimulateArgs& a) {
   batch_run.area_interval = 0;  // --trace replays each droplet with trace_area, which records the area
   const std::vector<RunSummary> runs =
       run_batch(a.droplet, medium, batch_run, a.batch,
-                a.batch.droplets > 1 && !a.quiet ? std::function<void(int, int)>(
-                                           [&](int done, int total) { progress.update(done, total); })
-                                     : std::function<void(int, int)>());
+                a.batch.droplets > 1 && !a.quiet
+                    ? std::function<void(int, int)>([&](int done, int total) { progress.update(done, total); })
+                    : std::function<void(int, int)>());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   const BatchStats stats = summarize(runs);
   double total_steps = 0;
@@ -120,8 +122,11 @@ int run_simulate(SimulateArgs& a) {
 
   nlohmann::json j;
   j["version"] = kVersion;
-  j["medium"] = {{"grains", medium.grains.size()}, {"porosity", porosity}, {"width", medium.width},
-                 {"height", medium.height}, {"periodic", medium.periodic}};
+  j["medium"] = {{"grains", medium.grains.size()},
+                 {"porosity", porosity},
+                 {"width", medium.width},
+                 {"height", medium.height},
+                 {"periodic", medium.periodic}};
   j["droplets"] = stats.droplets;
   j["passed"] = stats.passed;
   j["stuck"] = stats.stuck;
@@ -138,26 +143,25 @@ int run_simulate(SimulateArgs& a) {
 
   std::ostringstream table;
   table << std::setprecision(6);
-  table << "medium       " << medium.grains.size() << " grains, porosity " << fmt(porosity, 6)
-        << ", " << medium.width << " x " << medium.height << (medium.periodic ? ", periodic" : ", walls")
-        << '\n';
+  table << "medium       " << medium.grains.size() << " grains, porosity " << fmt(porosity, 6) << ", " << medium.width
+        << " x " << medium.height << (medium.periodic ? ", periodic" : ", walls") << '\n';
   if (runs.size() == 1) {
     const RunSummary& r = runs[0];
     table << "outcome      " << to_string(r.outcome) << " (" << r.reason << ")\n";
     if (r.outcome == Outcome::passed) table << "tortuosity   " << fmt(r.tortuosity, 10) << '\n';
-    table << "start x      " << r.start_x << "\nsteps        " << r.steps << " (t = " << static_cast<double>(r.steps) * a.droplet.dt
-          << ")\ntouched      " << r.touched.size() << " grains\nmin area     " << r.min_area_ratio
-          << " S0\nmax depth    " << r.max_penetration << " length units\n";
+    table << "start x      " << r.start_x << "\nsteps        " << r.steps
+          << " (t = " << static_cast<double>(r.steps) * a.droplet.dt << ")\ntouched      " << r.touched.size()
+          << " grains\nmin area     " << r.min_area_ratio << " S0\nmax depth    " << r.max_penetration
+          << " length units\n";
   } else {
-    table << "droplets     " << stats.droplets << ": " << stats.passed << " passed, " << stats.stuck
-          << " stuck, " << stats.timeout << " timeout, " << stats.diverged << " diverged\n";
+    table << "droplets     " << stats.droplets << ": " << stats.passed << " passed, " << stats.stuck << " stuck, "
+          << stats.timeout << " timeout, " << stats.diverged << " diverged\n";
     // One passed droplet has no spread to measure: say so rather than print an error of 0.
     if (stats.passed > 1)
       table << "mean T       " << fmt(stats.mean_tortuosity, 8) << " +- " << stats.standard_error
             << " (standard error)\n";
     else if (stats.passed == 1)
-      table << "mean T       " << fmt(stats.mean_tortuosity, 8)
-            << " (one droplet passed: no standard error)\n";
+      table << "mean T       " << fmt(stats.mean_tortuosity, 8) << " (one droplet passed: no standard error)\n";
     table << "stuck        " << stats.stuck_fraction << " of droplets\n";
   }
   table << "speed        " << total_steps / seconds << " steps/s (" << seconds << " s wall)\n";
@@ -174,8 +178,8 @@ int run_simulate(SimulateArgs& a) {
   csv(a.runs_csv, "droplet,start_x,outcome,tortuosity,steps,touched,min_area_ratio,max_penetration",
       [](std::ostream& o, int i, const RunSummary& r) {
         o << i << ',' << fmt(r.start_x) << ',' << to_string(r.outcome) << ','
-          << (r.outcome == Outcome::passed ? fmt(r.tortuosity) : "") << ',' << r.steps << ',' << r.touched.size()
-          << ',' << fmt(r.min_area_ratio) << ',' << fmt(r.max_penetration) << '\n';
+          << (r.outcome == Outcome::passed ? fmt(r.tortuosity) : "") << ',' << r.steps << ',' << r.touched.size() << ','
+          << fmt(r.min_area_ratio) << ',' << fmt(r.max_penetration) << '\n';
       });
   csv(a.paths_csv, "droplet,time,x,y", [](std::ostream& o, int i, const RunSummary& r) {
     for (std::size_t k = 0; k < r.path_t.size(); ++k)

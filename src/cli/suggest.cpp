@@ -60,7 +60,8 @@ std::string suggest_correction(const CLI::App& app, int argc, const char* const*
   for (int i = 1; i < argc; ++i) {
     const std::string word = argv[i];
     if (word.rfind("--", 0) == 0 && word.size() > 2) {
-      const std::string name = word.substr(2, word.find('=') == std::string::npos ? std::string::npos : word.find('=') - 2);
+      const std::string name =
+          word.substr(2, word.find('=') == std::string::npos ? std::string::npos : word.find('=') - 2);
       options_seen = true;
       bool known = false;
       std::vector<std::string> names;
@@ -76,7 +77,8 @@ std::string suggest_correction(const CLI::App& app, int argc, const char* const*
     const CLI::App* here = chain.back();
     const auto commands = here->get_subcommands([](const CLI::App* a) { return !a->get_name().empty(); });
     if (commands.empty()) continue;
-    const auto match = std::find_if(commands.begin(), commands.end(), [&](const CLI::App* a) { return a->check_name(word); });
+    const auto match =
+        std::find_if(commands.begin(), commands.end(), [&](const CLI::App* a) { return a->check_name(word); });
     if (match != commands.end()) {
       chain.push_back(*match);
       options_seen = false;
@@ -97,7 +99,8 @@ std::string suggest_correction(const CLI::App& app, int argc, const char* const*
     for (const CLI::App* a : last->get_subcommands([](const CLI::App* a) { return !a->get_name().empty(); }))
       names.push_back(a->get_name());
     if (!names.empty())
-      return (chain.size() > 1 ? last->get_name() : std::string("softdrop")) + " needs a command: one of " + joined(names);
+      return (chain.size() > 1 ? last->get_name() : std::string("softdrop")) + " needs a command: one of " +
+             joined(names);
   }
   return "";
 }

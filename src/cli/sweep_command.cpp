@@ -4,8 +4,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <filesystem>
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -32,14 +32,20 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
       "sweep", "Tortuosity-porosity sweep: M media per porosity, K droplets each, into a resumable SQLite store");
   s->fallthrough();
   auto* g = s->add_option_group("Sweep", "stored with the sweep; the same options continue the same sweep");
-  g->add_option("--db", a.db, "SQLite store (the search history's file family; created if missing)")->capture_default_str();
-  g->add_option("--preset", a.preset, "quick (porosities 0.7, 0.8, 0.9 x 2 media x 8 droplets) or paper "
-                                      "(10 porosities x 200 media x 200 droplets): defaults for options not given")
+  g->add_option("--db", a.db, "SQLite store (the search history's file family; created if missing)")
+      ->capture_default_str();
+  g->add_option("--preset", a.preset,
+                "quick (porosities 0.7, 0.8, 0.9 x 2 media x 8 droplets) or paper "
+                "(10 porosities x 200 media x 200 droplets): defaults for options not given")
       ->check(CLI::IsMember({"quick", "paper"}));
-  g->add_option("--porosities", a.sweep.porosities, "Target porosities, comma-separated")->delimiter(',')->capture_default_str();
+  g->add_option("--porosities", a.sweep.porosities, "Target porosities, comma-separated")
+      ->delimiter(',')
+      ->capture_default_str();
   g->add_option("--media", a.sweep.media, "M media per porosity")->capture_default_str();
   g->add_option("--droplets", a.sweep.droplets, "K droplets per medium, from random starts")->capture_default_str();
-  g->add_option("--seed", a.sweep.seed, "Seed of media and start positions")->capture_default_str()->check(seed_check());
+  g->add_option("--seed", a.sweep.seed, "Seed of media and start positions")
+      ->capture_default_str()
+      ->check(seed_check());
   g->add_option("--media-stream", a.media_stream,
                 "Which media a seed picks: held-out (media no calibrate run ever tunes on) or calibration "
                 "(calibrate's own media for that seed: to re-measure what a calibration saw)")
@@ -47,7 +53,8 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
       ->check(CLI::IsMember(media_stream_names()));
   g->add_option("--shard", a.shard, "Run only shard i of n (i/n, 0-based); merge the stores with sweep-merge")
       ->capture_default_str();
-  g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")->capture_default_str();
+  g->add_option("--threads", a.threads, "Worker threads (0 = all cores); results do not depend on it")
+      ->capture_default_str();
   g->add_flag("--quiet", a.quiet, "No progress on stderr");
   g->add_option("--format", a.format, "Summary on stdout: table, csv or json")
       ->capture_default_str()
@@ -56,7 +63,8 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   auto* d = add_droplet_options(s, a.sweep.droplet);
   add_exit_options(d, a.sweep.run);
 
-  CLI::App* mg = app.add_subcommand("sweep-merge", "Merge sweep stores (e.g. shards) into one; identical units must agree");
+  CLI::App* mg =
+      app.add_subcommand("sweep-merge", "Merge sweep stores (e.g. shards) into one; identical units must agree");
   mg->add_option("--into", m.into, "The store to merge into (created if missing)")->required();
   mg->add_option("inputs", m.inputs, "Stores to merge from")->required()->check(CLI::ExistingFile);
 
@@ -65,7 +73,9 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
   rp->add_option("--db", r.db, "SQLite store")->capture_default_str();
   rp->add_option("--sweep", r.sweep, "Sweep id (default: the only one)")->check(id_check());
   rp->add_flag("--media", r.media, "One row per medium instead of one per porosity");
-  rp->add_option("--format", r.format, "table, csv or json")->capture_default_str()->check(CLI::IsMember({"table", "csv", "json"}));
+  rp->add_option("--format", r.format, "table, csv or json")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"table", "csv", "json"}));
   rp->footer(
       "Columns (softdrop columns lists every name, with its unit). Points: target_porosity = the porosity asked "
       "for; porosity = mean exact porosity of the media; mean_tortuosity = <T> over the passed droplets; "
@@ -78,18 +88,21 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
       "one row per medium, mean_tortuosity and standard_error over its own passed droplets; seconds = its wall "
       "time.");
 
-  CLI::App* ft = app.add_subcommand("fit", "Weighted least-squares fits of <T>(phi): a - c phi^b and 1 - p ln phi (NLopt)");
+  CLI::App* ft =
+      app.add_subcommand("fit", "Weighted least-squares fits of <T>(phi): a - c phi^b and 1 - p ln phi (NLopt)");
   ft->fallthrough();
   auto* src = ft->add_option_group("Data");
   src->add_option("--db", f.db, "Sweep store: fit its per-porosity points");
-  src->add_option("--points", f.points, "Or a CSV file with columns porosity,tortuosity,standard_error (or the output of sweep-report --format csv)")->check(CLI::ExistingFile);
+  src->add_option(
+         "--points", f.points,
+         "Or a CSV file with columns porosity,tortuosity,standard_error (or the output of sweep-report --format csv)")
+      ->check(CLI::ExistingFile);
   src->require_option(1);
   ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)")->check(id_check());
-  ft->add_option(
-        "--errors", f.errors,
-        "Weights of a sweep's points: the standard error of each porosity's <T> with its media as "
-        "clusters (media), or with every droplet taken as independent (droplets: smaller, as droplets "
-        "of one medium share its dead ends); a porosity,tortuosity,standard_error file brings its own")
+  ft->add_option("--errors", f.errors,
+                 "Weights of a sweep's points: the standard error of each porosity's <T> with its media as "
+                 "clusters (media), or with every droplet taken as independent (droplets: smaller, as droplets "
+                 "of one medium share its dead ends); a porosity,tortuosity,standard_error file brings its own")
       ->capture_default_str()
       ->check(CLI::IsMember({"media", "droplets"}));
   ft->add_option("--mean", f.mean,
@@ -117,7 +130,9 @@ void add_study_commands(CLI::App& app, SweepArgs& a, SweepMergeArgs& m, SweepRep
                  "paper's) or keep (averaged as a last, smaller group)")
       ->capture_default_str()
       ->check(CLI::IsMember({"drop", "keep"}));
-  av->add_option("--csv", v.csv, "Write the groups (averaging,porosity,mean_tortuosity,porosity_standard_error,standard_error,count) to this CSV");
+  av->add_option(
+      "--csv", v.csv,
+      "Write the groups (averaging,porosity,mean_tortuosity,porosity_standard_error,standard_error,count) to this CSV");
   av->add_option("--plot", v.plot, "Draw the per-medium points and both averagings");
   av->add_option("--size", v.size, "Plot width in points (1/72 inch)")->capture_default_str();
   av->add_option("--dpi", v.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
@@ -158,8 +173,9 @@ void apply_preset(SweepArgs& a, const CLI::App& cmd) {
   if (a.preset.empty()) return;
   auto unset = [&](const char* name) { return cmd.get_option_no_throw(name)->count() == 0; };
   const bool quick = a.preset == "quick";
-  if (unset("--porosities")) a.sweep.porosities = quick ? std::vector<double>{0.7, 0.8, 0.9}
-                                                        : std::vector<double>{0.45, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9};
+  if (unset("--porosities"))
+    a.sweep.porosities = quick ? std::vector<double>{0.7, 0.8, 0.9}
+                               : std::vector<double>{0.45, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9};
   if (unset("--media")) a.sweep.media = quick ? 2 : 200;
   if (unset("--droplets")) a.sweep.droplets = quick ? 8 : 200;
 }
@@ -179,18 +195,25 @@ std::pair<int, int> parse_shard(const std::string& text) {
 
 Table points_table(const std::vector<SweepPoint>& points) {
   Table t;
-  t.header = {"target_porosity", "porosity",       "media",
-              "droplets",        "passed",         "mean_tortuosity",
-              "standard_error",  "media_passed",   "media_standard_error",
-              "stuck_fraction",  "per_medium_tortuosity", "per_medium_standard_error"};
+  t.header = {"target_porosity",
+              "porosity",
+              "media",
+              "droplets",
+              "passed",
+              "mean_tortuosity",
+              "standard_error",
+              "media_passed",
+              "media_standard_error",
+              "stuck_fraction",
+              "per_medium_tortuosity",
+              "per_medium_standard_error"};
   for (const SweepPoint& p : points)
-    t.rows.push_back(
-        {p.target_porosity, p.porosity, p.media, p.droplets, p.passed,
-         p.passed ? nlohmann::json(p.mean_t) : nlohmann::json(),
-         p.passed > 1 ? nlohmann::json(p.standard_error) : nlohmann::json(), p.media_passed,
-         p.media_passed > 1 ? nlohmann::json(p.media_standard_error) : nlohmann::json(),
-         p.stuck_fraction, p.media_passed ? nlohmann::json(p.per_medium_t) : nlohmann::json(),
-         p.media_passed > 1 ? nlohmann::json(p.per_medium_standard_error) : nlohmann::json()});
+    t.rows.push_back({p.target_porosity, p.porosity, p.media, p.droplets, p.passed,
+                      p.passed ? nlohmann::json(p.mean_t) : nlohmann::json(),
+                      p.passed > 1 ? nlohmann::json(p.standard_error) : nlohmann::json(), p.media_passed,
+                      p.media_passed > 1 ? nlohmann::json(p.media_standard_error) : nlohmann::json(), p.stuck_fraction,
+                      p.media_passed ? nlohmann::json(p.per_medium_t) : nlohmann::json(),
+                      p.media_passed > 1 ? nlohmann::json(p.per_medium_standard_error) : nlohmann::json()});
   return t;
 }
 
@@ -276,12 +299,15 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     if (std::find(done.begin(), done.end(), u) == done.end()) todo.push_back(u);
   const std::size_t shard_total = sweep_units(a.sweep, shard, shards).size();
   if (!a.quiet)
-    std::cerr << "sweep " << (id > 0 ? std::to_string(id) : std::string("(new)")) << " in " << a.db << ": " << a.sweep.porosities.size() << " porosities x "
-              << a.sweep.media << " media x " << a.sweep.droplets << " droplets; shard " << shard << "/" << shards
-              << ": " << shard_total - todo.size() << " of " << shard_total << " media already stored\n";
+    std::cerr << "sweep " << (id > 0 ? std::to_string(id) : std::string("(new)")) << " in " << a.db << ": "
+              << a.sweep.porosities.size() << " porosities x " << a.sweep.media << " media x " << a.sweep.droplets
+              << " droplets; shard " << shard << "/" << shards << ": " << shard_total - todo.size() << " of "
+              << shard_total << " media already stored\n";
 
   std::optional<StopOnSignal> signals;  // a host handles the signals itself
-  if (!host) signals.emplace("\nsoftdrop: finishing the media in flight (Ctrl-C again to leave now; they are then redone next time)\n");
+  if (!host)
+    signals.emplace(
+        "\nsoftdrop: finishing the media in flight (Ctrl-C again to leave now; they are then redone next time)\n");
   std::atomic<bool> host_stop{false};
   auto stopping = [&] { return signals ? signals->requested() : host_stop.load(); };
   const auto t0 = std::chrono::steady_clock::now();
@@ -289,12 +315,12 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
   auto last = t0;
   long droplets_done = 0;
   std::size_t units_done = 0, units_elsewhere = 0;
-  std::mutex store_lock;  // on_done runs on this thread, skip on the workers
+  std::mutex store_lock;      // on_done runs on this thread, skip on the workers
   double commit_seconds = 0;  // in store->add: what rank 0 of an MPI job spends on each medium
-  const std::function<void(SweepMedium&&)> commit = [&](SweepMedium&& m) {
+  const std::function<void(SweepMedium &&)> commit = [&](SweepMedium&& m) {
     std::lock_guard lock(store_lock);
     const auto c0 = std::chrono::steady_clock::now();
-    const std::int64_t sweep = sweep_id();  // before store-> is read: it may make the store
+    const std::int64_t sweep = sweep_id();         // before store-> is read: it may make the store
     if (!store->add(sweep, m)) ++units_elsewhere;  // stored meanwhile by another process
     commit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - c0).count();
     ++units_done;
@@ -305,19 +331,21 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
       const double s = std::chrono::duration<double>(now - t0).count();
       // The pace so far, and the medium just stored: its porosity, how many passed and their <T>.
       std::cerr << (tty ? "\r" : "") << "sweep: " << units_done << "/" << todo.size() << " media ("
-                << percent_and_eta(s, static_cast<double>(units_done),
-                                   static_cast<double>(todo.size()))
-                << "), " << fmt(static_cast<double>(droplets_done) / s, 3)
-                << " droplets/s; last medium: phi " << fmt(m.target_porosity, 3) << ", " << m.passed
-                << "/" << m.droplets.size() << " passed"
+                << percent_and_eta(s, static_cast<double>(units_done), static_cast<double>(todo.size())) << "), "
+                << fmt(static_cast<double>(droplets_done) / s, 3) << " droplets/s; last medium: phi "
+                << fmt(m.target_porosity, 3) << ", " << m.passed << "/" << m.droplets.size() << " passed"
                 << (m.passed ? ", <T> " + fmt(m.mean_t, 5) : std::string())
                 << (tty && units_done != todo.size() ? "\033[K" : "\n") << std::flush;
     }
     if (host && host->on_progress &&
-        !host->on_progress({{"sweep", id}, {"porosity_index", m.unit.porosity}, {"medium_index", m.unit.medium},
-                            {"target_porosity", m.target_porosity}, {"passed", m.passed},
+        !host->on_progress({{"sweep", id},
+                            {"porosity_index", m.unit.porosity},
+                            {"medium_index", m.unit.medium},
+                            {"target_porosity", m.target_porosity},
+                            {"passed", m.passed},
                             {"mean_tortuosity", m.passed ? nlohmann::json(m.mean_t) : nlohmann::json()},
-                            {"media_done", units_done}, {"media_to_do", todo.size()}}))
+                            {"media_done", units_done},
+                            {"media_to_do", todo.size()}}))
       host_stop = true;
   };
   const std::function<bool()> stop_requested = [&] { return stopping(); };
@@ -339,24 +367,31 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
   store->set_status(id, status);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (host) {
-    host->summary = {{"version", kVersion}, {"db", a.db}, {"sweep", id}, {"status", status}, {"media", rec.units},
-                     {"done", rec.done}, {"media_this_session", units_done - units_elsewhere},
-                     {"media_by_another_process", units_elsewhere}, {"droplets_this_session", droplets_done},
-                     {"wall_seconds", seconds}, {"commit_seconds", commit_seconds}};
+    host->summary = {{"version", kVersion},
+                     {"db", a.db},
+                     {"sweep", id},
+                     {"status", status},
+                     {"media", rec.units},
+                     {"done", rec.done},
+                     {"media_this_session", units_done - units_elsewhere},
+                     {"media_by_another_process", units_elsewhere},
+                     {"droplets_this_session", droplets_done},
+                     {"wall_seconds", seconds},
+                     {"commit_seconds", commit_seconds}};
     return 0;
   }
   points_table(sweep_points(store->media(id))).print(std::cout, a.format);
   if (!a.quiet) {
     std::cerr << "sweep " << id << ": " << rec.done << " of " << rec.units << " media stored; this session "
-              << units_done - units_elsewhere << " media, " << droplets_done << " droplets in " << fmt(seconds, 4) << " s"
+              << units_done - units_elsewhere << " media, " << droplets_done << " droplets in " << fmt(seconds, 4)
+              << " s"
               << (units_elsewhere ? ", " + std::to_string(units_elsewhere) + " media stored by another process" : "");
     const auto stored_here = static_cast<double>(units_done - units_elsewhere);
-    for (std::size_t r = 0; r < ranks.ran.size(); ++r)
-      std::cerr << (r == 0 ? "; by rank: " : ", ") << ranks.ran[r];
+    for (std::size_t r = 0; r < ranks.ran.size(); ++r) std::cerr << (r == 0 ? "; by rank: " : ", ") << ranks.ran[r];
     if (stored_here > 0) std::cerr << "; storing took " << fmt(1e3 * commit_seconds / stored_here, 3) << " ms a medium";
     if (ranks.ran.size() > 1 && stored_here > ranks.ran[0])  // the record's decoding, the answers to the ranks, storing
-      std::cerr << ", serving the other ranks "
-                << fmt(1e3 * ranks.serve_seconds / (stored_here - ranks.ran[0]), 3) << " ms a medium of theirs";
+      std::cerr << ", serving the other ranks " << fmt(1e3 * ranks.serve_seconds / (stored_here - ranks.ran[0]), 3)
+                << " ms a medium of theirs";
     std::cerr << "\n";
   }
   return signals->exit_code();
@@ -375,11 +410,12 @@ int run_sweep_report(const SweepReportArgs& a) {
     return 0;
   }
   Table t;
-  t.header = {"porosity_index", "medium_index", "target_porosity", "porosity", "grains", "droplets", "passed", "stuck",
-              "timeout", "diverged", "mean_tortuosity", "standard_error", "stuck_fraction", "seconds"};
+  t.header = {"porosity_index",  "medium_index",   "target_porosity", "porosity", "grains",
+              "droplets",        "passed",         "stuck",           "timeout",  "diverged",
+              "mean_tortuosity", "standard_error", "stuck_fraction",  "seconds"};
   for (const SweepMedium& m : media)
-    t.rows.push_back({m.unit.porosity, m.unit.medium, m.target_porosity, m.porosity, m.grains, m.droplets.size(), m.passed,
-                      m.stuck, m.timeout, m.diverged, m.passed ? nlohmann::json(m.mean_t) : nlohmann::json(),
+    t.rows.push_back({m.unit.porosity, m.unit.medium, m.target_porosity, m.porosity, m.grains, m.droplets.size(),
+                      m.passed, m.stuck, m.timeout, m.diverged, m.passed ? nlohmann::json(m.mean_t) : nlohmann::json(),
                       m.passed > 1 ? nlohmann::json(m.standard_error) : nlohmann::json(), m.stuck_fraction, m.seconds});
   t.print(std::cout, a.format);
   return 0;

@@ -22,7 +22,7 @@ struct SweepArgs {
   std::string db = "sweep.db";
   SweepOptions sweep;
   MediumArgs medium;
-  std::string preset;      ///< quick or paper: defaults for options not given
+  std::string preset;                     ///< quick or paper: defaults for options not given
   std::string media_stream = "held-out";  ///< parsed into sweep.stream
   std::string shard = "0/1";
   int threads = 0;
@@ -43,15 +43,14 @@ struct SweepReportArgs {
 };
 
 struct FitArgs {
-  std::string db;           ///< sweep store ...
+  std::string db;  ///< sweep store ...
   std::int64_t sweep = 0;
-  std::string points;       ///< ... or a CSV with columns porosity,tortuosity,standard_error
-  std::string errors =
-      "media";              ///< a sweep's points weighed by media_standard_error, or "droplets"
-  std::string mean = "pooled";  ///< the porosity's mean over its droplets, or "per-medium" first
-  std::string plot;         ///< T(phi) with error bars and both fits
-  int size = 800;           ///< plot width (points)
-  double dpi = 72;          ///< PNG pixels an inch
+  std::string points;            ///< ... or a CSV with columns porosity,tortuosity,standard_error
+  std::string errors = "media";  ///< a sweep's points weighed by media_standard_error, or "droplets"
+  std::string mean = "pooled";   ///< the porosity's mean over its droplets, or "per-medium" first
+  std::string plot;              ///< T(phi) with error bars and both fits
+  int size = 800;                ///< plot width (points)
+  double dpi = 72;               ///< PNG pixels an inch
   std::string format = "table";
   std::string json_file;
 };
@@ -59,15 +58,15 @@ struct FitArgs {
 struct AveragingArgs {
   std::string db = "sweep.db";
   std::int64_t sweep = 0;
-  int group = 0;  ///< points per group; 0: from the store (see default_group)
+  int group = 0;                  ///< points per group; 0: from the store (see default_group)
   std::string leftover = "drop";  ///< drop or keep (see Leftover)
   std::string csv, plot;
   int size = 800;   ///< plot width (points)
   double dpi = 72;  ///< PNG pixels an inch
 };
 
-void add_study_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, SweepReportArgs& report,
-                        FitArgs& fit, AveragingArgs& averaging);
+void add_study_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, SweepReportArgs& report, FitArgs& fit,
+                        AveragingArgs& averaging);
 /// Applies --preset and checks the options without running; returns the shard (i, n). Throws
 /// std::invalid_argument naming the bad parameter.
 std::pair<int, int> check_sweep(SweepArgs& args, const CLI::App& command);

@@ -23,10 +23,9 @@ namespace {
 // bit: determinism makes it so. Only the wall seconds may differ.
 bool same_medium(const SweepMedium& x, const SweepMedium& y) {
   bool equal = x.target_porosity == y.target_porosity && x.porosity == y.porosity && x.grains == y.grains &&
-               x.medium_seed == y.medium_seed && x.passed == y.passed && x.stuck == y.stuck &&
-               x.timeout == y.timeout && x.diverged == y.diverged && x.mean_t == y.mean_t &&
-               x.standard_error == y.standard_error && x.stuck_fraction == y.stuck_fraction &&
-               x.droplets.size() == y.droplets.size();
+               x.medium_seed == y.medium_seed && x.passed == y.passed && x.stuck == y.stuck && x.timeout == y.timeout &&
+               x.diverged == y.diverged && x.mean_t == y.mean_t && x.standard_error == y.standard_error &&
+               x.stuck_fraction == y.stuck_fraction && x.droplets.size() == y.droplets.size();
   for (std::size_t i = 0; equal && i < x.droplets.size(); ++i) {
     const SweepDroplet &p = x.droplets[i], &q = y.droplets[i];
     equal = p.droplet == q.droplet && p.start_x == q.start_x && p.outcome == q.outcome &&
@@ -107,8 +106,8 @@ int run_sweep_merge(const SweepMergeArgs& a) {
       if (std::find(have.begin(), have.end(), m.unit) == have.end() && out->add(id, m)) ++added;
     const SweepRecord merged = out->sweep(id);
     out->set_status(id, merged.done == merged.units ? "complete" : "running");
-    std::cerr << "sweep-merge: " << s.path << " sweep " << s.record.id << ": " << added << " media added; sweep "
-              << id << " in " << a.into << " has " << merged.done << " of " << merged.units << "\n";
+    std::cerr << "sweep-merge: " << s.path << " sweep " << s.record.id << ": " << added << " media added; sweep " << id
+              << " in " << a.into << " has " << merged.done << " of " << merged.units << "\n";
   }
   return 0;
 }

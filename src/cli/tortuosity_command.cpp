@@ -41,7 +41,8 @@ CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& a) {
   g->add_flag("--flow,!--no-flow", a.flow,
               "Solve the creeping flow for the hydrodynamic T and the permeability (the slowest part: --no-flow "
               "leaves it out)");
-  g->add_option("--threads", a.droplets.threads, "Worker threads for the droplets (0 = all cores)")->capture_default_str();
+  g->add_option("--threads", a.droplets.threads, "Worker threads for the droplets (0 = all cores)")
+      ->capture_default_str();
   auto* d = add_droplet_options(s, a.droplet);
   add_exit_options(d, a.run);
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
@@ -60,7 +61,8 @@ CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& a) {
 
 void check_tortuosity(TortuosityArgs& a) {
   resolve_medium(a.medium);
-  if (a.pixels < 8 || a.pixels > 4000) throw std::invalid_argument("pixels = " + std::to_string(a.pixels) + ": must be in [8, 4000]");
+  if (a.pixels < 8 || a.pixels > 4000)
+    throw std::invalid_argument("pixels = " + std::to_string(a.pixels) + ": must be in [8, 4000]");
   a.droplets.half_dt = false;
   std::string why;
   if (a.droplets.starts != 0 && !a.droplets.IsValid(&why)) throw std::invalid_argument(why);
@@ -70,8 +72,10 @@ void check_tortuosity(TortuosityArgs& a) {
     if (!path.empty()) check_output_path(option, path);
   if (!a.picture.empty()) check_picture_path("--picture", a.picture);
   if (!a.flow_picture.empty()) check_picture_path("--flow-picture", a.flow_picture);
-  if (!a.flow && !a.flow_picture.empty()) throw std::invalid_argument("flow-picture: needs the flow (--no-flow was given)");
-  if (a.size < 100 || a.size > 5000) throw std::invalid_argument("size = " + std::to_string(a.size) + ": must be in [100, 5000]");
+  if (!a.flow && !a.flow_picture.empty())
+    throw std::invalid_argument("flow-picture: needs the flow (--no-flow was given)");
+  if (a.size < 100 || a.size > 5000)
+    throw std::invalid_argument("size = " + std::to_string(a.size) + ": must be in [100, 5000]");
 }
 
 namespace {
@@ -87,10 +91,16 @@ struct Resolved {
 
 // The tortuosities at `pixels` across; a medium with no pore path says so in one line.
 Resolved at_resolution(const Medium& m, int pixels, bool flow, bool quiet) {
-  if (!quiet) std::cerr << "tortuosity: the pore space at " << pixels << " pixels across" << (flow ? " (with the flow)" : "") << "\n";
+  if (!quiet)
+    std::cerr << "tortuosity: the pore space at " << pixels << " pixels across" << (flow ? " (with the flow)" : "")
+              << "\n";
   const PoreImage image = pore_image(m, pixels);
   try {
-    return {pixels, image.pixel, image, geometric_tortuosity(image), diffusive_tortuosity(image),
+    return {pixels,
+            image.pixel,
+            image,
+            geometric_tortuosity(image),
+            diffusive_tortuosity(image),
             flow ? hydrodynamic_tortuosity(image) : HydrodynamicTortuosity{}};
   } catch (const std::invalid_argument& e) {
     throw std::runtime_error("tortuosity: the medium at " + std::to_string(pixels) + " pixels across: " + e.what() +
@@ -135,9 +145,9 @@ void draw_field(const Medium& medium, const Resolved& r, const Field& field, con
 // speed |u| from 0 to its largest.
 void draw_pictures(const Medium& medium, const Resolved& r, const TortuosityArgs& a) {
   if (!a.picture.empty())
-    draw_field(medium, r, {r.image.nx, r.image.ny, r.diffusive.concentration, 0, 1},
-               "diffusion (concentration, 0 to 1)",
-               "tau = " + fmt(r.diffusive.tau, 4) + ", geometric T = " + fmt(r.geometric.tortuosity, 4), a.size, a.picture);
+    draw_field(
+        medium, r, {r.image.nx, r.image.ny, r.diffusive.concentration, 0, 1}, "diffusion (concentration, 0 to 1)",
+        "tau = " + fmt(r.diffusive.tau, 4) + ", geometric T = " + fmt(r.geometric.tortuosity, 4), a.size, a.picture);
   if (a.flow_picture.empty()) return;
   std::vector<double> speed(r.flow.ux.size());
   double top = 0;
@@ -145,9 +155,9 @@ void draw_pictures(const Medium& medium, const Resolved& r, const TortuosityArgs
     speed[k] = std::hypot(r.flow.ux[k], r.flow.uy[k]);  // NaN in the solid
     if (speed[k] > top) top = speed[k];
   }
-  draw_field(medium, r, {r.image.nx, r.image.ny, speed, 0, top > 0 ? top : 1}, "creeping flow (speed, 0 to its largest)",
-             "hydrodynamic T = " + fmt(r.flow.tortuosity, 4) + ", k = " + fmt(r.flow.permeability, 4), a.size,
-             a.flow_picture);
+  draw_field(
+      medium, r, {r.image.nx, r.image.ny, speed, 0, top > 0 ? top : 1}, "creeping flow (speed, 0 to its largest)",
+      "hydrodynamic T = " + fmt(r.flow.tortuosity, 4) + ", k = " + fmt(r.flow.permeability, 4), a.size, a.flow_picture);
 }
 
 }  // namespace
@@ -178,9 +188,14 @@ int run_tortuosity(TortuosityArgs& a) {
   const HeldOutRuns& d = droplets.at_dt;
   nlohmann::json j{
       {"version", kVersion},
-      {"medium", {{"grains", medium.grains.size()}, {"porosity", exact_porosity(medium)}, {"width", medium.width},
-                  {"height", medium.height}, {"periodic", medium.periodic}}},
-      {"pixels_per_smallest_radius", medium.grains.empty() ? nlohmann::json() : nlohmann::json({per_radius, 2 * per_radius})},
+      {"medium",
+       {{"grains", medium.grains.size()},
+        {"porosity", exact_porosity(medium)},
+        {"width", medium.width},
+        {"height", medium.height},
+        {"periodic", medium.periodic}}},
+      {"pixels_per_smallest_radius",
+       medium.grains.empty() ? nlohmann::json() : nlohmann::json({per_radius, 2 * per_radius})},
       {"image_porosity", {coarse.diffusive.porosity, fine.diffusive.porosity}},
       {"geometric_tortuosity", pair_json(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels)},
       {"diffusive_tortuosity", pair_json(coarse.diffusive.tau, fine.diffusive.tau, a.pixels)}};
@@ -193,8 +208,11 @@ int run_tortuosity(TortuosityArgs& a) {
     j["permeability"] = pair_json(coarse.flow.permeability, fine.flow.permeability, a.pixels);
   }
   if (a.droplets.starts > 0)
-    j["droplet_tortuosity"] = {{"starts", d.starts}, {"seed", a.droplets.seed}, {"passed", d.passed},
-                    {"mean_tortuosity", finite_or_null(d.mean_t)}, {"standard_error", finite_or_null(d.standard_error)}};
+    j["droplet_tortuosity"] = {{"starts", d.starts},
+                               {"seed", a.droplets.seed},
+                               {"passed", d.passed},
+                               {"mean_tortuosity", finite_or_null(d.mean_t)},
+                               {"standard_error", finite_or_null(d.standard_error)}};
   draw_pictures(medium, coarse, a);
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   if (!a.csv_file.empty()) {
@@ -224,7 +242,8 @@ int run_tortuosity(TortuosityArgs& a) {
   std::cout << "medium       " << medium.grains.size() << " grains, porosity " << fmt(exact_porosity(medium), 6) << ", "
             << fmt(medium.width) << " x " << fmt(medium.height) << (medium.periodic ? ", periodic" : ", walls") << "\n"
             << "image        " << a.pixels << " and " << 2 * a.pixels << " pixels across";
-  if (!medium.grains.empty()) std::cout << " (" << fmt(per_radius, 3) << " and " << fmt(2 * per_radius, 3) << " a smallest radius)";
+  if (!medium.grains.empty())
+    std::cout << " (" << fmt(per_radius, 3) << " and " << fmt(2 * per_radius, 3) << " a smallest radius)";
   std::cout << ", porosity " << fmt(coarse.diffusive.porosity, 5) << " and " << fmt(fine.diffusive.porosity, 5) << "\n"
             << "geometric T  " << pair_line(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels) << "; "
             << fine.geometric.connected << " of " << fine.geometric.starts << " top pixels reach the bottom\n"

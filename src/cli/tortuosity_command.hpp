@@ -15,16 +15,16 @@ namespace softdrop::cli {
 
 struct TortuosityArgs {
   MediumArgs medium;
-  int pixels = 500;          ///< across the box's width, at the coarser resolution (the finer has twice)
-  HeldOutOptions droplets;   ///< the droplet's T: starts and seed (0 starts: no droplet)
+  int pixels = 500;         ///< across the box's width, at the coarser resolution (the finer has twice)
+  HeldOutOptions droplets;  ///< the droplet's T: starts and seed (0 starts: no droplet)
   DropletParams droplet;
   RunOptions run;
   std::string format = "table";
   std::string json_file, csv_file;
-  bool flow = true;      ///< solve the creeping flow (hydrodynamic T, permeability)
-  std::string picture;  ///< the pore space drawn: the concentration and shortest paths
+  bool flow = true;          ///< solve the creeping flow (hydrodynamic T, permeability)
+  std::string picture;       ///< the pore space drawn: the concentration and shortest paths
   std::string flow_picture;  ///< the flow drawn: the speed and shortest paths
-  int size = 600;       ///< its width in points
+  int size = 600;            ///< its width in points
   bool quiet = false;
 };
 

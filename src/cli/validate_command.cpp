@@ -17,8 +17,7 @@ namespace softdrop::cli {
 
 CLI::App* add_validate_command(CLI::App& app, ValidateArgs& a) {
   CLI::App* s = app.add_subcommand(
-      "validate",
-      "The held-out tortuosity of a medium: <T> over droplets from many random starts, at dt and at dt/2");
+      "validate", "The held-out tortuosity of a medium: <T> over droplets from many random starts, at dt and at dt/2");
   s->fallthrough();
   auto* what = s->add_option_group("Source", "a grain file, or a search's stored arrangement");
   what->add_option("--medium", a.medium, "Grain file to validate (.json or .csv), with the droplet options below");
@@ -26,10 +25,12 @@ CLI::App* add_validate_command(CLI::App& app, ValidateArgs& a) {
                    "Or a search history: the run's arrangement with the run's own droplet (the value is stored "
                    "in the history)");
   what->add_option("--run", a.run, "With --db: the run")->check(id_check());
-  what->add_option("--generation", a.generation, "With --db: the arrangement kept as of this generation (default: the best)")
+  what->add_option("--generation", a.generation,
+                   "With --db: the arrangement kept as of this generation (default: the best)")
       ->check(index_check());
   auto* g = s->add_option_group("Held out");
-  g->add_option("--starts", a.held_out.starts, "Droplets, each from a random start across the top")->capture_default_str();
+  g->add_option("--starts", a.held_out.starts, "Droplets, each from a random start across the top")
+      ->capture_default_str();
   g->add_option("--seed", a.held_out.seed, "Seed of the starts (the same starts at both time steps)")
       ->capture_default_str()
       ->check(seed_check());
@@ -39,12 +40,14 @@ CLI::App* add_validate_command(CLI::App& app, ValidateArgs& a) {
   auto* d = add_droplet_options(s, a.droplet);
   add_exit_options(d, a.run_options);
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
-  o->add_option("--runs", a.runs_csv, "CSV, one row a droplet and time step: start, start_x, dt, outcome, tortuosity, steps");
+  o->add_option("--runs", a.runs_csv,
+                "CSV, one row a droplet and time step: start, start_x, dt, outcome, tortuosity, steps");
   return s;
 }
 
 void check_validate(ValidateArgs& a, const CLI::App& cmd) {
-  if (a.medium.empty() == a.db.empty()) throw std::invalid_argument("validate: give --medium FILE or --db FILE --run N");
+  if (a.medium.empty() == a.db.empty())
+    throw std::invalid_argument("validate: give --medium FILE or --db FILE --run N");
   if (!a.db.empty() && a.run == 0) throw std::invalid_argument("run: --db needs --run");
   if (a.db.empty() && (a.run != 0 || a.generation >= 0))
     throw std::invalid_argument(std::string(a.run != 0 ? "run" : "generation") + ": an option of --db");
@@ -66,11 +69,18 @@ void check_validate(ValidateArgs& a, const CLI::App& cmd) {
 namespace {
 
 nlohmann::json runs_json(const HeldOutRuns& r) {
-  return {{"dt", r.dt},         {"starts", r.starts},       {"passed", r.passed},
-          {"stuck", r.stuck},   {"timeout", r.timeout},     {"diverged", r.diverged},
-          {"pass_fraction", r.pass_fraction}, {"mean_tortuosity", finite_or_null(r.mean_t)},
-          {"standard_error", finite_or_null(r.standard_error)},    {"q1", finite_or_null(r.q1)},
-          {"median", finite_or_null(r.median)}, {"q3", finite_or_null(r.q3)}};
+  return {{"dt", r.dt},
+          {"starts", r.starts},
+          {"passed", r.passed},
+          {"stuck", r.stuck},
+          {"timeout", r.timeout},
+          {"diverged", r.diverged},
+          {"pass_fraction", r.pass_fraction},
+          {"mean_tortuosity", finite_or_null(r.mean_t)},
+          {"standard_error", finite_or_null(r.standard_error)},
+          {"q1", finite_or_null(r.q1)},
+          {"median", finite_or_null(r.median)},
+          {"q3", finite_or_null(r.q3)}};
 }
 
 std::string runs_line(const char* label, const HeldOutRuns& r) {
@@ -94,7 +104,7 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
   check_validate(a, cmd);
   Medium medium;
   nlohmann::json source;
-  std::string in_search;  // the run's own value, beside the held-out one
+  std::string in_search;       // the run's own value, beside the held-out one
   ObjectiveOptions objective;  // the run's (with --db): its value over the held-out starts too
   if (!a.db.empty()) {
     auto history = open_history(a.db, OpenMode::read_only);
@@ -136,15 +146,19 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
     if (!a.quiet) progress.update(done, total);
   });
 
-  nlohmann::json j{{"version", kVersion}, {"source", source}, {"seed", a.held_out.seed},
-                   {"grains", medium.grains.size()}, {"porosity", exact_porosity(medium)},
+  nlohmann::json j{{"version", kVersion},
+                   {"source", source},
+                   {"seed", a.held_out.seed},
+                   {"grains", medium.grains.size()},
+                   {"porosity", exact_porosity(medium)},
                    {"at_dt", runs_json(v.at_dt)}};
   // The run's robust objective over the held-out starts: the in-search value's counterpart.
   const double held_out_objective = objective.robust() ? objective_value(objective, v.at_dt.runs) : 0.0;
   if (objective.robust()) j["at_dt"]["objective_value"] = held_out_objective;
   if (a.held_out.half_dt)
-    j["at_half_dt"] = runs_json(v.at_half_dt), j["dt_shift"] = {{"paired", v.paired}, {"mean", finite_or_null(v.dt_shift)},
-                                                               {"standard_error", finite_or_null(v.dt_shift_error)}};
+    j["at_half_dt"] = runs_json(v.at_half_dt), j["dt_shift"] = {{"paired", v.paired},
+                                                                {"mean", finite_or_null(v.dt_shift)},
+                                                                {"standard_error", finite_or_null(v.dt_shift_error)}};
   if (!a.db.empty()) {  // stored beside the run, for history --best, export and read_history
     auto history = open_history(a.db, OpenMode::create);
     history->add_validation(a.run, validation_record(source["generation"].get<std::int64_t>(), a.held_out, v));
@@ -165,9 +179,8 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
     std::cout << j.dump(2) << '\n';
     return 0;
   }
-  std::cout << "medium       " << medium.grains.size() << " grains, porosity " << fmt(exact_porosity(medium), 6)
-            << ", " << fmt(medium.width) << " x " << fmt(medium.height) << (medium.periodic ? ", periodic" : ", walls")
-            << "\n"
+  std::cout << "medium       " << medium.grains.size() << " grains, porosity " << fmt(exact_porosity(medium), 6) << ", "
+            << fmt(medium.width) << " x " << fmt(medium.height) << (medium.periodic ? ", periodic" : ", walls") << "\n"
             << in_search << "starts       " << a.held_out.starts << " across the top (seed " << a.held_out.seed << ")\n"
             << runs_line("at dt        ", v.at_dt) << "\n";
   if (objective.robust())
@@ -180,8 +193,8 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
       std::cout << "no start passed at both\n";
     else
       std::cout << (v.dt_shift >= 0 ? "+" : "") << fmt(v.dt_shift, 3)
-                << (v.paired > 1 ? " +- " + fmt(v.dt_shift_error, 2) : std::string()) << " in T over the "
-                << v.paired << " starts that passed at both\n";
+                << (v.paired > 1 ? " +- " + fmt(v.dt_shift_error, 2) : std::string()) << " in T over the " << v.paired
+                << " starts that passed at both\n";
   }
   return 0;
 }

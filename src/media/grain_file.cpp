@@ -1,12 +1,10 @@
 #include "softdrop/grain_file.hpp"
-#include "util/temp_files.hpp"
-#include "util/validation.hpp"
 
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
-#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +12,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <vector>
+
+#include "util/temp_files.hpp"
+#include "util/validation.hpp"
 
 namespace softdrop {
 namespace {
@@ -101,7 +102,8 @@ Medium load_json(const std::string& path, std::istream& in) {
   m.width = number_at(j, "width", path, "");
   m.height = number_at(j, "height", path, "");
   if (j.contains("periodic")) {
-    if (!j["periodic"].is_boolean()) bad(path, "\"periodic\" must be true or false, not " + std::string(j["periodic"].type_name()));
+    if (!j["periodic"].is_boolean())
+      bad(path, "\"periodic\" must be true or false, not " + std::string(j["periodic"].type_name()));
     m.periodic = j["periodic"].get<bool>();
   }
   if (!j.contains("grains")) bad(path, "\"grains\" is missing");
@@ -114,7 +116,8 @@ Medium load_json(const std::string& path, std::istream& in) {
     const auto& g = grains[i];
     const std::string where = "grain " + std::to_string(i) + ": ";
     if (!g.is_object()) bad(path, where + "must be an object with \"x\", \"y\" and \"r\", not " + g.type_name());
-    m.grains.push_back({number_at(g, "x", path, where), number_at(g, "y", path, where), number_at(g, "r", path, where)});
+    m.grains.push_back(
+        {number_at(g, "x", path, where), number_at(g, "y", path, where), number_at(g, "r", path, where)});
   }
   return m;
 }
@@ -133,13 +136,17 @@ Medium load_csv(const std::string& path, std::istream& in) {
       const auto eq = line.find('=');
       if (eq == std::string::npos) continue;
       const std::string key = trim(line.substr(1, eq - 1)), value = trim(line.substr(eq + 1));
-      if (key == "width") m.width = parse_number(path, number, value), have_w = true;
-      else if (key == "height") m.height = parse_number(path, number, value), have_h = true;
-      else if (key == "periodic") m.periodic = parse_bool(path, number, value);
+      if (key == "width")
+        m.width = parse_number(path, number, value), have_w = true;
+      else if (key == "height")
+        m.height = parse_number(path, number, value), have_h = true;
+      else if (key == "periodic")
+        m.periodic = parse_bool(path, number, value);
       continue;
     }
     if (!have_header) {
-      if (line == "x,y,r,width,height,periodic") box_columns = true;
+      if (line == "x,y,r,width,height,periodic")
+        box_columns = true;
       else if (line != "x,y,r")
         bad(path, "line " + std::to_string(number) + ": expected header x,y,r,width,height,periodic (or x,y,r), got " +
                       printable(line));
@@ -154,8 +161,10 @@ Medium load_csv(const std::string& path, std::istream& in) {
       bad(path, "line " + std::to_string(number) + ": expected " + std::to_string(expected) + " fields " +
                     (box_columns ? "x,y,r,width,height,periodic" : "x,y,r"));
     if (m.grains.size() == kMaxFileGrains)
-      bad(path, "line " + std::to_string(number) + ": more than the limit of " + std::to_string(kMaxFileGrains) + " grains");
-    m.grains.push_back({parse_number(path, number, f[0]), parse_number(path, number, f[1]), parse_number(path, number, f[2])});
+      bad(path,
+          "line " + std::to_string(number) + ": more than the limit of " + std::to_string(kMaxFileGrains) + " grains");
+    m.grains.push_back(
+        {parse_number(path, number, f[0]), parse_number(path, number, f[1]), parse_number(path, number, f[2])});
     if (box_columns) {  // the box on every row, the same on every row
       const double w = parse_number(path, number, f[3]), h = parse_number(path, number, f[4]);
       const bool periodic = parse_bool(path, number, f[5]);
@@ -165,7 +174,8 @@ Medium load_csv(const std::string& path, std::istream& in) {
     }
   }
   if (!have_header) bad(path, "no x,y,r,width,height,periodic header");
-  if (!have_w || !have_h) bad(path, "missing the box: no grain row with width and height, and no '# width=' or '# height=' line");
+  if (!have_w || !have_h)
+    bad(path, "missing the box: no grain row with width and height, and no '# width=' or '# height=' line");
   return m;
 }
 
@@ -191,8 +201,8 @@ Medium load_medium(const std::string& path) {
   if (std::filesystem::is_regular_file(status)) {
     const auto bytes = std::filesystem::file_size(path, ec);
     if (!ec && bytes > kMaxGrainFileBytes)
-      bad(path, std::to_string(bytes >> 20) + " MiB, more than the limit of " + std::to_string(kMaxGrainFileBytes >> 20) +
-                    " MiB for a grain file");
+      bad(path, std::to_string(bytes >> 20) + " MiB, more than the limit of " +
+                    std::to_string(kMaxGrainFileBytes >> 20) + " MiB for a grain file");
   }
   std::ifstream in(path);
   if (!in) bad(path, std::string("cannot open (") + std::strerror(errno) + ")");

@@ -77,8 +77,7 @@ bool MediumOptions::IsValid(std::string* why) const {
     return fail(why, "grains = " + std::to_string(grains) + ": must be in [0, 1e7]");
   if (!box_is_valid(width, height, why)) return false;
   if (!std::isfinite(r_min) || r_min <= 0) return fail(why, "r-min = " + num(r_min) + ": must be > 0");
-  if (!std::isfinite(r_max) || r_max < r_min)
-    return fail(why, "r-max = " + num(r_max) + ": must be >= r-min");
+  if (!std::isfinite(r_max) || r_max < r_min) return fail(why, "r-max = " + num(r_max) + ": must be >= r-min");
   if (2 * r_max >= width) return fail(why, "r-max = " + num(r_max) + ": diameter must be < width");
   // Also for overlapping media: in a box lower than a grain, discs are mostly cut off and the
   // grain count needed for a porosity target has no useful bound.
@@ -172,8 +171,8 @@ Medium overlapping_medium(const MediumOptions& o) {
     while (pool.size() < hi) pool.push_back(random_grain(rng, o));
     if (porosity_of(hi) <= o.porosity) break;
     if (hi > kMaxGrains)
-      throw std::runtime_error("porosity = " + num(o.porosity) + ": not reached with " +
-                               std::to_string(hi) + " grains");
+      throw std::runtime_error("porosity = " + num(o.porosity) + ": not reached with " + std::to_string(hi) +
+                               " grains");
     hi *= 2;
   }
   std::size_t lo = 0;  // porosity_of(lo) > target (lo = 0 has porosity 1)
@@ -203,14 +202,12 @@ Medium non_overlapping_medium(const MediumOptions& o) {
     const Grain g = random_grain(rng, o);
     if (!index.can_place(g)) {
       if (++failed >= o.max_failed_attempts && o.grains > 0)
-        throw std::runtime_error("grains = " + std::to_string(o.grains) +
-                                 ": do not fit in the box with gap " + num(o.gap) + " (jammed after " +
-                                 std::to_string(m.grains.size()) + " grains)");
+        throw std::runtime_error("grains = " + std::to_string(o.grains) + ": do not fit in the box with gap " +
+                                 num(o.gap) + " (jammed after " + std::to_string(m.grains.size()) + " grains)");
       if (failed >= o.max_failed_attempts)
-        throw std::runtime_error("porosity = " + num(o.porosity) +
-                                 ": unreachable for non-overlapping grains with gap " + num(o.gap) +
-                                 " (jammed at porosity " + num(1 - solid / box) + " with " +
-                                 std::to_string(m.grains.size()) + " grains)");
+        throw std::runtime_error(
+            "porosity = " + num(o.porosity) + ": unreachable for non-overlapping grains with gap " + num(o.gap) +
+            " (jammed at porosity " + num(1 - solid / box) + " with " + std::to_string(m.grains.size()) + " grains)");
       continue;
     }
     failed = 0;
@@ -238,14 +235,13 @@ Medium relaxed_medium(const MediumOptions& o) {
   // 48 is 3 % of the default box), the last grain or not.
   if (o.grains == 0 && m.grains.size() > 1) {
     const double last = M_PI * m.grains.back().r * m.grains.back().r;
-    if (std::abs(1 - (solid - last) / box - o.porosity) < std::abs(1 - solid / box - o.porosity))
-      m.grains.pop_back();
+    if (std::abs(1 - (solid - last) / box - o.porosity) < std::abs(1 - solid / box - o.porosity)) m.grains.pop_back();
   }
   if (!detail::relax_spacing(m.grains, o.width, o.height, o.periodic, o.gap, kMaxRelaxationSweeps))
-    throw std::runtime_error(
-        (o.grains > 0 ? "grains = " + std::to_string(o.grains) : "porosity = " + num(o.porosity)) +
-        ": unreachable for relaxed grains with gap " + num(o.gap) + " (" + std::to_string(m.grains.size()) +
-        " grains, some still too close after " + std::to_string(kMaxRelaxationSweeps) + " passes of relaxation)");
+    throw std::runtime_error((o.grains > 0 ? "grains = " + std::to_string(o.grains) : "porosity = " + num(o.porosity)) +
+                             ": unreachable for relaxed grains with gap " + num(o.gap) + " (" +
+                             std::to_string(m.grains.size()) + " grains, some still too close after " +
+                             std::to_string(kMaxRelaxationSweeps) + " passes of relaxation)");
   return m;
 }
 
@@ -255,9 +251,12 @@ Medium generate_medium(const MediumOptions& options) {
   std::string why;
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   switch (options.kind) {
-    case MediumKind::overlapping: return overlapping_medium(options);
-    case MediumKind::non_overlapping: return non_overlapping_medium(options);
-    case MediumKind::relaxed: break;
+    case MediumKind::overlapping:
+      return overlapping_medium(options);
+    case MediumKind::non_overlapping:
+      return non_overlapping_medium(options);
+    case MediumKind::relaxed:
+      break;
   }
   return relaxed_medium(options);
 }

@@ -42,8 +42,7 @@ struct ArcCover {
 
 // Integral of (x dy - y dx) / 2 along the circle (cx, cy, r) from angle a to b, counter-clockwise.
 double arc_term(double cx, double cy, double r, double a, double b) {
-  return 0.5 * (r * r * (b - a) + r * cx * (std::sin(b) - std::sin(a)) -
-                r * cy * (std::cos(b) - std::cos(a)));
+  return 0.5 * (r * r * (b - a) + r * cx * (std::sin(b) - std::sin(a)) - r * cy * (std::cos(b) - std::cos(a)));
 }
 
 // Length of the union of intervals clipped to [lo, hi].
@@ -103,10 +102,10 @@ double solid_area(const Medium& medium) {
       const double half = cosine ? std::acos(c) : M_PI / 2 - std::asin(c);
       cover.add(centre_angle, half);
     };
-    clip((W - cx) / r, 0, true);             // x > W: cos > (W - cx) / r
-    clip(cx / r, M_PI, true);                // x < 0: cos < -cx / r, i.e. cos(theta - pi) > cx / r
-    clip((H - cy) / r, M_PI / 2, false);     // y > H
-    clip(cy / r, 3 * M_PI / 2, false);       // y < 0
+    clip((W - cx) / r, 0, true);          // x > W: cos > (W - cx) / r
+    clip(cx / r, M_PI, true);             // x < 0: cos < -cx / r, i.e. cos(theta - pi) > cx / r
+    clip((H - cy) / r, M_PI / 2, false);  // y > H
+    clip(cy / r, 3 * M_PI / 2, false);    // y < 0
     if (cover.full) continue;
     // Parts covered by other discs, found through the grid cells this disc overlaps.
     const double cell = grid.cell_size();
@@ -149,12 +148,9 @@ double solid_area(const Medium& medium) {
   return area;
 }
 
-double exact_porosity(const Medium& medium) {
-  return 1.0 - solid_area(medium) / (medium.width * medium.height);
-}
+double exact_porosity(const Medium& medium) { return 1.0 - solid_area(medium) / (medium.width * medium.height); }
 
-PorosityEstimate monte_carlo_porosity(const Medium& medium, std::int64_t samples,
-                                      std::uint64_t seed) {
+PorosityEstimate monte_carlo_porosity(const Medium& medium, std::int64_t samples, std::uint64_t seed) {
   const GrainGrid grid(medium);
   Rng rng(seed);
   std::int64_t voids = 0;

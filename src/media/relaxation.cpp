@@ -61,8 +61,7 @@ class PairGrid {
 
  private:
   std::size_t index(int cx, int cy) const {
-    return static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx_) +
-           static_cast<std::size_t>(cx);
+    return static_cast<std::size_t>(cy) * static_cast<std::size_t>(nx_) + static_cast<std::size_t>(cx);
   }
   std::size_t cell_of(const Grain& g) const {
     const int cx = std::clamp(static_cast<int>(g.x / width_ * nx_), 0, nx_ - 1);
@@ -79,8 +78,7 @@ class PairGrid {
 
 }  // namespace
 
-bool relax_spacing(std::vector<Grain>& grains, double width, double height, bool periodic,
-                   double gap, int max_sweeps) {
+bool relax_spacing(std::vector<Grain>& grains, double width, double height, bool periodic, double gap, int max_sweeps) {
   double r_max = 0;
   for (Grain& g : grains) {
     r_max = std::max(r_max, g.r);

@@ -15,7 +15,6 @@ namespace softdrop::detail {
 /// (and in x when not periodic). Gauss-Seidel over the pairs found on a grid, in a fixed order, so
 /// the result depends on the input alone. Returns false if `max_sweeps` passes over the pairs
 /// leave some pair too close (the grains are too many for the box at this gap).
-bool relax_spacing(std::vector<Grain>& grains, double width, double height, bool periodic,
-                   double gap, int max_sweeps);
+bool relax_spacing(std::vector<Grain>& grains, double width, double height, bool periodic, double gap, int max_sweeps);
 
 }  // namespace softdrop::detail

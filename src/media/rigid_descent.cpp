@@ -100,8 +100,7 @@ class Walk {
       const double dist = std::hypot(e.x - d.x, e.y - d.y);
       if (dist >= d.r + e.r || dist <= std::abs(d.r - e.r)) continue;
       const double base = std::atan2(e.y - d.y, e.x - d.x);
-      const double half = std::acos(
-          std::clamp((d.r * d.r + dist * dist - e.r * e.r) / (2 * d.r * dist), -1.0, 1.0));
+      const double half = std::acos(std::clamp((d.r * d.r + dist * dist - e.r * e.r) / (2 * d.r * dist), -1.0, 1.0));
       for (double a : {base + half, base - half}) {
         a = std::remainder(a, 2 * kPi);
         const double travel = (a - from) * dir;
@@ -118,8 +117,7 @@ class Walk {
     const double wall_x = dir < 0 ? hi_ : lo_;
     if (std::abs(wall_x - d.x) < d.r) {
       const double a = std::acos((wall_x - d.x) / d.r);
-      if ((a - from) * dir > 0 && (a - from) * dir < (stop - from) * dir)
-        stop = a, next = kFall, wall = true;
+      if ((a - from) * dir > 0 && (a - from) * dir < (stop - from) * dir) stop = a, next = kFall, wall = true;
     }
     if (move_along(d, from, stop)) return kPassed;
     if (wall) return kStuck;
@@ -189,9 +187,7 @@ class Walk {
   }
 
   // Length of a vertical drop from y0 to y1 that lies between y = 0 and y = H.
-  double band(double y0, double y1) const {
-    return std::max(0.0, std::min(y0, height_) - std::max(y1, 0.0));
-  }
+  double band(double y0, double y1) const { return std::max(0.0, std::min(y0, height_) - std::max(y1, 0.0)); }
 
   std::vector<Disc> discs_;
   int per_image_ = 0;
@@ -230,8 +226,8 @@ RigidDescent rigid_descent(const Medium& medium, double radius, double x0, bool 
   return rigid_descents(medium, radius, {x0}, record_path).front();
 }
 
-std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius,
-                                         const std::vector<double>& x0s, bool record_paths) {
+std::vector<RigidDescent> rigid_descents(const Medium& medium, double radius, const std::vector<double>& x0s,
+                                         bool record_paths) {
   check(medium, radius);
   for (double x0 : x0s) check_start(medium, x0);
   Walk walk(medium, radius);

@@ -45,7 +45,7 @@ struct SpacingIndex::Impl {
   double width, height;
   bool periodic;
   double gap, r_max;
-  std::vector<Grain> grains;  // vertex info indexes this
+  std::vector<Grain> grains;                      // vertex info indexes this
   std::vector<Delaunay::Vertex_handle> vertices;  // grain id -> its vertex
   Delaunay dt;
   std::vector<Delaunay::Vertex_handle> found;
@@ -131,9 +131,9 @@ std::optional<std::pair<int, int>> find_spacing_violation(const Medium& medium, 
   std::vector<std::pair<Point, VertexInfo>> points;
   points.reserve(medium.grains.size());
   for (int i = 0; i < n; ++i)
-    points.emplace_back(Point(medium.grains[static_cast<std::size_t>(i)].x,
-                              medium.grains[static_cast<std::size_t>(i)].y),
-                        VertexInfo{i});
+    points.emplace_back(
+        Point(medium.grains[static_cast<std::size_t>(i)].x, medium.grains[static_cast<std::size_t>(i)].y),
+        VertexInfo{i});
   dt.insert(points.begin(), points.end());
   std::vector<Delaunay::Vertex_handle> found;
   for (int i = 0; i < n; ++i) {
@@ -143,8 +143,7 @@ std::optional<std::pair<int, int>> find_spacing_violation(const Medium& medium, 
     for (int s = 0; s < shifts; ++s) {
       const double shift = s == 0 ? 0.0 : (s == 1 ? -medium.width : medium.width);
       found.clear();
-      CGAL::range_search(dt, Circle(Point(g.x + shift, g.y), reach * reach),
-                         std::back_inserter(found));
+      CGAL::range_search(dt, Circle(Point(g.x + shift, g.y), reach * reach), std::back_inserter(found));
       for (const auto& v : found) {
         const int j = v->info().id;
         if (j < 0 || j == i) continue;

@@ -13,14 +13,13 @@
 // generation. state() is the values told in the generation (and, in the first, the arrangement
 // the Gaussian started on); a resumed search replays them all, which rebuilds the state bit for
 // bit (the same seed, the same samples, the same values told).
-#include <pagmo/algorithms/cmaes.hpp>
-#include <pagmo/population.hpp>
-#include <pagmo/problem.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <pagmo/algorithms/cmaes.hpp>
+#include <pagmo/population.hpp>
+#include <pagmo/problem.hpp>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -66,7 +65,8 @@ constexpr int kRepairSweeps = 2000;
 class Cmaes final : public StrategyBase {
  public:
   Cmaes(const SearchOptions& o, Configuration current, const std::string& state)
-      : StrategyBase(o, std::move(current)), scale_(std::max(current_.medium.width, current_.medium.height)),
+      : StrategyBase(o, std::move(current)),
+        scale_(std::max(current_.medium.width, current_.medium.height)),
         algorithm_(1u, -1, -1, -1, -1, o.strategy.sigma / scale_, /*ftol=*/0, /*xtol=*/0, /*memory=*/true,
                    /*force_bounds=*/false, static_cast<unsigned>(derive_seed(o.seed, kStream))) {
     start_ = coordinates(current_.medium);
@@ -146,8 +146,8 @@ class Cmaes final : public StrategyBase {
       if (generation <= told_) continue;  // a generation without a tell (a migration) repeats the last
       if (told_ < 0) {
         if (!j.contains("start") || !j["start"].is_array() || j["start"].size() != start_.size())
-          throw bad("of generation " + std::to_string(generation) + " (no start of " +
-                    std::to_string(start_.size()) + " coordinates)");
+          throw bad("of generation " + std::to_string(generation) + " (no start of " + std::to_string(start_.size()) +
+                    " coordinates)");
         for (std::size_t i = 0; i < start_.size(); ++i) {
           if (!j["start"][i].is_number()) throw bad("of generation " + std::to_string(generation));
           start_[i] = j["start"][i].get<double>();
@@ -197,12 +197,12 @@ class Cmaes final : public StrategyBase {
     return c;
   }
 
-  double scale_;                  // L: length units per unit of the decision vector
-  pagmo::cmaes algorithm_;        // its state after the last generation told
-  std::vector<double> start_;     // the decision vector the Gaussian started on
-  std::int64_t first_ = -1;       // the first generation told, -1: none yet
-  std::int64_t told_ = -1;        // the last generation told
-  std::vector<double> values_;    // its values, as told (minimised)
+  double scale_;                // L: length units per unit of the decision vector
+  pagmo::cmaes algorithm_;      // its state after the last generation told
+  std::vector<double> start_;   // the decision vector the Gaussian started on
+  std::int64_t first_ = -1;     // the first generation told, -1: none yet
+  std::int64_t told_ = -1;      // the last generation told
+  std::vector<double> values_;  // its values, as told (minimised)
 };
 
 }  // namespace

@@ -11,7 +11,9 @@ namespace softdrop::detail {
 
 // Whether a candidate's evaluation makes it the best so far: a strict improvement of a passed
 // droplet (ties go to the earlier candidate, so the choice does not depend on threads).
-inline bool improves(const Evaluation& e, double best_t) { return e.outcome == Outcome::passed && e.tortuosity > best_t; }
+inline bool improves(const Evaluation& e, double best_t) {
+  return e.outcome == Outcome::passed && e.tortuosity > best_t;
+}
 
 // Whether `e` beats `parent` (the arrangement it was made from, evaluated on the same starts).
 // single: improves(e, parent.tortuosity). Robust: its value must also exceed the parent's by more

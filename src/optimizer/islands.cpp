@@ -18,9 +18,7 @@ constexpr detail::EnumName<Migration> kMigrations[] = {{Migration::ring, "ring"}
 
 const char* to_string(Migration migration) { return detail::name_of(kMigrations, migration); }
 
-Migration parse_migration(const std::string& name) {
-  return detail::parse_name(kMigrations, name, "migration");
-}
+Migration parse_migration(const std::string& name) { return detail::parse_name(kMigrations, name, "migration"); }
 
 std::vector<std::string> migration_names() { return detail::name_list(kMigrations); }
 
@@ -96,7 +94,8 @@ SearchSummary drive_islands(std::vector<Search>& islands, const IslandOptions& i
     }
     if (options.time_limit > 0 && elapsed() >= options.time_limit) {
       s.termination = Termination::time_limit;
-      s.message = "time limit of " + detail::num(options.time_limit) + " s reached after generation " + std::to_string(from);
+      s.message =
+          "time limit of " + detail::num(options.time_limit) + " s reached after generation " + std::to_string(from);
       break;
     }
     // The next migration after the lowest island, if it comes before the end.
@@ -112,16 +111,17 @@ SearchSummary drive_islands(std::vector<Search>& islands, const IslandOptions& i
       auto runner = [&] {
         for (int i; (i = next_island.fetch_add(1)) < k;) {
           try {
-            const SearchSummary r = drive(islands[static_cast<std::size_t>(i)], d, [&](const Generation& g, const Configuration& best) {
-              std::lock_guard lock(reporting);
-              ++s.generations_run;
-              s.evaluations += static_cast<std::int64_t>(g.candidates.size());
-              if (g.accepted >= 0) ++s.accepted;
-              const bool go_on = (!callbacks.generation || callbacks.generation(i, g, best)) &&
-                                 !(options.stop && options.stop->load());
-              if (!go_on) callback_stopped = !(options.stop && options.stop->load()), stop = true;
-              return go_on;
-            });
+            const SearchSummary r =
+                drive(islands[static_cast<std::size_t>(i)], d, [&](const Generation& g, const Configuration& best) {
+                  std::lock_guard lock(reporting);
+                  ++s.generations_run;
+                  s.evaluations += static_cast<std::int64_t>(g.candidates.size());
+                  if (g.accepted >= 0) ++s.accepted;
+                  const bool go_on = (!callbacks.generation || callbacks.generation(i, g, best)) &&
+                                     !(options.stop && options.stop->load());
+                  if (!go_on) callback_stopped = !(options.stop && options.stop->load()), stop = true;
+                  return go_on;
+                });
             if (r.termination == Termination::time_limit) stop = true;
           } catch (...) {
             std::lock_guard lock(reporting);
@@ -136,7 +136,7 @@ SearchSummary drive_islands(std::vector<Search>& islands, const IslandOptions& i
       for (std::thread& t : pool) t.join();
       if (error) std::rethrow_exception(error);
       if (stop) {
-        s.termination = callback_stopped ? Termination::callback
+        s.termination = callback_stopped                       ? Termination::callback
                         : options.stop && options.stop->load() ? Termination::interrupted
                                                                : Termination::time_limit;
         s.message = std::string(callback_stopped ? "stopped by a callback" : to_string(s.termination)) +
@@ -152,7 +152,8 @@ SearchSummary drive_islands(std::vector<Search>& islands, const IslandOptions& i
     for (const Configuration& b : bests) pointers.push_back(&b);
     const std::vector<const Configuration*> in = immigrants(pointers, io.migration);
     std::vector<Generation> gs;
-    for (int i = 0; i < k; ++i) gs.push_back(islands[static_cast<std::size_t>(i)].immigrate(*in[static_cast<std::size_t>(i)]));
+    for (int i = 0; i < k; ++i)
+      gs.push_back(islands[static_cast<std::size_t>(i)].immigrate(*in[static_cast<std::size_t>(i)]));
     for (const Generation& g : gs) s.accepted += g.accepted >= 0 ? 1 : 0, ++s.generations_run;
     bests.clear();
     for (const Search& i : islands) bests.push_back(i.best());

@@ -2,9 +2,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <vector>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "softdrop/random.hpp"
 #include "softdrop/search.hpp"
@@ -85,10 +85,10 @@ MoveKind move_kind(std::int64_t generation, const SearchOptions& options) {
 Candidate make_candidate(const Configuration& parent, std::int64_t generation, int index,
                          const SearchOptions& options) {
   const MoveKind kind = move_kind(generation, options);
-  return make_move(parent, kind, kind == MoveKind::single ? options.single_step : options.step,
-                   derive_seed(derive_seed(options.seed, static_cast<std::uint64_t>(generation)),
-                               static_cast<std::uint64_t>(index)),
-                   index, options);
+  return make_move(
+      parent, kind, kind == MoveKind::single ? options.single_step : options.step,
+      derive_seed(derive_seed(options.seed, static_cast<std::uint64_t>(generation)), static_cast<std::uint64_t>(index)),
+      index, options);
 }
 
 Candidate make_move(const Configuration& parent, MoveKind kind, double radius, std::uint64_t stream, int index,
@@ -130,9 +130,8 @@ Candidate make_move(const Configuration& parent, MoveKind kind, double radius, s
     if (c.moved) c.medium.grains[static_cast<std::size_t>(c.moved_grain)] = index_of.grain(c.moved_grain);
   } else if (c.kind == MoveKind::single) {
     const auto& touched = parent.eval.touched;
-    c.moved_grain = touched.empty()
-                        ? static_cast<int>(rng.below(static_cast<std::uint64_t>(n)))
-                        : touched[rng.below(touched.size())];
+    c.moved_grain = touched.empty() ? static_cast<int>(rng.below(static_cast<std::uint64_t>(n)))
+                                    : touched[rng.below(touched.size())];
     c.moved = try_jump(c.moved_grain);
   } else {
     for (int i = 0; i < n; ++i) c.moved += try_jump(i);

@@ -27,8 +27,8 @@ std::vector<std::string> objective_names() { return detail::name_list(kObjective
 
 bool ObjectiveOptions::IsValid(std::string* why) const {
   if (starts < 1 || starts > kMaxObjectiveStarts)
-    return detail::fail(why, "starts = " + std::to_string(starts) + ": must be in [1, " +
-                                 std::to_string(kMaxObjectiveStarts) + "]");
+    return detail::fail(
+        why, "starts = " + std::to_string(starts) + ": must be in [1, " + std::to_string(kMaxObjectiveStarts) + "]");
   if (!(quantile > 0 && quantile < 1))
     return detail::fail(why, "quantile = " + detail::num(quantile) + ": must be in (0, 1)");
   if (!(se_factor >= 0) || !std::isfinite(se_factor))
@@ -61,7 +61,8 @@ double objective_value(const ObjectiveOptions& objective, const std::vector<RunS
   for (double v : t) sum += v;
   const double mean = sum / n;
   switch (objective.kind) {
-    case ObjectiveKind::mean: return mean;
+    case ObjectiveKind::mean:
+      return mean;
     case ObjectiveKind::quantile: {
       std::sort(t.begin(), t.end());
       return detail::linear_quantile(t, objective.quantile);
@@ -72,7 +73,8 @@ double objective_value(const ObjectiveOptions& objective, const std::vector<RunS
       for (double v : t) ss += (v - mean) * (v - mean);
       return mean - objective.se_factor * std::sqrt(ss / (n - 1) / n);
     }
-    case ObjectiveKind::single: break;
+    case ObjectiveKind::single:
+      break;
   }
   throw std::logic_error("objective_value: unknown objective");
 }

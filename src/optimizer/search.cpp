@@ -23,33 +23,28 @@ using detail::evaluation_run;
 using detail::fail;
 using detail::num;
 
-constexpr detail::EnumName<MoveKind> kMoveKinds[] = {{MoveKind::initial, "initial"},
-                                                     {MoveKind::all, "all"},
-                                                     {MoveKind::single, "single"},
-                                                     {MoveKind::relocate, "relocate"},
-                                                     {MoveKind::migrate, "migrate"},
-                                                     {MoveKind::mixed, "mixed"}};
+constexpr detail::EnumName<MoveKind> kMoveKinds[] = {{MoveKind::initial, "initial"}, {MoveKind::all, "all"},
+                                                     {MoveKind::single, "single"},   {MoveKind::relocate, "relocate"},
+                                                     {MoveKind::migrate, "migrate"}, {MoveKind::mixed, "mixed"}};
 constexpr detail::EnumName<Termination> kTerminations[] = {{Termination::generations, "generations"},
                                                            {Termination::time_limit, "time-limit"},
                                                            {Termination::interrupted, "interrupted"},
                                                            {Termination::callback, "callback"}};
-constexpr detail::EnumName<StrategyKind> kStrategies[] = {
-    {StrategyKind::paper, "paper"}, {StrategyKind::es, "es"}, {StrategyKind::lahc, "lahc"}, {StrategyKind::anneal, "anneal"},
-    {StrategyKind::cmaes, "cmaes"}};
+constexpr detail::EnumName<StrategyKind> kStrategies[] = {{StrategyKind::paper, "paper"},
+                                                          {StrategyKind::es, "es"},
+                                                          {StrategyKind::lahc, "lahc"},
+                                                          {StrategyKind::anneal, "anneal"},
+                                                          {StrategyKind::cmaes, "cmaes"}};
 
 const char* to_string(MoveKind kind) { return detail::name_of(kMoveKinds, kind); }
 
-MoveKind parse_move_kind(const std::string& name) {
-  return detail::parse_name(kMoveKinds, name, "move kind");
-}
+MoveKind parse_move_kind(const std::string& name) { return detail::parse_name(kMoveKinds, name, "move kind"); }
 
 const char* to_string(Termination termination) { return detail::name_of(kTerminations, termination); }
 
 const char* to_string(StrategyKind kind) { return detail::name_of(kStrategies, kind); }
 
-StrategyKind parse_strategy(const std::string& name) {
-  return detail::parse_name(kStrategies, name, "strategy");
-}
+StrategyKind parse_strategy(const std::string& name) { return detail::parse_name(kStrategies, name, "strategy"); }
 
 std::vector<std::string> strategy_names() { return detail::name_list(kStrategies); }
 
@@ -60,7 +55,8 @@ bool StrategyOptions::IsValid(std::string* why) const {
     return fail(why, "history-length = " + std::to_string(history_length) + ": must be in [1, 1e5]");
   if (!(temperature > 0) || !std::isfinite(temperature))
     return fail(why, "temperature = " + num(temperature) + ": must be > 0");
-  if (!(half_life > 0) || !std::isfinite(half_life)) return fail(why, "half-life = " + num(half_life) + ": must be > 0");
+  if (!(half_life > 0) || !std::isfinite(half_life))
+    return fail(why, "half-life = " + num(half_life) + ": must be > 0");
   if (!(sigma > 0) || !std::isfinite(sigma)) return fail(why, "sigma = " + num(sigma) + ": must be > 0");
   return true;
 }
@@ -81,10 +77,10 @@ bool SearchOptions::IsValid(std::string* why) const {
   if (!objective.IsValid(why)) return false;
   if (!droplet.IsValid(why)) return false;
   if (!run.IsValid(why)) return false;
-  if (run.path_interval < 1) return fail(why, "path-interval = " + std::to_string(run.path_interval) + ": must be >= 1");
+  if (run.path_interval < 1)
+    return fail(why, "path-interval = " + std::to_string(run.path_interval) + ": must be >= 1");
   return true;
 }
-
 
 namespace detail {
 bool improves(const Evaluation& e, const Evaluation& parent, const ObjectiveOptions& objective) {
@@ -144,8 +140,10 @@ Evaluation as_evaluation(const ObjectiveOptions& objective, std::vector<RunSumma
   for (const RunSummary& r : runs) {
     e.steps += r.steps;
     e.touched.insert(e.touched.end(), r.touched.begin(), r.touched.end());
-    if (r.outcome == Outcome::passed) ++e.passed;
-    else if (!failed) failed = &r;
+    if (r.outcome == Outcome::passed)
+      ++e.passed;
+    else if (!failed)
+      failed = &r;
   }
   std::sort(e.touched.begin(), e.touched.end());
   e.touched.erase(std::unique(e.touched.begin(), e.touched.end()), e.touched.end());
@@ -187,12 +185,12 @@ void check_medium(const Medium& medium, const SearchOptions& options) {
   if (options.single_step >= 0.5 * medium.width)
     throw std::invalid_argument("single-step = " + num(options.single_step) + ": must be < half the width");
   if (auto bad = find_spacing_violation(medium, options.gap))
-    throw std::invalid_argument(
-        bad->first == bad->second
-            ? "medium: grain " + std::to_string(bad->first) +
-                  " is not wholly inside the box in y (the search keeps r <= y <= height - r)"
-            : "medium: grains " + std::to_string(bad->first) + " and " + std::to_string(bad->second) +
-                  " are closer than the spacing rule allows (gap " + num(options.gap) + ")");
+    throw std::invalid_argument(bad->first == bad->second
+                                    ? "medium: grain " + std::to_string(bad->first) +
+                                          " is not wholly inside the box in y (the search keeps r <= y <= height - r)"
+                                    : "medium: grains " + std::to_string(bad->first) + " and " +
+                                          std::to_string(bad->second) +
+                                          " are closer than the spacing rule allows (gap " + num(options.gap) + ")");
 }
 }  // namespace
 
@@ -272,8 +270,7 @@ Generation Search::complete(std::vector<Candidate> candidates, double seconds, E
   Generation g = open_generation(std::move(candidates));
   g.accepted = strategy_->tell(g.number, g.candidates);
   // The best so far is always an arrangement the strategy kept (and so the history stored).
-  const int best_k =
-      detail::best_improvement(detail::pointers(g.candidates), best_.eval.tortuosity);
+  const int best_k = detail::best_improvement(detail::pointers(g.candidates), best_.eval.tortuosity);
   if (best_k >= 0) {
     if (best_k != g.accepted)
       throw std::logic_error("search strategy " + std::string(to_string(options_.strategy.kind)) + ": generation " +

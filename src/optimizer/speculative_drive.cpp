@@ -10,10 +10,10 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <utility>
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "drive_test_seam.hpp"
@@ -104,8 +104,8 @@ class Pipeline {
 #if defined(SOFTDROP_TEST_HOOKS)
     if (before_completion_) before_completion_();
 #endif
-    const Generation gen =
-        search_.complete(std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    const Generation gen = search_.complete(
+        std::move(candidates), std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     completed_ = gen.number;
     // predict() saw the last of these candidates arrive, so it foresaw what complete() did: the
     // prediction if it made one, else no improvement. Either way the next generation's lineage
@@ -114,10 +114,9 @@ class Pipeline {
     const int expected = p != predicted_.end() ? p->second.k : -1;
     const std::string expected_state = before(gen.number + 1)->state();
     if (gen.accepted != expected || gen.state != expected_state)
-      throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) +
-                             " kept " + std::to_string(gen.accepted) + " with state '" + gen.state +
-                             "', foreseen " + std::to_string(expected) + " with '" +
-                             expected_state + "'");
+      throw std::logic_error("search pipeline: generation " + std::to_string(gen.number) + " kept " +
+                             std::to_string(gen.accepted) + " with state '" + gen.state + "', foreseen " +
+                             std::to_string(expected) + " with '" + expected_state + "'");
     if (p != predicted_.end()) predicted_.erase(p);
     for (const std::shared_ptr<Lineage>& l : lines_)  // what no generation to come is made from
       l->before.erase(l->before.begin(), l->before.lower_bound(completed_));
@@ -150,11 +149,9 @@ class Pipeline {
     auto it = line.before.find(g);
     if (it != line.before.end()) return it->second;
     if (line.before.empty() || g < line.before.begin()->first)
-      throw std::logic_error("search pipeline: generation " + std::to_string(g) +
-                             " is not in its lineage");
+      throw std::logic_error("search pipeline: generation " + std::to_string(g) + " is not in its lineage");
     int kept = -1;
-    const std::vector<const Candidate*> none(static_cast<std::size_t>(search_.options().lambda),
-                                             nullptr);
+    const std::vector<const Candidate*> none(static_cast<std::size_t>(search_.options().lambda), nullptr);
     std::shared_ptr<const Strategy> s = before(line, g - 1)->foresee(g - 1, none, &kept);
     return line.before.emplace(g, std::move(s)).first->second;
   }
@@ -215,9 +212,7 @@ class Pipeline {
       int kept = -1;
       std::shared_ptr<const Strategy> after = from->foresee(g, finished, &kept);
       auto p = predicted_.find(g);
-      if (p != predicted_.end() && p->second.k == kept &&
-          p->second.after->state() == after->state())
-        continue;
+      if (p != predicted_.end() && p->second.k == kept && p->second.after->state() == after->state()) continue;
       if (p != predicted_.end()) {
         ++stats_.mispredictions;
         predicted_.erase(p);
@@ -363,7 +358,8 @@ SearchSummary drive(Search& search, const DriveOptions& options, const Generatio
   if (!options.IsValid(&why)) throw std::invalid_argument(why);
   const int workers = detail::worker_threads(options.threads);
   const SearchOptions& so = search.options();
-  const int lanes = options.lanes > 0 ? options.lanes : speculative_lanes(so.lambda, workers, so.droplet.constraint_order);
+  const int lanes =
+      options.lanes > 0 ? options.lanes : speculative_lanes(so.lambda, workers, so.droplet.constraint_order);
   std::unique_ptr<Pipeline> pipeline;
   // Speculation assumes the paper's rule (a generation that keeps nothing changes nothing); other
   // strategies evaluate one generation at a time, its candidates on every thread and lane.

@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "evaluation.hpp"
-#include "strategy_base.hpp"
 #include "softdrop/random.hpp"
+#include "strategy_base.hpp"
 
 namespace softdrop {
 namespace {
@@ -42,7 +42,8 @@ class Paper final : public StrategyBase {
 // the candidates improve. Elitist: the best strict improvement is kept.
 class Evolution final : public StrategyBase {
  public:
-  Evolution(const SearchOptions& o, Configuration current, const std::string& state) : StrategyBase(o, std::move(current)) {
+  Evolution(const SearchOptions& o, Configuration current, const std::string& state)
+      : StrategyBase(o, std::move(current)) {
     steps_ = {o.step, o.single_step};
     if (state.empty()) return;
     const auto j = nlohmann::json::parse(state, nullptr, false);
@@ -53,12 +54,9 @@ class Evolution final : public StrategyBase {
   }
   Candidate propose(std::int64_t generation, int k) const override {
     const MoveKind kind = kind_of(generation, k);
-    return make_move(current_, kind, steps_[kind == MoveKind::single], stream(o_, generation, k), k,
-                     o_);
+    return make_move(current_, kind, steps_[kind == MoveKind::single], stream(o_, generation, k), k, o_);
   }
-  std::string state() const override {
-    return nlohmann::json{{"step", steps_[0]}, {"single-step", steps_[1]}}.dump();
-  }
+  std::string state() const override { return nlohmann::json{{"step", steps_[0]}, {"single-step", steps_[1]}}.dump(); }
   // Speculative: a generation in which nothing improves multiplies each step by the failure
   // factor once per candidate of its kind.
   bool speculative() const override { return true; }
@@ -113,9 +111,7 @@ class LateAcceptance final : public StrategyBase {
     }
   }
   std::string state() const override { return nlohmann::json{{"history", history_}}.dump(); }
-  std::unique_ptr<Strategy> clone() const override {
-    return std::make_unique<LateAcceptance>(*this);
-  }
+  std::unique_ptr<Strategy> clone() const override { return std::make_unique<LateAcceptance>(*this); }
 
  protected:
   int decide(std::int64_t generation, const std::vector<const Candidate*>& candidates) override {
@@ -141,13 +137,12 @@ class LateAcceptance final : public StrategyBase {
 // state is only the current arrangement. The paper's moves.
 class Annealing final : public StrategyBase {
  public:
-  Annealing(const SearchOptions& o, Configuration current, const std::string& state) : StrategyBase(o, std::move(current)) {
+  Annealing(const SearchOptions& o, Configuration current, const std::string& state)
+      : StrategyBase(o, std::move(current)) {
     if (!state.empty() && !nlohmann::json::parse(state, nullptr, false).is_object())
       throw std::invalid_argument("strategy anneal: stored state '" + state + "' is not an anneal state");
   }
-  std::string state() const override {
-    return nlohmann::json{{"temperature", temperature_}}.dump();
-  }
+  std::string state() const override { return nlohmann::json{{"temperature", temperature_}}.dump(); }
   std::unique_ptr<Strategy> clone() const override { return std::make_unique<Annealing>(*this); }
   // As a strategy made again from its state: the temperature shows from the next generation on.
   void adopt(Configuration arrangement) override {
@@ -160,8 +155,7 @@ class Annealing final : public StrategyBase {
     temperature_ = temperature(generation);
     int k = best_passed(candidates);
     if (k >= 0) {
-      const double dt =
-          candidates[static_cast<std::size_t>(k)]->eval.tortuosity - current_.eval.tortuosity;
+      const double dt = candidates[static_cast<std::size_t>(k)]->eval.tortuosity - current_.eval.tortuosity;
       Rng rng(stream(o_, generation, o_.lambda));
       if (dt < 0 && !(rng.uniform() < std::exp(dt / temperature_))) k = -1;
     }
@@ -187,8 +181,7 @@ int Strategy::tell(std::int64_t generation, const std::vector<Candidate>& candid
   return decide(generation, detail::pointers(candidates));
 }
 
-std::unique_ptr<Strategy> Strategy::foresee(std::int64_t generation,
-                                            const std::vector<const Candidate*>& evaluated,
+std::unique_ptr<Strategy> Strategy::foresee(std::int64_t generation, const std::vector<const Candidate*>& evaluated,
                                             int* kept) const {
   std::unique_ptr<Strategy> told = clone();
   *kept = told->decide(generation, evaluated);
@@ -202,10 +195,14 @@ std::unique_ptr<Strategy> make_strategy(const SearchOptions& options, Configurat
     case StrategyKind::paper:
       if (!state.empty()) throw std::invalid_argument("strategy paper: it keeps no state, but one is stored");
       return std::make_unique<Paper>(options, std::move(current));
-    case StrategyKind::es: return std::make_unique<Evolution>(options, std::move(current), state);
-    case StrategyKind::lahc: return std::make_unique<LateAcceptance>(options, std::move(current), state);
-    case StrategyKind::anneal: return std::make_unique<Annealing>(options, std::move(current), state);
-    case StrategyKind::cmaes: return detail::make_cmaes(options, std::move(current), state);
+    case StrategyKind::es:
+      return std::make_unique<Evolution>(options, std::move(current), state);
+    case StrategyKind::lahc:
+      return std::make_unique<LateAcceptance>(options, std::move(current), state);
+    case StrategyKind::anneal:
+      return std::make_unique<Annealing>(options, std::move(current), state);
+    case StrategyKind::cmaes:
+      return detail::make_cmaes(options, std::move(current), state);
   }
   throw std::invalid_argument("strategy: unknown kind");
 }

@@ -1,5 +1,4 @@
 #include "animation_sinks.hpp"
-#include "util/temp_files.hpp"
 
 #include <fcntl.h>
 #include <gif_lib.h>
@@ -13,6 +12,8 @@
 #include <filesystem>
 #include <stdexcept>
 #include <vector>
+
+#include "util/temp_files.hpp"
 
 namespace softdrop::detail {
 namespace {
@@ -33,8 +34,13 @@ void rename_over(const std::string& tmp, const std::string& path) {
 class GifSink final : public FrameSink {
  public:
   GifSink(const std::string& path, int width, int height, double fps)
-      : path_(path), tmp_name_(path), tmp_(tmp_name_.str()), width_(width), height_(height),
-        delay_(std::max(2, static_cast<int>(std::lround(100.0 / fps)))), row_(static_cast<std::size_t>(width)) {
+      : path_(path),
+        tmp_name_(path),
+        tmp_(tmp_name_.str()),
+        width_(width),
+        height_(height),
+        delay_(std::max(2, static_cast<int>(std::lround(100.0 / fps)))),
+        row_(static_cast<std::size_t>(width)) {
     if (width > 65535 || height > 65535) throw std::invalid_argument("size: too large for a GIF");
     // Opened here rather than by giflib, which would create the file readable by its owner only.
     const int fd = ::open(tmp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0666);

@@ -26,8 +26,12 @@ void write_picture(const std::string& path, int width, int height, double dpi,
       raw = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, static_cast<int>(std::ceil(width * scale)),
                                        static_cast<int>(std::ceil(height * scale)));
       break;
-    case ImageFormat::svg: raw = cairo_svg_surface_create(tmp.c_str(), width, height); break;
-    case ImageFormat::pdf: raw = cairo_pdf_surface_create(tmp.c_str(), width, height); break;
+    case ImageFormat::svg:
+      raw = cairo_svg_surface_create(tmp.c_str(), width, height);
+      break;
+    case ImageFormat::pdf:
+      raw = cairo_pdf_surface_create(tmp.c_str(), width, height);
+      break;
     case ImageFormat::gif:
     case ImageFormat::mp4:
       throw std::invalid_argument("output '" + path + "': a still picture is written as .png, .svg or .pdf");

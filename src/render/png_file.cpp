@@ -66,12 +66,11 @@ void on_error(png_structp png, png_const_charp what) {
 void on_warning(png_structp, png_const_charp) {}
 
 // The libpng calls, with no C++ object made between the setjmp and a jump back to it.
-bool write_rows(Writer& w, int width, int height, int colour_type, std::uint32_t pixels_per_metre,
-                png_bytepp rows) {
+bool write_rows(Writer& w, int width, int height, int colour_type, std::uint32_t pixels_per_metre, png_bytepp rows) {
   if (setjmp(png_jmpbuf(w.png))) return false;
   png_init_io(w.png, w.file);
-  png_set_IHDR(w.png, w.info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
-               colour_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(w.png, w.info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, colour_type,
+               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_set_pHYs(w.png, w.info, pixels_per_metre, pixels_per_metre, PNG_RESOLUTION_METER);
   png_write_info(w.png, w.info);
   png_write_image(w.png, rows);
@@ -104,7 +103,8 @@ void write_png(cairo_surface_t* surface, const std::string& path, double dpi) {
   if (!w.png || !w.info) throw std::runtime_error("libpng: out of memory");
   // 1 inch = 0.0254 m.
   const auto ppm = static_cast<std::uint32_t>(std::lround(dpi / 0.0254));
-  if (!write_rows(w, width, height, channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA, ppm, rows.data())) throw std::runtime_error(std::string("libpng: ") + w.message);
+  if (!write_rows(w, width, height, channels == 3 ? PNG_COLOR_TYPE_RGB : PNG_COLOR_TYPE_RGB_ALPHA, ppm, rows.data()))
+    throw std::runtime_error(std::string("libpng: ") + w.message);
   const bool closed = std::fclose(w.file) == 0;
   w.file = nullptr;
   if (!closed) throw std::runtime_error(std::strerror(errno));

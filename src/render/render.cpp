@@ -28,13 +28,15 @@ using detail::write_picture;
 
 ImageFormat image_format_for(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   if (ext == ".png") return ImageFormat::png;
   if (ext == ".svg") return ImageFormat::svg;
   if (ext == ".pdf") return ImageFormat::pdf;
   if (ext == ".gif") return ImageFormat::gif;
   if (ext == ".mp4") return ImageFormat::mp4;
-  throw std::invalid_argument("output '" + path + "': unknown picture format (use .png, .svg, .pdf, or .gif / .mp4 for animations)");
+  throw std::invalid_argument("output '" + path +
+                              "': unknown picture format (use .png, .svg, .pdf, or .gif / .mp4 for animations)");
 }
 
 Rgba parse_colour(const std::string& text) {
@@ -44,17 +46,21 @@ Rgba parse_colour(const std::string& text) {
   if (text.size() - o != 6 && text.size() - o != 8) throw bad();
   auto hex = [&](std::size_t i) -> double {
     const std::string two = text.substr(o + i, 2);
-    if (!std::isxdigit(static_cast<unsigned char>(two[0])) || !std::isxdigit(static_cast<unsigned char>(two[1]))) throw bad();
+    if (!std::isxdigit(static_cast<unsigned char>(two[0])) || !std::isxdigit(static_cast<unsigned char>(two[1])))
+      throw bad();
     return std::stoi(two, nullptr, 16) / 255.0;
   };
   return {hex(0), hex(2), hex(4), text.size() - o == 8 ? hex(6) : 1.0};
 }
 
 bool RenderStyle::IsValid(std::string* why) const {
-  if (width < 16 || width > 10000) return fail(why, "size = " + std::to_string(width) + ": must be in [16, 10000] points");
+  if (width < 16 || width > 10000)
+    return fail(why, "size = " + std::to_string(width) + ": must be in [16, 10000] points");
   if (!(dpi >= 36 && dpi <= 1200)) return fail(why, "dpi = " + num(dpi) + ": must be in [36, 1200]");
-  if (width * dpi / 72 > 20000) return fail(why, "size = " + std::to_string(width) + " at dpi = " + num(dpi) + ": more than 20000 pixels wide");
-  if (!std::isfinite(grain_line) || grain_line <= 0) return fail(why, "grain-line = " + num(grain_line) + ": must be > 0");
+  if (width * dpi / 72 > 20000)
+    return fail(why, "size = " + std::to_string(width) + " at dpi = " + num(dpi) + ": more than 20000 pixels wide");
+  if (!std::isfinite(grain_line) || grain_line <= 0)
+    return fail(why, "grain-line = " + num(grain_line) + ": must be > 0");
   if (!std::isfinite(margin) || margin < 0) return fail(why, "margin = " + num(margin) + ": must be >= 0");
   return true;
 }
@@ -119,8 +125,11 @@ std::vector<std::vector<std::pair<double, double>>> pieces_of(const Polyline& p,
 // A colour map from dark blue through teal and green to yellow (samples of viridis, which reads
 // in grey and to colour-blind eyes), linear between its stops.
 Rgba colour_map(double t) {
-  static constexpr double kStops[][3] = {{0.267, 0.005, 0.329}, {0.231, 0.322, 0.545}, {0.129, 0.569, 0.549},
-                                         {0.369, 0.788, 0.384}, {0.993, 0.906, 0.144}};
+  static constexpr double kStops[][3] = {{0.267, 0.005, 0.329},
+                                         {0.231, 0.322, 0.545},
+                                         {0.129, 0.569, 0.549},
+                                         {0.369, 0.788, 0.384},
+                                         {0.993, 0.906, 0.144}};
   t = std::clamp(t, 0.0, 1.0) * 4;
   const int k = std::min(3, static_cast<int>(t));
   const double f = t - k;
@@ -145,7 +154,8 @@ void draw_field(cairo_t* cr, const Field& field, double x0, double y0, double w,
       if (std::isfinite(v)) {
         const Rgba c = colour_map((v - field.lo) / span);
         pixel = 0xff000000u | static_cast<std::uint32_t>(std::lround(255 * c.r)) << 16 |
-                static_cast<std::uint32_t>(std::lround(255 * c.g)) << 8 | static_cast<std::uint32_t>(std::lround(255 * c.b));
+                static_cast<std::uint32_t>(std::lround(255 * c.g)) << 8 |
+                static_cast<std::uint32_t>(std::lround(255 * c.b));
       }
       std::memcpy(data + static_cast<std::ptrdiff_t>(field.ny - 1 - j) * stride + 4 * i, &pixel, 4);
     }
@@ -169,8 +179,8 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
   cairo_save(cr);
   cairo_rectangle(cr, px(0), py(g.y1), g.scale * m.width, g.scale * (g.y1 - g.y0));
   cairo_clip(cr);
-  if (scene.field.nx > 0 && scene.field.ny > 0) draw_field(cr, scene.field, px(0), py(m.height), g.scale * m.width,
-                                                          g.scale * m.height);
+  if (scene.field.nx > 0 && scene.field.ny > 0)
+    draw_field(cr, scene.field, px(0), py(m.height), g.scale * m.width, g.scale * m.height);
   // Grains, with their periodic images at the edges; each grain is one path (or, solid, all of
   // them one path, filled with the nonzero rule: their union).
   auto images = [&](const Grain& gr) {
@@ -304,21 +314,23 @@ void render_scene(const Scene& scene, const RenderStyle& style, const std::strin
   write_picture(path, g.width, g.height, style.dpi, [&](cairo_t* cr) { draw_scene(cr, scene, style, g); });
 }
 
-void render_animation(int frames, double fps, const std::function<void(int, Scene&)>& frame,
-                      const RenderStyle& style, const std::string& path) {
+void render_animation(int frames, double fps, const std::function<void(int, Scene&)>& frame, const RenderStyle& style,
+                      const std::string& path) {
   std::string why;
   if (!style.IsValid(&why)) throw std::invalid_argument(why);
   const ImageFormat format = image_format_for(path);
   if (format != ImageFormat::gif && format != ImageFormat::mp4)
     throw std::invalid_argument("output '" + path + "': an animation is written as .gif or .mp4");
-  if (frames < 1 || frames > 100000) throw std::invalid_argument("frames = " + std::to_string(frames) + ": must be in [1, 1e5]");
-  if (!std::isfinite(fps) || fps <= 0 || fps > 100) throw std::invalid_argument("fps = " + num(fps) + ": must be in (0, 100]");
+  if (frames < 1 || frames > 100000)
+    throw std::invalid_argument("frames = " + std::to_string(frames) + ": must be in [1, 1e5]");
+  if (!std::isfinite(fps) || fps <= 0 || fps > 100)
+    throw std::invalid_argument("fps = " + num(fps) + ": must be in (0, 100]");
 
   Scene scene;
   frame(0, scene);
   if (!scene.medium.IsValid(&why)) throw std::invalid_argument(why);
   Geometry g = geometry_of(scene, style);  // fixed for all frames
-  if (format == ImageFormat::mp4) {  // H.264 wants even sizes: one more row or column of background
+  if (format == ImageFormat::mp4) {        // H.264 wants even sizes: one more row or column of background
     g.width += g.width % 2;
     g.height += g.height % 2;
   }

@@ -31,7 +31,8 @@ std::vector<double> nice_ticks(double lo, double hi, int count) {
       break;
     }
   std::vector<double> ticks;
-  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step) ticks.push_back(std::abs(t) < 1e-12 * span ? 0.0 : t);
+  for (double t = std::ceil(lo / step) * step; t <= hi + 1e-9 * span; t += step)
+    ticks.push_back(std::abs(t) < 1e-12 * span ? 0.0 : t);
   return ticks;
 }
 
@@ -140,7 +141,8 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
         const std::string& label = chart.marker_labels[i];
         cairo_text_extents(cr, label.c_str(), &ext);
         const double x = px(chart.markers[i]);
-        cairo_move_to(cr, x > (left + right) / 2 ? x - ext.x_advance - 0.3 * font : x + 0.3 * font, bottom - 0.5 * font);
+        cairo_move_to(cr, x > (left + right) / 2 ? x - ext.x_advance - 0.3 * font : x + 0.3 * font,
+                      bottom - 0.5 * font);
         show_text(cr, label);
       }
     }
@@ -190,14 +192,14 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
     cairo_set_font_size(cr, lf);
     const double box_w = widest + 3.4 * lf, box_h = 1.4 * lf * entries + 0.5 * lf;
     const std::array<std::array<double, 2>, 4> corners{{{right - box_w, top},  // x, y of the box's top left
-                                                         {left, top},
-                                                         {right - box_w, bottom - box_h},
-                                                         {left, bottom - box_h}}};
+                                                        {left, top},
+                                                        {right - box_w, bottom - box_h},
+                                                        {left, bottom - box_h}}};
     std::array<long, 4> covered{};
     auto cover = [&](double x, double y) {
       for (std::size_t c = 0; c < corners.size(); ++c)
-        covered[c] += x >= corners[c][0] && x <= corners[c][0] + box_w && y >= corners[c][1] &&
-                      y <= corners[c][1] + box_h;
+        covered[c] +=
+            x >= corners[c][0] && x <= corners[c][0] + box_w && y >= corners[c][1] && y <= corners[c][1] + box_h;
     };
     for (const Series& s : chart.series)
       for (std::size_t i = 0; i < s.x.size(); ++i) {
@@ -208,7 +210,8 @@ void render_chart(const Chart& chart, const RenderStyle& style, const std::strin
         const int n = static_cast<int>(std::min(1000.0, std::hypot(xb - xa, yb - ya) / 3));
         for (int k = 1; k < n; ++k) cover(xa + (xb - xa) * k / n, ya + (yb - ya) * k / n);
       }
-    const std::size_t best = static_cast<std::size_t>(std::min_element(covered.begin(), covered.end()) - covered.begin());
+    const std::size_t best =
+        static_cast<std::size_t>(std::min_element(covered.begin(), covered.end()) - covered.begin());
     double ly = corners[best][1] + 1.4 * lf;
     for (const Series& s : chart.series) {
       if (s.label.empty()) continue;

@@ -15,11 +15,20 @@ std::string escaped(const std::string& text) {
   std::string out;
   for (const char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -94,8 +103,9 @@ void insert_svg_text(const std::string& path, const std::vector<SvgText>& texts)
     if (t.a < 1) out << " fill-opacity=\"" << t.a << "\"";
     if (t.bold) out << " font-weight=\"bold\"";
     if (t.halo > 0)
-      out << " stroke=\"rgb(" << std::lround(255 * t.hr) << "," << std::lround(255 * t.hg) << "," << std::lround(255 * t.hb)
-          << ")\" stroke-width=\"" << t.halo << "\" stroke-linejoin=\"round\" paint-order=\"stroke\"";
+      out << " stroke=\"rgb(" << std::lround(255 * t.hr) << "," << std::lround(255 * t.hg) << ","
+          << std::lround(255 * t.hb) << ")\" stroke-width=\"" << t.halo
+          << "\" stroke-linejoin=\"round\" paint-order=\"stroke\"";
     if (std::abs(t.angle) > 1e-9) out << " transform=\"rotate(" << t.angle << " " << t.x << " " << t.y << ")\"";
     out << " xml:space=\"preserve\">" << escaped(t.text) << "</text>\n";
   }

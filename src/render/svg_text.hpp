@@ -16,8 +16,8 @@ struct SvgText {
   double angle = 0;     // rotation about (x, y), degrees
   double r = 0, g = 0, b = 0, a = 1;
   bool bold = false;
-  double halo = 0;                 // width of an outline behind the glyphs (0: none)
-  double hr = 1, hg = 1, hb = 1;   // its colour
+  double halo = 0;                // width of an outline behind the glyphs (0: none)
+  double hr = 1, hg = 1, hb = 1;  // its colour
   std::string text;
 };
 

@@ -53,7 +53,6 @@ struct ContactRecords {
 /// depth) for each mass 8 g + b inside its disc. todo[g - first] gets the others (bit b: mass
 /// 8 g + b), and those beyond a wall, whose records it leaves to be overwritten: the caller tests
 /// them one by one. max_depth: DropletParams::max_depth.
-void limit_groups(const ContactRecords& r, int first, int groups, double max_depth, double* deepest,
-                  unsigned* todo);
+void limit_groups(const ContactRecords& r, int first, int groups, double max_depth, double* deepest, unsigned* todo);
 
 }  // namespace softdrop::lanes

@@ -52,8 +52,7 @@ void Simulation::apply_contact_limit() {
       bool push = false;
       if (anchored > 0) {
         const double xw = periodic ? wrap_periodic(x, W) : x;
-        for (const GrainGrid::Disc *g = contact_.clear_discs.data() + first, *end = g + anchored; g != end;
-             ++g) {
+        for (const GrainGrid::Disc *g = contact_.clear_discs.data() + first, *end = g + anchored; g != end; ++g) {
           const double dx = xw - g->x, dy = y - g->y, inner = g->r - limit;
           const double d2 = dx * dx + dy * dy;
           if (!(d2 >= g->r * g->r)) {
@@ -123,8 +122,7 @@ void Simulation::apply_contact_limit() {
     contact_.clear_x[i] = x;
     contact_.clear_y[i] = y;
     contact_.clear_count[i] = anchored ? count : 0;
-    if (anchored)
-      std::copy(inside, inside + count, contact_.clear_discs.begin() + static_cast<std::ptrdiff_t>(first));
+    if (anchored) std::copy(inside, inside + count, contact_.clear_discs.begin() + static_cast<std::ptrdiff_t>(first));
   };
   int i = 0;
 #if defined(SOFTDROP_AVX_DISPATCH)
@@ -163,8 +161,7 @@ void Simulation::apply_contact_limit() {
       const int groups = std::min(kChunk, (n - i) / 8);
       lanes::limit_groups(r, i / 8, groups, limit, deepest, todo);
       for (int g = 0; g < groups; ++g, i += 8)
-        for (unsigned left = todo[g]; left != 0; left &= left - 1)
-          limit_mass(i + std::countr_zero(left));
+        for (unsigned left = todo[g]; left != 0; left &= left - 1) limit_mass(i + std::countr_zero(left));
     }
   }
 #endif

@@ -27,10 +27,11 @@ namespace {
 }  // namespace
 }  // namespace avx512
 
-void limit_groups(const ContactRecords& r, int first, int groups, double max_depth, double* deepest,
-                  unsigned* todo) {
-  if (avx512_in_use()) avx512::limit_groups_k(r, first, groups, max_depth, deepest, todo);
-  else avx::limit_groups_k(r, first, groups, max_depth, deepest, todo);
+void limit_groups(const ContactRecords& r, int first, int groups, double max_depth, double* deepest, unsigned* todo) {
+  if (avx512_in_use())
+    avx512::limit_groups_k(r, first, groups, max_depth, deepest, todo);
+  else
+    avx::limit_groups_k(r, first, groups, max_depth, deepest, todo);
 }
 
 #endif

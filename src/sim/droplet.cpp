@@ -13,9 +13,7 @@
 namespace softdrop {
 using detail::fail;
 using detail::num;
-double DropletParams::rest_length() const {
-  return 2 * radius * std::sin(M_PI / masses) / (1 + max_strain);
-}
+double DropletParams::rest_length() const { return 2 * radius * std::sin(M_PI / masses) / (1 + max_strain); }
 
 namespace {
 // Area of the regular n-gon of circumradius r.
@@ -39,9 +37,12 @@ double DropletParams::resting_area() const { return regular_polygon_area(masses,
 double DropletParams::viscous_rate() const {
   // -expm1(-x) = 1 - exp(-x) without the cancellation of small x.
   switch (viscosity_step) {
-    case ViscosityStep::exponential: return -std::expm1(-viscosity * dt) / dt;
-    case ViscosityStep::implicit: return viscosity / (1 + viscosity * dt);  // on the kicked velocity
-    case ViscosityStep::explicit_euler: break;
+    case ViscosityStep::exponential:
+      return -std::expm1(-viscosity * dt) / dt;
+    case ViscosityStep::implicit:
+      return viscosity / (1 + viscosity * dt);  // on the kicked velocity
+    case ViscosityStep::explicit_euler:
+      break;
   }
   return viscosity;
 }
@@ -90,8 +91,10 @@ namespace {
 template <class T>
 std::string range_words(const FieldRange& r) {
   auto bound = [](double b) {
-    if constexpr (std::is_integral_v<T>) return std::to_string(static_cast<long long>(b));
-    else return num(b);
+    if constexpr (std::is_integral_v<T>)
+      return std::to_string(static_cast<long long>(b));
+    else
+      return num(b);
   };
   const bool has_lo = std::isfinite(r.lo), has_hi = std::isfinite(r.hi);
   if (!has_lo && !has_hi) return "must be finite";
@@ -102,8 +105,7 @@ std::string range_words(const FieldRange& r) {
 }
 
 bool in_range(double v, const FieldRange& r) {
-  return std::isfinite(v) && (r.lo_included ? v >= r.lo : v > r.lo) &&
-         (r.hi_included ? v <= r.hi : v < r.hi);
+  return std::isfinite(v) && (r.lo_included ? v >= r.lo : v > r.lo) && (r.hi_included ? v <= r.hi : v < r.hi);
 }
 }  // namespace
 
@@ -124,8 +126,8 @@ bool DropletParams::IsValid(std::string* why) const {
   // The limits that join fields.
   // Names both nu and dt, since either may be the one the user changed.
   if (viscosity_step == ViscosityStep::explicit_euler && viscosity * dt > 0.5)
-    return fail(why, "viscosity = " + num(viscosity) + ", dt = " + num(dt) + ": viscosity * dt = " +
-                         num(viscosity * dt) + " must be <= 0.5 for viscosity-step explicit");
+    return fail(why, "viscosity = " + num(viscosity) + ", dt = " + num(dt) +
+                         ": viscosity * dt = " + num(viscosity * dt) + " must be <= 0.5 for viscosity-step explicit");
   // Explicit integration is only stable when the stiffest oscillator is resolved in time.
   const double omega_dt = std::sqrt(std::max(ks, kc) / mass) * dt;
   if (omega_dt > 0.5)
@@ -141,11 +143,10 @@ bool DropletParams::IsValid(std::string* why) const {
   // follows); the checks above alone let a + 2 b reach 10.
   const double a = 4 * ks * dt * dt / mass, b = (4 * kd / mass + viscous_rate()) * dt;
   if (a + 2 * b >= 4)
-    return fail(
-        why, "dt = " + num(dt) +
-                 ": too large for the ring's fastest mode, 4 ks dt^2 / mass + 2 (4 kd / mass + " +
-                 "nu_rate) dt = " + num(a + 2 * b) + " must be < 4 (nu_rate = " +
-                 num(viscous_rate()) + ", the viscosity as the step applies it)");
+    return fail(why, "dt = " + num(dt) +
+                         ": too large for the ring's fastest mode, 4 ks dt^2 / mass + 2 (4 kd / mass + " +
+                         "nu_rate) dt = " + num(a + 2 * b) + " must be < 4 (nu_rate = " + num(viscous_rate()) +
+                         ", the viscosity as the step applies it)");
   return true;
 }
 
@@ -174,9 +175,9 @@ const char* to_string(ConstraintOrder order) { return detail::name_of(kConstrain
 
 std::vector<std::string> constraint_order_names() { return detail::name_list(kConstraintOrders); }
 
-constexpr detail::EnumName<ViscosityStep> kViscositySteps[] = {
-    {ViscosityStep::explicit_euler, "explicit"}, {ViscosityStep::exponential, "exponential"},
-    {ViscosityStep::implicit, "implicit"}};
+constexpr detail::EnumName<ViscosityStep> kViscositySteps[] = {{ViscosityStep::explicit_euler, "explicit"},
+                                                               {ViscosityStep::exponential, "exponential"},
+                                                               {ViscosityStep::implicit, "implicit"}};
 
 ViscosityStep parse_viscosity_step(const std::string& name) {
   return detail::parse_name(kViscositySteps, name, "viscosity-step");
@@ -184,12 +185,8 @@ ViscosityStep parse_viscosity_step(const std::string& name) {
 
 const char* to_string(ViscosityStep step) { return detail::name_of(kViscositySteps, step); }
 
-void parse_name(const std::string& name, ConstraintOrder* value) {
-  *value = parse_constraint_order(name);
-}
-void parse_name(const std::string& name, ViscosityStep* value) {
-  *value = parse_viscosity_step(name);
-}
+void parse_name(const std::string& name, ConstraintOrder* value) { *value = parse_constraint_order(name); }
+void parse_name(const std::string& name, ViscosityStep* value) { *value = parse_viscosity_step(name); }
 std::vector<std::string> value_names(ConstraintOrder) { return constraint_order_names(); }
 std::vector<std::string> value_names(ViscosityStep) { return detail::name_list(kViscositySteps); }
 

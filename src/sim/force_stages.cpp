@@ -56,8 +56,8 @@ void Simulation::accumulate_springs() {
   const lanes::scalar::SpringConstants springs = lanes::scalar::spring_constants(in);
   for (; i < n; ++i) {
     const int j = i + 1 == n ? 0 : i + 1;
-    const lanes::scalar::SpringForce s = lanes::scalar::spring_force(
-        springs, x[i], y[i], x[j], y[j], px[i], py[i], px[j], py[j]);
+    const lanes::scalar::SpringForce s =
+        lanes::scalar::spring_force(springs, x[i], y[i], x[j], y[j], px[i], py[i], px[j], py[j]);
     plus_x[i] = s.plus_x;
     plus_y[i] = s.plus_y;
     minus_x[i] = s.minus_x;
@@ -98,12 +98,9 @@ void Simulation::accumulate_pressure() {
   fy[0] = (fy[0] + first.y) + last.y;
 }
 
-void Simulation::accumulate_collisions() {
-  accumulate_collisions(state_.fx.data(), state_.fy.data(), 1);
-}
+void Simulation::accumulate_collisions() { accumulate_collisions(state_.fx.data(), state_.fy.data(), 1); }
 
-void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride,
-                                       bool recorded_added) {
+void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride, bool recorded_added) {
   const int n = state_.size();
   const double kc = params_.kc, cc = params_.cc, inv_dt = 1.0 / params_.dt;
   const double W = medium_.width;
@@ -111,13 +108,11 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
   double deepest = 0;
   // The arrays as locals: the touched set's byte stores may alias anything, and would otherwise
   // make the compiler reload every vector's data pointer after each of them.
-  const double *xs = state_.x.data(), *ys = state_.y.data(), *pxs = state_.px.data(),
-               *pys = state_.py.data();
+  const double *xs = state_.x.data(), *ys = state_.y.data(), *pxs = state_.px.data(), *pys = state_.py.data();
   const double *cxs = contact_.x.data(), *cys = contact_.y.data();
   const std::int32_t* counts = contact_.count.data();
   const GrainGrid::Disc* const contacts = contact_.discs.data();
-  const double *first_x = contact_.disc_x.data(), *first_y = contact_.disc_y.data(),
-               *first_r = contact_.disc_r.data();
+  const double *first_x = contact_.disc_x.data(), *first_y = contact_.disc_y.data(), *first_r = contact_.disc_r.data();
   const std::int32_t* first_grain = contact_.disc_grain.data();
   const std::size_t capacity = contact_.capacity;
   std::uint8_t* const touched = touched_.data();
@@ -146,10 +141,8 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
       collide(first_x[i], first_y[i], first_r[i], first_grain[i]);
     } else {
       const GrainGrid::Disc* const record = contacts + static_cast<std::size_t>(i) * capacity;
-      const auto range =
-          recorded ? GrainGrid::DiscRange{record, record + counts[i]} : grid_.discs_near(xw, y);
-      for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g)
-        collide(g->x, g->y, g->r, g->grain);
+      const auto range = recorded ? GrainGrid::DiscRange{record, record + counts[i]} : grid_.discs_near(xw, y);
+      for (const GrainGrid::Disc* g = range.begin; g != range.end; ++g) collide(g->x, g->y, g->r, g->grain);
     }
     if (!periodic) {  // solid side walls
       if (x < 0) fx[i * stride] += std::max(0.0, -kc * x - cc * vx);
@@ -176,9 +169,7 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
     for (int i = 0; i < n; ++i) {
       // Most masses touch nothing: recorded inside no disc, and within the walls.
       const double x = xs[i], y = ys[i];
-      if (same_bits(x, cxs[i]) && same_bits(y, cys[i]) && counts[i] == 0 &&
-          within_walls(x, periodic, W))
-        continue;
+      if (same_bits(x, cxs[i]) && same_bits(y, cys[i]) && counts[i] == 0 && within_walls(x, periodic, W)) continue;
       collide_mass(i);
     }
   }
@@ -193,8 +184,8 @@ void Simulation::accumulate_viscosity() {
   k.viscous = viscous_;
   k.spared_dilation = 1.0 - params_.viscosity_dilation;
   k.kick = params_.viscosity_step == ViscosityStep::implicit ? params_.dt * params_.dt / params_.mass : 0.0;
-  lanes::scalar::viscosity_k<1>(k, state_.x.data(), state_.y.data(), state_.px.data(),
-                                state_.py.data(), state_.fx.data(), state_.fy.data(), state_.size());
+  lanes::scalar::viscosity_k<1>(k, state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(),
+                                state_.fx.data(), state_.fy.data(), state_.size());
 }
 
 }  // namespace softdrop

@@ -9,8 +9,8 @@ namespace softdrop {
 void Simulation::integrate() {
   state_changed();
   const double h2m = params_.dt * params_.dt / params_.mass;
-  lanes::scalar::verlet_lanes(h2m, state_.x.data(), state_.y.data(), state_.px.data(),
-                              state_.py.data(), state_.fx.data(), state_.fy.data(), state_.size());
+  lanes::scalar::verlet_lanes(h2m, state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(),
+                              state_.fx.data(), state_.fy.data(), state_.size());
 }
 
 }  // namespace softdrop

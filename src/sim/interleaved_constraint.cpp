@@ -83,17 +83,23 @@ void sequential_rings(DropletState* const* rings, int same, int* corrections, co
     y[t] = ring->y.data();
   }
   switch (registers) {
-    case 3: passes(std::integral_constant<int, 3>{}, x, y, counts); break;
-    case 2: passes(std::integral_constant<int, 2>{}, x, y, counts); break;
-    default: passes(std::integral_constant<int, 1>{}, x, y, counts); break;
+    case 3:
+      passes(std::integral_constant<int, 3>{}, x, y, counts);
+      break;
+    case 2:
+      passes(std::integral_constant<int, 2>{}, x, y, counts);
+      break;
+    default:
+      passes(std::integral_constant<int, 1>{}, x, y, counts);
+      break;
   }
   for (int t = 0; t < same; ++t) corrections[t] = counts[t];
 }
 
 }  // namespace
 
-void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length,
-                                         double max_strain, int iterations, int* corrections) {
+void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length, double max_strain,
+                                         int iterations, int* corrections) {
   const double dmax = (1 + max_strain) * rest_length;
   const double dmin = (1 - max_strain) * rest_length;
   const int width = static_cast<int>(constraint_vector_width()), capacity = interleaved_ring_capacity();

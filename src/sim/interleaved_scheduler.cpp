@@ -26,8 +26,7 @@ namespace {
 void centres_of_four(Simulation* const* sims, int count, double* cx, double* cy) {
   int t = 0;
   for (; t + 4 <= count; t += 4) {
-    const DropletState* s[4] = {&sims[t]->state(), &sims[t + 1]->state(), &sims[t + 2]->state(),
-                                &sims[t + 3]->state()};
+    const DropletState* s[4] = {&sims[t]->state(), &sims[t + 1]->state(), &sims[t + 2]->state(), &sims[t + 3]->state()};
     const int n = s[0]->size();
     if (s[1]->size() != n || s[2]->size() != n || s[3]->size() != n) {
       for (int k = 0; k < 4; ++k) sims[t + k]->centre_of_mass(cx + t + k, cy + t + k);
@@ -46,8 +45,7 @@ void centres_of_four(Simulation* const* sims, int count, double* cx, double* cy)
 
 // Simulation::centre_of_mass of sims[0..count), `rest` a scratch of count: the lane-by-lane step's
 // where it still holds; the others' own sums (centres_of_four's when none holds).
-void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy,
-                     std::vector<int>& rest) {
+void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy, std::vector<int>& rest) {
   rest.clear();
   for (int t = 0; t < count; ++t)
     if (!LaneBlockStep::centre_of_mass(*sims[t], cx + t, cy + t)) rest.push_back(t);
@@ -58,10 +56,8 @@ void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy,
 
 void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
                      const std::function<void(std::int64_t id, RunSummary&&)>& done,
-                     const std::function<void(std::int64_t id)>& cancelled,
-                     LaneExchange* exchange) {
-  if (lanes < 1 || lanes > 64)
-    throw std::invalid_argument("lanes = " + std::to_string(lanes) + ": must be in [1, 64]");
+                     const std::function<void(std::int64_t id)>& cancelled, LaneExchange* exchange) {
+  if (lanes < 1 || lanes > 64) throw std::invalid_argument("lanes = " + std::to_string(lanes) + ": must be in [1, 64]");
   std::vector<Lane> slots(static_cast<std::size_t>(lanes));
   std::vector<DropletState*> rings;
   std::vector<int> corrections;
@@ -134,8 +130,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       for (Lane& l : slots) {
         if (!l.run) continue;
         Simulation* sim = l.run->simulation();
-        if (lane_wise &&
-            (block.empty() || LaneBlockStep::compatible(block.front()->params(), sim->params())))
+        if (lane_wise && (block.empty() || LaneBlockStep::compatible(block.front()->params(), sim->params())))
           block.push_back(sim);
         else
           alone.push_back(sim);
@@ -159,9 +154,9 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     }
     if (!rings.empty()) {
       corrections.resize(rings.size());
-      apply_length_constraint_interleaved(
-          rings.data(), static_cast<int>(rings.size()), first->rest_length(),
-          first->params().max_strain, first->params().constraint_iterations, corrections.data());
+      apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), first->rest_length(),
+                                          first->params().max_strain, first->params().constraint_iterations,
+                                          corrections.data());
     }
     // Blocks of nearly equal size: 25 droplets go as 13 and 12, not 24 and 1.
     const std::size_t blocks = (block.size() + lanes::kMaxLanes - 1) / lanes::kMaxLanes;

@@ -71,8 +71,8 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   for (int t = 0; t < L; ++t) {
     const int d = std::min(t, count - 1);
     const Simulation& sim = *sims[d];
-    stale[t] = previous_id == 0 || sim.block_id_ != previous_id || sim.block_lane_ != d ||
-               (t >= count && !same_padding);
+    stale[t] =
+        previous_id == 0 || sim.block_id_ != previous_id || sim.block_lane_ != d || (t >= count && !same_padding);
     stale_lanes += stale[t];
   }
   if (stale_lanes > L / 4) {
@@ -86,16 +86,14 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   const lanes::StepConstants k = lanes::step_constants(p);
   double area[lanes::kMaxLanes];
   thread_local std::vector<double> no_force;
-  const double dmax = (1 + p.max_strain) * first.rest_length_,
-               dmin = (1 - p.max_strain) * first.rest_length_;
+  const double dmax = (1 + p.max_strain) * first.rest_length_, dmin = (1 - p.max_strain) * first.rest_length_;
   int corrections[lanes::kMaxLanes];
   // The stages of kStepStages up to the constraint; the contact limit is each droplet's own
   // (run_interleaved runs it after this).
   auto run = [&](StepStage stage) {
     switch (stage) {
       case StepStage::gravity:  // with the springs and the pressure: one pass over the block
-        lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n,
-                                      registers);
+        lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n, registers);
         return;
       case StepStage::springs:
       case StepStage::pressure:
@@ -103,8 +101,7 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
       case StepStage::collisions: {
         // First the forces the contact limit recorded, for every lane whose droplet's records
         // are current (-0, which changes no double, for the others), then each droplet's own.
-        if (no_force.size() < static_cast<std::size_t>(n))
-          no_force.assign(static_cast<std::size_t>(n), -0.0);
+        if (no_force.size() < static_cast<std::size_t>(n)) no_force.assign(static_cast<std::size_t>(n), -0.0);
         const double* recorded[2][lanes::kMaxLanes];
         for (int t = 0; t < L; ++t) {
           const Simulation& sim = *sims[std::min(t, count - 1)];
@@ -120,19 +117,18 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
         return;
       }
       case StepStage::viscosity:
-        if (p.viscosity > 0)
-          lanes::viscosity(k, block[0], block[1], block[2], block[3], FX, FY, n, registers);
+        if (p.viscosity > 0) lanes::viscosity(k, block[0], block[1], block[2], block[3], FX, FY, n, registers);
         return;
       case StepStage::integrate:
         lanes::integrate(k.h2m, block[0], block[1], block[2], block[3], FX, FY, n, registers);
         return;
       case StepStage::constraint:
         if (p.constraint_order == ConstraintOrder::sequential)
-          lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations,
-                                      dmin, dmax, corrections);
+          lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax,
+                                      corrections);
         else
-          lanes::constrain_red_black(block[0], block[1], n, registers, p.constraint_iterations,
-                                     dmin, dmax, corrections);
+          lanes::constrain_red_black(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax,
+                                     corrections);
         return;
       case StepStage::contact_limit:
         throw std::logic_error("LaneBlockStep: the contact limit is each droplet's own");
@@ -162,9 +158,7 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   memory.masses = n;
 }
 #else
-void LaneBlockStep::step(Simulation* const*, int) {
-  throw std::logic_error("lane-by-lane step without AVX");
-}
+void LaneBlockStep::step(Simulation* const*, int) { throw std::logic_error("lane-by-lane step without AVX"); }
 #endif
 
 }  // namespace softdrop

@@ -23,10 +23,17 @@ constexpr int kMaxLanes = 8 * kMaxLaneRegisters;
 template <class F>
 void with_registers(int registers, const F& f) {
   switch (registers) {
-    case 3: f(std::integral_constant<int, 3>{}); break;
-    case 2: f(std::integral_constant<int, 2>{}); break;
-    case 1: f(std::integral_constant<int, 1>{}); break;
-    default: throw std::invalid_argument("lane registers = " + std::to_string(registers) + ": must be 1, 2 or 3");
+    case 3:
+      f(std::integral_constant<int, 3>{});
+      break;
+    case 2:
+      f(std::integral_constant<int, 2>{});
+      break;
+    case 1:
+      f(std::integral_constant<int, 1>{});
+      break;
+    default:
+      throw std::invalid_argument("lane registers = " + std::to_string(registers) + ": must be 1, 2 or 3");
   }
 }
 
@@ -48,17 +55,17 @@ void constrain_red_black(double* X, double* Y, int n, int registers, int iterati
 
 /// The constants of Simulation's force and integration stages, as those stages compute them.
 struct StepConstants {
-  double weight = 0;        ///< m g_y, each mass's y force before the others
-  double ks = 0, kd = 0;    ///< spring stiffness and damping
-  double inv_dt = 0;        ///< 1 / dt
-  double rest_length = 0;   ///< d0
-  double half_nrt = 0;      ///< 0.5 nRT (the pressure is 0.5 nRT / area on each edge end)
-  double viscous = 0;       ///< m nu; 0: no viscosity
+  double weight = 0;           ///< m g_y, each mass's y force before the others
+  double ks = 0, kd = 0;       ///< spring stiffness and damping
+  double inv_dt = 0;           ///< 1 / dt
+  double rest_length = 0;      ///< d0
+  double half_nrt = 0;         ///< 0.5 nRT (the pressure is 0.5 nRT / area on each edge end)
+  double viscous = 0;          ///< m nu; 0: no viscosity
   double spared_dilation = 0;  ///< 1 - viscosity_dilation: the share of uniform dilation not damped
   /// dt^2 / m with the implicit viscosity step, whose damped velocity is the one after this step's
   /// other forces (FX, FY at the viscosity stage: x - px + kick F); 0 for the other steps.
   double kick = 0;
-  double h2m = 0;           ///< dt^2 / m (position Verlet)
+  double h2m = 0;  ///< dt^2 / m (position Verlet)
 };
 
 /// The constants of droplets of parameters p, computed as the one-ring stages compute them.
@@ -75,8 +82,8 @@ void forces_before_contacts(const StepConstants& k, const double* X, const doubl
 void ring_spring_forces(const StepConstants& k, const double* x, const double* y, const double* px, const double* py,
                         int n, double* plus_x, double* plus_y, double* minus_x, double* minus_y);
 /// Simulation::accumulate_viscosity on every lane (adds to FX, FY).
-void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY,
-               double* FX, double* FY, int n, int registers);
+void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY, double* FX,
+               double* FY, int n, int registers);
 /// Simulation::centre_of_mass of every lane: cx[t], cy[t] for t < 8 registers.
 void centres(const double* X, const double* Y, int n, int registers, double* cx, double* cy);
 /// Simulation::integrate (position Verlet) on every lane.

@@ -39,9 +39,12 @@ inline V negate(V a) { return -a; }
 /// the ordered ones (false then, as <=, >= and >).
 template <int P>
 inline M compare(V a, V b) {
-  if constexpr (P == _CMP_NEQ_UQ) return a != b;
-  else if constexpr (P == _CMP_LE_OS) return a <= b;
-  else if constexpr (P == _CMP_GE_OS) return a >= b;
+  if constexpr (P == _CMP_NEQ_UQ)
+    return a != b;
+  else if constexpr (P == _CMP_LE_OS)
+    return a <= b;
+  else if constexpr (P == _CMP_GE_OS)
+    return a >= b;
   else {
     static_assert(P == _CMP_GT_OS || P == _CMP_GT_OQ, "no scalar compare for this predicate");
     return a > b;

@@ -38,9 +38,12 @@ inline V sqrt(V a) { return _mm_sqrt_pd(a); }
 /// Lanes where `a P b`, P one of the _CMP_ predicates the kernels use (SSE2 has one compare each).
 template <int P>
 inline M compare(V a, V b) {
-  if constexpr (P == _CMP_LE_OS) return _mm_cmple_pd(a, b);
-  else if constexpr (P == _CMP_GE_OS) return _mm_cmpge_pd(a, b);
-  else if constexpr (P == _CMP_GT_OS) return _mm_cmpgt_pd(a, b);
+  if constexpr (P == _CMP_LE_OS)
+    return _mm_cmple_pd(a, b);
+  else if constexpr (P == _CMP_GE_OS)
+    return _mm_cmpge_pd(a, b);
+  else if constexpr (P == _CMP_GT_OS)
+    return _mm_cmpgt_pd(a, b);
   else {
     static_assert(P == _CMP_NEQ_UQ, "no SSE2 compare for this predicate");
     return _mm_cmpneq_pd(a, b);
@@ -255,10 +258,10 @@ SOFTDROP_AVX512 inline void store_minus_ones(std::int32_t* p, unsigned lanes) {
   _mm256_storeu_si256(reinterpret_cast<__m256i*>(p), int32_mask(lanes));
 }
 /// out[b] = (bit b of `lanes`) ? a[b] : other for b < 8.
-SOFTDROP_AVX512 inline void select_lanes(unsigned lanes, const std::int32_t* a, std::int32_t other,
-                                         std::int32_t* out) {
+SOFTDROP_AVX512 inline void select_lanes(unsigned lanes, const std::int32_t* a, std::int32_t other, std::int32_t* out) {
   const __m256i in = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a));
-  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), _mm256_blendv_epi8(_mm256_set1_epi32(other), in, int32_mask(lanes)));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out),
+                      _mm256_blendv_epi8(_mm256_set1_epi32(other), in, int32_mask(lanes)));
 }
 SOFTDROP_AVX512 inline M mask_of(unsigned lanes) { return static_cast<M>(lanes); }
 /// a > b ? a : b lane by lane (maxpd), which is std::max(b, a) to the bit, NaN and signed zeros

@@ -86,41 +86,57 @@ using avx::transpose_rings;
 }  // namespace avx512
 
 void copy_in(double* const* rings, double* X, int n, int registers) {
-  if (avx512_in_use()) avx512::copy_in(rings, X, n, registers);
-  else avx::copy_in(rings, X, n, registers);
+  if (avx512_in_use())
+    avx512::copy_in(rings, X, n, registers);
+  else
+    avx::copy_in(rings, X, n, registers);
 }
 void add_in(const double* const* rings, double* X, int n, int registers) {
-  if (avx512_in_use()) avx512::add_in(rings, X, n, registers);
-  else avx::add_in(rings, X, n, registers);
+  if (avx512_in_use())
+    avx512::add_in(rings, X, n, registers);
+  else
+    avx::add_in(rings, X, n, registers);
 }
 void copy_out(double* const* rings, const double* X, int n, int registers, double* const* previous) {
-  if (avx512_in_use()) avx512::copy_out(rings, X, n, registers, previous);
-  else avx::copy_out(rings, X, n, registers, previous);
+  if (avx512_in_use())
+    avx512::copy_out(rings, X, n, registers, previous);
+  else
+    avx::copy_out(rings, X, n, registers, previous);
 }
 void constrain_sequential(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                           int* counts) {
-  if (avx512_in_use()) avx512::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
-  else avx::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
+  if (avx512_in_use())
+    avx512::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
+  else
+    avx::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
 }
 void constrain_red_black(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                          int* counts) {
-  if (avx512_in_use()) avx512::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
-  else avx::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
+  if (avx512_in_use())
+    avx512::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
+  else
+    avx::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
 }
 void forces_before_contacts(const StepConstants& k, const double* X, const double* Y, const double* PX,
                             const double* PY, double* FX, double* FY, double* area, int n, int registers) {
-  if (avx512_in_use()) avx512::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
-  else avx::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
+  if (avx512_in_use())
+    avx512::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
+  else
+    avx::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
 }
 void ring_spring_forces(const StepConstants& k, const double* x, const double* y, const double* px, const double* py,
                         int n, double* plus_x, double* plus_y, double* minus_x, double* minus_y) {
-  if (avx512_in_use()) avx512::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
-  else avx::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+  if (avx512_in_use())
+    avx512::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+  else
+    avx::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
 }
-void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY,
-               double* FX, double* FY, int n, int registers) {
-  if (avx512_in_use()) avx512::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
-  else avx::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
+void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY, double* FX,
+               double* FY, int n, int registers) {
+  if (avx512_in_use())
+    avx512::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
+  else
+    avx::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
 }
 void centres(const double* X, const double* Y, int n, int registers, double* cx, double* cy) {
   if (avx512_in_use())
@@ -130,8 +146,10 @@ void centres(const double* X, const double* Y, int n, int registers, double* cx,
 }
 void integrate(double h2m, double* X, double* Y, double* PX, double* PY, const double* FX, const double* FY, int n,
                int registers) {
-  if (avx512_in_use()) avx512::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
-  else avx::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
+  if (avx512_in_use())
+    avx512::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
+  else
+    avx::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
 }
 #endif
 
@@ -146,7 +164,7 @@ StepConstants step_constants(const DropletParams& p) {
   k.viscous = p.mass * p.viscous_rate();
   k.spared_dilation = 1.0 - p.viscosity_dilation;
   k.kick = p.viscosity_step == ViscosityStep::implicit ? p.dt * p.dt / p.mass : 0.0;
-  k.h2m = p.dt * p.dt / p.mass;     // integrate
+  k.h2m = p.dt * p.dt / p.mass;  // integrate
   return k;
 }
 

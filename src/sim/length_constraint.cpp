@@ -106,8 +106,10 @@ int constrain_disjoint_pairs(double* x, double* y, int count, double dmin, doubl
 #if defined(SOFTDROP_AVX_DISPATCH)
   int done = 0;
   if (width >= 8) changed += eight_lanes::constrain_disjoint(x, y, count, dmin, dmax, &done), k += done;
-  if (width >= 4) changed += four_lanes::constrain_disjoint(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &done), k += done;
-  if (width >= 2) changed += two_lanes::constrain_disjoint(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &done), k += done;
+  if (width >= 4)
+    changed += four_lanes::constrain_disjoint(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &done), k += done;
+  if (width >= 2)
+    changed += two_lanes::constrain_disjoint(x + 2 * k, y + 2 * k, count - k, dmin, dmax, &done), k += done;
 #endif
   for (; k < count; ++k) changed += constrain(x, y, 2 * k, 2 * k + 1, dmin, dmax);
   return changed;
@@ -127,8 +129,7 @@ int red_black_pass(double* x, double* y, int n, double dmin, double dmax) {
 // Link i of a sequential pass: spring (i, i+1) (or (n-1, 0)), whose first end (xi, yi) is held in
 // registers as the previous link left it. Stores mass i, leaves mass i+1 in (xi, yi), and returns 1
 // if it moved the ends.
-inline int sequential_link(double* x, double* y, int i, int n, double* xi, double* yi, double dmin,
-                           double dmax) {
+inline int sequential_link(double* x, double* y, int i, int n, double* xi, double* yi, double dmin, double dmax) {
   // The closing spring's far end is mass 0, as the first spring left it.
   const int j = i + 1 == n ? 0 : i + 1;
   double xj = x[j], yj = y[j];

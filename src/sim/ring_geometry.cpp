@@ -11,7 +11,6 @@ double cross(double ax, double ay, double bx, double by, double cx, double cy) {
 }
 }  // namespace
 
-
 double ring_area(const DropletState& s) {
   const int n = s.size();
   double twice = 0;
@@ -45,21 +44,26 @@ SOFTDROP_AVX bool crosses_any_of_four(double ax, double ay, double bx, double by
   // Lanes where (d > 0) != (e > 0), d != 0 and e != 0 (NaN: not > 0, and not == 0).
   const auto opposite = [&](__m256d d, __m256d e) SOFTDROP_AVX {
     const __m256d sides = _mm256_xor_pd(_mm256_cmp_pd(d, zero, _CMP_GT_OQ), _mm256_cmp_pd(e, zero, _CMP_GT_OQ));
-    return _mm256_and_pd(sides, _mm256_and_pd(_mm256_cmp_pd(d, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(e, zero, _CMP_NEQ_UQ)));
+    return _mm256_and_pd(sides,
+                         _mm256_and_pd(_mm256_cmp_pd(d, zero, _CMP_NEQ_UQ), _mm256_cmp_pd(e, zero, _CMP_NEQ_UQ)));
   };
   int j = first;
   for (; j + 4 <= last; j += 4) {
     const __m256d cx = _mm256_loadu_pd(x + j), cy = _mm256_loadu_pd(y + j);
     const __m256d dx = _mm256_loadu_pd(x + j + 1), dy = _mm256_loadu_pd(y + j + 1);
     // cross(a, b, c) and cross(a, b, d)
-    const __m256d d1 = _mm256_sub_pd(_mm256_mul_pd(ux, _mm256_sub_pd(cy, Ay)), _mm256_mul_pd(uy, _mm256_sub_pd(cx, Ax)));
-    const __m256d d2 = _mm256_sub_pd(_mm256_mul_pd(ux, _mm256_sub_pd(dy, Ay)), _mm256_mul_pd(uy, _mm256_sub_pd(dx, Ax)));
+    const __m256d d1 =
+        _mm256_sub_pd(_mm256_mul_pd(ux, _mm256_sub_pd(cy, Ay)), _mm256_mul_pd(uy, _mm256_sub_pd(cx, Ax)));
+    const __m256d d2 =
+        _mm256_sub_pd(_mm256_mul_pd(ux, _mm256_sub_pd(dy, Ay)), _mm256_mul_pd(uy, _mm256_sub_pd(dx, Ax)));
     const __m256d across = opposite(d1, d2);
     if (_mm256_movemask_pd(across) == 0) continue;
     // cross(c, d, a) and cross(c, d, b)
     const __m256d vx = _mm256_sub_pd(dx, cx), vy = _mm256_sub_pd(dy, cy);
-    const __m256d d3 = _mm256_sub_pd(_mm256_mul_pd(vx, _mm256_sub_pd(Ay, cy)), _mm256_mul_pd(vy, _mm256_sub_pd(Ax, cx)));
-    const __m256d d4 = _mm256_sub_pd(_mm256_mul_pd(vx, _mm256_sub_pd(By, cy)), _mm256_mul_pd(vy, _mm256_sub_pd(Bx, cx)));
+    const __m256d d3 =
+        _mm256_sub_pd(_mm256_mul_pd(vx, _mm256_sub_pd(Ay, cy)), _mm256_mul_pd(vy, _mm256_sub_pd(Ax, cx)));
+    const __m256d d4 =
+        _mm256_sub_pd(_mm256_mul_pd(vx, _mm256_sub_pd(By, cy)), _mm256_mul_pd(vy, _mm256_sub_pd(Bx, cx)));
     if (_mm256_movemask_pd(_mm256_and_pd(across, opposite(d3, d4))) != 0) return true;
   }
   *done = j;
@@ -93,8 +97,7 @@ bool ring_contains(const DropletState& s, double px, double py) {
   const int n = s.size();
   bool inside = false;
   for (int i = 0, j = n - 1; i < n; j = i++) {
-    if ((s.y[i] > py) != (s.y[j] > py) &&
-        px < (s.x[j] - s.x[i]) * (py - s.y[i]) / (s.y[j] - s.y[i]) + s.x[i])
+    if ((s.y[i] > py) != (s.y[j] > py) && px < (s.x[j] - s.x[i]) * (py - s.y[i]) / (s.y[j] - s.y[i]) + s.x[i])
       inside = !inside;
   }
   return inside;

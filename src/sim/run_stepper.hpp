@@ -33,9 +33,7 @@ class RunStepper {
     s_.start_y = placed ? sim->start_y_ : cy_;
     sim->area_ = ring_area(sim->state_);
     window_ = std::max<std::int64_t>(1, std::llround(options.stuck_window / dt_));
-    rest_window_ = options.rest_window > 0
-                       ? std::max<std::int64_t>(1, std::llround(options.rest_window / dt_))
-                       : 0;
+    rest_window_ = options.rest_window > 0 ? std::max<std::int64_t>(1, std::llround(options.rest_window / dt_)) : 0;
     for (double t : options.snapshot_times) snapshot_steps_.push_back(std::llround(t / dt_));
     std::sort(snapshot_steps_.begin(), snapshot_steps_.end());
     record(0);
@@ -89,15 +87,14 @@ class RunStepper {
         return finish(Outcome::diverged, "ring self-intersects at step " + std::to_string(k), k);
       if (sim_->any_grain_inside_ring()) {
         s_.grain_inside_ring = true;
-        return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k),
-                      k);
+        return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k), k);
       }
     }
     if (k % window_ == 0) {
       if (checkpoint_y_ - cy_ < o_.stuck_distance) {
         std::ostringstream r;
-        r << "centre of mass moved down " << checkpoint_y_ - cy_ << " < " << o_.stuck_distance
-          << " in the last " << o_.stuck_window << " time units, at y = " << cy_;
+        r << "centre of mass moved down " << checkpoint_y_ - cy_ << " < " << o_.stuck_distance << " in the last "
+          << o_.stuck_window << " time units, at y = " << cy_;
         return finish(Outcome::stuck, r.str(), k);
       }
       checkpoint_y_ = cy_;
@@ -109,16 +106,15 @@ class RunStepper {
       if (k % rest_window_ == 0) {
         if (rest_travel_ < o_.rest_distance) {
           std::ostringstream r;
-          r << "at rest: centre of mass travelled " << rest_travel_ << " < " << o_.rest_distance
-            << " in the last " << o_.rest_window << " time units, at y = " << cy_;
+          r << "at rest: centre of mass travelled " << rest_travel_ << " < " << o_.rest_distance << " in the last "
+            << o_.rest_window << " time units, at y = " << cy_;
           return finish(Outcome::stuck, r.str(), k);
         }
         rest_travel_ = 0;
       }
     }
     if (k == o_.max_steps)
-      finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent",
-             k);
+      finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent", k);
   }
 
   RunSummary take() { return std::move(s_); }
@@ -147,8 +143,7 @@ class RunStepper {
     s_.steps = k;
     for (std::size_t g = 0; g + 1 < sim_->touched_.size(); ++g)
       if (sim_->touched_[g]) s_.touched.push_back(static_cast<std::int32_t>(g));
-    if (o_.path_interval > 0 &&
-        (s_.path_t.empty() || s_.path_t.back() != static_cast<double>(k) * dt_)) {
+    if (o_.path_interval > 0 && (s_.path_t.empty() || s_.path_t.back() != static_cast<double>(k) * dt_)) {
       s_.path_t.push_back(static_cast<double>(k) * dt_);
       s_.path_x.push_back(cx_);
       s_.path_y.push_back(cy_);

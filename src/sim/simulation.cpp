@@ -19,20 +19,19 @@
 
 namespace softdrop {
 
-constexpr detail::EnumName<Outcome> kOutcomes[] = {
-    {Outcome::passed, "passed"}, {Outcome::stuck, "stuck"}, {Outcome::timeout, "timeout"}, {Outcome::diverged, "diverged"}};
+constexpr detail::EnumName<Outcome> kOutcomes[] = {{Outcome::passed, "passed"},
+                                                   {Outcome::stuck, "stuck"},
+                                                   {Outcome::timeout, "timeout"},
+                                                   {Outcome::diverged, "diverged"}};
 
 const char* to_string(Outcome outcome) { return detail::name_of(kOutcomes, outcome); }
 
-Outcome parse_outcome(const std::string& name) {
-  return detail::parse_name(kOutcomes, name, "outcome");
-}
+Outcome parse_outcome(const std::string& name) { return detail::parse_name(kOutcomes, name, "outcome"); }
 
 bool RunOptions::IsValid(std::string* why) const {
   using detail::fail;
   using detail::num;
-  if (max_steps <= 0)
-    return fail(why, "max-steps = " + std::to_string(max_steps) + ": must be > 0");
+  if (max_steps <= 0) return fail(why, "max-steps = " + std::to_string(max_steps) + ": must be > 0");
   if (!std::isfinite(stuck_window) || stuck_window <= 0)
     return fail(why, "stuck-window = " + num(stuck_window) + ": must be > 0");
   if (!std::isfinite(stuck_distance) || stuck_distance < 0)
@@ -41,15 +40,11 @@ bool RunOptions::IsValid(std::string* why) const {
     return fail(why, "rest-window = " + num(rest_window) + ": must be >= 0 (0: no rest test)");
   if (!std::isfinite(rest_distance) || rest_distance < 0)
     return fail(why, "rest-distance = " + num(rest_distance) + ": must be >= 0");
-  if (check_interval <= 0)
-    return fail(why, "check-interval = " + std::to_string(check_interval) + ": must be > 0");
-  if (path_interval < 0)
-    return fail(why, "path-interval = " + std::to_string(path_interval) + ": must be >= 0");
-  if (area_interval < 0)
-    return fail(why, "trace-interval = " + std::to_string(area_interval) + ": must be >= 0");
+  if (check_interval <= 0) return fail(why, "check-interval = " + std::to_string(check_interval) + ": must be > 0");
+  if (path_interval < 0) return fail(why, "path-interval = " + std::to_string(path_interval) + ": must be >= 0");
+  if (area_interval < 0) return fail(why, "trace-interval = " + std::to_string(area_interval) + ": must be >= 0");
   for (double t : snapshot_times)
-    if (!std::isfinite(t) || t < 0)
-      return fail(why, "snapshot-times: " + num(t) + " must be finite and >= 0");
+    if (!std::isfinite(t) || t < 0) return fail(why, "snapshot-times: " + num(t) + " must be finite and >= 0");
   return true;
 }
 
@@ -73,10 +68,9 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
   const double longest_edge = (1 + params.max_strain) * rest_length_;
   for (std::size_t i = 0; i < medium.grains.size(); ++i)
     if (medium.grains[i].r < longest_edge)
-      throw std::invalid_argument(
-          "grain " + std::to_string(i) + " radius " + detail::num(medium.grains[i].r) +
-          " is smaller than the droplet's longest edge " + detail::num(longest_edge) +
-          ": use more masses, a smaller radius or larger grains");
+      throw std::invalid_argument("grain " + std::to_string(i) + " radius " + detail::num(medium.grains[i].r) +
+                                  " is smaller than the droplet's longest edge " + detail::num(longest_edge) +
+                                  ": use more masses, a smaller radius or larger grains");
   touched_.assign(medium.grains.size() + 1, 0);  // the last entry: no grain (contact_.touch's)
   double top = medium.height;
   for (const Grain& g : medium.grains) top = std::max(top, g.y + g.r);
@@ -91,8 +85,7 @@ void Simulation::place(double cx, double cy) {
   state_changed();
   place_droplet(params_, cx, cy, &state_);
   // Start at rest at t = 0: x(-dt) = x(0) + g dt^2 / 2 makes Verlet exact for free fall.
-  for (int i = 0; i < state_.size(); ++i)
-    state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
+  for (int i = 0; i < state_.size(); ++i) state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
   std::fill(touched_.begin(), touched_.end(), 0);
   spring_force_.assign(4 * state_.x.size(), 0.0);  // so that step() allocates nothing
   // A point is rarely inside more than a few discs; a mass inside more than this is looked up
@@ -119,16 +112,24 @@ const char* to_string(StepStage stage) {
 
 template <StepStage S>
 void Simulation::run_known_stage() {
-  if constexpr (S == StepStage::gravity) accumulate_gravity();
-  else if constexpr (S == StepStage::springs) accumulate_springs();
-  else if constexpr (S == StepStage::pressure) accumulate_pressure();
-  else if constexpr (S == StepStage::collisions) accumulate_collisions();
+  if constexpr (S == StepStage::gravity)
+    accumulate_gravity();
+  else if constexpr (S == StepStage::springs)
+    accumulate_springs();
+  else if constexpr (S == StepStage::pressure)
+    accumulate_pressure();
+  else if constexpr (S == StepStage::collisions)
+    accumulate_collisions();
   else if constexpr (S == StepStage::viscosity) {
     if (params_.viscosity > 0) accumulate_viscosity();
-  } else if constexpr (S == StepStage::integrate) integrate();
-  else if constexpr (S == StepStage::constraint) apply_constraint();
-  else if constexpr (S == StepStage::contact_limit) apply_contact_limit();
-  else static_assert(S != S, "a stage without code");
+  } else if constexpr (S == StepStage::integrate)
+    integrate();
+  else if constexpr (S == StepStage::constraint)
+    apply_constraint();
+  else if constexpr (S == StepStage::contact_limit)
+    apply_contact_limit();
+  else
+    static_assert(S != S, "a stage without code");
 }
 
 void Simulation::run_stage(StepStage stage) {
@@ -138,14 +139,13 @@ void Simulation::run_stage(StepStage stage) {
 }
 
 void Simulation::compute_forces() {
-  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::gravity,
-                  StepStage::viscosity);
+  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::gravity, StepStage::viscosity);
 }
 
 void Simulation::apply_constraint() {
   state_changed();
-  softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain,
-                                    params_.constraint_iterations, params_.constraint_order);
+  softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain, params_.constraint_iterations,
+                                    params_.constraint_order);
 }
 
 bool Simulation::step() {
@@ -192,14 +192,13 @@ RunSummary Simulation::drive(const RunOptions& options, const double* placed) {
 }
 
 bool Simulation::before_constraint() {
-  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::gravity,
-                  StepStage::integrate);
+  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::gravity, StepStage::integrate);
   return params_.constraint_order == ConstraintOrder::sequential;
 }
 
 bool Simulation::after_constraint() {
-  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); },
-                  StepStage::contact_limit, StepStage::contact_limit);
+  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::contact_limit,
+                  StepStage::contact_limit);
   return valid_after_step();
 }
 
@@ -224,8 +223,7 @@ std::uint64_t Simulation::state_hash() const {
   return h;
 }
 
-double polyline_tortuosity(const std::vector<double>& xs, const std::vector<double>& ys,
-                           double top) {
+double polyline_tortuosity(const std::vector<double>& xs, const std::vector<double>& ys, double top) {
   double length = 0;
   bool entered = false;
   for (std::size_t k = 1; k < xs.size(); ++k) {

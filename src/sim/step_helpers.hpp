@@ -7,26 +7,18 @@
 namespace softdrop::step_detail {
 
 // Equal to the bit (unlike ==, which does not tell -0 from +0, and NaN from itself).
-inline bool same_bits(double a, double b) {
-  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
-}
+inline bool same_bits(double a, double b) { return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b); }
 
 // x - W floor(x / W), the position of x in [0, W). Inside the box (0 < x < 0.999999 W) that
 // expression is x exactly (the quotient rounds below 1, so the floor is 0), so the division is
 // skipped there: same bits, a division fewer per mass in the common case.
-inline double wrap_periodic(double x, double W) {
-  return x > 0 && x < 0.999999 * W ? x : x - W * std::floor(x / W);
-}
+inline double wrap_periodic(double x, double W) { return x > 0 && x < 0.999999 * W ? x : x - W * std::floor(x / W); }
 
 // A mass at x needs no wall force: the medium is periodic, or x is within [0, W] (NaN included, as
 // the walls' tests `x < 0` and `x > W` are false for it).
-inline bool within_walls(double x, bool periodic, double W) {
-  return periodic || !(x < 0 || x > W);
-}
+inline bool within_walls(double x, bool periodic, double W) { return periodic || !(x < 0 || x > W); }
 
 // Length of the segment from (ax, ay) to (bx, by).
-inline double distance(double ax, double ay, double bx, double by) {
-  return std::hypot(bx - ax, by - ay);
-}
+inline double distance(double ax, double ay, double bx, double by) { return std::hypot(bx - ax, by - ay); }
 
 }  // namespace softdrop::step_detail

@@ -8,15 +8,13 @@
 
 namespace softdrop::detail {
 
-std::vector<GenerationRecord> read_generations(SQLite::Database& db, std::int64_t run_id,
-                                               int version) {
+std::vector<GenerationRecord> read_generations(SQLite::Database& db, std::int64_t run_id, int version) {
   std::vector<GenerationRecord> out;
-  SQLite::Statement q(
-      db, std::string("SELECT generation, kind, accepted_candidate, best_t, touched, seconds, "
-                      "finished, ") +
-              (version >= 3 ? "state" : "NULL") +
-              (version >= 7 ? ", parent_t, parent_passed" : ", NULL, NULL") +
-              " FROM generations WHERE run_id = ? ORDER BY generation");
+  SQLite::Statement q(db, std::string("SELECT generation, kind, accepted_candidate, best_t, touched, seconds, "
+                                      "finished, ") +
+                              (version >= 3 ? "state" : "NULL") +
+                              (version >= 7 ? ", parent_t, parent_passed" : ", NULL, NULL") +
+                              " FROM generations WHERE run_id = ? ORDER BY generation");
   q.bind(1, run_id);
   while (q.executeStep()) {
     GenerationRecord g;
@@ -31,17 +29,15 @@ std::vector<GenerationRecord> read_generations(SQLite::Database& db, std::int64_
     if (!q.getColumn(8).isNull()) g.parent_t = as_real(q.getColumn(8));
     if (!q.getColumn(9).isNull()) g.parent_passed = as_int(q.getColumn(9));
     if (g.generation != static_cast<std::int64_t>(out.size()))
-      throw std::runtime_error("run " + std::to_string(run_id) + ": generation " +
-                               std::to_string(out.size()) +
+      throw std::runtime_error("run " + std::to_string(run_id) + ": generation " + std::to_string(out.size()) +
                                " is missing (damaged or edited file?)");
     out.push_back(std::move(g));
   }
-  SQLite::Statement c(
-      db, std::string("SELECT generation, candidate, moved_grain, moved, outcome, reason, "
-                      "tortuosity, steps, touched, seconds, ") +
-              (version >= 7 ? "droplets, passed" : "NULL, NULL") +
-              (version >= 8 ? ", kind" : ", NULL") +
-              " FROM candidates WHERE run_id = ? ORDER BY generation, candidate");
+  SQLite::Statement c(db, std::string("SELECT generation, candidate, moved_grain, moved, outcome, reason, "
+                                      "tortuosity, steps, touched, seconds, ") +
+                              (version >= 7 ? "droplets, passed" : "NULL, NULL") +
+                              (version >= 8 ? ", kind" : ", NULL") +
+                              " FROM candidates WHERE run_id = ? ORDER BY generation, candidate");
   c.bind(1, run_id);
   std::size_t k = 0;
   while (c.executeStep()) {
@@ -72,8 +68,7 @@ std::vector<GenerationRecord> read_generations(SQLite::Database& db, std::int64_
   }
   for (const GenerationRecord& g : out)
     if (g.candidates.empty())
-      throw std::runtime_error("run " + std::to_string(run_id) + ": generation " +
-                               std::to_string(g.generation) +
+      throw std::runtime_error("run " + std::to_string(run_id) + ": generation " + std::to_string(g.generation) +
                                " has no candidates (damaged or edited file?)");
   return out;
 }

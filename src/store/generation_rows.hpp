@@ -14,7 +14,6 @@ namespace softdrop::detail {
 /// `version` is the file's schema version (older files lack later columns). Throws
 /// std::runtime_error for a missing generation, a candidate of none, or a generation without
 /// candidates (a damaged or edited file).
-std::vector<GenerationRecord> read_generations(SQLite::Database& db, std::int64_t run_id,
-                                               int version);
+std::vector<GenerationRecord> read_generations(SQLite::Database& db, std::int64_t run_id, int version);
 
 }  // namespace softdrop::detail

@@ -13,11 +13,11 @@ namespace {
 // (1), the strategy (paper) and its options, no rest test (0) for the rest test's keys, a sweep's
 // media from the calibration stream (the only one there was).
 bool optional_key(const std::string& key) {
-  return key == "constraint-order" || key == "rest-window" || key == "rest-distance" ||
-         key == "strategy" || key == "target-success" || key == "history-length" ||
-         key == "temperature" || key == "half-life" || key == "sigma" || key == "relocate-every" ||
-         key == "viscosity-dilation" || key == "viscosity-step" || key == "objective" || key == "starts" ||
-         key == "quantile" || key == "se-factor" || key == "margin" || key == "media-stream";
+  return key == "constraint-order" || key == "rest-window" || key == "rest-distance" || key == "strategy" ||
+         key == "target-success" || key == "history-length" || key == "temperature" || key == "half-life" ||
+         key == "sigma" || key == "relocate-every" || key == "viscosity-dilation" || key == "viscosity-step" ||
+         key == "objective" || key == "starts" || key == "quantile" || key == "se-factor" || key == "margin" ||
+         key == "media-stream";
 }
 // The stored enums go through the same names as the command line (their to_string and parse), so
 // an unknown stored name is refused in the parse's words instead of read as the first value.
@@ -133,15 +133,22 @@ struct Reader {
     }
     const auto& v = j.at(key);
     bool ok;
-    if constexpr (std::is_same_v<T, bool>) ok = v.is_boolean();
-    else if constexpr (std::is_same_v<T, std::string> || std::is_enum_v<T>) ok = v.is_string();
-    else if constexpr (std::is_same_v<T, std::vector<double>>) ok = v.is_array();
-    else if constexpr (std::is_integral_v<T>) ok = v.is_number_integer() || v.is_number_unsigned();
-    else ok = v.is_number();
+    if constexpr (std::is_same_v<T, bool>)
+      ok = v.is_boolean();
+    else if constexpr (std::is_same_v<T, std::string> || std::is_enum_v<T>)
+      ok = v.is_string();
+    else if constexpr (std::is_same_v<T, std::vector<double>>)
+      ok = v.is_array();
+    else if constexpr (std::is_integral_v<T>)
+      ok = v.is_number_integer() || v.is_number_unsigned();
+    else
+      ok = v.is_number();
     if (ok) {
       try {
-        if constexpr (std::is_enum_v<T>) parse_stored(v.template get<std::string>(), &value);
-        else value = v.template get<T>();
+        if constexpr (std::is_enum_v<T>)
+          parse_stored(v.template get<std::string>(), &value);
+        else
+          value = v.template get<T>();
         return;
       } catch (const nlohmann::json::exception&) {
       } catch (const std::invalid_argument& e) {
@@ -157,8 +164,10 @@ template <class Fields, class Visit>
 std::string fields_to_json(Fields& fields, Visit visit) {
   nlohmann::json j = nlohmann::json::object();
   visit(fields, [&](const char* key, const auto& value) {
-    if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>) j[key] = to_string(value);
-    else j[key] = value;
+    if constexpr (std::is_enum_v<std::decay_t<decltype(value)>>)
+      j[key] = to_string(value);
+    else
+      j[key] = value;
   });
   return j.dump();
 }
@@ -199,8 +208,7 @@ std::vector<std::string> simulation_param_keys() {
 }
 
 std::string sweep_params_to_json(const SweepOptions& options) {
-  SweepFields s{options, to_string(options.medium.kind),
-                to_string(options.medium.radii), !options.medium.periodic};
+  SweepFields s{options, to_string(options.medium.kind), to_string(options.medium.radii), !options.medium.periodic};
   return fields_to_json(s, [](auto& f, auto&& g) { visit_sweep(f, g); });
 }
 

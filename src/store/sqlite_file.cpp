@@ -5,8 +5,8 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
@@ -25,8 +25,10 @@ namespace {
 // sqlite_master, and schema_version bumped so that every connection rereads it), in the caller's
 // transaction.
 void widen_generation_kinds(SQLite::Database& db) {
-  const std::string open = "CHECK (kind IN (", after = "CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate', 'mixed'))";
-  std::string sql = db.execAndGet("SELECT sql FROM sqlite_master WHERE type = 'table' AND name = 'generations'").getString();
+  const std::string open = "CHECK (kind IN (",
+                    after = "CHECK (kind IN ('initial', 'all', 'single', 'relocate', 'migrate', 'mixed'))";
+  std::string sql =
+      db.execAndGet("SELECT sql FROM sqlite_master WHERE type = 'table' AND name = 'generations'").getString();
   const auto at = sql.find(open);
   const auto end = at == std::string::npos ? at : sql.find("))", at);
   if (end == std::string::npos) return;
@@ -46,8 +48,8 @@ void widen_generation_kinds(SQLite::Database& db) {
 // Adds a column where it is not already (a file whose version was set back, or a migration a
 // crash interrupted before it set the version, may have it).
 void add_column(SQLite::Database& db, const AddedColumn& c) {
-  if (db.execAndGet(std::string("SELECT count(*) FROM pragma_table_info('") + c.table + "') WHERE name = '" +
-                    c.column + "'")
+  if (db.execAndGet(std::string("SELECT count(*) FROM pragma_table_info('") + c.table + "') WHERE name = '" + c.column +
+                    "'")
           .getInt() == 0)
     db.exec(std::string("ALTER TABLE ") + c.table + " ADD COLUMN " + c.column + " " + c.type);
 }
@@ -89,7 +91,8 @@ bool check_file(const std::string& path, OpenMode mode) {
     if (mode == OpenMode::read_only) throw file_error(path, "empty file, not a softdrop database");
     return false;
   }
-  if (::access(path.c_str(), R_OK) != 0) throw file_error(path, std::string("cannot read it (") + std::strerror(errno) + ")");
+  if (::access(path.c_str(), R_OK) != 0)
+    throw file_error(path, std::string("cannot read it (") + std::strerror(errno) + ")");
   SQLite::Header h{};
   try {
     h = SQLite::Database::getHeaderInfo(path);
@@ -101,7 +104,8 @@ bool check_file(const std::string& path, OpenMode mode) {
   if ((h.fileFormatWriteVersion != 1 && h.fileFormatWriteVersion != 2) ||
       (h.fileFormatReadVersion != 1 && h.fileFormatReadVersion != 2))
     throw file_error(path, "damaged SQLite header (file format versions " + std::to_string(h.fileFormatWriteVersion) +
-                               " and " + std::to_string(h.fileFormatReadVersion) + ", bytes 18 and 19, must be 1 or 2)");
+                               " and " + std::to_string(h.fileFormatReadVersion) +
+                               ", bytes 18 and 19, must be 1 or 2)");
   const unsigned long page = h.pageSizeBytes == 1 ? 65536UL : h.pageSizeBytes;
   // A checkpoint copies pages from the WAL into the file, page 1 (with the new size) first, so a
   // kill, a full disk or a power cut inside it leaves a file shorter than its header says. That
@@ -111,8 +115,7 @@ bool check_file(const std::string& path, OpenMode mode) {
   const bool wal_frames = file_size(path + "-wal") > kWalHeaderBytes;
   // The in-header size is valid when the change counter matches version-valid-for.
   if (!wal_frames && h.fileChangeCounter == h.versionValidFor && h.databaseSizePages > 0 &&
-      static_cast<unsigned long long>(st.st_size) <
-          static_cast<unsigned long long>(page) * h.databaseSizePages)
+      static_cast<unsigned long long>(st.st_size) < static_cast<unsigned long long>(page) * h.databaseSizePages)
     throw file_error(path, "truncated or corrupted (the header promises " +
                                std::to_string(static_cast<unsigned long long>(page) * h.databaseSizePages) +
                                " bytes, the file has " + std::to_string(st.st_size) + ")");
@@ -123,11 +126,17 @@ bool check_file(const std::string& path, OpenMode mode) {
 // read is not damage to the file.
 const char* opening_failure(const SQLite::Exception& e) {
   switch (e.getErrorCode() & 0xff) {
-    case SQLITE_FULL: return "no space left beside it (SQLite could not write its -wal or -shm file)";
-    case SQLITE_IOERR: return "an input/output error on it or its -wal or -shm file (a full or failing disk?)";
-    case SQLITE_CANTOPEN: return "cannot open it or its -wal or -shm file";
-    case SQLITE_PERM: case SQLITE_AUTH: return "not permitted to open it";
-    default: return "unreadable or corrupted";
+    case SQLITE_FULL:
+      return "no space left beside it (SQLite could not write its -wal or -shm file)";
+    case SQLITE_IOERR:
+      return "an input/output error on it or its -wal or -shm file (a full or failing disk?)";
+    case SQLITE_CANTOPEN:
+      return "cannot open it or its -wal or -shm file";
+    case SQLITE_PERM:
+    case SQLITE_AUTH:
+      return "not permitted to open it";
+    default:
+      return "unreadable or corrupted";
   }
 }
 
@@ -136,16 +145,17 @@ bool check_schema(SQLite::Database& db, const std::string& path) {
   try {
     // One statement, so one read snapshot: read one by one, a process creating the schema at the
     // same instant could commit between the reads (application_id 0 but tables present).
-    SQLite::Statement q(db, "SELECT (SELECT application_id FROM pragma_application_id), "
-                            "(SELECT user_version FROM pragma_user_version), (SELECT count(*) FROM sqlite_master)");
+    SQLite::Statement q(db,
+                        "SELECT (SELECT application_id FROM pragma_application_id), "
+                        "(SELECT user_version FROM pragma_user_version), (SELECT count(*) FROM sqlite_master)");
     q.executeStep();
     const int app = q.getColumn(0).getInt();
     const int version = q.getColumn(1).getInt();
     const int tables = q.getColumn(2).getInt();
     if (app == 0 && version == 0 && tables == 0) return false;
     if (app != kHistoryApplicationId)
-      throw file_error(path, "an SQLite database, but not a softdrop database (application_id " +
-                                 std::to_string(app) + ")");
+      throw file_error(path,
+                       "an SQLite database, but not a softdrop database (application_id " + std::to_string(app) + ")");
     if (version > kHistorySchemaVersion)
       throw file_error(path, "written by a newer softdrop (schema version " + std::to_string(version) +
                                  "; this build reads up to " + std::to_string(kHistorySchemaVersion) + ")");
@@ -279,7 +289,7 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     // A reader of a checked, writable file still opens it read-write (and never writes): SQLite can
     // then checkpoint and remove the -wal and -shm files when the last connection closes, which a
     // read-only connection cannot.
-    const int flags = mode == OpenMode::create       ? SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE
+    const int flags = mode == OpenMode::create            ? SQLite::OPEN_READWRITE | SQLite::OPEN_CREATE
                       : ::access(path.c_str(), W_OK) == 0 ? SQLite::OPEN_READWRITE
                                                           : SQLite::OPEN_READONLY;
     auto db = connect(path, flags);
@@ -308,15 +318,15 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     }
     if (version < 2) db->exec(kSchemaV2);  // migration 1 -> 2: the sweep tables
     // Migration 2 -> 3: the strategies' state (a column: added only where it is not already).
-    if (version < 3 && db->execAndGet("SELECT count(*) FROM pragma_table_info('generations') WHERE name = 'state'")
-                               .getInt() == 0)
+    if (version < 3 &&
+        db->execAndGet("SELECT count(*) FROM pragma_table_info('generations') WHERE name = 'state'").getInt() == 0)
       db->exec(kSchemaV3);
     if (version < 5) {  // migrations 3 -> 4 -> 5: relocation moves, islands
       widen_generation_kinds(*db);
       add_island_columns(*db);
     }
     if (version < 6) db->exec(kSchemaV6);  // migration 5 -> 6: the held-out values
-    if (version < 7)  // migration 6 -> 7: the robust objectives' counts
+    if (version < 7)                       // migration 6 -> 7: the robust objectives' counts
       for (const AddedColumn& c : kSchemaV7) add_column(*db, c);
     if (version < 8) {  // migration 7 -> 8: candidates' moves, the kind 'mixed', the views
       if (version >= 1) widen_generation_kinds(*db);
@@ -331,7 +341,11 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
 
 namespace {
 [[noreturn]] void mistyped(const SQLite::Column& c, const char* expected) {
-  const char* type = c.isNull() ? "NULL" : c.isText() ? "text" : c.isBlob() ? "a blob" : c.isFloat() ? "a real" : "an integer";
+  const char* type = c.isNull()    ? "NULL"
+                     : c.isText()  ? "text"
+                     : c.isBlob()  ? "a blob"
+                     : c.isFloat() ? "a real"
+                                   : "an integer";
   throw std::runtime_error(std::string("column ") + c.getName() + " holds " + type + ", expected " + expected +
                            " (damaged or edited file?)");
 }
@@ -380,7 +394,8 @@ std::string as_text(const SQLite::Column& c) {
   if (!c.isText()) mistyped(c, "text");
   std::string s = c.getString();
   if (!utf8(s))
-    throw std::runtime_error(std::string("column ") + c.getName() + " holds text that is not UTF-8 (damaged or edited file?)");
+    throw std::runtime_error(std::string("column ") + c.getName() +
+                             " holds text that is not UTF-8 (damaged or edited file?)");
   return s;
 }
 

@@ -1,16 +1,15 @@
 // The search history (History) on a softdrop SQLite database (see sqlite_file.hpp).
 #include <SQLiteCpp/SQLiteCpp.h>
 
-#include <nlohmann/json.hpp>
-
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
 
+#include "generation_rows.hpp"
 #include "softdrop/history.hpp"
 #include "softdrop/version.hpp"
 #include "sqlite_file.hpp"
-#include "generation_rows.hpp"
 #include "validation_rows.hpp"
 
 namespace softdrop {
@@ -33,8 +32,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
                                    kNow + ", " + kNow + ", ?, 'running', ?, ?, ?, ?, ?, ?, ?, 0, ?, ?, ?, 0)");
       detail::insert_row(q, kVersion, params_json, to_i64(o.seed), o.lambda,
                          static_cast<std::int64_t>(best.medium.grains.size()), best.medium.width, best.medium.height,
-                         best.medium.periodic ? 1 : 0, static_cast<std::int64_t>(g0.candidates.size()),
-                         droplets_of(g0), best.eval.tortuosity);
+                         best.medium.periodic ? 1 : 0, static_cast<std::int64_t>(g0.candidates.size()), droplets_of(g0),
+                         best.eval.tortuosity);
       const std::int64_t run = db_.getLastInsertRowid();
       write_generation(run, g0);
       t.commit();
@@ -118,22 +117,24 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       if (const auto params = nlohmann::json::parse(r.params, nullptr, false); !params.is_object())
         throw std::runtime_error(where + "its params are not a JSON object (damaged or edited file?)");
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);
-      SQLite::Statement q(db_, "SELECT count(*), coalesce(min(generation), -1), coalesce(max(generation), -1), "
-                               "(SELECT count(*) FROM generations g WHERE g.run_id = ?1 AND NOT EXISTS "
-                               "  (SELECT 1 FROM candidates c WHERE c.run_id = ?1 AND c.generation = g.generation)), "
-                               "(SELECT count(*) FROM candidates c WHERE c.run_id = ?1 AND NOT EXISTS "
-                               "  (SELECT 1 FROM generations g WHERE g.run_id = ?1 AND g.generation = c.generation)) "
-                               "FROM generations WHERE run_id = ?1");
+      SQLite::Statement q(db_,
+                          "SELECT count(*), coalesce(min(generation), -1), coalesce(max(generation), -1), "
+                          "(SELECT count(*) FROM generations g WHERE g.run_id = ?1 AND NOT EXISTS "
+                          "  (SELECT 1 FROM candidates c WHERE c.run_id = ?1 AND c.generation = g.generation)), "
+                          "(SELECT count(*) FROM candidates c WHERE c.run_id = ?1 AND NOT EXISTS "
+                          "  (SELECT 1 FROM generations g WHERE g.run_id = ?1 AND g.generation = c.generation)) "
+                          "FROM generations WHERE run_id = ?1");
       q.bind(1, run_id);
       q.executeStep();
       const std::int64_t count = detail::as_int64(q.getColumn(0)), first = detail::as_int64(q.getColumn(1)),
                          last = detail::as_int64(q.getColumn(2));
       if (first != 0 || last != r.generations || count != r.generations + 1) {
         // The first generation of the run's range that is not stored, if any is missing.
-        SQLite::Statement gap(db_, "SELECT CASE WHEN NOT EXISTS (SELECT 1 FROM generations WHERE run_id = ?1 AND "
-                                   "generation = 0) THEN 0 ELSE (SELECT min(g.generation) + 1 FROM generations g "
-                                   "WHERE g.run_id = ?1 AND g.generation < ?2 AND NOT EXISTS (SELECT 1 FROM "
-                                   "generations h WHERE h.run_id = ?1 AND h.generation = g.generation + 1)) END");
+        SQLite::Statement gap(db_,
+                              "SELECT CASE WHEN NOT EXISTS (SELECT 1 FROM generations WHERE run_id = ?1 AND "
+                              "generation = 0) THEN 0 ELSE (SELECT min(g.generation) + 1 FROM generations g "
+                              "WHERE g.run_id = ?1 AND g.generation < ?2 AND NOT EXISTS (SELECT 1 FROM "
+                              "generations h WHERE h.run_id = ?1 AND h.generation = g.generation + 1)) END");
         gap.bind(1, run_id);
         gap.bind(2, r.generations);
         gap.executeStep();
@@ -178,8 +179,9 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     return guarded([&] {
       std::string out = "[";
       if (schema_version() >= 3) {
-        SQLite::Statement q(db_, "SELECT state FROM generations WHERE run_id = ? AND generation BETWEEN 1 AND ? "
-                                 "AND state IS NOT NULL AND state != '' ORDER BY generation");
+        SQLite::Statement q(db_,
+                            "SELECT state FROM generations WHERE run_id = ? AND generation BETWEEN 1 AND ? "
+                            "AND state IS NOT NULL AND state != '' ORDER BY generation");
         q.bind(1, run_id);
         q.bind(2, last);
         while (q.executeStep()) {
@@ -215,17 +217,19 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     const RunRecord r = run(run_id);
     if (generation < -1 || generation > r.generations)  // a bad argument, not a damaged file
       throw std::invalid_argument("generation = " + std::to_string(generation) + ": run " + std::to_string(run_id) +
-                                  " has stored generations 0 to " + std::to_string(r.generations) + " (-1: the latest)");
+                                  " has stored generations 0 to " + std::to_string(r.generations) +
+                                  " (-1: the latest)");
     return guarded([&] {
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);
-      SQLite::Statement q(db_, "SELECT generation, accepted_candidate FROM generations WHERE run_id = ? AND "
-                               "accepted_candidate IS NOT NULL AND generation <= ? "
-                               "ORDER BY generation DESC LIMIT 1");
+      SQLite::Statement q(db_,
+                          "SELECT generation, accepted_candidate FROM generations WHERE run_id = ? AND "
+                          "accepted_candidate IS NOT NULL AND generation <= ? "
+                          "ORDER BY generation DESC LIMIT 1");
       q.bind(1, run_id);
       q.bind(2, static_cast<std::int64_t>(generation < 0 ? r.generations : generation));
       if (!q.executeStep())
-        throw std::runtime_error("--generation " + std::to_string(generation) + ": run " +
-                                 std::to_string(run_id) + " has no configuration there");
+        throw std::runtime_error("--generation " + std::to_string(generation) + ": run " + std::to_string(run_id) +
+                                 " has no configuration there");
       Configuration c;
       c.generation = detail::as_int64(q.getColumn(0));
       const int candidate = detail::as_int(q.getColumn(1));
@@ -233,34 +237,40 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
       c.medium.height = r.height;
       c.medium.periodic = r.periodic;
 
-      SQLite::Statement e(db_, "SELECT outcome, reason, tortuosity, steps FROM candidates "
-                               "WHERE run_id = ? AND generation = ? AND candidate = ?");
+      SQLite::Statement e(db_,
+                          "SELECT outcome, reason, tortuosity, steps FROM candidates "
+                          "WHERE run_id = ? AND generation = ? AND candidate = ?");
       e.bind(1, run_id);
       e.bind(2, c.generation);
       e.bind(3, candidate);
       const std::string where = "run " + std::to_string(run_id) + ", generation " + std::to_string(c.generation) + ": ";
       if (!e.executeStep()) throw std::runtime_error(where + "accepted candidate missing");
-      if (detail::as_text(e.getColumn(0)) != "passed") throw std::runtime_error(where + "accepted candidate did not pass");
+      if (detail::as_text(e.getColumn(0)) != "passed")
+        throw std::runtime_error(where + "accepted candidate did not pass");
       c.eval.outcome = Outcome::passed;
       c.eval.reason = detail::as_text(e.getColumn(1));
       c.eval.tortuosity = detail::as_real(e.getColumn(2));
       if (!(c.eval.tortuosity > 0) || !std::isfinite(c.eval.tortuosity))
-        throw std::runtime_error(where + "stored tortuosity " + std::to_string(c.eval.tortuosity) + " is not a tortuosity");
+        throw std::runtime_error(where + "stored tortuosity " + std::to_string(c.eval.tortuosity) +
+                                 " is not a tortuosity");
       c.eval.steps = detail::as_int64(e.getColumn(3));
 
-      SQLite::Statement gq(db_, "SELECT grain, x, y, r, touched FROM grains WHERE run_id = ? AND generation = ? "
-                                "ORDER BY grain");
+      SQLite::Statement gq(db_,
+                           "SELECT grain, x, y, r, touched FROM grains WHERE run_id = ? AND generation = ? "
+                           "ORDER BY grain");
       gq.bind(1, run_id);
       gq.bind(2, c.generation);
       while (gq.executeStep()) {
         const int i = detail::as_int(gq.getColumn(0));
-        if (i != static_cast<int>(c.medium.grains.size())) throw std::runtime_error(where + "grain numbering has a hole");
-        c.medium.grains.push_back({detail::as_real(gq.getColumn(1)), detail::as_real(gq.getColumn(2)), detail::as_real(gq.getColumn(3))});
+        if (i != static_cast<int>(c.medium.grains.size()))
+          throw std::runtime_error(where + "grain numbering has a hole");
+        c.medium.grains.push_back(
+            {detail::as_real(gq.getColumn(1)), detail::as_real(gq.getColumn(2)), detail::as_real(gq.getColumn(3))});
         if (detail::as_int(gq.getColumn(4)) != 0) c.eval.touched.push_back(i);
       }
       if (static_cast<std::int64_t>(c.medium.grains.size()) != r.grains)
-        throw std::runtime_error(where + "stores " + std::to_string(c.medium.grains.size()) +
-                                 " grains, the run has " + std::to_string(r.grains));
+        throw std::runtime_error(where + "stores " + std::to_string(c.medium.grains.size()) + " grains, the run has " +
+                                 std::to_string(r.grains));
       // What is read back must be a medium the simulator accepts (an edited file might not be).
       if (std::string why; !c.medium.IsValid(&why)) throw std::runtime_error(where + why);
 
@@ -279,8 +289,9 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
  private:
   // A file before version 5, opened for reading, has no island columns.
   std::string run_columns() {
-    return std::string("SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, "
-                       "periodic, generations, evaluations, best_t, best_generation, ") +
+    return std::string(
+               "SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, "
+               "periodic, generations, evaluations, best_t, best_generation, ") +
            (schema_version() >= 5 ? "island, archipelago" : "NULL, NULL") +
            (schema_version() >= 7 ? ", coalesce(droplets, evaluations)" : ", evaluations") + " FROM runs";
   }
@@ -313,8 +324,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
     if (r.evaluations < 0) bad("evaluations", std::to_string(r.evaluations));
     if (r.droplets < r.evaluations) bad("droplets", std::to_string(r.droplets) + ", fewer than its evaluations");
     if (r.best_generation < 0 || r.best_generation > r.generations)
-      bad("best_generation", std::to_string(r.best_generation) + ", outside the run's generations 0 to " +
-                                 std::to_string(r.generations));
+      bad("best_generation",
+          std::to_string(r.best_generation) + ", outside the run's generations 0 to " + std::to_string(r.generations));
     if (r.lambda < 1) bad("lambda", std::to_string(r.lambda));
     if (r.grains < 0) bad("grains", std::to_string(r.grains));
     if (!(r.width > 0) || !(r.height > 0) || !std::isfinite(r.width) || !std::isfinite(r.height))
@@ -369,9 +380,10 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
                        g.touched, g.seconds, detail::value_if(!g.state.empty(), g.state),
                        detail::value_if(rerun && g.parent.passed > 0, g.parent.tortuosity),
                        detail::value_if(rerun, g.parent.passed));
-    SQLite::Statement c(db_, "INSERT INTO candidates (run_id, generation, candidate, moved_grain, moved, outcome, "
-                             "reason, tortuosity, steps, touched, seconds, droplets, passed, kind) "
-                             "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+    SQLite::Statement c(db_,
+                        "INSERT INTO candidates (run_id, generation, candidate, moved_grain, moved, outcome, "
+                        "reason, tortuosity, steps, touched, seconds, droplets, passed, kind) "
+                        "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
     for (const Candidate& k : g.candidates)
       detail::insert_row(c, rid, gen, k.index, detail::value_if(k.moved_grain >= 0, k.moved_grain), k.moved,
                          to_string(k.eval.outcome), k.eval.reason,
@@ -384,8 +396,9 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
 
     std::vector<std::uint8_t> touched(kept.medium.grains.size(), 0);
     for (const std::int32_t i : kept.eval.touched) touched.at(static_cast<std::size_t>(i)) = 1;
-    SQLite::Statement gq(db_, "INSERT INTO grains (run_id, generation, grain, x, y, r, touched) "
-                              "VALUES (?, ?, ?, ?, ?, ?, ?)");
+    SQLite::Statement gq(db_,
+                         "INSERT INTO grains (run_id, generation, grain, x, y, r, touched) "
+                         "VALUES (?, ?, ?, ?, ?, ?, ?)");
     for (std::size_t i = 0; i < kept.medium.grains.size(); ++i) {
       const Grain& gr = kept.medium.grains[i];
       detail::insert_row(gq, rid, gen, static_cast<std::int64_t>(i), gr.x, gr.y, gr.r, static_cast<int>(touched[i]));

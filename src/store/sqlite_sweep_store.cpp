@@ -26,7 +26,8 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       std::int64_t id = find_id(params);
       if (id == 0) {
         SQLite::Statement q(db_, std::string("INSERT INTO sweeps (created, updated, version, status, params, units) "
-                                             "VALUES (") + kNow + ", " + kNow + ", ?, 'running', ?, ?)");
+                                             "VALUES (") +
+                                     kNow + ", " + kNow + ", ?, 'running', ?, ?)");
         detail::insert_row(q, kVersion, params, static_cast<std::int64_t>(o.porosities.size()) * o.media);
         id = db_.getLastInsertRowid();
       }
@@ -38,8 +39,9 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
   std::vector<SweepUnit> done_units(std::int64_t sweep) override {
     return guarded([&] {
       std::vector<SweepUnit> out;
-      SQLite::Statement q(db_, "SELECT porosity_index, medium_index FROM sweep_media WHERE sweep_id = ? "
-                               "ORDER BY porosity_index, medium_index");
+      SQLite::Statement q(db_,
+                          "SELECT porosity_index, medium_index FROM sweep_media WHERE sweep_id = ? "
+                          "ORDER BY porosity_index, medium_index");
       q.bind(1, sweep);
       while (q.executeStep()) out.push_back({detail::as_int(q.getColumn(0)), detail::as_int(q.getColumn(1))});
       return out;
@@ -54,16 +56,18 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
     return guarded([&] {
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::IMMEDIATE);
       if (stored(sweep, m.unit)) return false;  // read inside the write lock: no other writer now
-      SQLite::Statement q(db_, "INSERT INTO sweep_media (sweep_id, porosity_index, medium_index, target_porosity, "
-                               "porosity, grains, medium_seed, droplets, passed, stuck, timeout, diverged, mean_t, "
-                               "standard_error, stuck_fraction, seconds) "
-                               "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      SQLite::Statement q(db_,
+                          "INSERT INTO sweep_media (sweep_id, porosity_index, medium_index, target_porosity, "
+                          "porosity, grains, medium_seed, droplets, passed, stuck, timeout, diverged, mean_t, "
+                          "standard_error, stuck_fraction, seconds) "
+                          "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
       detail::insert_row(q, sweep, m.unit.porosity, m.unit.medium, m.target_porosity, m.porosity, m.grains,
                          static_cast<std::int64_t>(m.medium_seed), static_cast<int>(m.droplets.size()), m.passed,
                          m.stuck, m.timeout, m.diverged, detail::value_if(m.passed > 0, m.mean_t),
                          detail::value_if(m.passed > 1, m.standard_error), m.stuck_fraction, m.seconds);
-      SQLite::Statement d(db_, "INSERT INTO sweep_droplets (sweep_id, porosity_index, medium_index, droplet, start_x, "
-                               "outcome, tortuosity, steps) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+      SQLite::Statement d(db_,
+                          "INSERT INTO sweep_droplets (sweep_id, porosity_index, medium_index, droplet, start_x, "
+                          "outcome, tortuosity, steps) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
       for (const SweepDroplet& r : m.droplets)
         detail::insert_row(d, sweep, m.unit.porosity, m.unit.medium, r.droplet, r.start_x, to_string(r.outcome),
                            detail::value_if(r.outcome == Outcome::passed, r.tortuosity), r.steps);
@@ -83,7 +87,8 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
   }
 
   std::vector<SweepRecord> sweeps() override {
-    return guarded([&] { return detail::read_rows(db_, std::string(kColumns) + " GROUP BY s.id ORDER BY s.id", read); });
+    return guarded(
+        [&] { return detail::read_rows(db_, std::string(kColumns) + " GROUP BY s.id ORDER BY s.id", read); });
   }
 
   SweepRecord sweep(std::int64_t id) override {
@@ -97,9 +102,10 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
       sweep(sweep_id);
       SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);  // one consistent snapshot
       std::vector<SweepMedium> out;
-      SQLite::Statement q(db_, "SELECT porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
-                               "passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction, seconds "
-                               "FROM sweep_media WHERE sweep_id = ? ORDER BY porosity_index, medium_index");
+      SQLite::Statement q(db_,
+                          "SELECT porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
+                          "passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction, seconds "
+                          "FROM sweep_media WHERE sweep_id = ? ORDER BY porosity_index, medium_index");
       q.bind(1, sweep_id);
       while (q.executeStep()) {
         SweepMedium m;
@@ -118,8 +124,9 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
         m.seconds = detail::as_real(q.getColumn(13));
         out.push_back(std::move(m));
       }
-      SQLite::Statement d(db_, "SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps "
-                               "FROM sweep_droplets WHERE sweep_id = ? ORDER BY porosity_index, medium_index, droplet");
+      SQLite::Statement d(db_,
+                          "SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps "
+                          "FROM sweep_droplets WHERE sweep_id = ? ORDER BY porosity_index, medium_index, droplet");
       d.bind(1, sweep_id);
       std::size_t k = 0;
       while (d.executeStep()) {
@@ -131,7 +138,8 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
                                    " without their medium, or out of order (damaged or edited file?)");
         out[k].droplets.push_back({detail::as_int(d.getColumn(2)), detail::as_real(d.getColumn(3)),
                                    parse_outcome(detail::as_text(d.getColumn(4))),
-                                   d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)), detail::as_int64(d.getColumn(6))});
+                                   d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)),
+                                   detail::as_int64(d.getColumn(6))});
       }
       t.commit();
       return out;
@@ -150,7 +158,8 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
   }
 
   bool stored(std::int64_t sweep, const SweepUnit& unit) {
-    SQLite::Statement q(db_, "SELECT 1 FROM sweep_media WHERE sweep_id = ? AND porosity_index = ? AND medium_index = ?");
+    SQLite::Statement q(db_,
+                        "SELECT 1 FROM sweep_media WHERE sweep_id = ? AND porosity_index = ? AND medium_index = ?");
     q.bind(1, sweep);
     q.bind(2, unit.porosity);
     q.bind(3, unit.medium);

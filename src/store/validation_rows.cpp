@@ -45,7 +45,7 @@ void insert_validation(SQLite::Database& db, std::int64_t run, const ValidationR
                                       "version, dt, passed, mean_t, standard_error, q1, median, q3, half_dt, "
                                       "half_dt_passed, half_dt_mean_t, half_dt_standard_error, paired, dt_shift, "
                                       "dt_shift_error) VALUES (?, ?, ?, ?, ") +
-                          kNow + ", ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+                              kNow + ", ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   const bool h = v.half_dt;
   insert_row(q, run, v.generation, static_cast<std::int64_t>(v.seed), v.starts, v.version, v.dt, v.passed,
              finite(v.mean_t), finite(v.standard_error), finite(v.q1), finite(v.median), finite(v.q3), h ? 1 : 0,
@@ -55,9 +55,10 @@ void insert_validation(SQLite::Database& db, std::int64_t run, const ValidationR
 }
 
 std::vector<ValidationRecord> read_validations(SQLite::Database& db, std::int64_t run) {
-  SQLite::Statement q(db, "SELECT generation, seed, starts, created, version, dt, passed, mean_t, standard_error, q1, "
-                          "median, q3, half_dt, half_dt_passed, half_dt_mean_t, half_dt_standard_error, paired, "
-                          "dt_shift, dt_shift_error FROM validations WHERE run_id = ? ORDER BY generation, seed, starts");
+  SQLite::Statement q(db,
+                      "SELECT generation, seed, starts, created, version, dt, passed, mean_t, standard_error, q1, "
+                      "median, q3, half_dt, half_dt_passed, half_dt_mean_t, half_dt_standard_error, paired, "
+                      "dt_shift, dt_shift_error FROM validations WHERE run_id = ? ORDER BY generation, seed, starts");
   q.bind(1, run);
   std::vector<ValidationRecord> out;
   while (q.executeStep()) {

@@ -11,11 +11,11 @@ namespace softdrop::detail {
 
 /// What the frames of a -wal file hold, as SQLite's recovery would see them.
 struct WalReport {
-  bool present = false;          ///< a -wal file longer than its 32-byte header
-  std::int64_t bytes = 0;        ///< the file's size
-  bool header_valid = false;     ///< magic, version, page size and checksum hold
-  std::int64_t frames = 0;       ///< whole frames in the file
-  std::int64_t valid_frames = 0; ///< frames SQLite's recovery keeps reading (up to the first bad one)
+  bool present = false;               ///< a -wal file longer than its 32-byte header
+  std::int64_t bytes = 0;             ///< the file's size
+  bool header_valid = false;          ///< magic, version, page size and checksum hold
+  std::int64_t frames = 0;            ///< whole frames in the file
+  std::int64_t valid_frames = 0;      ///< frames SQLite's recovery keeps reading (up to the first bad one)
   std::int64_t first_bad_frame = -1;  ///< 1-based index of the first frame that fails, -1: none
   /// Commit frames of the header's generation (its salts) after the first bad frame: committed
   /// transactions that recovery would drop. Frames of an earlier generation (left after a

@@ -7,8 +7,8 @@
 
 namespace softdrop {
 
-std::vector<GroupAverage> group_averages(std::vector<MediumPoint> points, AveragingType type,
-                                         int group, Leftover leftover) {
+std::vector<GroupAverage> group_averages(std::vector<MediumPoint> points, AveragingType type, int group,
+                                         Leftover leftover) {
   if (group < 1) throw std::invalid_argument("group = " + std::to_string(group) + ": must be >= 1");
   std::sort(points.begin(), points.end(), [type](const MediumPoint& a, const MediumPoint& b) {
     return type == AveragingType::by_t ? (a.t != b.t ? a.t < b.t : a.phi < b.phi)

@@ -15,17 +15,15 @@
 
 namespace softdrop {
 
-double batch_start_x(const BatchOptions& options, const Medium& medium, const DropletParams& params,
-                     int i) {
+double batch_start_x(const BatchOptions& options, const Medium& medium, const DropletParams& params, int i) {
   if (!std::isnan(options.start_x)) return options.start_x;
   Rng rng(derive_seed(options.seed, static_cast<std::uint64_t>(i)));
   if (medium.periodic) return rng.uniform(0, medium.width);
   return rng.uniform(params.radius, medium.width - params.radius);
 }
 
-std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& medium,
-                                  const RunOptions& run_options, const BatchOptions& options,
-                                  const std::function<void(int, int)>& progress) {
+std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& medium, const RunOptions& run_options,
+                                  const BatchOptions& options, const std::function<void(int, int)>& progress) {
   const int k = options.droplets;
   if (k < 0) throw std::invalid_argument("droplets = " + std::to_string(k) + ": must be >= 0");
   if (options.lanes < 1 || options.lanes > 64)
@@ -117,17 +115,22 @@ BatchStats summarize(const std::vector<RunSummary>& runs) {
         ++b.passed;
         sum += r.tortuosity;
         break;
-      case Outcome::stuck: ++b.stuck; break;
-      case Outcome::timeout: ++b.timeout; break;
-      case Outcome::diverged: ++b.diverged; break;
+      case Outcome::stuck:
+        ++b.stuck;
+        break;
+      case Outcome::timeout:
+        ++b.timeout;
+        break;
+      case Outcome::diverged:
+        ++b.diverged;
+        break;
     }
   }
   if (b.passed > 0) b.mean_tortuosity = sum / b.passed;
   if (b.passed > 1) {
     double ss = 0;
     for (const RunSummary& r : runs)
-      if (r.outcome == Outcome::passed)
-        ss += (r.tortuosity - b.mean_tortuosity) * (r.tortuosity - b.mean_tortuosity);
+      if (r.outcome == Outcome::passed) ss += (r.tortuosity - b.mean_tortuosity) * (r.tortuosity - b.mean_tortuosity);
     b.standard_error = std::sqrt(ss / (b.passed - 1) / b.passed);
   }
   if (b.droplets > 0) {

@@ -175,10 +175,12 @@ CalibrationResult run_calibration(const CalibrationOptions& o, const DropletPara
   r.area_min = std::isfinite(lo) ? lo : NAN;
   r.area_max = std::isfinite(hi) ? hi : NAN;
   r.area_both_sides = std::isfinite(lo) && lo < 0.95 && hi > 1.02;
-  r.diverged_fraction = total > 0 ? static_cast<double>(sweep_diverged + r.trace_diverged) / static_cast<double>(total) : 0;
+  r.diverged_fraction =
+      total > 0 ? static_cast<double>(sweep_diverged + r.trace_diverged) / static_cast<double>(total) : 0;
   r.resting_travel = resting_travel(droplet, o.rest_scale);
   r.comes_to_rest = r.resting_travel <= resting_limit(o.rest_scale);  // NaN (diverged) does not
-  r.score = r.rms_distance + r.diverged_fraction + (r.comes_to_rest ? 0 : 1) + 0.05 * (r.area_both_sides ? 0 : 1) + 0.05 * r.stuck_fraction;
+  r.score = r.rms_distance + r.diverged_fraction + (r.comes_to_rest ? 0 : 1) + 0.05 * (r.area_both_sides ? 0 : 1) +
+            0.05 * r.stuck_fraction;
   return r;
 }
 

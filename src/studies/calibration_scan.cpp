@@ -100,7 +100,8 @@ ScanAxis parse_scan_axis(const std::string& text) {
   }
   if (field.whole)
     for (double& v : axis.values) {
-      if (v != std::round(v) || std::abs(v) > 1e9) throw std::invalid_argument("scan '" + text + "': " + axis.name + " takes whole numbers");
+      if (v != std::round(v) || std::abs(v) > 1e9)
+        throw std::invalid_argument("scan '" + text + "': " + axis.name + " takes whole numbers");
       v = std::round(v);
     }
   return axis;
@@ -128,7 +129,8 @@ DropletParams apply_setting(const DropletParams& base, const std::string& text) 
       throw std::invalid_argument("setting '" + text + "': '" + word +
                                   "' is not name=value (a label goes before the first ':' and has no '=')");
     const ScanAxis one = parse_scan_axis(word);
-    if (one.values.size() != 1) throw std::invalid_argument("setting '" + text + "': '" + word + "' must give one value");
+    if (one.values.size() != 1)
+      throw std::invalid_argument("setting '" + text + "': '" + word + "' must give one value");
     set_scan_parameter(params, one.name, one.values[0]);
   }
   if (count == 0) throw std::invalid_argument("setting '" + text + "': no assignments");

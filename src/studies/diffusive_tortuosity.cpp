@@ -1,7 +1,6 @@
 // The diffusive tortuosity of a pore image (pore_tortuosity.hpp): finite volumes on the pixels,
 // a sparse Cholesky solve (Eigen's SimplicialLDLT, symmetric positive definite here).
 #include <Eigen/Sparse>
-
 #include <cstdint>
 #include <deque>
 #include <limits>

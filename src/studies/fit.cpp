@@ -1,12 +1,11 @@
 #include "softdrop/fit.hpp"
 
 #include <Eigen/Dense>
-#include <nlopt.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <istream>
 #include <limits>
+#include <nlopt.hpp>
 #include <sstream>
 #include <stdexcept>
 
@@ -25,8 +24,8 @@ std::string point_problem(const FitPoint& q) {
 }
 }  // namespace
 
-std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name, FitErrors errors,
-                                      bool* used_errors, FitAveraging averaging) {
+std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name, FitErrors errors, bool* used_errors,
+                                      FitAveraging averaging) {
   const bool per_medium = averaging == FitAveraging::per_medium;
   std::string line;
   std::vector<FitPoint> out;
@@ -67,8 +66,9 @@ std::vector<FitPoint> read_fit_points(std::istream& in, const std::string& name,
                                                          : "standard_error";
         se = at(error, error);
         if (phi < f.size() && per_medium && (t == f.size() || se == f.size()))
-          throw bad("no per_medium_tortuosity and per_medium_standard_error columns (a sweep-report of an "
-                    "older softdrop? fit its pooled mean)");
+          throw bad(
+              "no per_medium_tortuosity and per_medium_standard_error columns (a sweep-report of an "
+              "older softdrop? fit its pooled mean)");
         if (phi < f.size() && se == f.size())
           throw bad(std::string("no ") + error + " column (a sweep-report of an older softdrop? fit it with --errors " +
                     (errors == FitErrors::media ? "droplets" : "media") + ")");
@@ -176,11 +176,12 @@ bool minimize(nlopt::algorithm algorithm, Problem& problem, std::vector<double>*
   opt.set_maxeval(20000);
   try {
     const nlopt::result status = opt.optimize(*p, *chi2);
-    *message = status == nlopt::FTOL_REACHED ? "converged (relative chi2 tolerance)"
+    *message = status == nlopt::FTOL_REACHED   ? "converged (relative chi2 tolerance)"
                : status == nlopt::XTOL_REACHED ? "converged (relative parameter tolerance)"
-               : status == nlopt::SUCCESS ? "converged"
-               : status == nlopt::MAXEVAL_REACHED ? "stopped at the evaluation limit"
-                                                  : "ended with NLopt status " + std::to_string(static_cast<int>(status));
+               : status == nlopt::SUCCESS      ? "converged"
+               : status == nlopt::MAXEVAL_REACHED
+                   ? "stopped at the evaluation limit"
+                   : "ended with NLopt status " + std::to_string(static_cast<int>(status));
     return true;
   } catch (const nlopt::roundoff_limited&) {
     // Cannot improve further in floating point: *p holds the best point found.
@@ -224,9 +225,9 @@ FitResult fit_law(FitLaw law, const std::vector<FitPoint>& points) {
   }
   r.values = p;
   if (law == FitLaw::power && std::abs(p[1]) < 1e-3)
-    r.warning = "power law: b = " + num(p[1]) + " -> 0, where a - c phi^b becomes (a - c) - c b ln(phi); only a - c = " +
-                num(p[0] - p[2]) + " and c b = " + num(p[2] * p[1]) +
-                " are determined, not a, b, c (the data follow the log law's shape)";
+    r.warning = "power law: b = " + num(p[1]) +
+                " -> 0, where a - c phi^b becomes (a - c) - c b ln(phi); only a - c = " + num(p[0] - p[2]) +
+                " and c b = " + num(p[2] * p[1]) + " are determined, not a, b, c (the data follow the log law's shape)";
   r.chi2 = chi2;
   r.dof = static_cast<int>(points.size()) - static_cast<int>(k);
   r.reduced_chi2 = r.dof > 0 ? chi2 / r.dof : 0;

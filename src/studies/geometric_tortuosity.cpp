@@ -104,7 +104,8 @@ GeometricTortuosity geometric_tortuosity(const PoreImage& image) {
 }
 
 std::vector<PorePath> shortest_paths(const PoreImage& image, const GeometricTortuosity& g, int count) {
-  if (g.distance.size() != image.pore.size()) throw std::invalid_argument("shortest paths: a distance field of another image");
+  if (g.distance.size() != image.pore.size())
+    throw std::invalid_argument("shortest paths: a distance field of another image");
   const int nx = image.nx, ny = image.ny;
   const double h = image.pixel;
   std::vector<int> starts;

@@ -68,7 +68,8 @@ HeldOutValue held_out_value(const DropletParams& droplet, const Medium& medium, 
                           }));
   std::vector<double> shifts;
   for (int i = 0; i < options.starts; ++i) {
-    const RunSummary &a = v.at_dt.runs[static_cast<std::size_t>(i)], &b = v.at_half_dt.runs[static_cast<std::size_t>(i)];
+    const RunSummary &a = v.at_dt.runs[static_cast<std::size_t>(i)],
+                     &b = v.at_half_dt.runs[static_cast<std::size_t>(i)];
     if (a.outcome == Outcome::passed && b.outcome == Outcome::passed) shifts.push_back(b.tortuosity - a.tortuosity);
   }
   v.paired = static_cast<int>(shifts.size());

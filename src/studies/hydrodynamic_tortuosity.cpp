@@ -4,10 +4,10 @@
 // Laplacians factored once (CHOLMOD's supernodal Cholesky, through Eigen: on a 500 x 500 image it
 // factors in a quarter of the time of Eigen's own simplicial one): Uzawa's method, exact to the
 // tolerance, in about a dozen iterations.
-#include <Eigen/CholmodSupport>
-#include <Eigen/Sparse>
 #include <dlfcn.h>
 
+#include <Eigen/CholmodSupport>
+#include <Eigen/Sparse>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -265,7 +265,7 @@ HydrodynamicTortuosity hydrodynamic_tortuosity(const PoreImage& image, const Flo
     }
     p_above /= std::max(1, above), p_below /= std::max(1, below);
   }
-  const double q = down / static_cast<double>(pixels);  // per pixel of the medium, solid ones at 0
+  const double q = down / static_cast<double>(pixels);            // per pixel of the medium, solid ones at 0
   const double drive = 1 + (p_above - p_below) / (image.ny + 1);  // force per volume, f = 1
   out.superficial_velocity = q;
   out.permeability = q / drive * image.pixel * image.pixel;  // k = mu q / (f + dp/dy), length^2

@@ -54,16 +54,19 @@ std::vector<SweepUnit> sweep_units(const SweepOptions& o, int shard, int shards)
 }
 
 constexpr detail::EnumName<MediaStream> kMediaStreams[] = {{MediaStream::held_out, "held-out"},
-                                                            {MediaStream::calibration, "calibration"}};
+                                                           {MediaStream::calibration, "calibration"}};
 
 const char* to_string(MediaStream stream) { return detail::name_of(kMediaStreams, stream); }
 
-MediaStream parse_media_stream(const std::string& name) { return detail::parse_name(kMediaStreams, name, "media-stream"); }
+MediaStream parse_media_stream(const std::string& name) {
+  return detail::parse_name(kMediaStreams, name, "media-stream");
+}
 
 std::vector<std::string> media_stream_names() { return detail::name_list(kMediaStreams); }
 
 std::uint64_t sweep_medium_seed(const SweepOptions& o, const SweepUnit& u) {
-  const auto micro = static_cast<std::uint64_t>(std::llround(o.porosities.at(static_cast<std::size_t>(u.porosity)) * 1e9));
+  const auto micro =
+      static_cast<std::uint64_t>(std::llround(o.porosities.at(static_cast<std::size_t>(u.porosity)) * 1e9));
   // The calibration stream is the derivation every store before the streams used; the held-out
   // stream starts from the seed hashed with its own tag, so no seed of one is a seed of the other.
   const std::uint64_t base =
@@ -159,17 +162,15 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
   // slowest (stuck) droplets does not leave lanes idle when media have few droplets each.
   const std::size_t window = static_cast<std::size_t>(workers) + 1 +
                              static_cast<std::size_t>((2 * workers * lanes + o.droplets - 1) / std::max(1, o.droplets));
-  std::size_t oldest_open = 0;     // units before it are complete
-  int active = 0;                  // droplets being simulated
+  std::size_t oldest_open = 0;  // units before it are complete
+  int active = 0;               // droplets being simulated
   LaneExchange exchange;
 
   const std::int64_t per_unit = o.droplets;
   auto worker = [&] {
     auto next = [&](DropletJob* job, bool may_wait) {
       std::unique_lock lock(m);
-      auto can_take = [&] {
-        return stopping || next_unit == units.size() || next_unit < oldest_open + window;
-      };
+      auto can_take = [&] { return stopping || next_unit == units.size() || next_unit < oldest_open + window; };
       if (may_wait) cv.wait(lock, can_take);
       if (!can_take() || stopping || next_unit == units.size()) return false;
       // A stop request is honoured between units: the open units' droplets are all handed out by
@@ -242,9 +243,8 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
     for (;;) {
       // Done when every unit is committed, on an error, or when stopping with no droplet in flight
       // (then nothing more can complete).
-      cv.wait(lock, [&] {
-        return !ready.empty() || error || completed_units == units.size() || (stopping && active == 0);
-      });
+      cv.wait(lock,
+              [&] { return !ready.empty() || error || completed_units == units.size() || (stopping && active == 0); });
       if (error || completed_units == units.size()) break;
       if (ready.empty()) break;
       const std::size_t u = ready.back();
@@ -297,8 +297,7 @@ std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media) {
         ++p.droplets;
         if (d.outcome == Outcome::stuck) ++p.stuck;
         if (d.outcome == Outcome::diverged) ++p.diverged;
-        if (d.outcome == Outcome::passed)
-          ++p.passed, ++passed, sum += d.tortuosity, medium_sum += d.tortuosity;
+        if (d.outcome == Outcome::passed) ++p.passed, ++passed, sum += d.tortuosity, medium_sum += d.tortuosity;
       }
       by_medium.add_medium(passed, medium_sum);
     }

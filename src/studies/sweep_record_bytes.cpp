@@ -6,8 +6,8 @@
 #include <string>
 #include <type_traits>
 
-#include "util/byte_codec.hpp"
 #include "softdrop/sweep.hpp"
+#include "util/byte_codec.hpp"
 
 namespace softdrop {
 namespace {
