@@ -3,7 +3,7 @@
 # Non-interactive and safe to run twice; needs root (or sudo).
 set -euo pipefail
 PKGS=(
-  build-essential cmake ninja-build ccache pkg-config clang libclang-rt-dev
+  build-essential cmake ninja-build ccache pkg-config clang libclang-rt-dev clang-format clang-tidy
   libeigen3-dev libsuitesparse-dev libopenblas0-pthread libnlopt-cxx-dev libnlopt-dev libcgal-dev libgmp-dev libmpfr-dev libboost-dev
   libsqlite3-dev sqlite3 libsqlitecpp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
