@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "fixtures.hpp"
+#include "golden_hashes.hpp"
 #include "softdrop/batch.hpp"
 
 namespace softdrop {
@@ -69,13 +70,11 @@ TEST(Determinism, BatchHasTheSameBitsAtEveryVectorWidth) {
     EXPECT_GT(expect_same_droplets(runs[w], runs[0], "width index " + std::to_string(w)), 0);
 }
 
-// The defaults' droplet falls onto the pore of three grains for 17 500 steps (0.105 time units;
-// it reaches the grains at about 0.017).
-constexpr int kGoldenSteps = 17500;
+using test::kGoldenSteps;
 
 TEST(Determinism, GoldenStateHash) {
-  // Update kGolden only for a deliberate change of the numerics, and say so in the commit.
-  constexpr std::uint64_t kGolden = 0x4441aefd57efed83ULL;
+  // The golden hashes live in golden_hashes.hpp; layout_hash_test.cpp checks them on every layout.
+  constexpr std::uint64_t kGolden = test::kGoldenDefaults;
   DropletParams p;
   const Medium pore = test::pore_of_three_grains();
   Simulation sim(p, pore);
@@ -102,8 +101,8 @@ TEST(Determinism, TheExplicitStepDropletKeepsItsGoldenStateHash) {
   // DropletParams::explicit_step() (results/calibration/explicit.toml) gives the bits the defaults
   // gave before they took the exponential viscosity step: the same 0.105 time units in 30 000
   // steps.
-  constexpr std::uint64_t kGolden = 0xfbf01f57e1e5c063ULL;
-  const std::uint64_t h = pore_hash(DropletParams::explicit_step(), 30000);
+  constexpr std::uint64_t kGolden = test::kGoldenExplicit;
+  const std::uint64_t h = pore_hash(DropletParams::explicit_step(), test::kGoldenExplicitSteps);
   EXPECT_EQ(h, kGolden) << std::hex << "state hash 0x" << h;
 }
 
@@ -111,7 +110,7 @@ TEST(Determinism, TheExponentialStepDropletKeepsItsGoldenStateHash) {
   // DropletParams::exponential_step() (results/calibration/exponential.toml) gives the bits the
   // defaults gave before they took the implicit viscosity step: histories and studies made with
   // them are reproduced by passing its options.
-  constexpr std::uint64_t kGolden = 0xd2c147d4a78565f2ULL;
+  constexpr std::uint64_t kGolden = test::kGoldenExponential;
   const std::uint64_t h = pore_hash(DropletParams::exponential_step(), kGoldenSteps);
   EXPECT_EQ(h, kGolden) << std::hex << "state hash 0x" << h;
 }
@@ -119,8 +118,8 @@ TEST(Determinism, TheExponentialStepDropletKeepsItsGoldenStateHash) {
 TEST(Determinism, TheBalloonKeepsItsGoldenStateHash) {
   // The earlier defaults (results/calibration/balloon.toml) give the bits they always gave: a
   // history or study made with them is reproduced by passing their options.
-  constexpr std::uint64_t kGolden = 0x545c7e92a6789dc7ULL;
-  const std::uint64_t h = pore_hash(test::balloon_droplet(), 5000);
+  constexpr std::uint64_t kGolden = test::kGoldenBalloon;
+  const std::uint64_t h = pore_hash(test::balloon_droplet(), test::kGoldenBalloonSteps);
   EXPECT_EQ(h, kGolden) << std::hex << "state hash 0x" << h;
 }
 
@@ -129,7 +128,7 @@ TEST(Determinism, GoldenStateHashRedBlack) {
   // (a vectorised half-pass must give the bits of the scalar one, at every vector width; the
   // widths this processor lacks run as the widest it has). On the balloon: the defaults' springs
   // stay inside their limit, so the constraint corrects nothing and both orders give the same bits.
-  constexpr std::uint64_t kGolden[2] = {0xce0c56a92b871a38ULL, 0xea48542fd2b4639cULL};
+  const auto& kGolden = test::kGoldenRedBlack;
   DropletParams p = test::balloon_droplet();
   p.constraint_order = ConstraintOrder::red_black;
   const Medium pore = test::pore_of_three_grains();  // outlives the simulation, which refers to it
@@ -140,7 +139,7 @@ TEST(Determinism, GoldenStateHashRedBlack) {
       p.masses = masses;
       Simulation sim(p, pore);
       sim.place_above(100);
-      for (int k = 0; k < 5000; ++k) sim.step();
+      for (int k = 0; k < test::kGoldenBalloonSteps; ++k) sim.step();
       const std::uint64_t h = sim.state_hash();
       EXPECT_EQ(h, kGolden[masses - 24]) << masses << " masses, vector width " << static_cast<int>(limit.in_use())
                                          << ": state hash 0x" << std::hex << h;

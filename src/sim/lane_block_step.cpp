@@ -9,8 +9,16 @@
 
 #include "lane_layout.hpp"
 #include "simd_dispatch.hpp"
+#include "step_test_seam.hpp"
 
 namespace softdrop {
+
+#if defined(SOFTDROP_TEST_HOOKS)
+std::atomic<test_seam::StepMutation>& test_seam::step_mutation() {
+  static std::atomic<StepMutation> mutation{StepMutation::none};
+  return mutation;
+}
+#endif
 
 #if defined(SOFTDROP_AVX_DISPATCH)
 namespace {
@@ -134,7 +142,16 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
         throw std::logic_error("LaneBlockStep: the contact limit is each droplet's own");
     }
   };
-  run_step_stages(run, StepStage::gravity, StepStage::constraint);
+  bool mutated = false;
+#if defined(SOFTDROP_TEST_HOOKS)
+  mutated = test_seam::step_mutation() == test_seam::StepMutation::block_damps_before_collisions;
+#endif
+  if (mutated)
+    for (StepStage s :
+         {StepStage::gravity, StepStage::viscosity, StepStage::collisions, StepStage::integrate, StepStage::constraint})
+      run(s);
+  else
+    run_step_stages(run, StepStage::gravity, StepStage::constraint);
   // The centres of mass from the block (run_interleaved needs them after the contact limits, which
   // seldom move a mass: then they are computed again from the state).
   double cx[lanes::kMaxLanes], cy[lanes::kMaxLanes];
