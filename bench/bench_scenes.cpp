@@ -47,6 +47,7 @@
 #include <vector>
 
 #include "bench_media.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/search.hpp"

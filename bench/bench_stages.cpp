@@ -12,6 +12,7 @@
 
 #include "bench_media.hpp"
 #include "sim/lane_layout.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
 

@@ -9,6 +9,7 @@
 
 #include "fixtures.hpp"
 #include "golden_hashes.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/batch.hpp"
 
 namespace softdrop {

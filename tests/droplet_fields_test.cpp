@@ -63,7 +63,7 @@ TEST(DropletFields, TheContactFieldsAloneMayDifferWithinALaneBlock) {
     SCOPED_TRACE(key);
     const DropletParams q = changed(p, key);
     EXPECT_FALSE(same_fields(p, q, FieldUse::contacts)) << "every field counts";
-    EXPECT_EQ(same_fields(p, q, FieldUse::lanes), use == FieldUse::contacts);
+    EXPECT_EQ(same_fields(p, q, FieldUse::forces), use == FieldUse::contacts);
     EXPECT_EQ(same_fields(p, q, FieldUse::constraint), use != FieldUse::constraint);
     EXPECT_EQ(LaneBlockStep::compatible(p, q), use == FieldUse::contacts);
   }
@@ -74,7 +74,7 @@ TEST(DropletFields, EqualMeansEqualToTheBit) {
   DropletParams a, b;
   a.viscosity = 0.0;
   b.viscosity = -0.0;
-  EXPECT_FALSE(same_fields(a, b, FieldUse::lanes));
+  EXPECT_FALSE(same_fields(a, b, FieldUse::forces));
   EXPECT_FALSE(LaneBlockStep::compatible(a, b));
 }
 

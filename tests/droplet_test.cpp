@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fixtures.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/random.hpp"
 #include "softdrop/simulation.hpp"
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "balloon.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/calibration.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# Installs the build into a scratch prefix (cmake --install), builds examples/library/push_droplet.cpp
-# against the installed headers and libraries only, and checks that it gives the program's own
-# tortuosity for the same droplet, to the last digit; the installed configs are the options they
-# stand for.
+# Installs the build into a scratch prefix (cmake --install), checks that each installed header
+# compiles on its own and keeps the step's private machinery out, builds
+# examples/library/push_droplet.cpp against the installed headers and libraries only, and checks
+# that it gives the program's own tortuosity for the same droplet, to the last digit; the installed
+# configs are the options they stand for.
 #   bash tests/install_test.sh BUILD_DIR SOURCE_DIR CXX
 set -euo pipefail
 build=$(realpath "$1"); src=$(realpath "$2"); cxx=$3
@@ -13,6 +14,18 @@ for f in bin/softdrop include/softdrop/simulation.hpp include/softdrop/version.h
          share/softdrop/relaxed.toml; do
   [[ -e $prefix/$f ]] || { echo "install_test: $f was not installed"; exit 1; }
 done
+# The installed headers are the user's API: each compiles on its own, and none names the step's
+# private machinery (its vector widths, lane-by-lane blocks and interleaved drivers).
+headers=("$prefix"/include/softdrop/*.hpp)
+for h in "${headers[@]}"; do
+  "$cxx" -std=c++20 -fsyntax-only -I "$prefix/include" -x c++ "$h" ||
+    { echo "install_test: ${h#"$prefix"/} does not compile on its own"; exit 1; }
+done
+private='VectorWidth|vector_width|lane_policy|run_interleaved|LaneExchange|DropletJob|interleaved_lanes|fewest_block|speculative_lanes'
+if named=$(grep -lE "$private" "${headers[@]}"); then
+  echo "install_test: installed headers name the step's private machinery: ${named//$prefix\//}"; exit 1
+fi
+echo "installed headers: ${#headers[@]}, each compiles on its own"
 "$cxx" -std=c++20 -O2 "$src/examples/library/push_droplet.cpp" -I "$prefix/include" -L "$prefix/lib" \
   -lsoftdrop_sim -lsoftdrop_media -lsoftdrop_util -ltbb -lgmp -lmpfr -o "$prefix/push_droplet"
 mine=$("$prefix/push_droplet" 250 | sed -n 's/^tortuosity //p')

@@ -1,5 +1,7 @@
 // Droplets stepped together (run_interleaved, apply_length_constraint_interleaved) must get exactly
 // the numbers they get alone: the interleaving only lets the processor overlap independent chains.
+#include "sim/interleaved.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,6 +16,7 @@
 
 #include "fixtures.hpp"
 #include "sim/lane_layout.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -306,8 +309,14 @@ TEST(Interleaved, BatchResultsDoNotDependOnLanesOrThreads) {
                   "droplet " + std::to_string(i) + ", " + std::to_string(threads) + " threads, " +
                       std::to_string(lanes) + " lanes");
   }
-  b.lanes = 0;
-  EXPECT_THROW(run_batch(p, m, o, b), std::invalid_argument);
+  b.lanes = 0;  // chosen for the processor: the same bits again
+  const auto chosen = run_batch(p, m, o, b);
+  ASSERT_EQ(chosen.size(), reference.size());
+  for (std::size_t i = 0; i < chosen.size(); ++i) expect_same(chosen[i], reference[i], "lanes chosen");
+  for (int lanes : {-1, 65}) {
+    b.lanes = lanes;
+    EXPECT_THROW(run_batch(p, m, o, b), std::invalid_argument) << lanes << " lanes";
+  }
   EXPECT_THROW(limit_constraint_vector_width(static_cast<VectorWidth>(3)), std::invalid_argument);
 }
 

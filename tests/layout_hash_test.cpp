@@ -13,6 +13,8 @@
 
 #include "fixtures.hpp"
 #include "golden_hashes.hpp"
+#include "sim/interleaved.hpp"
+#include "sim/lane_policy.hpp"
 #include "sim/step_test_seam.hpp"
 #include "softdrop/simulation.hpp"
 

@@ -10,6 +10,7 @@
 #include "fixtures.hpp"
 #include "optimizer/drive_test_seam.hpp"
 #include "search_fixtures.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/params_json.hpp"
 #include "softdrop/spacing.hpp"
 

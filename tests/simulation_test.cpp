@@ -8,6 +8,7 @@
 #include <cstdint>
 
 #include "fixtures.hpp"
+#include "sim/lane_policy.hpp"
 
 namespace softdrop {
 namespace {

@@ -18,10 +18,10 @@ struct BatchOptions {
   int droplets = 1;        ///< K droplets
   std::uint64_t seed = 1;  ///< droplet i starts at x drawn from stream derive_seed(seed, i)
   int threads = 0;         ///< worker threads, 0 = all cores
-  /// Droplets each thread steps together (run_interleaved). The default, interleaved_lanes(), is 24
-  /// with AVX-512 or AVX (lane-by-lane blocks of three groups of eight), 6 with SSE2. Results do not
+  /// Droplets each thread steps together, in [1, 64]; 0: chosen for the processor (24 with AVX-512
+  /// or AVX, stepped as lane-by-lane blocks of three groups of eight, 6 with SSE2). Results do not
   /// depend on it.
-  int lanes = interleaved_lanes();
+  int lanes = 0;
   /// Start x of every droplet; NaN draws it uniformly in [0, W) (walls: [R, W - R]).
   double start_x = std::numeric_limits<double>::quiet_NaN();
   /// If set, once it reads true no droplet starts, the droplets in flight run to their end, and

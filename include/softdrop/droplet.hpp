@@ -134,10 +134,11 @@ struct DropletParams {
 /// Which stages read a DropletParams field, and so which droplets can be stepped together:
 /// - constraint: the length constraint (ring size, rest length, strain limit, passes); rings
 ///   constrained side by side must agree on these;
-/// - lanes: the other stages that run across the droplets of a lane block (forces, integration,
-///   the constraint's order); droplets sharing a block must agree on these and the constraint's;
+/// - forces: the other stages that can run for several droplets at once (gravity, springs, gas,
+///   viscosity, integration, the constraint's order); droplets stepped as one block must agree on
+///   these and the constraint's;
 /// - contacts: read droplet by droplet (collisions and the contact limit).
-enum class FieldUse { constraint, lanes, contacts };
+enum class FieldUse { constraint, forces, contacts };
 
 /// The values a numeric field accepts on its own: finite, from lo to hi, each end included or not
 /// (an infinite end: no bound). DropletParams::IsValid checks every field's range, then the limits
@@ -166,41 +167,41 @@ struct DropletField {
 /// The one list of DropletParams's fields: calls f(field, p.field...) for each field, in
 /// declaration order, with that field of every p given (one struct to read or write it, two to
 /// compare them). A new field goes here, and the command-line options, the stored parameters and
-/// the lane block's checks follow.
+/// the checks of which droplets step together follow.
 template <class F, class... Params>
 void visit_droplet_fields(F&& f, Params&... p) {
   using U = FieldUse;
   constexpr double inf = std::numeric_limits<double>::infinity();
   f(DropletField{"masses", U::constraint, "N, masses on the ring", between(8, true, 100000, true)}, p.masses...);
-  f(DropletField{"mass", U::lanes, "m, mass of each point (mass units)", above(0)}, p.mass...);
+  f(DropletField{"mass", U::forces, "m, mass of each point (mass units)", above(0)}, p.mass...);
   f(DropletField{"radius", U::constraint, "R, inflated droplet radius (length units)", above(0)}, p.radius...);
-  f(DropletField{"nrt", U::lanes, "nRT of the ideal gas, P = nRT/V (force x length)", above(0)}, p.nrt...);
-  f(DropletField{"ks", U::lanes, "Spring stiffness k_s (force/length)", at_least(0)}, p.ks...);
-  f(DropletField{"kd", U::lanes, "Spring damping k_d (force x time/length)", at_least(0)}, p.kd...);
+  f(DropletField{"nrt", U::forces, "nRT of the ideal gas, P = nRT/V (force x length)", above(0)}, p.nrt...);
+  f(DropletField{"ks", U::forces, "Spring stiffness k_s (force/length)", at_least(0)}, p.ks...);
+  f(DropletField{"kd", U::forces, "Spring damping k_d (force x time/length)", at_least(0)}, p.kd...);
   f(DropletField{"kc", U::contacts, "Collision penalty stiffness k_c (force/length)", above(0)}, p.kc...);
   f(DropletField{"cc", U::contacts, "Collision normal damping (force x time/length)", at_least(0)}, p.cc...);
-  f(DropletField{"gravity", U::lanes, "g_y, gravity along y (length/time^2)", between(-inf, true, inf, true)},
+  f(DropletField{"gravity", U::forces, "g_y, gravity along y (length/time^2)", between(-inf, true, inf, true)},
     p.gravity...);
-  f(DropletField{"dt", U::lanes, "Time step (time units)", between(0, false, 1e-2, true)}, p.dt...);
+  f(DropletField{"dt", U::forces, "Time step (time units)", between(0, false, 1e-2, true)}, p.dt...);
   f(DropletField{"max-strain", U::constraint, "Provot limit on |d - d0|/d0", between(0, false, 0.5, false)},
     p.max_strain...);
   f(DropletField{"constraint-iterations", U::constraint, "Passes of the Provot constraint per step",
                  between(0, true, 100, true)},
     p.constraint_iterations...);
-  f(DropletField{"constraint-order", U::lanes,
+  f(DropletField{"constraint-order", U::forces,
                  "sequential (the reference) or red-black (independent half-passes: faster steps, other rounding)"},
     p.constraint_order...);
   f(DropletField{"max-depth", U::contacts, "Contact limit: deepest a mass may sit inside a grain (length units)",
                  above(0)},
     p.max_depth...);
-  f(DropletField{"viscosity", U::lanes, "Internal viscosity nu, damps motion relative to rigid motion (1/time)",
+  f(DropletField{"viscosity", U::forces, "Internal viscosity nu, damps motion relative to rigid motion (1/time)",
                  at_least(0)},
     p.viscosity...);
-  f(DropletField{"viscosity-dilation", U::lanes,
+  f(DropletField{"viscosity-dilation", U::forces,
                  "Share of nu acting on uniform dilation, the breathing mode (1: damped as any deformation; 0: spared)",
                  between(0, true, 1, true)},
     p.viscosity_dilation...);
-  f(DropletField{"viscosity-step", U::lanes,
+  f(DropletField{"viscosity-step", U::forces,
                  "explicit (nu's force integrated as the others, nu dt <= 0.5), exponential "
                  "(deformation decays by exp(-nu dt) a step: any nu dt) or implicit (backward Euler "
                  "after the other forces: any nu dt, and a pushed ring deforms at the continuous rate)"},
@@ -208,8 +209,8 @@ void visit_droplet_fields(F&& f, Params&... p) {
 }
 
 /// Whether a and b agree, to the bit, on every field whose use is `use` or one of the uses listed
-/// before it in FieldUse (constraint: the constraint's fields; lanes: those and the lanes'; contacts:
-/// every field).
+/// before it in FieldUse (constraint: the constraint's fields; forces: those and the force stages';
+/// contacts: every field).
 inline bool same_fields(const DropletParams& a, const DropletParams& b, FieldUse use) {
   bool same = true;
   visit_droplet_fields(
@@ -247,27 +248,6 @@ void place_droplet(const DropletParams& params, double cx, double cy, DropletSta
 /// velocities follow the corrected positions. Returns the number of corrections made.
 int apply_length_constraint(DropletState* state, double rest_length, double max_strain, int iterations,
                             ConstraintOrder order = ConstraintOrder::sequential);
-
-/// The sequential order on several rings at once: each ring ends exactly as
-/// apply_length_constraint(ring, ..., ConstraintOrder::sequential) leaves it, and corrections[r]
-/// is its return value. The sequential pass is a chain of dependent square roots and divisions;
-/// the chains of different rings are independent. Rings of one size go link by link together, a
-/// ring per vector lane and up to three registers' chains side by side: up to 12 rings with AVX,
-/// 6 with SSE2.
-void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length, double max_strain,
-                                         int iterations, int* corrections);
-
-/// Vector width of the step's vector code (the constraint and the spring forces): doubles per
-/// instruction. Every width gives the same bits, since each lane does the scalar operations in the
-/// same order; the widest the processor has (AVX-512 where it has AVX-512F, else AVX on most
-/// x86-64 since 2011, else SSE2, which every x86-64 has) is found at start-up. AVX-512 serves the
-/// red-black constraint (eight springs at once); the rest uses AVX at that width. With AVX-512 or
-/// AVX, run_interleaved steps droplets as lane-by-lane blocks (eight droplets to a group).
-enum class VectorWidth { scalar = 1, sse2 = 2, avx = 4, avx512 = 8 };
-VectorWidth constraint_vector_width();
-/// Uses at most `width` from now on (never more than the processor has), for all threads; returns
-/// the width in use. For tests and benchmarks that check or time the narrower paths.
-VectorWidth limit_constraint_vector_width(VectorWidth width);
 
 /// Signed enclosed area (shoelace), positive for counter-clockwise order.
 double ring_area(const DropletState& state);

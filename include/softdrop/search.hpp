@@ -265,9 +265,9 @@ struct DriveOptions {
   /// generation accepts after all).
   /// The history is the same as without it; it only keeps threads busy.
   bool speculate = true;
-  /// Candidates each speculating thread steps together (run_interleaved), in [1, 64]; 0: chosen
-  /// for the processor, the threads, λ and the constraint order by speculative_lanes()
-  /// (lane_policy.hpp). A matter of speed only: the history does not depend on it.
+  /// Candidates each speculating thread steps together, in [1, 64]; 0: chosen
+  /// for the processor, the threads, λ and the constraint order. A matter of speed only: the
+  /// history does not depend on it.
   int lanes = 0;
 
   /// False, with the reason naming the option, for lanes outside [0, 64].

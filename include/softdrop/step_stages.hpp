@@ -2,7 +2,7 @@
 /// \file step_stages.hpp
 /// The physics stages of one time step, in the order every stepper runs them: one droplet
 /// (Simulation::step), a block of droplets side by side in vector lanes, and several droplets
-/// stepped together on one thread (run_interleaved) all go through this one list, each with its
+/// stepped together on one thread all go through this one list, each with its
 /// own code for a stage (docs/code-layout.md names each stage's file). A run follows every step
 /// with its exit tests (passed, stuck, at rest, diverged, out of steps).
 

@@ -9,6 +9,7 @@
 
 #include "cli/history_command.hpp"
 #include "cli/output.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/area_trace.hpp"
 #include "softdrop/grain_file.hpp"
 #include "softdrop/history.hpp"
@@ -168,7 +169,9 @@ RunOptions paths_run(const RenderArgs& a) {
   RunOptions run = a.run;
   run.path_interval = a.path_interval;
   const long threads = detail::worker_threads(a.batch.threads);
-  check_recording(run, std::min<long>(a.batch.droplets, threads * a.batch.lanes), a.droplet.masses);
+  check_recording(run,
+                  std::min<long>(a.batch.droplets, threads * (a.batch.lanes > 0 ? a.batch.lanes : interleaved_lanes())),
+                  a.droplet.masses);
   return run;
 }
 

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "evaluation.hpp"
+#include "sim/interleaved.hpp"
+#include "sim/lane_policy.hpp"
 #include "util/worker_threads.hpp"
 
 namespace softdrop::detail {

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <vector>
 
+#include "sim/lane_policy.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/simulation.hpp"
 

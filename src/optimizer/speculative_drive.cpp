@@ -18,7 +18,8 @@
 
 #include "drive_test_seam.hpp"
 #include "evaluation.hpp"
-#include "softdrop/lane_policy.hpp"
+#include "sim/interleaved.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/strategy.hpp"
 #include "util/validation.hpp"

@@ -12,6 +12,8 @@
 
 #include <cstdint>
 
+#include "lane_policy.hpp"
+
 namespace softdrop::lanes {
 
 /// A record's count for a mass inside one disc, the disc above, whose collision force (as

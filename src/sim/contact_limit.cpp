@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "contact_lanes.hpp"
+#include "lane_policy.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/simulation.hpp"
 #include "step_helpers.hpp"

@@ -6,6 +6,7 @@
 
 #include "contact_lanes.hpp"
 #include "lane_layout.hpp"
+#include "lane_policy.hpp"
 #include "lane_scalar.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/simulation.hpp"

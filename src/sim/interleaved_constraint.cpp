@@ -5,10 +5,10 @@
 #include <type_traits>
 
 #include "lane_layout.hpp"
+#include "lane_policy.hpp"
 #include "lane_simd.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/droplet.hpp"
-#include "softdrop/lane_policy.hpp"
 #include "spring_correction.hpp"
 
 namespace softdrop {

@@ -7,9 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "interleaved.hpp"
 #include "lane_block_step.hpp"
 #include "lane_exchange.hpp"
 #include "lane_layout.hpp"
+#include "lane_policy.hpp"
 #include "run_stepper.hpp"
 #include "softdrop/simulation.hpp"
 

@@ -18,7 +18,7 @@ namespace softdrop {
 struct LaneBlockStep {
   // Whether droplets of parameters a and b can share a block: the same constants for every stage
   // that runs across lanes (the collisions and the contact limit run droplet by droplet).
-  static bool compatible(const DropletParams& a, const DropletParams& b) { return same_fields(a, b, FieldUse::lanes); }
+  static bool compatible(const DropletParams& a, const DropletParams& b) { return same_fields(a, b, FieldUse::forces); }
   // The stages of kStepStages from gravity to the constraint (all of step() but the contact
   // limit) for sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0].
   static void step(Simulation* const* sims, int count);

@@ -9,6 +9,7 @@
 #include <optional>
 #include <vector>
 
+#include "interleaved.hpp"
 #include "run_stepper.hpp"
 #include "softdrop/simulation.hpp"
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <type_traits>
 
+#include "lane_policy.hpp"
 #include "softdrop/droplet.hpp"
 
 namespace softdrop::lanes {

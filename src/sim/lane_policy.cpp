@@ -1,4 +1,4 @@
-#include "softdrop/lane_policy.hpp"
+#include "lane_policy.hpp"
 
 #include <algorithm>
 

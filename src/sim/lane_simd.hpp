@@ -285,6 +285,7 @@ SOFTDROP_AVX512 inline V add_where(M m, V a, V b) { return _mm512_mask_add_pd(a,
 /// m ? a - b : a, lane by lane.
 SOFTDROP_AVX512 inline V sub_where(M m, V a, V b) { return _mm512_mask_sub_pd(a, m, a, b); }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
+#include "lane_policy.hpp"
 #include "spring_kernel.inc"
 #undef SOFTDROP_LANE_TARGET
 

@@ -93,6 +93,7 @@ SOFTDROP_AVX512 inline void store_ends(double* p, V i, V j) {
 }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
 #include "disjoint_spring_passes.inc"
+#include "lane_policy.hpp"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace eight_lanes
 #endif

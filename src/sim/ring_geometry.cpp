@@ -1,4 +1,5 @@
 // Geometry of a ring: its area, whether it crosses itself, whether it holds a point.
+#include "lane_policy.hpp"
 #include "lane_scalar.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/droplet.hpp"

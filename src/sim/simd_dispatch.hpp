@@ -12,4 +12,6 @@
 #define SOFTDROP_AVX __attribute__((target("avx")))
 #define SOFTDROP_AVX512 __attribute__((target("avx512f")))
 #include <immintrin.h>
+
+#include "lane_policy.hpp"
 #endif

@@ -10,6 +10,8 @@
 #include <string>
 #include <thread>
 
+#include "sim/interleaved.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/random.hpp"
 #include "util/worker_threads.hpp"
 
@@ -26,8 +28,9 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
                                   const BatchOptions& options, const std::function<void(int, int)>& progress) {
   const int k = options.droplets;
   if (k < 0) throw std::invalid_argument("droplets = " + std::to_string(k) + ": must be >= 0");
-  if (options.lanes < 1 || options.lanes > 64)
-    throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [1, 64]");
+  if (options.lanes < 0 || options.lanes > 64)
+    throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [1, 64], or 0 (chosen)");
+  const int lanes = options.lanes == 0 ? interleaved_lanes() : options.lanes;
   std::vector<RunSummary> results(static_cast<std::size_t>(k));
   std::mutex progress_mutex;
   int done = 0;
@@ -72,7 +75,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
         progress(++done, k);
       }
     };
-    run_interleaved(options.lanes, next, finished, nullptr, &exchange);
+    run_interleaved(lanes, next, finished, nullptr, &exchange);
   };
   // Long-lived workers that may block at the lane exchange: plain threads, the calling thread one
   // of them, no more than there are droplets.

@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "sim/interleaved.hpp"
+#include "sim/lane_policy.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/porosity.hpp"
 #include "softdrop/random.hpp"
@@ -156,7 +158,7 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
   std::vector<std::size_t> ready;  // completed units waiting for on_done
   // Each worker steps up to `lanes` droplets together (run_interleaved); a droplet's summary does
   // not depend on which worker or lane ran it, nor on its lane mates.
-  const int lanes = BatchOptions{}.lanes;
+  const int lanes = interleaved_lanes();
   // Units from the oldest not yet committed that may be open: one per worker and one more, plus
   // enough that their droplets fill every lane twice over, so that a unit still waiting for its
   // slowest (stuck) droplets does not leave lanes idle when media have few droplets each.

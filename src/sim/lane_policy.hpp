@@ -1,0 +1,56 @@
+#pragma once
+// The step's vector width, and how many droplets a thread steps together for it. Every choice here
+// changes speed only: each droplet gets the same bits at every width and however many step beside
+// it. The measurements behind each number: bench/README.md, "Constants of the step" and "Lanes of a
+// search". Private to the library: tests and benchmarks include it to check and time the widths.
+
+#include <cstddef>
+
+#include "softdrop/droplet.hpp"
+
+namespace softdrop {
+
+/// The sequential order on several rings at once: each ring ends exactly as
+/// apply_length_constraint(ring, ..., ConstraintOrder::sequential) leaves it, and corrections[r]
+/// is its return value. The sequential pass is a chain of dependent square roots and divisions;
+/// the chains of different rings are independent. Rings of one size go link by link together, a
+/// ring per vector lane and up to three registers' chains side by side: up to 12 rings with AVX,
+/// 6 with SSE2.
+void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length, double max_strain,
+                                         int iterations, int* corrections);
+
+/// Vector width of the step's vector code (the constraint and the spring forces): doubles per
+/// instruction. Every width gives the same bits, since each lane does the scalar operations in the
+/// same order; the widest the processor has (AVX-512 where it has AVX-512F, else AVX on most
+/// x86-64 since 2011, else SSE2, which every x86-64 has) is found at start-up. AVX-512 serves the
+/// red-black constraint (eight springs at once); the rest uses AVX at that width. With AVX-512 or
+/// AVX, run_interleaved steps droplets as lane-by-lane blocks (eight droplets to a group).
+enum class VectorWidth { scalar = 1, sse2 = 2, avx = 4, avx512 = 8 };
+VectorWidth constraint_vector_width();
+/// Uses at most `width` from now on (never more than the processor has), for all threads; returns
+/// the width in use. For tests and benchmarks that check or time the narrower paths.
+VectorWidth limit_constraint_vector_width(VectorWidth width);
+
+/// Rings apply_length_constraint_interleaved takes at once: a ring per vector lane, up to three
+/// registers side by side (24 with AVX-512, 12 with AVX, 6 with SSE2, 1 without).
+int interleaved_ring_capacity();
+
+/// Droplets per thread that run_interleaved steps fastest together: 24 with AVX-512 or AVX, which
+/// step them as lane-by-lane blocks of up to three groups of eight; otherwise
+/// interleaved_ring_capacity(). The default of BatchOptions::lanes.
+int interleaved_lanes();
+
+/// The fewest droplets worth a lane-by-lane block with `width`; fewer step faster one by one:
+/// 3 with AVX-512, 6 with AVX (whose groups of eight are two registers each).
+std::size_t fewest_block_droplets(VectorWidth width);
+
+/// Droplets each thread of a speculating search steps together, when its options leave it to the
+/// program: `per_generation` candidates a generation, `threads` threads. 8 on 1 and 2 threads; 4
+/// at per_generation = 1 with SSE2 alone (there the lanes only hide the sequential constraint's
+/// chain). With the red-black order, 1 with SSE2 alone and with AVX at per_generation = 1 on
+/// several threads. More threads keep the droplets in flight of 2 threads, over fewer lanes each:
+/// more lanes run further ahead, so more speculative work is thrown away, and slow each droplet,
+/// which delays the decisions the rest waits for.
+int speculative_lanes(int per_generation, int threads, ConstraintOrder order);
+
+}  // namespace softdrop
