@@ -193,12 +193,10 @@ PYBIND11_MODULE(_core, m) {
                      "(whose grains, radii 8 to 16, go to Medium.generate)");
   droplet.def_static("explicit_step", &DropletParams::explicit_step,
                      "The defaults' droplet with the explicit viscosity step (the reference) at the dt it needs, "
-                     "3.5e-6, and the defaults' nu = 1.37e5, as results/calibration/explicit.toml, at 1.7 times the "
-                     "steps");
+                     "3.5e-6, as results/calibration/explicit.toml");
   droplet.def_static("exponential_step", &DropletParams::exponential_step,
                      "The droplet calibrated for the exponential viscosity step, nu = 2.8e5 at dt = 6e-6, as "
-                     "results/calibration/exponential.toml: the defaults' <T>(phi) within 0.02, but not converged "
-                     "in dt (its <T> rises by 0.015 to 0.04 at dt / 2)");
+                     "results/calibration/exponential.toml; not converged in dt (results/calibration/README.md)");
   droplet.def_static("passage", &DropletParams::passage,
                      "A smaller droplet with a stiffer ring, for more passage at low porosity, as "
                      "results/calibration/passage.toml (whose grains, radii 26 to 50, go to Medium.generate)");

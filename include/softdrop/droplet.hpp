@@ -51,12 +51,10 @@ std::vector<std::string> value_names(ViscosityStep);
 /// each value). It is a droplet of the paper's g, k_s and k_d (with N = 24, m = 1) at 8 400 times
 /// our lengths, written in our lengths: the model is similar under x -> x / S, t -> t / sqrt(S)
 /// with g fixed, which multiplies k_s by S, k_d, nu and 1 / dt by sqrt(S), and divides nRT by S.
-/// Its internal viscosity nu = 1.37e5 takes the implicit step at dt = 6e-6, where <T>(phi) is
-/// converged in dt (halving dt moves it by less than its error over 100 held-out media a
-/// porosity). explicit_step() is the same droplet with the explicit step at the dt that step
-/// needs (the same nu, 1.7 times the steps); exponential_step() is the exponential step's
-/// calibration, whose <T> rises by 0.02 to 0.04 when dt is halved. results/calibration/balloon.toml
-/// holds the balloon (held at its stretch limit).
+/// Its internal viscosity nu = 1.37e5 takes the implicit step at dt = 6e-6 (the time-step study
+/// of results/calibration/README.md). explicit_step() is the same droplet with the explicit step at
+/// the dt that step needs; exponential_step() is the exponential step's calibration;
+/// results/calibration/balloon.toml holds the balloon (held at its stretch limit).
 struct DropletParams {
   int masses = 24;                ///< N, point masses on the ring
   double mass = 1.0;              ///< m, mass of each point
@@ -114,19 +112,16 @@ struct DropletParams {
   /// (results/calibration/balloon.toml, which also sets its grains, radii 8 to 16).
   static DropletParams balloon();
   /// The defaults' droplet with the explicit viscosity step (the reference) at the dt it needs:
-  /// dt = 3.5e-6, the defaults' nu = 1.37e5 (nu dt = 0.48), at 1.7 times the steps
-  /// (results/calibration/README.md compares their <T>(phi); results/calibration/explicit.toml).
+  /// dt = 3.5e-6 with the defaults' nu (results/calibration/explicit.toml).
   static DropletParams explicit_step();
-  /// The droplet calibrated for the exponential viscosity step: nu = 2.8e5 at dt = 6e-6. Its
-  /// <T>(phi) is the defaults' within 0.02, but it is not converged in dt: at dt / 2 its <T> rises
-  /// by 0.015 to 0.04 below phi = 0.8 (results/calibration/exponential.toml, and the time step
-  /// study in results/calibration/README.md).
+  /// The droplet calibrated for the exponential viscosity step: nu = 2.8e5 at dt = 6e-6
+  /// (results/calibration/exponential.toml). It is not converged in dt.
   static DropletParams exponential_step();
-  /// A smaller droplet with a stiffer ring, for more passage at low porosity: R = 5,
-  /// nRT = 1.59e9 (springs at about 9 % strain at rest), k_c = 2.5e8, nu = 1e6. Among grains of
-  /// radii 26 to 50 a quarter of its droplets pass at phi = 0.5, with <T> within 0.03 of the
-  /// paper's f(phi) (results/calibration/passage.toml, which also sets those grains).
+  /// A smaller droplet with a stiffer ring, for more passage at low porosity: R = 5, nRT = 1.59e9,
+  /// k_c = 2.5e8, nu = 1e6, for grains of radii 26 to 50 (results/calibration/passage.toml, which
+  /// also sets those grains).
   static DropletParams passage();
+  // How each of these compares with the defaults and with the paper: results/calibration/README.md.
 
   bool IsValid(std::string* why) const;
 };
