@@ -72,46 +72,6 @@ RunOptions interruptible(RunOptions run, bool* interrupted) {
   return run;
 }
 
-py::array_t<double> grain_array(const Medium& m) {
-  py::array_t<double> a({static_cast<py::ssize_t>(m.grains.size()), py::ssize_t{3}});
-  auto v = a.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < m.grains.size(); ++i) {
-    const auto k = static_cast<py::ssize_t>(i);
-    v(k, 0) = m.grains[i].x, v(k, 1) = m.grains[i].y, v(k, 2) = m.grains[i].r;
-  }
-  a.attr("setflags")(py::arg("write") = false);  // a copy: a write would be lost, so it is refused
-  return a;
-}
-
-// A boolean image of the box, rows from the top: True in the pore space (PoreSpy's convention).
-py::array_t<bool> pore_image(const Medium& m, int pixels) {
-  if (pixels < 1 || pixels > 20000)
-    throw std::invalid_argument("pixels = " + std::to_string(pixels) + ": must be in [1, 20000]");
-  const double scale = pixels / m.width;
-  const auto rows = static_cast<py::ssize_t>(std::max(1.0, std::round(m.height * scale)));
-  py::array_t<bool> image({rows, static_cast<py::ssize_t>(pixels)});
-  auto v = image.mutable_unchecked<2>();
-  for (py::ssize_t r = 0; r < rows; ++r)
-    for (py::ssize_t c = 0; c < pixels; ++c) v(r, c) = true;
-  for (const Grain& g : m.grains)  // each grain clears the pixels whose centres it covers
-    for (int image_shift : {-1, 0, 1}) {
-      if (image_shift != 0 && !m.periodic) continue;
-      const double gx = g.x + image_shift * m.width;
-      const auto c0 = std::max<py::ssize_t>(0, static_cast<py::ssize_t>(std::floor((gx - g.r) * scale)));
-      const auto c1 = std::min<py::ssize_t>(pixels - 1, static_cast<py::ssize_t>(std::ceil((gx + g.r) * scale)));
-      for (py::ssize_t c = c0; c <= c1; ++c) {
-        const double x = (static_cast<double>(c) + 0.5) / scale - gx;
-        if (std::abs(x) > g.r) continue;
-        const double half = std::sqrt(g.r * g.r - x * x);
-        for (py::ssize_t r = 0; r < rows; ++r) {
-          const double y = m.height - (static_cast<double>(r) + 0.5) / scale;
-          if (std::abs(y - g.y) <= half) v(r, c) = false;
-        }
-      }
-    }
-  return image;
-}
-
 py::dict summary_dict(const RunSummary& s, bool with_path) {
   py::dict d;
   d["outcome"] = to_string(s.outcome);
@@ -219,94 +179,7 @@ PYBIND11_MODULE(_core, m) {
       run_options, {"max_steps", "stuck_window", "stuck_distance", "rest_window", "rest_distance", "path_interval"},
       "RunOptions");
 
-  const MediumOptions kMedium;  // the program's defaults are the module's
-  py::class_<Medium>(m, "Medium", "A box of disc grains (length units)")
-      .def_static(
-          "generate",
-          [](const std::string& kind, double porosity, double width, double height, double r_min, double r_max,
-             std::uint64_t seed, double gap, bool periodic, int grains) {
-            MediumOptions o;
-            o.kind = parse_medium_kind(kind);
-            o.porosity = porosity, o.width = width, o.height = height, o.r_min = r_min, o.r_max = r_max;
-            o.seed = seed, o.gap = gap, o.periodic = periodic, o.grains = grains;
-            std::string why;
-            if (!o.IsValid(&why)) throw std::invalid_argument(why);
-            py::gil_scoped_release release;
-            try {
-              return generate_medium(o);
-            } catch (const std::runtime_error& e) {  // a target random placement cannot reach: a bad argument
-              throw std::invalid_argument(e.what());
-            }
-          },
-          py::arg("kind") = "overlapping", py::arg("porosity") = kMedium.porosity, py::arg("width") = kMedium.width,
-          py::arg("height") = kMedium.height, py::arg("r_min") = kMedium.r_min, py::arg("r_max") = kMedium.r_max,
-          py::arg("seed") = kMedium.seed, py::arg("gap") = kMedium.gap, py::arg("periodic") = kMedium.periodic,
-          py::arg("grains") = kMedium.grains,
-          "A random medium, as `softdrop simulate` generates it (the same options give the same grains). "
-          "kind: overlapping, non-overlapping (random sequential addition) or relaxed (non-overlapping, "
-          "placed at random and pushed apart: lower porosities with wider gaps); gap: the least surface gap "
-          "of non-overlapping and relaxed grains, as a fraction of the larger radius")
-      .def_static(
-          "from_arrays",
-          [](const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& r, double width,
-             double height, bool periodic) {
-            if (x.size() != y.size() || x.size() != r.size())
-              throw std::invalid_argument("x, y, r: must have the same length");
-            Medium med;
-            med.width = width, med.height = height, med.periodic = periodic;
-            for (std::size_t i = 0; i < x.size(); ++i) med.grains.push_back({x[i], y[i], r[i]});
-            std::string why;
-            if (!med.IsValid(&why)) throw std::invalid_argument(why);
-            return med;
-          },
-          py::arg("x"), py::arg("y"), py::arg("r"), py::arg("width"), py::arg("height"), py::arg("periodic") = true)
-      .def_static(
-          "load",
-          [](const std::filesystem::path& path) {
-            std::error_code ec;
-            if (!std::filesystem::exists(path, ec)) {  // as open() says it
-              PyErr_SetString(PyExc_FileNotFoundError, ("grain file '" + path.string() + "': no such file").c_str());
-              throw py::error_already_set();
-            }
-            return load_medium(path.string());
-          },
-          py::arg("path"), "Reads a grain file (.json, or CSV); path: str or os.PathLike")
-      .def(
-          "save", [](const Medium& med, const std::filesystem::path& path) { save_medium(path.string(), med); },
-          py::arg("path"), "Writes a grain file (.json, or CSV); path: str or os.PathLike")
-      .def_readonly("width", &Medium::width)
-      .def_readonly("height", &Medium::height)
-      .def_readonly("periodic", &Medium::periodic)
-      .def_property_readonly("grains", &grain_array, "N x 3 array of x, y, r")
-      .def("porosity", &exact_porosity, "The exact void fraction of the box")
-      .def("to_image", &pore_image, py::arg("pixels"),
-           "Boolean image, `pixels` wide, rows from the top: True in the pore space")
-      .def("__len__", [](const Medium& med) { return med.grains.size(); })
-      .def("__repr__",
-           [](const Medium& med) {
-             return "<softdrop.Medium: " + std::to_string(med.grains.size()) + " grains, " +
-                    std::string(py::repr(py::float_(med.width))) + " x " +
-                    std::string(py::repr(py::float_(med.height))) + (med.periodic ? ", periodic>" : ", walls>");
-           })
-      .def("__eq__", [](const Medium& a, py::object b) { return py::isinstance<Medium>(b) && a == b.cast<Medium>(); })
-      .def(py::pickle(  // the box and every grain, to the bit (Python floats are doubles)
-          [](const Medium& med) {
-            py::list grains;
-            for (const Grain& g : med.grains) grains.append(py::make_tuple(g.x, g.y, g.r));
-            return py::make_tuple(med.width, med.height, med.periodic, grains);
-          },
-          [](const py::tuple& state) {
-            if (state.size() != 4) throw std::invalid_argument("Medium: a pickled state has 4 items");
-            Medium med;
-            med.width = state[0].cast<double>(), med.height = state[1].cast<double>();
-            med.periodic = state[2].cast<bool>();
-            for (const auto& g : state[3].cast<py::list>()) {
-              const auto t = g.cast<py::tuple>();
-              med.grains.push_back({t[0].cast<double>(), t[1].cast<double>(), t[2].cast<double>()});
-            }
-            return med;
-          }));
-  py::type::of<Medium>().attr("__hash__") = py::none();
+  python::bind_medium(m);
 
   bind_stores(m);
   m.def("_columns", [] {

@@ -97,7 +97,8 @@ Cli::Cli() {
   optimize_cmd_ = add_optimize_command(app, optimize_);
   history_cmd_ = add_history_command(app, history_);
   export_cmd_ = add_export_command(app, export_);
-  add_study_commands(app, sweep_, sweep_merge_, sweep_report_, fit_, averagings_);
+  add_sweep_commands(app, sweep_, sweep_merge_, sweep_report_);
+  add_fit_commands(app, fit_, averagings_);
   render_cmd_ = add_render_command(app, render_);
   calibrate_cmd_ = add_calibrate_command(app, calibrate_);
   validate_cmd_ = add_validate_command(app, validate_);

@@ -8,6 +8,7 @@
 
 #include "cli/calibrate_command.hpp"
 #include "cli/columns.hpp"
+#include "cli/fit_command.hpp"
 #include "cli/history_command.hpp"
 #include "cli/host.hpp"
 #include "cli/optimize_command.hpp"

@@ -1,4 +1,6 @@
 // `softdrop fit` and `softdrop averagings`: the paper's analyses of a sweep's points.
+#include "cli/fit_command.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -253,6 +255,57 @@ int run_averagings(const AveragingArgs& args) {
     render_chart(c, plot_style(a.size, a.dpi), a.plot);
   }
   return 0;
+}
+
+void add_fit_commands(CLI::App& app, FitArgs& f, AveragingArgs& v) {
+  CLI::App* ft =
+      app.add_subcommand("fit", "Weighted least-squares fits of <T>(phi): a - c phi^b and 1 - p ln phi (NLopt)");
+  ft->fallthrough();
+  auto* src = ft->add_option_group("Data");
+  src->add_option("--db", f.db, "Sweep store: fit its per-porosity points");
+  src->add_option(
+         "--points", f.points,
+         "Or a CSV file with columns porosity,tortuosity,standard_error (or the output of sweep-report --format csv)")
+      ->check(CLI::ExistingFile);
+  src->require_option(1);
+  ft->add_option("--sweep", f.sweep, "Sweep id (default: the only one)")->check(id_check());
+  ft->add_option("--errors", f.errors,
+                 "Weights of a sweep's points: the standard error of each porosity's <T> with its media as "
+                 "clusters (media), or with every droplet taken as independent (droplets: smaller, as droplets "
+                 "of one medium share its dead ends); a porosity,tortuosity,standard_error file brings its own")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"media", "droplets"}));
+  ft->add_option("--mean", f.mean,
+                 "Which <T> of a sweep's porosity: pooled over its passed droplets (a medium counts by the "
+                 "droplets that passed it), or per-medium: each medium's <T> first, then their mean over the "
+                 "media, weighed by its error over the media")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"pooled", "per-medium"}));
+  ft->add_option("--plot", f.plot, "Also draw T(phi) with error bars and both fits (.png, .svg, .pdf)");
+  ft->add_option("--size", f.size, "Plot width in points (1/72 inch)")->capture_default_str();
+  ft->add_option("--dpi", f.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
+  ft->add_option("--json", f.json_file, "Also write the fits as JSON to this file");
+  ft->add_option("--format", f.format, "table or json")->capture_default_str()->check(CLI::IsMember({"table", "json"}));
+
+  CLI::App* av = app.add_subcommand("averagings", "The paper's two averagings of per-medium points (by T, by phi)");
+  av->fallthrough();
+  av->add_option("--db", v.db, "Sweep store")->capture_default_str();
+  av->add_option("--sweep", v.sweep, "Sweep id (default: the only one)")->check(id_check());
+  av->add_option("--group", v.group,
+                 "Points per group (default: the paper's 100, or a twentieth of the media when the store has "
+                 "fewer than 2000, at least 2)")
+      ->check(positive_check());
+  av->add_option("--leftover", v.leftover,
+                 "Media left over after the last full group: drop (every group full, as the "
+                 "paper's) or keep (averaged as a last, smaller group)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"drop", "keep"}));
+  av->add_option(
+      "--csv", v.csv,
+      "Write the groups (averaging,porosity,mean_tortuosity,porosity_standard_error,standard_error,count) to this CSV");
+  av->add_option("--plot", v.plot, "Draw the per-medium points and both averagings");
+  av->add_option("--size", v.size, "Plot width in points (1/72 inch)")->capture_default_str();
+  av->add_option("--dpi", v.dpi, "PNG resolution of the plot: pixels an inch (300 for print)")->capture_default_str();
 }
 
 }  // namespace softdrop::cli

@@ -339,64 +339,7 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   // `softdrop validate`, so that Ctrl-C and --time-limit stop at once.
   const nlohmann::json held_out =
       summary.termination == Termination::generations ? validate_best(a, *history, run, best) : nlohmann::json();
-  nlohmann::json j;
-  j["version"] = kVersion;
-  j["db"] = a.db;
-  j["run"] = run;
-  j["strategy"] = to_string(a.search.strategy.kind);
-  j["objective"] = to_string(a.search.objective.kind);
-  j["starts"] = a.search.objective.droplets();
-  j["termination"] = to_string(summary.termination);
-  j["message"] = summary.message;
-  j["last_generation"] = summary.last_generation;
-  j["generations_run"] = summary.generations_run;
-  j["evaluations"] = summary.evaluations + initial_evaluations;
-  j["droplets"] = summary.droplets + initial_droplets;
-  j["accepted"] = summary.accepted;
-  j["best_tortuosity"] = best.eval.tortuosity;
-  j["best_generation"] = best.generation;
-  j["grains"] = best.medium.grains.size();
-  j["touched"] = best.eval.touched.size();
-  j["held_out"] = held_out;
-  j["wall_seconds"] = summary.seconds;
-  j["evaluations_per_second"] = summary.evaluations_per_second();
-  j["speculation"] = {{"threads", summary.speculation.threads},
-                      {"lanes", summary.speculation.lanes},
-                      {"dropped_evaluations", summary.speculation.dropped},
-                      {"dropped_steps", summary.speculation.dropped_steps},
-                      {"kept_steps", summary.speculation.kept_steps},
-                      {"predictions", summary.speculation.predictions},
-                      {"mispredictions", summary.speculation.mispredictions},
-                      {"predictions_ahead", summary.speculation.predictions_ahead}};
-  if (!deliver_summary(a, j, host)) {
-    std::cout << "run          " << run << " in " << a.db << "\n"
-              << "stopped      " << summary.message << "\n"
-              << "best T       " << fmt(best.eval.tortuosity, 10) << " (generation " << best.generation << ", "
-              << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n";
-    if (a.search.objective.robust())
-      std::cout << "objective    " << to_string(a.search.objective.kind) << " over " << a.search.objective.starts
-                << " fresh starts a generation; the best T is the mean of the best's "
-                << summary.last_generation - best.generation << " re-runs"
-                << (summary.last_generation == best.generation ? " (none yet: the value it was kept with)" : "")
-                << "\n";
-    std::cout << "this session " << summary.generations_run << " generations, " << summary.accepted << " accepted, "
-              << summary.evaluations + initial_evaluations << " evaluations (" << summary.droplets + initial_droplets
-              << " droplets), " << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
-    print_held_out(std::cout, held_out);
-    if (a.verbose) {  // for those who tune --lanes and --threads
-      const SpeculationStats& sp = summary.speculation;
-      const double dropped_share =
-          sp.kept_steps > 0 ? 100.0 * static_cast<double>(sp.dropped_steps) / static_cast<double>(sp.kept_steps) : 0.0;
-      if (sp.threads == 0)
-        std::cout << "speculation  off (one generation at a time)\n";
-      else
-        std::cout << "speculation  " << sp.threads << " threads x " << sp.lanes << " lanes, " << sp.dropped
-                  << " evaluations dropped (" << sp.dropped_steps << " steps, " << fmt(dropped_share, 3)
-                  << " % of the kept evaluations' " << sp.kept_steps << "), " << sp.predictions
-                  << " acceptances predicted (" << sp.predictions_ahead << " ahead of an undecided generation, "
-                  << sp.mispredictions << " overturned)\n";
-    }
-  }
+  report_optimize(a, summary, run, best, held_out, initial_evaluations, initial_droplets, host);
   return summary.termination == Termination::interrupted && stop ? stop->exit_code() : 0;
 }
 

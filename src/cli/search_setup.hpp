@@ -88,5 +88,11 @@ nlohmann::json generation_event(std::int64_t run, const Generation& g, const Con
 /// The summary `j` written to --json's file, handed to a host, or printed with --format json;
 /// false when it is still to be printed as a table.
 bool deliver_summary(const OptimizeArgs& args, const nlohmann::json& j, Host* host);
+/// The summary of run `run` after its drive (deliver_summary's, or a table on stdout): `held_out`
+/// is validate_best's JSON; generation 0's evaluations and droplets count with this session's when
+/// it made them.
+void report_optimize(const OptimizeArgs& args, const SearchSummary& summary, std::int64_t run,
+                     const Configuration& best, const nlohmann::json& held_out, std::int64_t initial_evaluations,
+                     std::int64_t initial_droplets, Host* host);
 
 }  // namespace softdrop::cli

@@ -1,6 +1,6 @@
 #pragma once
-// The paper's studies on the command line: `sweep` (tortuosity-porosity sweep into a resumable
-// SQLite store, shardable), `sweep-merge`, `sweep-report`, `fit` and `averagings`.
+// The tortuosity-porosity sweep on the command line: `sweep` (into a resumable SQLite store,
+// shardable; sweep_command.cpp), `sweep-merge` (sweep_merge_command.cpp) and `sweep-report`.
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -42,31 +42,7 @@ struct SweepReportArgs {
   std::string format = "table";
 };
 
-struct FitArgs {
-  std::string db;  ///< sweep store ...
-  std::int64_t sweep = 0;
-  std::string points;            ///< ... or a CSV with columns porosity,tortuosity,standard_error
-  std::string errors = "media";  ///< a sweep's points weighed by media_standard_error, or "droplets"
-  std::string mean = "pooled";   ///< the porosity's mean over its droplets, or "per-medium" first
-  std::string plot;              ///< T(phi) with error bars and both fits
-  int size = 800;                ///< plot width (points)
-  double dpi = 72;               ///< PNG pixels an inch
-  std::string format = "table";
-  std::string json_file;
-};
-
-struct AveragingArgs {
-  std::string db = "sweep.db";
-  std::int64_t sweep = 0;
-  int group = 0;                  ///< points per group; 0: from the store (see default_group)
-  std::string leftover = "drop";  ///< drop or keep (see Leftover)
-  std::string csv, plot;
-  int size = 800;   ///< plot width (points)
-  double dpi = 72;  ///< PNG pixels an inch
-};
-
-void add_study_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, SweepReportArgs& report, FitArgs& fit,
-                        AveragingArgs& averaging);
+void add_sweep_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, SweepReportArgs& report);
 /// Applies --preset and checks the options without running; returns the shard (i, n). Throws
 /// std::invalid_argument naming the bad parameter.
 std::pair<int, int> check_sweep(SweepArgs& args, const CLI::App& command);
@@ -78,7 +54,5 @@ int run_sweep_report(const SweepReportArgs& args);
 /// naming the file when it holds none or several. A sweep that holds fewer media than it has is
 /// warned of on stderr: its readers' figures are of part of it.
 std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db);
-int run_fit(const FitArgs& args);  // fit_command.cpp, as run_averagings
-int run_averagings(const AveragingArgs& args);
 
 }  // namespace softdrop::cli

@@ -1,6 +1,6 @@
 #pragma once
 // What evaluating a candidate means, shared by the search's one-generation-at-a-time path
-// (search.cpp) and its speculating drive (speculative_drive.cpp). Internal to softdrop_opt.
+// (search.cpp) and its speculating drive (drive.cpp, speculative_pipeline.cpp). Internal to softdrop_opt.
 #include <chrono>
 #include <vector>
 

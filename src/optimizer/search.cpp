@@ -1,6 +1,6 @@
 // The search: evaluation of a candidate, generation 0, and one generation at a time (its candidates
 // in parallel), keeping the best strict improvement. The speculating drive is in
-// speculative_drive.cpp.
+// speculative_pipeline.cpp and drive.cpp.
 #include "softdrop/search.hpp"
 
 #include <algorithm>

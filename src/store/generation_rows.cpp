@@ -1,12 +1,55 @@
-// The generations and candidates tables' rows read back (generation_rows.hpp).
+// The runs, generations and candidates tables' rows read back (generation_rows.hpp).
 #include "generation_rows.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "sqlite_file.hpp"
 
 namespace softdrop::detail {
+
+std::string select_runs(int version) {
+  return std::string(
+             "SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, "
+             "periodic, generations, evaluations, best_t, best_generation, ") +
+         (version >= 5 ? "island, archipelago" : "NULL, NULL") +
+         (version >= 7 ? ", coalesce(droplets, evaluations)" : ", evaluations") + " FROM runs";
+}
+
+RunRecord read_run(SQLite::Statement& q) {
+  RunRecord r;
+  read_row_head(q, &r);
+  r.seed = static_cast<std::uint64_t>(as_int64(q.getColumn(6)));
+  r.lambda = as_int(q.getColumn(7));
+  r.grains = as_int64(q.getColumn(8));
+  r.width = as_real(q.getColumn(9));
+  r.height = as_real(q.getColumn(10));
+  r.periodic = as_int(q.getColumn(11)) != 0;
+  r.generations = as_int64(q.getColumn(12));
+  r.evaluations = as_int64(q.getColumn(13));
+  r.best_t = as_real(q.getColumn(14));
+  r.best_generation = as_int64(q.getColumn(15));
+  if (!q.getColumn(16).isNull()) r.island = as_int(q.getColumn(16));
+  if (!q.getColumn(17).isNull()) r.archipelago = as_int64(q.getColumn(17));
+  r.droplets = as_int64(q.getColumn(18));
+  const auto bad = [&](const char* column, const std::string& value) {
+    throw std::runtime_error("run " + std::to_string(r.id) + ": column " + column + " holds " + value +
+                             " (damaged or edited file?)");
+  };
+  if (r.generations < 0) bad("generations", std::to_string(r.generations));
+  if (r.evaluations < 0) bad("evaluations", std::to_string(r.evaluations));
+  if (r.droplets < r.evaluations) bad("droplets", std::to_string(r.droplets) + ", fewer than its evaluations");
+  if (r.best_generation < 0 || r.best_generation > r.generations)
+    bad("best_generation",
+        std::to_string(r.best_generation) + ", outside the run's generations 0 to " + std::to_string(r.generations));
+  if (r.lambda < 1) bad("lambda", std::to_string(r.lambda));
+  if (r.grains < 0) bad("grains", std::to_string(r.grains));
+  if (!(r.width > 0) || !(r.height > 0) || !std::isfinite(r.width) || !std::isfinite(r.height))
+    bad("width or height", std::to_string(r.width) + " x " + std::to_string(r.height));
+  if (!std::isfinite(r.best_t) || r.best_t < 0) bad("best_t", std::to_string(r.best_t));
+  return r;
+}
 
 std::vector<GenerationRecord> read_generations(SQLite::Database& db, std::int64_t run_id, int version) {
   std::vector<GenerationRecord> out;

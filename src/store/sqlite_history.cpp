@@ -92,11 +92,16 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   }
 
   std::vector<RunRecord> runs() override {
-    return guarded([&] { return detail::read_rows(db_, run_columns() + " ORDER BY id", read_run); });
+    return guarded([&] {
+      return detail::read_rows(db_, detail::select_runs(schema_version()) + " ORDER BY id", detail::read_run);
+    });
   }
 
   RunRecord run(std::int64_t id) override {
-    return guarded([&] { return detail::read_row(db_, run_columns() + " WHERE id = ?", id, "run", path_, read_run); });
+    return guarded([&] {
+      return detail::read_row(db_, detail::select_runs(schema_version()) + " WHERE id = ?", id, "run", path_,
+                              detail::read_run);
+    });
   }
 
   std::vector<GenerationRecord> generations(std::int64_t run_id) override {
@@ -287,52 +292,8 @@ class SqliteHistory final : public History, private detail::SqliteConnection {
   }
 
  private:
-  // A file before version 5, opened for reading, has no island columns.
-  std::string run_columns() {
-    return std::string(
-               "SELECT id, created, updated, version, status, params, seed, lambda, grains, width, height, "
-               "periodic, generations, evaluations, best_t, best_generation, ") +
-           (schema_version() >= 5 ? "island, archipelago" : "NULL, NULL") +
-           (schema_version() >= 7 ? ", coalesce(droplets, evaluations)" : ", evaluations") + " FROM runs";
-  }
-
   // A version-2 file opened for reading is read as it is (no state column).
   int schema_version() { return db_.execAndGet("PRAGMA user_version").getInt(); }
-
-  static RunRecord read_run(SQLite::Statement& q) {
-    RunRecord r;
-    detail::read_row_head(q, &r);
-    r.seed = static_cast<std::uint64_t>(detail::as_int64(q.getColumn(6)));
-    r.lambda = detail::as_int(q.getColumn(7));
-    r.grains = detail::as_int64(q.getColumn(8));
-    r.width = detail::as_real(q.getColumn(9));
-    r.height = detail::as_real(q.getColumn(10));
-    r.periodic = detail::as_int(q.getColumn(11)) != 0;
-    r.generations = detail::as_int64(q.getColumn(12));
-    r.evaluations = detail::as_int64(q.getColumn(13));
-    r.best_t = detail::as_real(q.getColumn(14));
-    r.best_generation = detail::as_int64(q.getColumn(15));
-    if (!q.getColumn(16).isNull()) r.island = detail::as_int(q.getColumn(16));
-    if (!q.getColumn(17).isNull()) r.archipelago = detail::as_int64(q.getColumn(17));
-    r.droplets = detail::as_int64(q.getColumn(18));
-    // What no run of softdrop stores: a damaged or edited row is refused, not shown or resumed from.
-    const auto bad = [&](const char* column, const std::string& value) {
-      throw std::runtime_error("run " + std::to_string(r.id) + ": column " + column + " holds " + value +
-                               " (damaged or edited file?)");
-    };
-    if (r.generations < 0) bad("generations", std::to_string(r.generations));
-    if (r.evaluations < 0) bad("evaluations", std::to_string(r.evaluations));
-    if (r.droplets < r.evaluations) bad("droplets", std::to_string(r.droplets) + ", fewer than its evaluations");
-    if (r.best_generation < 0 || r.best_generation > r.generations)
-      bad("best_generation",
-          std::to_string(r.best_generation) + ", outside the run's generations 0 to " + std::to_string(r.generations));
-    if (r.lambda < 1) bad("lambda", std::to_string(r.lambda));
-    if (r.grains < 0) bad("grains", std::to_string(r.grains));
-    if (!(r.width > 0) || !(r.height > 0) || !std::isfinite(r.width) || !std::isfinite(r.height))
-      bad("width or height", std::to_string(r.width) + " x " + std::to_string(r.height));
-    if (!std::isfinite(r.best_t) || r.best_t < 0) bad("best_t", std::to_string(r.best_t));
-    return r;
-  }
 
   // Inside a transaction: generation g of `run`, which must follow the stored one, and the run's
   // row. A migration's candidate was evaluated by another island: it counts no evaluation.
