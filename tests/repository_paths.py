@@ -45,7 +45,7 @@ def exists(named):
 # Written by commands when they run, or made by the build: named before they exist.
 WRITTEN = (re.compile(r"^results/run(/|$)"), re.compile(r"^results/\w+/db(/|$)"),
            re.compile(r"^include/softdrop/version\.hpp$"), re.compile(r"^results/calibration/FILE$"))
-FOLDERS = "docs|src|include|tests|results|scripts|bench|examples|python|fuzz|tools"
+FOLDERS = "docs|src|optimizer|include|tests|results|scripts|bench|examples|python|fuzz|tools"
 # A path under a folder of the repository, not inside a longer word, a variable ($src/...) or a URL.
 PATH = re.compile(r"(?<![\w/.$}{:-])((?:" + FOLDERS + r")/[A-Za-z0-9_./+-]*[A-Za-z0-9_/])")
 BARE = re.compile(r"(?<![\w/.$}{:-])([A-Za-z][\w-]*\.(?:md|cpp|hpp|inc|sh))\b")
