@@ -30,7 +30,6 @@ namespace softdrop {
 using detail::as_evaluation;
 using detail::best_improvement;
 using detail::evaluation_run;
-using detail::num;
 
 namespace {
 
