@@ -218,7 +218,7 @@ void lane_stage(benchmark::State& state, std::int64_t width, const std::string& 
     in[3].push_back(st.py.data());
   }
   for (int k = 0; k < 4; ++k) softdrop::lanes::copy_in(in[k].data(), a[k], p.masses, registers);
-  const softdrop::lanes::StepConstants c = softdrop::lanes::step_constants(p);
+  const softdrop::StepContext c = softdrop::make_step_context(p);
   std::vector<double> area(softdrop::lanes::kMaxLanes);
   softdrop::lanes::forces_before_contacts(c, a[0], a[1], a[2], a[3], a[4], a[5], area.data(), p.masses, registers);
   long k = 0;
@@ -239,21 +239,21 @@ void lane_stage(benchmark::State& state, std::int64_t width, const std::string& 
 void BM_LaneForces(benchmark::State& s) {
   std::vector<double> area(softdrop::lanes::kMaxLanes);
   lane_stage(s, s.range(2), "",
-             [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+             [&](const softdrop::StepContext& c, double* const* a, std::vector<double*>*, int n, int r) {
                softdrop::lanes::forces_before_contacts(c, a[0], a[1], a[2], a[3], a[4], a[5], area.data(), n, r);
                benchmark::DoNotOptimize(a[4][0]);
              });
 }
 void BM_LaneViscosity(benchmark::State& s) {
   lane_stage(s, s.range(2), "",
-             [](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+             [](const softdrop::StepContext& c, double* const* a, std::vector<double*>*, int n, int r) {
                softdrop::lanes::viscosity(c, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
                benchmark::DoNotOptimize(a[4][0]);
              });
 }
 void BM_LaneCopies(benchmark::State& s) {
   lane_stage(s, s.range(2), "",
-             [](const softdrop::lanes::StepConstants&, double* const* a, std::vector<double*>* in, int n, int r) {
+             [](const softdrop::StepContext&, double* const* a, std::vector<double*>* in, int n, int r) {
                for (int k = 0; k < 4; ++k) softdrop::lanes::copy_in(in[k].data(), a[k], n, r);
                for (int k = 0; k < 2; ++k) softdrop::lanes::copy_out(in[k].data(), a[k], n, r);
              });
@@ -267,7 +267,7 @@ void BM_LaneConstraint(benchmark::State& s) {
   std::vector<int> counts(softdrop::lanes::kMaxLanes);
   lane_stage(
       s, s.range(3), red_black ? "red-black, " : "sequential, ",
-      [&](const softdrop::lanes::StepConstants& c, double* const* a, std::vector<double*>*, int n, int r) {
+      [&](const softdrop::StepContext& c, double* const* a, std::vector<double*>*, int n, int r) {
         softdrop::lanes::integrate(c.h2m, a[0], a[1], a[2], a[3], a[4], a[5], n, r);
         if (red_black)
           softdrop::lanes::constrain_red_black(a[0], a[1], n, r, p.constraint_iterations, dmin, dmax, counts.data());

@@ -19,6 +19,8 @@
 
 namespace softdrop {
 
+struct StepContext;  // the step's constants (private to the library)
+
 /// Why a run ended.
 enum class Outcome {
   passed,   ///< centre of mass went below y = 0
@@ -179,7 +181,9 @@ class Simulation {
   GrainGrid grid_;
   DropletState state_;
   double rest_length_ = 0, area0_ = 0, area_ = 0, start_y_ = 0;
-  double viscous_ = 0;  ///< m times params_.viscous_rate(), the viscosity stage's coefficient
+  /// The step's constants, derived from params_ once and shared by the copies of this simulation
+  /// (every layout of the step reads them).
+  std::shared_ptr<const StepContext> context_;
   double last_penetration_ = 0;
   std::vector<std::uint8_t> touched_;  ///< per medium grain
   /// Spring forces of the step, 4 x N: on the first end (-0 for a spring of zero length) and for

@@ -10,6 +10,7 @@
 #include "lane_scalar.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/simulation.hpp"
+#include "step_context.hpp"
 #include "step_helpers.hpp"
 
 namespace softdrop {
@@ -19,7 +20,7 @@ using step_detail::within_walls;
 using step_detail::wrap_periodic;
 
 void Simulation::accumulate_gravity() {
-  const double w = params_.mass * params_.gravity;
+  const double w = context_->weight;
   std::fill(state_.fx.begin(), state_.fx.end(), 0.0);
   std::fill(state_.fy.begin(), state_.fy.end(), w);
 }
@@ -31,11 +32,7 @@ void Simulation::accumulate_springs() {
   // f[i+1] -= s" (mass m >= 1: (f - s[m-1]) + s[m]; mass 0: (f + s[0]) - s[n-1]), so the sums
   // have the same bits.
   const int n = state_.size();
-  lanes::StepConstants in;  // the spring stage's constants (the others are the lane block's)
-  in.ks = params_.ks;
-  in.kd = params_.kd;
-  in.inv_dt = 1.0 / params_.dt;
-  in.rest_length = rest_length_;
+  const StepContext& in = *context_;
   const std::size_t un = static_cast<std::size_t>(n);
   if (spring_force_.size() != 4 * un) spring_force_.assign(4 * un, 0.0);
   double* plus_x = spring_force_.data();  // added to the first end; -0 if the spring has no length
@@ -79,7 +76,7 @@ void Simulation::accumulate_pressure() {
   // mass gathers its two edges in the order of the loop "for each edge i: f[i] += e, f[i+1] += e":
   // mass m >= 1 adds e[m-1] then e[m]; mass 0 adds e[0] then e[n-1]. (An inner edge is computed
   // for each of its ends, which keeps the loop free of a carried value.)
-  const double half_p = 0.5 * params_.nrt / area_, minus_half_p = -half_p;
+  const double half_p = context_->half_nrt / area_, minus_half_p = -half_p;
   double* fx = state_.fx.data();
   double* fy = state_.fy.data();
   const double *x = state_.x.data(), *y = state_.y.data();
@@ -180,11 +177,7 @@ void Simulation::accumulate_collisions(double* fx, double* fy, std::ptrdiff_t st
 void Simulation::accumulate_viscosity() {
   // Rigid motion of the ring from its linear and angular momentum; the viscous force acts on the
   // rest, so it sums to zero force and zero torque (the lane block's kernel, at width 1).
-  lanes::StepConstants k;  // the viscosity's constants (the others are the lane block's)
-  k.inv_dt = 1.0 / params_.dt;
-  k.viscous = viscous_;
-  k.spared_dilation = 1.0 - params_.viscosity_dilation;
-  k.kick = params_.viscosity_step == ViscosityStep::implicit ? params_.dt * params_.dt / params_.mass : 0.0;
+  const StepContext& k = *context_;
   lanes::scalar::viscosity_k<1>(k, state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(),
                                 state_.fx.data(), state_.fy.data(), state_.size());
 }

@@ -3,13 +3,13 @@
 // arrays (the lane block runs the same kernel eight rings at a time).
 #include "lane_scalar.hpp"
 #include "softdrop/simulation.hpp"
+#include "step_context.hpp"
 
 namespace softdrop {
 
 void Simulation::integrate() {
   state_changed();
-  const double h2m = params_.dt * params_.dt / params_.mass;
-  lanes::scalar::verlet_lanes(h2m, state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(),
+  lanes::scalar::verlet_lanes(context_->h2m, state_.x.data(), state_.y.data(), state_.px.data(), state_.py.data(),
                               state_.fx.data(), state_.fy.data(), state_.size());
 }
 

@@ -91,10 +91,10 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
         for (int a = 0; a < 4; ++a)
           for (int i = 0; i < n; ++i) block[a][static_cast<std::size_t>(i) * L + t] = in[a][t][i];
   }
-  const lanes::StepConstants k = lanes::step_constants(p);
+  const StepContext& k = *first.context_;
   double area[lanes::kMaxLanes];
   thread_local std::vector<double> no_force;
-  const double dmax = (1 + p.max_strain) * first.rest_length_, dmin = (1 - p.max_strain) * first.rest_length_;
+  const double dmax = k.dmax, dmin = k.dmin;
   int corrections[lanes::kMaxLanes];
   // The stages of kStepStages up to the constraint; the contact limit is each droplet's own
   // (run_interleaved runs it after this).

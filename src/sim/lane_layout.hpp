@@ -13,6 +13,7 @@
 
 #include "lane_policy.hpp"
 #include "softdrop/droplet.hpp"
+#include "step_context.hpp"
 
 namespace softdrop::lanes {
 
@@ -54,36 +55,18 @@ void constrain_sequential(double* X, double* Y, int n, int registers, int iterat
 void constrain_red_black(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                          int* counts);
 
-/// The constants of Simulation's force and integration stages, as those stages compute them.
-struct StepConstants {
-  double weight = 0;           ///< m g_y, each mass's y force before the others
-  double ks = 0, kd = 0;       ///< spring stiffness and damping
-  double inv_dt = 0;           ///< 1 / dt
-  double rest_length = 0;      ///< d0
-  double half_nrt = 0;         ///< 0.5 nRT (the pressure is 0.5 nRT / area on each edge end)
-  double viscous = 0;          ///< m nu; 0: no viscosity
-  double spared_dilation = 0;  ///< 1 - viscosity_dilation: the share of uniform dilation not damped
-  /// dt^2 / m with the implicit viscosity step, whose damped velocity is the one after this step's
-  /// other forces (FX, FY at the viscosity stage: x - px + kick F); 0 for the other steps.
-  double kick = 0;
-  double h2m = 0;  ///< dt^2 / m (position Verlet)
-};
-
-/// The constants of droplets of parameters p, computed as the one-ring stages compute them.
-StepConstants step_constants(const DropletParams& p);
-
 /// Simulation's accumulate_gravity, accumulate_springs and accumulate_pressure on every lane: sets
 /// FX, FY from X, Y, PX, PY and area[t] to ring t's area.
-void forces_before_contacts(const StepConstants& k, const double* X, const double* Y, const double* PX,
-                            const double* PY, double* FX, double* FY, double* area, int n, int registers);
+void forces_before_contacts(const StepContext& k, const double* X, const double* Y, const double* PX, const double* PY,
+                            double* FX, double* FY, double* area, int n, int registers);
 /// The spring forces of one ring (not lane by lane: its springs are the lanes), eight at a time, for
 /// Simulation::accumulate_springs: springs (i, i + 1), i from 0 to n - 2, into plus_x[i], plus_y[i]
 /// (added to the first end; -0 for a spring of no length) and minus_x[i], minus_y[i] (subtracted
 /// from the second; +0 then). The closing spring (n - 1, 0) is left to the caller. Needs n >= 9.
-void ring_spring_forces(const StepConstants& k, const double* x, const double* y, const double* px, const double* py,
+void ring_spring_forces(const StepContext& k, const double* x, const double* y, const double* px, const double* py,
                         int n, double* plus_x, double* plus_y, double* minus_x, double* minus_y);
 /// Simulation::accumulate_viscosity on every lane (adds to FX, FY).
-void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY, double* FX,
+void viscosity(const StepContext& k, const double* X, const double* Y, const double* PX, const double* PY, double* FX,
                double* FY, int n, int registers);
 /// Simulation::centre_of_mass of every lane: cx[t], cy[t] for t < 8 registers.
 void centres(const double* X, const double* Y, int n, int registers, double* cx, double* cy);

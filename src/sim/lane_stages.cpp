@@ -117,21 +117,21 @@ void constrain_red_black(double* X, double* Y, int n, int registers, int iterati
   else
     avx::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
 }
-void forces_before_contacts(const StepConstants& k, const double* X, const double* Y, const double* PX,
-                            const double* PY, double* FX, double* FY, double* area, int n, int registers) {
+void forces_before_contacts(const StepContext& k, const double* X, const double* Y, const double* PX, const double* PY,
+                            double* FX, double* FY, double* area, int n, int registers) {
   if (avx512_in_use())
     avx512::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
   else
     avx::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
 }
-void ring_spring_forces(const StepConstants& k, const double* x, const double* y, const double* px, const double* py,
+void ring_spring_forces(const StepContext& k, const double* x, const double* y, const double* px, const double* py,
                         int n, double* plus_x, double* plus_y, double* minus_x, double* minus_y) {
   if (avx512_in_use())
     avx512::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
   else
     avx::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
 }
-void viscosity(const StepConstants& k, const double* X, const double* Y, const double* PX, const double* PY, double* FX,
+void viscosity(const StepContext& k, const double* X, const double* Y, const double* PX, const double* PY, double* FX,
                double* FY, int n, int registers) {
   if (avx512_in_use())
     avx512::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
@@ -152,21 +152,6 @@ void integrate(double h2m, double* X, double* Y, double* PX, double* PY, const d
     avx::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
 }
 #endif
-
-StepConstants step_constants(const DropletParams& p) {
-  StepConstants k;
-  k.weight = p.mass * p.gravity;  // accumulate_gravity
-  k.ks = p.ks;
-  k.kd = p.kd;
-  k.inv_dt = 1.0 / p.dt;
-  k.rest_length = p.rest_length();  // Simulation's rest_length()
-  k.half_nrt = 0.5 * p.nrt;         // accumulate_pressure: 0.5 nRT / area
-  k.viscous = p.mass * p.viscous_rate();
-  k.spared_dilation = 1.0 - p.viscosity_dilation;
-  k.kick = p.viscosity_step == ViscosityStep::implicit ? p.dt * p.dt / p.mass : 0.0;
-  k.h2m = p.dt * p.dt / p.mass;  // integrate
-  return k;
-}
 
 double* step_scratch(std::size_t doubles) {
   thread_local std::vector<double> scratch;

@@ -13,6 +13,7 @@
 
 #include "lane_scalar.hpp"
 #include "run_stepper.hpp"
+#include "step_context.hpp"
 #include "step_helpers.hpp"
 #include "util/enum_names.hpp"
 #include "util/validation.hpp"
@@ -61,8 +62,8 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
   std::string why;
   if (!params.IsValid(&why)) throw std::invalid_argument(why);
   if (!medium.IsValid(&why)) throw std::invalid_argument(why);
-  rest_length_ = params.rest_length();
-  viscous_ = params.mass * params.viscous_rate();
+  context_ = std::make_shared<const StepContext>(make_step_context(params));
+  rest_length_ = context_->rest_length;
   area0_ = params.resting_area();
   // Only masses are tested against grains; a grain narrower than an edge could slip between two.
   const double longest_edge = (1 + params.max_strain) * rest_length_;
