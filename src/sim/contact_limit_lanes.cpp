@@ -11,27 +11,27 @@
 namespace softdrop::lanes {
 
 #if defined(SOFTDROP_AVX_DISPATCH)
-namespace avx {
+namespace x8_avx {
 namespace {
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX
 #include "contact_kernels.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace
-}  // namespace avx
+}  // namespace x8_avx
 
-namespace avx512 {
+namespace x8_avx512 {
 namespace {
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
 #include "contact_kernels.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace
-}  // namespace avx512
+}  // namespace x8_avx512
 
 void limit_groups(const ContactRecords& r, int first, int groups, double max_depth, double* deepest, unsigned* todo) {
   if (avx512_in_use())
-    avx512::limit_groups_k(r, first, groups, max_depth, deepest, todo);
+    x8_avx512::limit_groups_k(r, first, groups, max_depth, deepest, todo);
   else
-    avx::limit_groups_k(r, first, groups, max_depth, deepest, todo);
+    x8_avx::limit_groups_k(r, first, groups, max_depth, deepest, todo);
 }
 
 #endif

@@ -21,7 +21,7 @@ namespace {
 #if defined(SOFTDROP_AVX_DISPATCH)
 // Two rings per SSE2 register.
 namespace pairs {
-using namespace lanes::sse2;
+using namespace lanes::x2_sse2;
 inline void load_lanes(double* const* x, int base, int i, V* v) {
   *v = _mm_loadh_pd(_mm_load_sd(x[base] + i), x[base + 1] + i);
 }
@@ -36,7 +36,7 @@ inline void store_lanes(double* const* x, int base, int i, const V& v) {
 
 // Four rings per AVX register.
 namespace quads {
-using namespace lanes::avx4;
+using namespace lanes::x4_avx;
 SOFTDROP_AVX inline void load_lanes(double* const* x, int base, int i, V* v) {
   *v = _mm256_set_pd(x[base + 3][i], x[base + 2][i], x[base + 1][i], x[base][i]);
 }

@@ -1,6 +1,6 @@
 #pragma once
 // One lane (internal): lanes::scalar has the names of lane_simd.hpp's namespaces for V = double,
-// and with them the correction of one spring (spring_kernel.inc) and the force and integration
+// and with them the correction of one spring (length_constraint_kernel.inc) and the force and integration
 // stages' kernels (stage_kernels.inc) at width 1, which one droplet's stages run on its own
 // arrays. Every operation is the C++ one, so each gives the bits the vector namespaces give a
 // lane.
@@ -65,7 +65,7 @@ inline V add_where(M m, V a, V b) { return m ? a + b : a; }
 inline V sub_where(M m, V a, V b) { return m ? a - b : a; }
 
 #define SOFTDROP_LANE_TARGET
-#include "spring_kernel.inc"
+#include "length_constraint_kernel.inc"
 #include "stage_kernels.inc"
 #undef SOFTDROP_LANE_TARGET
 

@@ -1,15 +1,15 @@
 #pragma once
-// Eight lanes of doubles in the two instruction sets that have a lane-by-lane step (internal):
-// `avx512` (one register) and `avx` (two, as low and high halves). Each namespace has the same
-// names: V (eight doubles), M (which lanes), C (eight counters), their operations, a few on eight
-// int32 lanes in memory (equal_lanes, store_minus_ones, select_lanes), and Limits and
-// constrain_springs (one spring on each lane, spring_kernel.inc). `sse2` and `avx4` have the
-// operations of that kernel on two and four lanes, for the one-ring constraints; lane_scalar.hpp
-// has one lane. src/sim/stage_kernels.inc, lane_kernels.inc and contact_kernels.inc are written
-// against these names and compiled once for each. Every operation gives each lane the bits the
-// scalar one gives, so both instruction sets, and the one-ring code, agree to the bit. Call these
-// only where constraint_vector_width() has the instruction set. These wrappers of intrinsics are
-// the one place where code is written once per instruction set, so they are alike by design.
+// Lanes of doubles, each namespace named for its lane count and instruction set (internal):
+// `x8_avx512` (eight lanes in one register) and `x8_avx` (eight in two, as low and high halves)
+// have a lane-by-lane step. Both have the same names: V (eight doubles), M (which lanes), C (eight
+// counters), their operations, a few on eight int32 lanes in memory (equal_lanes,
+// store_minus_ones, select_lanes), and Limits and constrain_springs (one spring on each lane,
+// length_constraint_kernel.inc). `x2_sse2` and `x4_avx` have the operations of that kernel on two
+// and four lanes, for the one-ring constraints; lane_scalar.hpp has one lane. src/sim/stage_kernels.inc,
+// lane_kernels.inc and contact_kernels.inc are written against these names and compiled once for each. Every operation
+// gives each lane the bits the scalar one gives, so both instruction sets, and the one-ring code, agree to the bit.
+// Call these only where constraint_vector_width() has the instruction set. These wrappers of intrinsics are the one
+// place where code is written once per instruction set, so they are alike by design.
 
 #include <cstdint>
 
@@ -19,12 +19,12 @@
 #if defined(SOFTDROP_AVX_DISPATCH)
 namespace softdrop::lanes {
 
-/// Which of the two the dispatchers call: avx512 if the width in use has it, else avx.
+/// Which of the two the dispatchers call: x8_avx512 if the width in use has it, else x8_avx.
 inline bool avx512_in_use() { return constraint_vector_width() == VectorWidth::avx512; }
 
 // Two and four lanes, for the one-ring constraints (length_constraint.cpp, interleaved_constraint.cpp):
-// only the operations spring_kernel.inc needs.
-namespace sse2 {
+// only the operations length_constraint_kernel.inc needs.
+namespace x2_sse2 {
 constexpr int kWidth = 2;  // lanes of a V
 using V = __m128d;
 using M = __m128d;  // all bits set in a lane that is in
@@ -62,11 +62,11 @@ inline V add_where(M m, V a, V b) { return _mm_add_pd(a, blend(m, _mm_set1_pd(-0
 /// m ? a - b : a, lane by lane (a lane not in m subtracts +0).
 inline V sub_where(M m, V a, V b) { return _mm_sub_pd(a, _mm_and_pd(m, b)); }
 #define SOFTDROP_LANE_TARGET
-#include "spring_kernel.inc"
+#include "length_constraint_kernel.inc"
 #undef SOFTDROP_LANE_TARGET
-}  // namespace sse2
+}  // namespace x2_sse2
 
-namespace avx4 {
+namespace x4_avx {
 constexpr int kWidth = 4;  // lanes of a V
 using V = __m256d;
 using M = __m256d;  // all bits set in a lane that is in
@@ -95,11 +95,11 @@ SOFTDROP_AVX inline V blend(M m, V a, V b) { return _mm256_or_pd(_mm256_and_pd(m
 SOFTDROP_AVX inline V add_where(M m, V a, V b) { return _mm256_add_pd(a, blend(m, _mm256_set1_pd(-0.0), b)); }
 SOFTDROP_AVX inline V sub_where(M m, V a, V b) { return _mm256_sub_pd(a, _mm256_and_pd(m, b)); }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX
-#include "spring_kernel.inc"
+#include "length_constraint_kernel.inc"
 #undef SOFTDROP_LANE_TARGET
-}  // namespace avx4
+}  // namespace x4_avx
 
-namespace avx {
+namespace x8_avx {
 
 constexpr int kWidth = 8;  // lanes of a V
 struct V {
@@ -138,8 +138,10 @@ SOFTDROP_AVX inline M compare(V a, V b) {
 SOFTDROP_AVX inline unsigned bits(M m) {
   return static_cast<unsigned>(_mm256_movemask_pd(m.lo) | (_mm256_movemask_pd(m.hi) << 4));
 }
-/// m ? b : a, lane by lane, as bits (avx4::blend on each half).
-SOFTDROP_AVX inline V blend(M m, V a, V b) { return {avx4::blend(m.lo, a.lo, b.lo), avx4::blend(m.hi, a.hi, b.hi)}; }
+/// m ? b : a, lane by lane, as bits (x4_avx::blend on each half).
+SOFTDROP_AVX inline V blend(M m, V a, V b) {
+  return {x4_avx::blend(m.lo, a.lo, b.lo), x4_avx::blend(m.hi, a.hi, b.hi)};
+}
 /// m ? a : +0.
 SOFTDROP_AVX inline V keep_or_zero(M m, V a) { return {_mm256_and_pd(m.lo, a.lo), _mm256_and_pd(m.hi, a.hi)}; }
 /// Lanes b < 8 where p[b] == v, as bits (SSE2's integer compares: AVX has no 256-bit ones).
@@ -198,19 +200,19 @@ SOFTDROP_AVX inline M but_not(M a, M b) { return {_mm256_andnot_pd(b.lo, a.lo), 
 SOFTDROP_AVX inline bool any(M m) { return bits(m) != 0; }
 /// m ? a + b : a, lane by lane (a lane not in m adds -0, which leaves every double as it is).
 SOFTDROP_AVX inline V add_where(M m, V a, V b) {
-  return {avx4::add_where(m.lo, a.lo, b.lo), avx4::add_where(m.hi, a.hi, b.hi)};
+  return {x4_avx::add_where(m.lo, a.lo, b.lo), x4_avx::add_where(m.hi, a.hi, b.hi)};
 }
 /// m ? a - b : a, lane by lane (a lane not in m subtracts +0).
 SOFTDROP_AVX inline V sub_where(M m, V a, V b) {
-  return {avx4::sub_where(m.lo, a.lo, b.lo), avx4::sub_where(m.hi, a.hi, b.hi)};
+  return {x4_avx::sub_where(m.lo, a.lo, b.lo), x4_avx::sub_where(m.hi, a.hi, b.hi)};
 }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX
-#include "spring_kernel.inc"
+#include "length_constraint_kernel.inc"
 #undef SOFTDROP_LANE_TARGET
 
-}  // namespace avx
+}  // namespace x8_avx
 
-namespace avx512 {
+namespace x8_avx512 {
 
 constexpr int kWidth = 8;  // lanes of a V
 using V = __m512d;
@@ -286,10 +288,10 @@ SOFTDROP_AVX512 inline V add_where(M m, V a, V b) { return _mm512_mask_add_pd(a,
 SOFTDROP_AVX512 inline V sub_where(M m, V a, V b) { return _mm512_mask_sub_pd(a, m, a, b); }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
 #include "lane_policy.hpp"
-#include "spring_kernel.inc"
+#include "length_constraint_kernel.inc"
 #undef SOFTDROP_LANE_TARGET
 
-}  // namespace avx512
+}  // namespace x8_avx512
 
 }  // namespace softdrop::lanes
 #endif

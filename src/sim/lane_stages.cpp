@@ -13,7 +13,7 @@
 namespace softdrop::lanes {
 
 #if defined(SOFTDROP_AVX_DISPATCH)
-namespace avx {
+namespace x8_avx {
 namespace {
 
 // Transposes the 4 x 4 block of doubles m[0..3] (m[t][c] -> m[c][t]).
@@ -69,87 +69,87 @@ SOFTDROP_AVX void transpose_rings(double* const* x, double* X, int n, double* co
 #undef SOFTDROP_LANE_TARGET
 
 }  // namespace
-}  // namespace avx
+}  // namespace x8_avx
 
-namespace avx512 {
+namespace x8_avx512 {
 namespace {
 
 // The copies of the AVX code (four by four), which bench_stages BM_LaneCopies measures faster than
 // 8 x 8 transposes with two-source permutes (bench/README.md, "Constants of the step").
-using avx::transpose_rings;
+using x8_avx::transpose_rings;
 
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
 #include "lane_kernels.inc"
 #undef SOFTDROP_LANE_TARGET
 
 }  // namespace
-}  // namespace avx512
+}  // namespace x8_avx512
 
 void copy_in(double* const* rings, double* X, int n, int registers) {
   if (avx512_in_use())
-    avx512::copy_in(rings, X, n, registers);
+    x8_avx512::copy_in(rings, X, n, registers);
   else
-    avx::copy_in(rings, X, n, registers);
+    x8_avx::copy_in(rings, X, n, registers);
 }
 void add_in(const double* const* rings, double* X, int n, int registers) {
   if (avx512_in_use())
-    avx512::add_in(rings, X, n, registers);
+    x8_avx512::add_in(rings, X, n, registers);
   else
-    avx::add_in(rings, X, n, registers);
+    x8_avx::add_in(rings, X, n, registers);
 }
 void copy_out(double* const* rings, const double* X, int n, int registers, double* const* previous) {
   if (avx512_in_use())
-    avx512::copy_out(rings, X, n, registers, previous);
+    x8_avx512::copy_out(rings, X, n, registers, previous);
   else
-    avx::copy_out(rings, X, n, registers, previous);
+    x8_avx::copy_out(rings, X, n, registers, previous);
 }
 void constrain_sequential(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                           int* counts) {
   if (avx512_in_use())
-    avx512::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
+    x8_avx512::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
   else
-    avx::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
+    x8_avx::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
 }
 void constrain_red_black(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                          int* counts) {
   if (avx512_in_use())
-    avx512::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
+    x8_avx512::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
   else
-    avx::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
+    x8_avx::constrain_red_black(X, Y, n, registers, iterations, dmin, dmax, counts);
 }
 void forces_before_contacts(const StepContext& k, const double* X, const double* Y, const double* PX, const double* PY,
                             double* FX, double* FY, double* area, int n, int registers) {
   if (avx512_in_use())
-    avx512::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
+    x8_avx512::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
   else
-    avx::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
+    x8_avx::forces_before_contacts(k, X, Y, PX, PY, FX, FY, area, n, registers);
 }
 void ring_spring_forces(const StepContext& k, const double* x, const double* y, const double* px, const double* py,
                         int n, double* plus_x, double* plus_y, double* minus_x, double* minus_y) {
   if (avx512_in_use())
-    avx512::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+    x8_avx512::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
   else
-    avx::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
+    x8_avx::ring_spring_forces(k, x, y, px, py, n, plus_x, plus_y, minus_x, minus_y);
 }
 void viscosity(const StepContext& k, const double* X, const double* Y, const double* PX, const double* PY, double* FX,
                double* FY, int n, int registers) {
   if (avx512_in_use())
-    avx512::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
+    x8_avx512::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
   else
-    avx::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
+    x8_avx::viscosity(k, X, Y, PX, PY, FX, FY, n, registers);
 }
 void centres(const double* X, const double* Y, int n, int registers, double* cx, double* cy) {
   if (avx512_in_use())
-    avx512::centres(X, Y, n, registers, cx, cy);
+    x8_avx512::centres(X, Y, n, registers, cx, cy);
   else
-    avx::centres(X, Y, n, registers, cx, cy);
+    x8_avx::centres(X, Y, n, registers, cx, cy);
 }
 void integrate(double h2m, double* X, double* Y, double* PX, double* PY, const double* FX, const double* FY, int n,
                int registers) {
   if (avx512_in_use())
-    avx512::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
+    x8_avx512::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
   else
-    avx::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
+    x8_avx::integrate(h2m, X, Y, PX, PY, FX, FY, n, registers);
 }
 #endif
 

@@ -41,10 +41,10 @@ int vector_width() {
 
 #if defined(SOFTDROP_AVX_DISPATCH)
 // The red-black half-pass two, four and eight springs at a time (disjoint_spring_passes.inc), the
-// correction being the kernel of lane_simd.hpp (spring_kernel.inc) shared with the lane-by-lane
+// correction being the kernel of lane_simd.hpp (length_constraint_kernel.inc) shared with the lane-by-lane
 // step. Only the split of kWidth interleaved pairs of ends into two registers is per width.
 namespace two_lanes {
-using namespace lanes::sse2;
+using namespace lanes::x2_sse2;
 // (x_i0, x_j0), (x_i1, x_j1) -> (x_i0, x_i1), (x_j0, x_j1) and back.
 inline void load_ends(const double* p, V* i, V* j) {
   const V a = _mm_loadu_pd(p), b = _mm_loadu_pd(p + 2);
@@ -61,7 +61,7 @@ inline void store_ends(double* p, V i, V j) {
 }  // namespace two_lanes
 
 namespace four_lanes {
-using namespace lanes::avx4;
+using namespace lanes::x4_avx;
 // (x_i0 x_j0 | x_i1 x_j1), (x_i2 x_j2 | x_i3 x_j3): unpacking works within 128-bit halves, so the
 // lanes hold springs (0, 2 | 1, 3), and unpacking back restores the layout.
 SOFTDROP_AVX inline void load_ends(const double* p, V* i, V* j) {
@@ -79,7 +79,7 @@ SOFTDROP_AVX inline void store_ends(double* p, V i, V j) {
 }  // namespace four_lanes
 
 namespace eight_lanes {
-using namespace lanes::avx512;
+using namespace lanes::x8_avx512;
 // Lane s holds spring k + s: the first ends are the even elements, the second ends the odd ones.
 // (Two-source permutes rather than unpacks, whose GCC 12 intrinsics warn.)
 SOFTDROP_AVX512 inline void load_ends(const double* p, V* i, V* j) {

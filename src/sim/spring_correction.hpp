@@ -1,7 +1,7 @@
 #pragma once
 // The length constraint's correction of one spring (Provot's): a spring longer than dmax or shorter
 // than dmin is brought back to that limit, both ends moved by half the excess along the spring.
-// This is spring_kernel.inc, the correction written once for every vector width, at width 1
+// This is length_constraint_kernel.inc, the correction written once for every vector width, at width 1
 // (lane_scalar.hpp): the one-ring constraints' scalar springs (the sequential order's chain, and
 // the red-black order's last springs) and every vector lane agree to the bit. Internal to the
 // simulator.
