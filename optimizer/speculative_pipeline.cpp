@@ -31,8 +31,6 @@ using detail::as_evaluation;
 using detail::best_improvement;
 using detail::evaluation_run;
 
-namespace {
-
 // Speculative evaluation (Strategy::speculative): worker threads take candidates (g, k) in order,
 // up to `depth` generations ahead of the last completed one, each made from the strategy state the
 // pipeline expects generation g to have. A lineage is a state and the generations handed out from
@@ -54,9 +52,9 @@ namespace {
 // to arrive settles its prediction, so a generation always completes as predicted or, without a
 // prediction, as its lineage assumed. Every candidate that reaches a generation was made from that
 // generation's true state, so the history is that of one generation at a time.
-class Pipeline {
+class SpeculativePipeline::Impl {
  public:
-  Pipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
+  Impl(Search& search, int workers, int lanes, std::int64_t last_allowed)
       : search_(search), upto_(last_allowed), lanes_(lanes) {
     const int lambda = search.options().lambda;
     // Far enough ahead that a slow (stuck) candidate does not leave the lanes empty: four times the
@@ -67,7 +65,7 @@ class Pipeline {
     next_gen_ = completed_ + 1;
     for (int i = 0; i < workers; ++i) threads_.emplace_back([this] { work(); });
   }
-  ~Pipeline() {
+  ~Impl() {
     {
       std::lock_guard lock(m_);
       stopping_.store(true, std::memory_order_relaxed);  // also cancels the runs still in flight
@@ -75,8 +73,8 @@ class Pipeline {
     cv_.notify_all();
     for (std::thread& t : threads_) t.join();
   }
-  Pipeline(const Pipeline&) = delete;
-  Pipeline& operator=(const Pipeline&) = delete;
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
 
   Generation next() {
     const auto t0 = std::chrono::steady_clock::now();
@@ -337,8 +335,6 @@ class Pipeline {
   std::vector<std::thread> threads_;
 };
 
-}  // namespace
-
 #if defined(SOFTDROP_TEST_HOOKS)
 std::function<void()>& test_seam::before_completion() {
   static std::function<void()> hook;
@@ -346,16 +342,10 @@ std::function<void()>& test_seam::before_completion() {
 }
 #endif
 
-struct SpeculativePipeline::Impl {
-  Impl(Search& search, int workers, int lanes, std::int64_t last_allowed)
-      : pipeline(search, workers, lanes, last_allowed) {}
-  Pipeline pipeline;
-};
-
 SpeculativePipeline::SpeculativePipeline(Search& search, int workers, int lanes, std::int64_t last_allowed)
     : impl_(std::make_unique<Impl>(search, workers, lanes, last_allowed)) {}
 SpeculativePipeline::~SpeculativePipeline() = default;
-Generation SpeculativePipeline::next() { return impl_->pipeline.next(); }
-SpeculationStats SpeculativePipeline::stats() { return impl_->pipeline.stats(); }
+Generation SpeculativePipeline::next() { return impl_->next(); }
+SpeculationStats SpeculativePipeline::stats() { return impl_->stats(); }
 
 }  // namespace softdrop

@@ -26,7 +26,7 @@ class SpeculativePipeline {
   SpeculationStats stats();
 
  private:
-  struct Impl;
+  class Impl;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -159,7 +159,7 @@ class Simulation {
   bool before_constraint();
   bool after_constraint();
   /// d0, the springs' rest length.
-  double rest_length() const { return rest_length_; }
+  double rest_length() const;
 
  private:
   friend class RunStepper;
@@ -180,7 +180,7 @@ class Simulation {
   const Medium& medium_;
   GrainGrid grid_;
   DropletState state_;
-  double rest_length_ = 0, area0_ = 0, area_ = 0, start_y_ = 0;
+  double area0_ = 0, area_ = 0, start_y_ = 0;
   /// The step's constants, derived from params_ once and shared by the copies of this simulation
   /// (every layout of the step reads them).
   std::shared_ptr<const StepContext> context_;

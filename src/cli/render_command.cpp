@@ -169,9 +169,7 @@ RunOptions paths_run(const RenderArgs& a) {
   RunOptions run = a.run;
   run.path_interval = a.path_interval;
   const long threads = detail::worker_threads(a.batch.threads);
-  check_recording(run,
-                  std::min<long>(a.batch.droplets, threads * (a.batch.lanes > 0 ? a.batch.lanes : interleaved_lanes())),
-                  a.droplet.masses);
+  check_recording(run, std::min<long>(a.batch.droplets, threads * batch_lanes(a.batch.lanes)), a.droplet.masses);
   return run;
 }
 

@@ -15,6 +15,8 @@ int interleaved_lanes() {
   return constraint_vector_width() >= VectorWidth::avx ? lanes::kMaxLanes : interleaved_ring_capacity();
 }
 
+int batch_lanes(int requested) { return requested == 0 ? interleaved_lanes() : requested; }
+
 std::size_t fewest_block_droplets(VectorWidth width) { return width == VectorWidth::avx512 ? 3 : 6; }
 
 int speculative_lanes(int per_generation, int threads, ConstraintOrder order) {

@@ -39,6 +39,8 @@ int interleaved_ring_capacity();
 /// step them as lane-by-lane blocks of up to three groups of eight; otherwise
 /// interleaved_ring_capacity(). The default of BatchOptions::lanes.
 int interleaved_lanes();
+/// BatchOptions::lanes as a batch steps them: `requested`, or interleaved_lanes() when it is 0.
+int batch_lanes(int requested);
 
 /// The fewest droplets worth a lane-by-lane block with `width`; fewer step faster one by one:
 /// 3 with AVX-512, 6 with AVX (whose groups of eight are two registers each).

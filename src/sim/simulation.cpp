@@ -63,10 +63,9 @@ Simulation::Simulation(const DropletParams& params, const Medium& medium)
   if (!params.IsValid(&why)) throw std::invalid_argument(why);
   if (!medium.IsValid(&why)) throw std::invalid_argument(why);
   context_ = std::make_shared<const StepContext>(make_step_context(params));
-  rest_length_ = context_->rest_length;
   area0_ = params.resting_area();
   // Only masses are tested against grains; a grain narrower than an edge could slip between two.
-  const double longest_edge = (1 + params.max_strain) * rest_length_;
+  const double longest_edge = context_->dmax;
   for (std::size_t i = 0; i < medium.grains.size(); ++i)
     if (medium.grains[i].r < longest_edge)
       throw std::invalid_argument("grain " + std::to_string(i) + " radius " + detail::num(medium.grains[i].r) +
@@ -96,6 +95,8 @@ void Simulation::place(double cx, double cy) {
   area_ = ring_area(state_);
   last_penetration_ = 0;
 }
+
+double Simulation::rest_length() const { return context_->rest_length; }
 
 void Simulation::place_above(double cx) { place(cx, start_y_); }
 
@@ -145,7 +146,7 @@ void Simulation::compute_forces() {
 
 void Simulation::apply_constraint() {
   state_changed();
-  softdrop::apply_length_constraint(&state_, rest_length_, params_.max_strain, params_.constraint_iterations,
+  softdrop::apply_length_constraint(&state_, context_->rest_length, params_.max_strain, params_.constraint_iterations,
                                     params_.constraint_order);
 }
 

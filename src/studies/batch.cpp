@@ -30,7 +30,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
   if (k < 0) throw std::invalid_argument("droplets = " + std::to_string(k) + ": must be >= 0");
   if (options.lanes < 0 || options.lanes > 64)
     throw std::invalid_argument("lanes = " + std::to_string(options.lanes) + ": must be in [1, 64], or 0 (chosen)");
-  const int lanes = options.lanes == 0 ? interleaved_lanes() : options.lanes;
+  const int lanes = batch_lanes(options.lanes);
   std::vector<RunSummary> results(static_cast<std::size_t>(k));
   std::mutex progress_mutex;
   int done = 0;
