@@ -152,12 +152,10 @@ class Simulation {
   /// most) for the next collisions.
   void apply_contact_limit();
 
-  /// step() in parts around the constraint, for drivers that constrain several rings together
-  /// (the library's interleaved driver): before_constraint() runs the stages up to integrate, and says whether the
-  /// constraint order is sequential; after_constraint() runs the contact limit and returns step()'s
-  /// validity test. before_constraint(), apply_constraint(), after_constraint() is step().
-  bool before_constraint();
-  bool after_constraint();
+  /// step()'s validity test of the state the last step left: finite, with a positive area.
+  bool valid() const;
+  /// The step's constants (private to the library: the type is defined in its sources).
+  const StepContext& step_context() const;
   /// d0, the springs' rest length.
   double rest_length() const;
 
@@ -167,11 +165,6 @@ class Simulation {
   /// Steps to an outcome; placed as RunStepper's (the x the ring was just placed at, or null).
   RunSummary drive(const RunOptions& options, const double* placed);
   bool any_grain_inside_ring() const;
-  /// step()'s validity test: the area the pressure stage measured is finite and > 0.
-  bool valid_after_step() const;
-  /// run_stage for a stage known at compile time (what step() runs, one call after another).
-  template <StepStage S>
-  void run_known_stage();
   /// accumulate_collisions() adding mass i's force to fx[i * stride], fy[i * stride];
   /// recorded_added: the caller has added the recorded forces (contact_.fx, contact_.fy) itself.
   void accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride, bool recorded_added = false);

@@ -12,6 +12,7 @@
 #include "lane_exchange.hpp"
 #include "lane_layout.hpp"
 #include "lane_policy.hpp"
+#include "ring_group_step.hpp"
 #include "run_stepper.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -121,10 +122,9 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
         }
     }
     // One step of every busy lane. With AVX-512 or AVX, the droplets with the first one's
-    // parameters go lane by lane up to the contact limit (LaneBlockStep) if there are at least
-    // fewest_block_droplets(); the others, and all with SSE2 alone:
-    // forces and integration each, the sequential constraints of the rings that share the first
-    // one's constraint parameters together. Then the contact limits.
+    // parameters go lane by lane (LaneBlockStep) if there are at least fewest_block_droplets();
+    // the others, and all with SSE2 alone, ring by ring with their constraints interleaved
+    // (RingGroup).
     if (lanes_changed) {
       lanes_changed = false;
       block.clear();
@@ -142,24 +142,6 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
         block.clear();
       }
     }
-    rings.clear();
-    const Simulation* first = nullptr;
-    for (Simulation* sim : alone) {
-      if (sim->before_constraint()) {
-        if (!first) first = sim;
-        if (same_fields(first->params(), sim->params(), FieldUse::constraint)) {
-          rings.push_back(&sim->mutable_state());
-          continue;
-        }
-      }
-      sim->apply_constraint();
-    }
-    if (!rings.empty()) {
-      corrections.resize(rings.size());
-      apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), first->rest_length(),
-                                          first->params().max_strain, first->params().constraint_iterations,
-                                          corrections.data());
-    }
     // Blocks of nearly equal size: 25 droplets go as 13 and 12, not 24 and 1.
     const std::size_t blocks = (block.size() + lanes::kMaxLanes - 1) / lanes::kMaxLanes;
     for (std::size_t b = 0, begin = 0; b < blocks; ++b) {
@@ -167,11 +149,13 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       LaneBlockStep::step(block.data() + begin, static_cast<int>(end - begin));
       begin = end;
     }
-    // The contact limits, then every lane's centre of mass at once, then each run's book-keeping.
+    RingGroup group{alone.data(), static_cast<int>(alone.size()), &rings, &corrections};
+    run_stages(group);
+    // Every lane's validity and centre of mass at once, then each run's book-keeping.
     stepped.clear();
     for (Lane& l : slots) {
       if (!l.run) continue;
-      valid[stepped.size()] = l.run->simulation()->after_constraint();
+      valid[stepped.size()] = l.run->simulation()->valid();
       stepped.push_back(l.run->simulation());
     }
     centres_of_mass(stepped.data(), static_cast<int>(stepped.size()), cx.data(), cy.data(), rest);

@@ -9,16 +9,9 @@
 
 #include "lane_layout.hpp"
 #include "simd_dispatch.hpp"
-#include "step_test_seam.hpp"
+#include "step_driver.hpp"
 
 namespace softdrop {
-
-#if defined(SOFTDROP_TEST_HOOKS)
-std::atomic<test_seam::StepMutation>& test_seam::step_mutation() {
-  static std::atomic<StepMutation> mutation{StepMutation::none};
-  return mutation;
-}
-#endif
 
 #if defined(SOFTDROP_AVX_DISPATCH)
 namespace {
@@ -46,9 +39,111 @@ std::uint64_t new_block_id() {
 }
 }  // namespace
 
+// The block as a layout of the step (step_driver.hpp): droplets sims[0..count) of one set of
+// parameters on a thread's copy of their positions laid out lane by lane, `registers` groups of
+// eight lanes, L = 8 registers. The forces and integration are forces_k, viscosity_k and
+// verlet_lanes of stage_kernels.inc, and the constraint lane_kernels.inc's, at eight lanes: the
+// one-ring stages' kernels, and in their order. Gravity, the springs and the pressure are one pass
+// over the block (forces_k), the gravity stage's; the collisions and the contact limit are each
+// droplet's own (on the block's forces, then on its own arrays after the copy out).
+struct LaneBlockStep::Layout {
+  Simulation* const* sims;
+  int count, n, registers, L;
+  const StepContext& k;
+  const DropletParams& p;
+  double* block[6];  // x, y, px, py, fx, fy
+  double area[lanes::kMaxLanes];
+  int corrections[lanes::kMaxLanes];
+  std::uint64_t id = 0;  // the block id the step gave its droplets (at the contact limit)
+
+  bool damped() const { return k.damped; }
+  template <StepStage S>
+  void stage();
+};
+
+template <>
+void LaneBlockStep::Layout::stage<StepStage::gravity>() {
+  // With the springs and the pressure: one pass over the block.
+  lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], block[4], block[5], area, n, registers);
+}
+template <>
+void LaneBlockStep::Layout::stage<StepStage::springs>() {}  // in the gravity stage's pass
+template <>
+void LaneBlockStep::Layout::stage<StepStage::pressure>() {}  // in the gravity stage's pass
+
+template <>
+void LaneBlockStep::Layout::stage<StepStage::collisions>() {
+  // First the forces the contact limit recorded, for every lane whose droplet's records are
+  // current (-0, which changes no double, for the others), then each droplet's own.
+  thread_local std::vector<double> no_force;
+  if (no_force.size() < static_cast<std::size_t>(n)) no_force.assign(static_cast<std::size_t>(n), -0.0);
+  const double* recorded[2][lanes::kMaxLanes];
+  for (int t = 0; t < L; ++t) {
+    const Simulation& sim = *sims[std::min(t, count - 1)];
+    recorded[0][t] = sim.contact_.current ? sim.contact_.fx.data() : no_force.data();
+    recorded[1][t] = sim.contact_.current ? sim.contact_.fy.data() : no_force.data();
+  }
+  lanes::add_in(recorded[0], block[4], n, registers);
+  lanes::add_in(recorded[1], block[5], n, registers);
+  for (int t = 0; t < count; ++t) {
+    sims[t]->area_ = area[t];
+    sims[t]->accumulate_collisions(block[4] + t, block[5] + t, L, /*recorded_added=*/true);
+  }
+}
+
+template <>
+void LaneBlockStep::Layout::stage<StepStage::viscosity>() {
+  lanes::viscosity(k, block[0], block[1], block[2], block[3], block[4], block[5], n, registers);
+}
+
+template <>
+void LaneBlockStep::Layout::stage<StepStage::integrate>() {
+  lanes::integrate(k.h2m, block[0], block[1], block[2], block[3], block[4], block[5], n, registers);
+}
+
+template <>
+void LaneBlockStep::Layout::stage<StepStage::constraint>() {
+  if (p.constraint_order == ConstraintOrder::sequential)
+    lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations, k.dmin, k.dmax, corrections);
+  else
+    lanes::constrain_red_black(block[0], block[1], n, registers, p.constraint_iterations, k.dmin, k.dmax, corrections);
+}
+
+template <>
+void LaneBlockStep::Layout::stage<StepStage::contact_limit>() {
+  // The centres of mass from the block (run_interleaved needs them after the contact limits, which
+  // seldom move a mass: then they are computed again from the state).
+  double cx[lanes::kMaxLanes], cy[lanes::kMaxLanes];
+  lanes::centres(block[0], block[1], n, registers, cx, cy);
+  // Verlet left the positions the step began with as the previous ones, so px, py are x, y as they
+  // still are in each state: moved there as the copy out overwrites them, rather than copied back
+  // from the block. Padding lanes repeat the last droplet and are not copied back.
+  double* out[2][lanes::kMaxLanes];
+  double* previous[2][lanes::kMaxLanes];
+  for (int t = 0; t < L; ++t) {
+    DropletState& s = sims[std::min(t, count - 1)]->state_;
+    out[0][t] = t < count ? s.x.data() : nullptr;
+    out[1][t] = t < count ? s.y.data() : nullptr;
+    previous[0][t] = t < count ? s.px.data() : nullptr;
+    previous[1][t] = t < count ? s.py.data() : nullptr;
+  }
+  for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers, previous[a]);
+  id = new_block_id();
+  for (int t = 0; t < count; ++t) {
+    Simulation& sim = *sims[t];
+    sim.block_id_ = id;
+    sim.block_lane_ = t;
+    sim.block_centre_id_ = id;
+    sim.block_cx_ = cx[t];
+    sim.block_cy_ = cy[t];
+    sim.contact_.current = false;  // the step moved every mass
+    OneRing ring{sim};
+    ring.stage<StepStage::contact_limit>();  // may move a mass, which clears block_id_
+  }
+}
+
 void LaneBlockStep::step(Simulation* const* sims, int count) {
   const Simulation& first = *sims[0];
-  const DropletParams& p = first.params_;
   const int n = first.state_.size();
   const int registers = (count + 7) / 8, L = 8 * registers;
   const std::size_t size = static_cast<std::size_t>(n) * static_cast<std::size_t>(L);
@@ -59,117 +154,41 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   memory.last_id = 0;  // until this step has finished
   if (memory.data.size() < 6 * size) memory.data.resize(6 * size);
   double* const X = memory.data.data();
-  double* const block[6] = {X, X + size, X + 2 * size, X + 3 * size, X + 4 * size, X + 5 * size};
-  double *FX = block[4], *FY = block[5];
-  // Padding lanes repeat the last droplet and are not copied back.
-  double* in[4][lanes::kMaxLanes];
-  double* out[2][lanes::kMaxLanes];
-  double* previous[2][lanes::kMaxLanes];
-  for (int t = 0; t < L; ++t) {
-    DropletState& s = sims[std::min(t, count - 1)]->state_;
-    double* const arrays[4] = {s.x.data(), s.y.data(), s.px.data(), s.py.data()};
-    for (int a = 0; a < 4; ++a) in[a][t] = arrays[a];
-    for (int a = 0; a < 2; ++a) out[a][t] = t < count ? arrays[a] : nullptr;
-    for (int a = 0; a < 2; ++a) previous[a][t] = t < count ? arrays[a + 2] : nullptr;
-  }
+  Layout layout{sims,
+                count,
+                n,
+                registers,
+                L,
+                *first.context_,
+                first.params_,
+                {X, X + size, X + 2 * size, X + 3 * size, X + 4 * size, X + 5 * size},
+                {},
+                {}};
   // The lanes whose droplet is not in the block as the last step left it (padding lanes repeat
   // the last droplet's, and are there if the last step had as many droplets).
+  double* in[4][lanes::kMaxLanes];
   bool stale[lanes::kMaxLanes];
   int stale_lanes = 0;
   for (int t = 0; t < L; ++t) {
     const int d = std::min(t, count - 1);
     const Simulation& sim = *sims[d];
+    DropletState& s = sims[d]->state_;
+    double* const arrays[4] = {s.x.data(), s.y.data(), s.px.data(), s.py.data()};
+    for (int a = 0; a < 4; ++a) in[a][t] = arrays[a];
     stale[t] =
         previous_id == 0 || sim.block_id_ != previous_id || sim.block_lane_ != d || (t >= count && !same_padding);
     stale_lanes += stale[t];
   }
   if (stale_lanes > L / 4) {
-    for (int a = 0; a < 4; ++a) lanes::copy_in(in[a], block[a], n, registers);
+    for (int a = 0; a < 4; ++a) lanes::copy_in(in[a], layout.block[a], n, registers);
   } else if (stale_lanes > 0) {
     for (int t = 0; t < L; ++t)
       if (stale[t])
         for (int a = 0; a < 4; ++a)
-          for (int i = 0; i < n; ++i) block[a][static_cast<std::size_t>(i) * L + t] = in[a][t][i];
+          for (int i = 0; i < n; ++i) layout.block[a][static_cast<std::size_t>(i) * L + t] = in[a][t][i];
   }
-  const StepContext& k = *first.context_;
-  double area[lanes::kMaxLanes];
-  thread_local std::vector<double> no_force;
-  const double dmax = k.dmax, dmin = k.dmin;
-  int corrections[lanes::kMaxLanes];
-  // The stages of kStepStages up to the constraint; the contact limit is each droplet's own
-  // (run_interleaved runs it after this).
-  auto run = [&](StepStage stage) {
-    switch (stage) {
-      case StepStage::gravity:  // with the springs and the pressure: one pass over the block
-        lanes::forces_before_contacts(k, block[0], block[1], block[2], block[3], FX, FY, area, n, registers);
-        return;
-      case StepStage::springs:
-      case StepStage::pressure:
-        return;  // in the gravity stage's pass
-      case StepStage::collisions: {
-        // First the forces the contact limit recorded, for every lane whose droplet's records
-        // are current (-0, which changes no double, for the others), then each droplet's own.
-        if (no_force.size() < static_cast<std::size_t>(n)) no_force.assign(static_cast<std::size_t>(n), -0.0);
-        const double* recorded[2][lanes::kMaxLanes];
-        for (int t = 0; t < L; ++t) {
-          const Simulation& sim = *sims[std::min(t, count - 1)];
-          recorded[0][t] = sim.contact_.current ? sim.contact_.fx.data() : no_force.data();
-          recorded[1][t] = sim.contact_.current ? sim.contact_.fy.data() : no_force.data();
-        }
-        lanes::add_in(recorded[0], FX, n, registers);
-        lanes::add_in(recorded[1], FY, n, registers);
-        for (int t = 0; t < count; ++t) {
-          sims[t]->area_ = area[t];
-          sims[t]->accumulate_collisions(FX + t, FY + t, L, /*recorded_added=*/true);
-        }
-        return;
-      }
-      case StepStage::viscosity:
-        if (p.viscosity > 0) lanes::viscosity(k, block[0], block[1], block[2], block[3], FX, FY, n, registers);
-        return;
-      case StepStage::integrate:
-        lanes::integrate(k.h2m, block[0], block[1], block[2], block[3], FX, FY, n, registers);
-        return;
-      case StepStage::constraint:
-        if (p.constraint_order == ConstraintOrder::sequential)
-          lanes::constrain_sequential(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax,
-                                      corrections);
-        else
-          lanes::constrain_red_black(block[0], block[1], n, registers, p.constraint_iterations, dmin, dmax,
-                                     corrections);
-        return;
-      case StepStage::contact_limit:
-        throw std::logic_error("LaneBlockStep: the contact limit is each droplet's own");
-    }
-  };
-  bool mutated = false;
-#if defined(SOFTDROP_TEST_HOOKS)
-  mutated = test_seam::step_mutation() == test_seam::StepMutation::block_damps_before_collisions;
-#endif
-  if (mutated)
-    for (StepStage s :
-         {StepStage::gravity, StepStage::viscosity, StepStage::collisions, StepStage::integrate, StepStage::constraint})
-      run(s);
-  else
-    run_step_stages(run, StepStage::gravity, StepStage::constraint);
-  // The centres of mass from the block (run_interleaved needs them after the contact limits, which
-  // seldom move a mass: then they are computed again from the state).
-  double cx[lanes::kMaxLanes], cy[lanes::kMaxLanes];
-  lanes::centres(block[0], block[1], n, registers, cx, cy);
-  // Verlet left the positions the step began with as the previous ones, so px, py are x, y as they
-  // still are in each state: moved there as the copy out overwrites them, rather than copied back
-  // from the block.
-  for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers, previous[a]);
-  const std::uint64_t id = new_block_id();
-  for (int t = 0; t < count; ++t) {
-    sims[t]->block_id_ = id;
-    sims[t]->block_lane_ = t;
-    sims[t]->block_centre_id_ = id;
-    sims[t]->block_cx_ = cx[t];
-    sims[t]->block_cy_ = cy[t];
-    sims[t]->contact_.current = false;  // the step moved every mass
-  }
-  memory.last_id = id;
+  run_stages(layout);
+  memory.last_id = layout.id;
   memory.lanes = L;
   memory.count = count;
   memory.masses = n;

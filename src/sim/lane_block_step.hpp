@@ -11,16 +11,16 @@ namespace softdrop {
 // by lane (lane_layout.hpp), eight to a group (an AVX-512 register or two AVX ones): forces,
 // integration and constraint (either order) as vector code across droplets, where the one-ring
 // forms are chains of dependent sums and square roots; the collisions (a grid look-up per mass)
-// droplet by droplet on that copy, the contact limit and the run's book-keeping on each droplet's
-// own state afterwards. Each lane does the one-ring stages' operations in their order, so every
-// droplet gets the bits step() gives it. Its forces stay in the copy: state().fx, fy are not
-// updated.
+// droplet by droplet on that copy, the contact limit on each droplet's own state afterwards. Each lane does the
+// one-ring stages' operations in their order, so every droplet gets the bits step() gives it. Its forces stay in the
+// copy: state().fx, fy are not updated.
 struct LaneBlockStep {
   // Whether droplets of parameters a and b can share a block: the same constants for every stage
   // that runs across lanes (the collisions and the contact limit run droplet by droplet).
   static bool compatible(const DropletParams& a, const DropletParams& b) { return same_fields(a, b, FieldUse::forces); }
-  // The stages of kStepStages from gravity to the constraint (all of step() but the contact
-  // limit) for sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0].
+  // step() of sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0]: the stages of
+  // kStepStages over the block's layout (step_driver.hpp), the contact limit on each droplet's own
+  // state after the copy out. Each droplet's validity test is then sims[t]->valid().
   static void step(Simulation* const* sims, int count);
   // Simulation::centre_of_mass of sim as the last step left it, if that step was a block's and
   // nothing has moved a mass since: false otherwise.
@@ -30,6 +30,9 @@ struct LaneBlockStep {
     *cy = sim.block_cy_;
     return true;
   }
+
+ private:
+  struct Layout;  // the block as a layout of the step driver (lane_block_step.cpp)
 };
 
 }  // namespace softdrop

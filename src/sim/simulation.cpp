@@ -14,11 +14,19 @@
 #include "lane_scalar.hpp"
 #include "run_stepper.hpp"
 #include "step_context.hpp"
+#include "step_driver.hpp"
 #include "step_helpers.hpp"
 #include "util/enum_names.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {
+
+#if defined(SOFTDROP_TEST_HOOKS)
+std::atomic<test_seam::StepMutation>& test_seam::step_mutation() {
+  static std::atomic<StepMutation> mutation{StepMutation::none};
+  return mutation;
+}
+#endif
 
 constexpr detail::EnumName<Outcome> kOutcomes[] = {{Outcome::passed, "passed"},
                                                    {Outcome::stuck, "stuck"},
@@ -112,36 +120,16 @@ const char* to_string(StepStage stage) {
   return i < std::size(kNames) ? kNames[i] : "?";
 }
 
-template <StepStage S>
-void Simulation::run_known_stage() {
-  if constexpr (S == StepStage::gravity)
-    accumulate_gravity();
-  else if constexpr (S == StepStage::springs)
-    accumulate_springs();
-  else if constexpr (S == StepStage::pressure)
-    accumulate_pressure();
-  else if constexpr (S == StepStage::collisions)
-    accumulate_collisions();
-  else if constexpr (S == StepStage::viscosity) {
-    if (params_.viscosity > 0) accumulate_viscosity();
-  } else if constexpr (S == StepStage::integrate)
-    integrate();
-  else if constexpr (S == StepStage::constraint)
-    apply_constraint();
-  else if constexpr (S == StepStage::contact_limit)
-    apply_contact_limit();
-  else
-    static_assert(S != S, "a stage without code");
-}
+const StepContext& Simulation::step_context() const { return *context_; }
 
 void Simulation::run_stage(StepStage stage) {
-  run_step_stages([&](auto s) {
-    if (s == stage) run_known_stage<decltype(s)::value>();
-  });
+  OneRing ring{*this};
+  run_stages(ring, stage, stage);
 }
 
 void Simulation::compute_forces() {
-  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::gravity, StepStage::viscosity);
+  OneRing ring{*this};
+  run_stages(ring, StepStage::gravity, StepStage::viscosity);
 }
 
 void Simulation::apply_constraint() {
@@ -151,8 +139,9 @@ void Simulation::apply_constraint() {
 }
 
 bool Simulation::step() {
-  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); });
-  return valid_after_step();
+  OneRing ring{*this};
+  run_stages(ring);
+  return valid();
 }
 
 // ---- Checks and the run loop ------------------------------------------------------------------
@@ -193,18 +182,7 @@ RunSummary Simulation::drive(const RunOptions& options, const double* placed) {
   return run.take();
 }
 
-bool Simulation::before_constraint() {
-  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::gravity, StepStage::integrate);
-  return params_.constraint_order == ConstraintOrder::sequential;
-}
-
-bool Simulation::after_constraint() {
-  run_step_stages([this](auto s) { run_known_stage<decltype(s)::value>(); }, StepStage::contact_limit,
-                  StepStage::contact_limit);
-  return valid_after_step();
-}
-
-bool Simulation::valid_after_step() const { return std::isfinite(area_) && area_ > 0; }
+bool Simulation::valid() const { return std::isfinite(area_) && area_ > 0; }
 
 std::uint64_t Simulation::state_hash() const {
   std::uint64_t h = 1469598103934665603ULL;

@@ -11,6 +11,7 @@ StepContext make_step_context(const DropletParams& p) {
   k.inv_dt = 1.0 / p.dt;
   k.rest_length = p.rest_length();
   k.half_nrt = 0.5 * p.nrt;
+  k.damped = p.viscosity > 0;
   k.viscous = p.mass * p.viscous_rate();
   k.spared_dilation = 1.0 - p.viscosity_dilation;
   k.kick = p.viscosity_step == ViscosityStep::implicit ? p.dt * p.dt / p.mass : 0.0;

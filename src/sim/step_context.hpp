@@ -12,7 +12,8 @@ struct StepContext {
   double inv_dt = 0;           ///< 1 / dt (1/time)
   double rest_length = 0;      ///< d0, the springs' rest length (length)
   double half_nrt = 0;         ///< 0.5 nRT: the pressure's force on each edge end is 0.5 nRT / area
-  double viscous = 0;          ///< m times the viscosity step's rate; 0: no viscosity
+  bool damped = false;         ///< whether the droplet has internal viscosity (nu > 0): the stage runs
+  double viscous = 0;          ///< m times the viscosity step's rate
   double spared_dilation = 0;  ///< 1 - viscosity_dilation: the share of uniform dilation not damped
   /// dt^2 / m with the implicit viscosity step, whose damped velocity is the one after this step's
   /// other forces (x - px + kick F at the viscosity stage); 0 for the other steps.

@@ -1,17 +1,16 @@
 #pragma once
-// The step drivers' seam for tests, compiled only with -DSOFTDROP_TEST_HOOKS=ON (the builds of the
+// The step driver's seam for tests, compiled only with -DSOFTDROP_TEST_HOOKS=ON (the builds of the
 // test scripts): a build for users has none of it.
 #include <atomic>
 
 #if defined(SOFTDROP_TEST_HOOKS)
 namespace softdrop::test_seam {
-/// A deliberate fault in one driver of the step, which the golden state hashes of every layout
-/// must catch (tests/layout_hash_test.cpp). Set it only while no droplet is stepped.
+/// A deliberate fault in the step's driver (step_driver.hpp), which the golden state hashes of every
+/// layout must catch (tests/layout_hash_test.cpp). Set it only while no droplet is stepped.
 enum class StepMutation {
   none,
-  /// The lane-by-lane block runs the viscosity stage before the collisions: a driver that keeps its
-  /// own copy of the stage order, and lets it drift from kStepStages.
-  block_damps_before_collisions,
+  /// The driver runs the viscosity stage before the collisions, in every layout.
+  damps_before_collisions,
 };
 std::atomic<StepMutation>& step_mutation();
 }  // namespace softdrop::test_seam

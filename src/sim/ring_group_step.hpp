@@ -1,0 +1,39 @@
+#pragma once
+// RingGroup: rings stepped side by side, each on its own arrays, as a layout of the step driver
+// (step_driver.hpp). run_interleaved steps the droplets that are not in a lane-by-lane block so.
+#include <vector>
+
+#include "softdrop/simulation.hpp"
+#include "step_driver.hpp"
+
+namespace softdrop {
+
+// Each stage runs for each ring in turn, as the ring's own step runs it (OneRing), but for the
+// constraint: the sequential constraints of the rings that share the first sequential ring's
+// constraint parameters go link by link side by side, each ring a vector lane
+// (apply_length_constraint_interleaved), so that the processor overlaps their chains of dependent
+// square roots; every other ring is constrained alone. Each ring gets the bits of its own step().
+struct RingGroup {
+  Simulation* const* sims = nullptr;
+  int count = 0;
+  std::vector<DropletState*>* rings = nullptr;  // the constraint's scratch
+  std::vector<int>* corrections = nullptr;      // the constraint's scratch
+
+  // The rings may have different parameters: each ring's own pass through the driver decides
+  // whether its viscosity stage runs.
+  bool damped() const { return true; }
+  template <StepStage S>
+  void stage() {
+    if constexpr (S == StepStage::constraint) {
+      constrain();
+    } else {
+      for (int t = 0; t < count; ++t) {
+        OneRing ring{*sims[t]};
+        run_stages(ring, S, S);
+      }
+    }
+  }
+  void constrain();
+};
+
+}  // namespace softdrop

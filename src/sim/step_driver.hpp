@@ -1,0 +1,79 @@
+#pragma once
+// The one driver of the step: the stages of kStepStages (softdrop/step_stages.hpp), in their order,
+// over a layout of droplets. Private to the library.
+//
+// A layout is droplets laid out one way in memory, with an entry point for each stage:
+//   bool damped() const         whether its droplets have internal viscosity (the viscosity stage
+//                               runs only then; a layout of droplets of several parameters says
+//                               true and lets each droplet's own pass decide)
+//   template <StepStage S> void stage()
+//                               stage S for every droplet of the layout
+// The layouts: one ring (OneRing, below), a block of droplets in vector lanes (lane_block_step.cpp)
+// and rings stepped side by side with their constraints interleaved (ring_group_step.cpp). Each
+// runs the same kernels for a stage, so every droplet gets the same bits in every layout; the
+// golden state hashes hold them to it (tests/layout_hash_test.cpp).
+#include "softdrop/simulation.hpp"
+#include "softdrop/step_stages.hpp"
+#include "step_context.hpp"
+#include "step_test_seam.hpp"
+
+namespace softdrop {
+
+namespace step_driver_detail {
+template <class Layout, StepStage S>
+void run_stage(Layout& layout) {
+  if constexpr (S == StepStage::viscosity) {
+    if (!layout.damped()) return;
+  }
+  layout.template stage<S>();
+}
+}  // namespace step_driver_detail
+
+/// Runs the stages from `first` to `last` of kStepStages over `layout`, in their order.
+template <class Layout>
+void run_stages(Layout& layout, StepStage first = StepStage::gravity, StepStage last = StepStage::contact_limit) {
+#if defined(SOFTDROP_TEST_HOOKS)
+  if (test_seam::step_mutation() == test_seam::StepMutation::damps_before_collisions && first == StepStage::gravity &&
+      last >= StepStage::integrate) {
+    // The seam's drifted order: the viscosity stage moved before the collisions.
+    run_step_stages([&](auto s) { step_driver_detail::run_stage<Layout, decltype(s)::value>(layout); },
+                    StepStage::gravity, StepStage::pressure);
+    step_driver_detail::run_stage<Layout, StepStage::viscosity>(layout);
+    step_driver_detail::run_stage<Layout, StepStage::collisions>(layout);
+    run_step_stages([&](auto s) { step_driver_detail::run_stage<Layout, decltype(s)::value>(layout); },
+                    StepStage::integrate, last);
+    return;
+  }
+#endif
+  run_step_stages([&](auto s) { step_driver_detail::run_stage<Layout, decltype(s)::value>(layout); }, first, last);
+}
+
+/// One droplet's ring, on its own arrays (Simulation::step).
+struct OneRing {
+  Simulation& sim;
+
+  bool damped() const { return sim.step_context().damped; }
+  template <StepStage S>
+  void stage() {
+    if constexpr (S == StepStage::gravity)
+      sim.accumulate_gravity();
+    else if constexpr (S == StepStage::springs)
+      sim.accumulate_springs();
+    else if constexpr (S == StepStage::pressure)
+      sim.accumulate_pressure();
+    else if constexpr (S == StepStage::collisions)
+      sim.accumulate_collisions();
+    else if constexpr (S == StepStage::viscosity)
+      sim.accumulate_viscosity();
+    else if constexpr (S == StepStage::integrate)
+      sim.integrate();
+    else if constexpr (S == StepStage::constraint)
+      sim.apply_constraint();
+    else if constexpr (S == StepStage::contact_limit)
+      sim.apply_contact_limit();
+    else
+      static_assert(S != S, "a stage without code");
+  }
+};
+
+}  // namespace softdrop
