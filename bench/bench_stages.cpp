@@ -13,11 +13,14 @@
 #include "bench_media.hpp"
 #include "sim/lane_layout.hpp"
 #include "sim/lane_policy.hpp"
+#include "sim/step_driver.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace {
+using softdrop::run_stage;
 using softdrop::Simulation;
+using softdrop::StepStage;
 
 // A droplet pressed against grains of the medium-200 scene (bench::droplet_in_contact). The stage
 // runs on a copy of that state, restored every 256 iterations (out of the timing) so that the
@@ -55,9 +58,9 @@ void stage(benchmark::State& state, const std::function<void(Simulation&)>& body
 
 void BM_SpringsAndPressure(benchmark::State& s) {
   stage(s, [](Simulation& sim) {
-    sim.accumulate_gravity();
-    sim.accumulate_springs();
-    sim.accumulate_pressure();
+    run_stage<StepStage::gravity>(sim);
+    run_stage<StepStage::springs>(sim);
+    run_stage<StepStage::pressure>(sim);
   });
 }
 // Stages run again on positions they have seen, so the collisions take the contact limit's record
@@ -67,34 +70,34 @@ void BM_SpringsAndPressure(benchmark::State& s) {
 // The collisions as a step after any change of the state runs them: every mass tested against its
 // record (after the first iteration the contact limit's recorded forces are spent).
 void BM_Collisions(benchmark::State& s) {
-  stage(s, [](Simulation& sim) { sim.accumulate_collisions(); });
+  stage(s, [](Simulation& sim) { run_stage<StepStage::collisions>(sim); });
 }
 // The contact limit and the next collisions, as a step runs them: the forces the contact limit
 // records for the masses inside one disc are added with no test.
 void BM_ContactLimitThenCollisions(benchmark::State& s) {
   stage(s, [](Simulation& sim) {
-    sim.apply_contact_limit();
-    sim.accumulate_collisions();
+    run_stage<StepStage::contact_limit>(sim);
+    run_stage<StepStage::collisions>(sim);
   });
 }
 void BM_Viscosity(benchmark::State& s) {
-  stage(s, [](Simulation& sim) { sim.accumulate_viscosity(); });
+  stage(s, [](Simulation& sim) { run_stage<StepStage::viscosity>(sim); });
 }
 void BM_Integrate(benchmark::State& s) {
-  stage(s, [](Simulation& sim) { sim.integrate(); });
+  stage(s, [](Simulation& sim) { run_stage<StepStage::integrate>(sim); });
 }
 void BM_ConstraintSequential(benchmark::State& s) {
   stage(s, [](Simulation& sim) {
-    sim.integrate();
-    sim.apply_constraint();
+    run_stage<StepStage::integrate>(sim);
+    run_stage<StepStage::constraint>(sim);
   });
 }
 void BM_ConstraintRedBlack(benchmark::State& s) {
   stage(
       s,
       [](Simulation& sim) {
-        sim.integrate();
-        sim.apply_constraint();
+        run_stage<StepStage::integrate>(sim);
+        run_stage<StepStage::constraint>(sim);
       },
       softdrop::ConstraintOrder::red_black);
 }
@@ -107,14 +110,14 @@ void BM_ConstraintRedBlackAtWidth(benchmark::State& s) {
   stage(
       s,
       [](Simulation& sim) {
-        sim.integrate();
-        sim.apply_constraint();
+        run_stage<StepStage::integrate>(sim);
+        run_stage<StepStage::constraint>(sim);
       },
       softdrop::ConstraintOrder::red_black);
   softdrop::limit_constraint_vector_width(softdrop::VectorWidth::avx512);
 }
 void BM_ContactLimit(benchmark::State& s) {
-  stage(s, [](Simulation& sim) { sim.apply_contact_limit(); });
+  stage(s, [](Simulation& sim) { run_stage<StepStage::contact_limit>(sim); });
 }
 void BM_WholeStep(benchmark::State& s) {
   stage(s, [](Simulation& sim) { sim.step(); });
@@ -132,7 +135,7 @@ void BM_ConstraintChainFloor(benchmark::State& s) {
   softdrop::DropletParams p;
   p.masses = static_cast<int>(s.range(0));
   const auto sim = softdrop::bench::droplet_in_contact(p, medium);
-  sim->integrate();  // the positions the constraint sees
+  run_stage<StepStage::integrate>(*sim);  // the positions the constraint sees
   const std::vector<double> x = sim->state().x, y = sim->state().y;
   const double dmax = (1 + p.max_strain) * p.rest_length();
   const int n = p.masses, passes = p.constraint_iterations;
@@ -174,7 +177,7 @@ void BM_ConstraintSequentialInterleaved(benchmark::State& state) {
   for (auto& sim : sims) states.push_back(&sim->mutable_state());
   std::vector<int> corrections(static_cast<std::size_t>(rings));
   timed_in_contact(state, sims, [&] {
-    for (auto& sim : sims) sim->integrate();
+    for (auto& sim : sims) run_stage<StepStage::integrate>(*sim);
     softdrop::apply_length_constraint_interleaved(states.data(), rings, p.rest_length(), p.max_strain,
                                                   p.constraint_iterations, corrections.data());
   });

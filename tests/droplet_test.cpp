@@ -10,6 +10,7 @@
 
 #include "fixtures.hpp"
 #include "sim/lane_policy.hpp"
+#include "sim/step_driver.hpp"
 #include "softdrop/random.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -183,8 +184,8 @@ std::vector<double> viscous_forces(double dilation_share, double delta, double* 
     s.px[i] = s.x[i] - dt * (ux - omega * ry + delta * rx);
     s.py[i] = s.y[i] - dt * (uy + omega * rx + delta * ry);
   }
-  sim.run_stage(StepStage::gravity);  // zero forces (no gravity)
-  sim.run_stage(StepStage::viscosity);
+  run_stage(sim, StepStage::gravity);  // zero forces (no gravity)
+  run_stage(sim, StepStage::viscosity);
   std::vector<double> f;
   *torque = *net = 0;
   for (int i = 0; i < s.size(); ++i) {
@@ -244,7 +245,7 @@ TEST(Droplet, SpringForcesHaveTheSameBitsAtEveryVectorWidth) {
       const test::VectorWidthLimit limit(width);
       std::fill(s.fx.begin(), s.fx.end(), 0.0);
       std::fill(s.fy.begin(), s.fy.end(), 0.0);
-      sim.accumulate_springs();
+      run_stage<StepStage::springs>(sim);
       forces.push_back(s.fx);
       forces.back().insert(forces.back().end(), s.fy.begin(), s.fy.end());
     }

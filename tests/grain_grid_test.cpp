@@ -1,4 +1,4 @@
-#include "softdrop/grain_grid.hpp"
+#include "media/grain_grid.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,6 +1,6 @@
 // The step as one list of named stages (step_stages.hpp): the list, its parts, and Simulation::step
 // as exactly the stages' own functions in the list's order.
-#include "softdrop/step_stages.hpp"
+#include "sim/step_stages.hpp"
 
 #include <gtest/gtest.h>
 
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fixtures.hpp"
+#include "sim/ring_stages.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace softdrop {
@@ -50,31 +51,33 @@ int first_difference(Simulation* a, Simulation* b, const std::vector<StepStage>&
   b->place_above(100.0);
   for (int k = 1; k <= steps; ++k) {
     a->step();
+    const DropletModel& m = b->model();
+    DropletRuntime& r = b->runtime();
     for (StepStage s : order) {
       switch (s) {
         case StepStage::gravity:
-          b->accumulate_gravity();
+          gravity_stage(m, r);
           break;
         case StepStage::springs:
-          b->accumulate_springs();
+          springs_stage(m, r);
           break;
         case StepStage::pressure:
-          b->accumulate_pressure();
+          pressure_stage(m, r);
           break;
         case StepStage::collisions:
-          b->accumulate_collisions();
+          collisions_stage(m, r, r.state.fx.data(), r.state.fy.data(), 1, /*recorded_added=*/false);
           break;
         case StepStage::viscosity:
-          if (b->params().viscosity > 0) b->accumulate_viscosity();
+          if (b->params().viscosity > 0) viscosity_stage(m, r);
           break;
         case StepStage::integrate:
-          b->integrate();
+          integrate_stage(m, r);
           break;
         case StepStage::constraint:
-          b->apply_constraint();
+          constraint_stage(m, r);
           break;
         case StepStage::contact_limit:
-          b->apply_contact_limit();
+          contact_limit_stage(m, r);
           break;
       }
     }

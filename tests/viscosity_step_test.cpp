@@ -10,6 +10,7 @@
 
 #include "cli_run.hpp"
 #include "fixtures.hpp"
+#include "sim/step_driver.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -35,10 +36,10 @@ double shear_misfit(const DropletParams& p, double factor, double push = 0) {
     s.px[i] = s.x[i] - dt * (rigid_x(rx[i], ry[i]) + a * rx[i]);
     s.py[i] = s.y[i] - dt * (rigid_y(rx[i], ry[i]) - a * ry[i]);
   }
-  sim.run_stage(StepStage::gravity);  // clears the forces (no gravity)
+  run_stage(sim, StepStage::gravity);  // clears the forces (no gravity)
   for (int i = 0; i < s.size(); ++i) s.fx[i] += p.mass * push * rx[i], s.fy[i] -= p.mass * push * ry[i];
-  sim.run_stage(StepStage::viscosity);
-  sim.run_stage(StepStage::integrate);
+  run_stage(sim, StepStage::viscosity);
+  run_stage(sim, StepStage::integrate);
   double worst = 0;
   for (int i = 0; i < s.size(); ++i) {
     const double vx = (s.x[i] - s.px[i]) / dt, vy = (s.y[i] - s.py[i]) / dt;

@@ -11,15 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "softdrop/contact_cache.hpp"
 #include "softdrop/droplet.hpp"
-#include "softdrop/grain_grid.hpp"
 #include "softdrop/medium.hpp"
-#include "softdrop/step_stages.hpp"
 
 namespace softdrop {
 
-struct StepContext;  // the step's constants (private to the library)
+// What the library's step reads, defined in its sources: the droplets' shared model (parameters,
+// the step's constants, the grain grid) and one droplet's runtime state.
+struct DropletModel;
+struct DropletRuntime;
 
 /// Why a run ended.
 enum class Outcome {
@@ -90,115 +90,66 @@ struct RunSummary {
   std::vector<Snapshot> snapshots;
 };
 
-/// A droplet in a medium. Creation data (params, rest length, grid) is fixed at construction; the
-/// runtime state is reset by `place` and advanced by `step`, which allocates nothing.
+/// A droplet in a medium. What its droplets share (parameters, the step's constants, the grain
+/// grid) is fixed at construction; the runtime state is reset by `place` and advanced by `step`,
+/// which allocates nothing. A copy shares the first's fixed part and has its own state.
 class Simulation {
  public:
   /// The medium must outlive the simulation. Throws std::invalid_argument for invalid params.
   Simulation(const DropletParams& params, const Medium& medium);
   /// A temporary medium would be gone before the first step: refused at compile time.
   Simulation(const DropletParams& params, Medium&& medium) = delete;
+  Simulation(const Simulation& other);
+  Simulation& operator=(const Simulation& other);
+  Simulation(Simulation&&) noexcept;
+  Simulation& operator=(Simulation&&) noexcept;
+  ~Simulation();
 
   /// Puts the inflated droplet at rest with its centre at (cx, cy) and clears the touched set.
   void place(double cx, double cy);
   /// The usual start: centre x = cx, just above the medium (clear of the highest grain).
   void place_above(double cx);
-  /// Advances one time step: every stage of kStepStages (step_stages.hpp), in order. Returns false
-  /// if the state became invalid (NaN or area <= 0).
+  /// Advances one time step: gravity, springs, gas pressure, collisions, internal viscosity,
+  /// position Verlet, the length constraint and the contact limit (docs/model.md), in that order.
+  /// Returns false if the state became invalid (NaN or area <= 0).
   bool step();
   /// The force stages of a step on their own (gravity to viscosity): clears and accumulates all
   /// forces into state().fx/fy without moving anything.
   void compute_forces();
-  /// One stage of a step (what step() runs for it).
-  void run_stage(StepStage stage);
 
   /// Places the droplet above the medium at x = cx and runs to an outcome.
   RunSummary run(double cx, const RunOptions& options);
   /// Runs from the current state.
   RunSummary run_from_current(const RunOptions& options);
 
-  const DropletState& state() const { return state_; }
+  const DropletState& state() const;
   /// The state to change between steps (a change made after the next step has begun is not seen).
-  DropletState& mutable_state() {
-    state_changed();
-    return state_;
-  }
-  const DropletParams& params() const { return params_; }
-  const Medium& medium() const { return medium_; }
-  double area() const { return area_; }
-  double initial_area() const { return area0_; }
+  DropletState& mutable_state();
+  const DropletParams& params() const;
+  const Medium& medium() const;
+  /// The ring's area as the last step measured it.
+  double area() const;
+  /// The resting area S0.
+  double initial_area() const;
   /// Centre of mass (mean of positions, masses are equal).
   void centre_of_mass(double* cx, double* cy) const;
   /// Deepest penetration of a mass into a grain during the last step (length).
-  double last_penetration() const { return last_penetration_; }
+  double last_penetration() const;
   /// The y at which place_above puts the centre.
-  double start_height() const { return start_y_; }
+  double start_height() const;
   /// FNV-1a hash of the bits of the runtime state: the determinism fingerprint.
   std::uint64_t state_hash() const;
-
-  /// The stages of a step, in the order of kStepStages (run_stage's code for each). Public so that
-  /// benchmarks and tests can time and check each one.
-  void accumulate_gravity();   ///< clears the forces to the weight m g
-  void accumulate_springs();   ///< damped springs along the ring
-  void accumulate_pressure();  ///< P l_e on each edge's outward normal (updates area())
-  /// Grain and wall contacts (penalty and damping); the touched set. Right after
-  /// apply_contact_limit() it adds the forces that stage recorded and looks at the masses it
-  /// listed; otherwise (or called again) it tests every mass against its record.
-  void accumulate_collisions();
-  void accumulate_viscosity();  ///< internal viscosity relative to the rigid motion
-  void integrate();             ///< position Verlet
-  void apply_constraint();      ///< the Provot length constraint (params().constraint_order)
-  /// Inverse dynamics: masses no deeper than max_depth; records the contacts (and the forces of
-  /// most) for the next collisions.
-  void apply_contact_limit();
-
   /// step()'s validity test of the state the last step left: finite, with a positive area.
   bool valid() const;
-  /// The step's constants (private to the library: the type is defined in its sources).
-  const StepContext& step_context() const;
-  /// d0, the springs' rest length.
-  double rest_length() const;
+
+  /// The library's access to the step (the types are defined in its sources, not installed).
+  const DropletModel& model() const { return *model_; }
+  DropletRuntime& runtime() { return *runtime_; }
+  const DropletRuntime& runtime() const { return *runtime_; }
 
  private:
-  friend class RunStepper;
-  friend struct LaneBlockStep;
-  /// Steps to an outcome; placed as RunStepper's (the x the ring was just placed at, or null).
-  RunSummary drive(const RunOptions& options, const double* placed);
-  bool any_grain_inside_ring() const;
-  /// accumulate_collisions() adding mass i's force to fx[i * stride], fy[i * stride];
-  /// recorded_added: the caller has added the recorded forces (contact_.fx, contact_.fy) itself.
-  void accumulate_collisions(double* fx, double* fy, std::ptrdiff_t stride, bool recorded_added = false);
-
-  DropletParams params_;
-  const Medium& medium_;
-  GrainGrid grid_;
-  DropletState state_;
-  double area0_ = 0, area_ = 0, start_y_ = 0;
-  /// The step's constants, derived from params_ once and shared by the copies of this simulation
-  /// (every layout of the step reads them).
-  std::shared_ptr<const StepContext> context_;
-  double last_penetration_ = 0;
-  std::vector<std::uint8_t> touched_;  ///< per medium grain
-  /// Spring forces of the step, 4 x N: on the first end (-0 for a spring of zero length) and for
-  /// the second end (+0 then), x and y. Apart so that the springs can go two at a time.
-  std::vector<double> spring_force_;
-  ContactCache contact_;  ///< the contact limit's records, for the next step
-  /// The lane-by-lane step that last left this state in its thread's block (its id, and the lane),
-  /// so that the next one need not copy it in again; 0: none, or the state has changed since (every
-  /// other writer of state_ clears it).
-  std::uint64_t block_id_ = 0;
-  int block_lane_ = 0;
-  /// The centre of mass the lane-by-lane step computed, for the state it left while block_id_ is
-  /// still block_centre_id_ (a contact limit that moved a mass, or any other writer, clears
-  /// block_id_).
-  double block_cx_ = 0, block_cy_ = 0;
-  std::uint64_t block_centre_id_ = 0;
-  /// What a writer of state_ other than the lane-by-lane step and the contact limit does: the
-  /// block and the contact records no longer describe it.
-  void state_changed() {
-    block_id_ = 0;
-    contact_.current = false;
-  }
+  std::shared_ptr<const DropletModel> model_;
+  std::unique_ptr<DropletRuntime> runtime_;
 };
 
 /// Length of the polyline (xs, ys) between its first downward crossing of y = top and its first

@@ -1,4 +1,4 @@
-#include "softdrop/grain_grid.hpp"
+#include "grain_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

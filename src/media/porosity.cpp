@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-#include "softdrop/grain_grid.hpp"
+#include "grain_grid.hpp"
 #include "softdrop/random.hpp"
 
 namespace softdrop {

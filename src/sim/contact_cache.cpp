@@ -1,4 +1,4 @@
-#include "softdrop/contact_cache.hpp"
+#include "contact_cache.hpp"
 
 #include <limits>
 

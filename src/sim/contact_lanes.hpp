@@ -4,11 +4,11 @@
 // Most masses' steps end free in their anchor's ball, or in the ball of an anchor that holds one
 // disc (touching it or not); few need the full test of their cell or have anchors of several
 // discs (the shares: bench/README.md, "Constants of the step"). The first two go eight at a time here, at wrapped
-// positions too, each lane doing the operations of Simulation's scalar code, in its order, so
+// positions too, each lane doing the operations of the one-ring code, in its order, so
 // every mass gets the same bits; the rest stay with the scalar code. For the masses inside their
 // anchor's one disc the kernel also computes the next collisions' force (the positions and
 // velocities do not change in between), while the masses' arrays are in cache: the collisions
-// then only add it (Simulation::accumulate_collisions).
+// then only add it (collisions_stage).
 
 #include <cstdint>
 
@@ -17,16 +17,16 @@
 namespace softdrop::lanes {
 
 /// A record's count for a mass inside one disc, the disc above, whose collision force (as
-/// accumulate_collisions() would compute it at that position and velocity) is recorded as well.
+/// collisions_stage would compute it at that position and velocity) is recorded as well.
 constexpr std::int32_t kOneDiscWithForce = -1;
 
-/// One ring's contact records (Simulation's arrays, by mass).
+/// One ring's contact records (its runtime arrays, by mass).
 struct ContactRecords {
   const double *x = nullptr, *y = nullptr;
   /// The anchors: a mass within r2 of (x, y) can only touch or be pushed by the `count` discs.
   const double *clear_x = nullptr, *clear_y = nullptr, *clear_r2 = nullptr;
   const std::int32_t* clear_count = nullptr;
-  /// The disc of an anchor that holds one (Simulation::contact_.disc_x and so on).
+  /// The disc of an anchor that holds one (ContactCache::disc_x and so on).
   const double *disc_x = nullptr, *disc_y = nullptr, *disc_r = nullptr;
   /// The disc's grain, and the entry of the touched set that stands for none (the medium's count).
   const std::int32_t* disc_grain = nullptr;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lane_layout.hpp"
+#include "ring_stages.hpp"
 #include "simd_dispatch.hpp"
 #include "step_driver.hpp"
 
@@ -18,7 +19,7 @@ namespace {
 // A thread's block: the lanes' x, y, px, py, fx, fy, and what the last step left in it. After a
 // step the first four are each droplet's state (the copy out wrote x, y, and px, py are the
 // positions the step began with in both), so a droplet still in the same lane whose state nothing
-// has changed since (Simulation::block_id_) need not be copied in again.
+// has changed since (BlockSlot::id) need not be copied in again.
 struct LaneBlock {
   std::vector<double> data;
   std::uint64_t last_id = 0;  // 0: the data is not a finished step's
@@ -51,9 +52,9 @@ struct LaneBlockStep::Layout {
   int count, n, registers, L;
   const StepContext& k;
   const DropletParams& p;
-  double* block[6];  // x, y, px, py, fx, fy
-  double area[lanes::kMaxLanes];
-  int corrections[lanes::kMaxLanes];
+  double* block[6] = {};  // x, y, px, py, fx, fy
+  double area[lanes::kMaxLanes] = {};
+  int corrections[lanes::kMaxLanes] = {};
   std::uint64_t id = 0;  // the block id the step gave its droplets (at the contact limit)
 
   bool damped() const { return k.damped; }
@@ -79,15 +80,17 @@ void LaneBlockStep::Layout::stage<StepStage::collisions>() {
   if (no_force.size() < static_cast<std::size_t>(n)) no_force.assign(static_cast<std::size_t>(n), -0.0);
   const double* recorded[2][lanes::kMaxLanes];
   for (int t = 0; t < L; ++t) {
-    const Simulation& sim = *sims[std::min(t, count - 1)];
-    recorded[0][t] = sim.contact_.current ? sim.contact_.fx.data() : no_force.data();
-    recorded[1][t] = sim.contact_.current ? sim.contact_.fy.data() : no_force.data();
+    const ContactCache& contact = sims[std::min(t, count - 1)]->runtime().contact;
+    recorded[0][t] = contact.current ? contact.fx.data() : no_force.data();
+    recorded[1][t] = contact.current ? contact.fy.data() : no_force.data();
   }
   lanes::add_in(recorded[0], block[4], n, registers);
   lanes::add_in(recorded[1], block[5], n, registers);
   for (int t = 0; t < count; ++t) {
-    sims[t]->area_ = area[t];
-    sims[t]->accumulate_collisions(block[4] + t, block[5] + t, L, /*recorded_added=*/true);
+    DropletRuntime& r = sims[t]->runtime();
+    r.area = area[t];
+    // Each droplet's own model: droplets of a block share the step's constants, not their medium.
+    collisions_stage(sims[t]->model(), r, block[4] + t, block[5] + t, L, /*recorded_added=*/true);
   }
 }
 
@@ -121,7 +124,7 @@ void LaneBlockStep::Layout::stage<StepStage::contact_limit>() {
   double* out[2][lanes::kMaxLanes];
   double* previous[2][lanes::kMaxLanes];
   for (int t = 0; t < L; ++t) {
-    DropletState& s = sims[std::min(t, count - 1)]->state_;
+    DropletState& s = sims[std::min(t, count - 1)]->runtime().state;
     out[0][t] = t < count ? s.x.data() : nullptr;
     out[1][t] = t < count ? s.y.data() : nullptr;
     previous[0][t] = t < count ? s.px.data() : nullptr;
@@ -130,21 +133,16 @@ void LaneBlockStep::Layout::stage<StepStage::contact_limit>() {
   for (int a = 0; a < 2; ++a) lanes::copy_out(out[a], block[a], n, registers, previous[a]);
   id = new_block_id();
   for (int t = 0; t < count; ++t) {
-    Simulation& sim = *sims[t];
-    sim.block_id_ = id;
-    sim.block_lane_ = t;
-    sim.block_centre_id_ = id;
-    sim.block_cx_ = cx[t];
-    sim.block_cy_ = cy[t];
-    sim.contact_.current = false;  // the step moved every mass
-    OneRing ring{sim};
-    ring.stage<StepStage::contact_limit>();  // may move a mass, which clears block_id_
+    DropletRuntime& r = sims[t]->runtime();
+    r.block = BlockSlot{id, t, id, cx[t], cy[t]};
+    r.contact.current = false;                 // the step moved every mass
+    contact_limit_stage(sims[t]->model(), r);  // may move a mass, which clears r.block.id
   }
 }
 
 void LaneBlockStep::step(Simulation* const* sims, int count) {
-  const Simulation& first = *sims[0];
-  const int n = first.state_.size();
+  const DropletModel& model = sims[0]->model();
+  const int n = sims[0]->state().size();
   const int registers = (count + 7) / 8, L = 8 * registers;
   const std::size_t size = static_cast<std::size_t>(n) * static_cast<std::size_t>(L);
   thread_local LaneBlock memory;
@@ -154,16 +152,8 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   memory.last_id = 0;  // until this step has finished
   if (memory.data.size() < 6 * size) memory.data.resize(6 * size);
   double* const X = memory.data.data();
-  Layout layout{sims,
-                count,
-                n,
-                registers,
-                L,
-                *first.context_,
-                first.params_,
-                {X, X + size, X + 2 * size, X + 3 * size, X + 4 * size, X + 5 * size},
-                {},
-                {}};
+  Layout layout{sims, count, n, registers, L, model.context, model.params};
+  for (int a = 0; a < 6; ++a) layout.block[a] = X + static_cast<std::size_t>(a) * size;
   // The lanes whose droplet is not in the block as the last step left it (padding lanes repeat
   // the last droplet's, and are there if the last step had as many droplets).
   double* in[4][lanes::kMaxLanes];
@@ -171,12 +161,11 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   int stale_lanes = 0;
   for (int t = 0; t < L; ++t) {
     const int d = std::min(t, count - 1);
-    const Simulation& sim = *sims[d];
-    DropletState& s = sims[d]->state_;
+    DropletRuntime& r = sims[d]->runtime();
+    DropletState& s = r.state;
     double* const arrays[4] = {s.x.data(), s.y.data(), s.px.data(), s.py.data()};
     for (int a = 0; a < 4; ++a) in[a][t] = arrays[a];
-    stale[t] =
-        previous_id == 0 || sim.block_id_ != previous_id || sim.block_lane_ != d || (t >= count && !same_padding);
+    stale[t] = previous_id == 0 || r.block.id != previous_id || r.block.lane != d || (t >= count && !same_padding);
     stale_lanes += stale[t];
   }
   if (stale_lanes > L / 4) {

@@ -2,6 +2,7 @@
 // LaneBlockStep: droplets of one set of parameters stepped together, a droplet per vector lane.
 #include <cstddef>
 
+#include "droplet_runtime.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -25,9 +26,10 @@ struct LaneBlockStep {
   // Simulation::centre_of_mass of sim as the last step left it, if that step was a block's and
   // nothing has moved a mass since: false otherwise.
   static bool centre_of_mass(const Simulation& sim, double* cx, double* cy) {
-    if (sim.block_id_ == 0 || sim.block_id_ != sim.block_centre_id_) return false;
-    *cx = sim.block_cx_;
-    *cy = sim.block_cy_;
+    const BlockSlot& slot = sim.runtime().block;
+    if (slot.id == 0 || slot.id != slot.centre_id) return false;
+    *cx = slot.cx;
+    *cy = slot.cy;
     return true;
   }
 

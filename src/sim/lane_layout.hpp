@@ -55,22 +55,22 @@ void constrain_sequential(double* X, double* Y, int n, int registers, int iterat
 void constrain_red_black(double* X, double* Y, int n, int registers, int iterations, double dmin, double dmax,
                          int* counts);
 
-/// Simulation's accumulate_gravity, accumulate_springs and accumulate_pressure on every lane: sets
+/// gravity_stage, springs_stage and pressure_stage (ring_stages.hpp) on every lane: sets
 /// FX, FY from X, Y, PX, PY and area[t] to ring t's area.
 void forces_before_contacts(const StepContext& k, const double* X, const double* Y, const double* PX, const double* PY,
                             double* FX, double* FY, double* area, int n, int registers);
 /// The spring forces of one ring (not lane by lane: its springs are the lanes), eight at a time, for
-/// Simulation::accumulate_springs: springs (i, i + 1), i from 0 to n - 2, into plus_x[i], plus_y[i]
+/// springs_stage: springs (i, i + 1), i from 0 to n - 2, into plus_x[i], plus_y[i]
 /// (added to the first end; -0 for a spring of no length) and minus_x[i], minus_y[i] (subtracted
 /// from the second; +0 then). The closing spring (n - 1, 0) is left to the caller. Needs n >= 9.
 void ring_spring_forces(const StepContext& k, const double* x, const double* y, const double* px, const double* py,
                         int n, double* plus_x, double* plus_y, double* minus_x, double* minus_y);
-/// Simulation::accumulate_viscosity on every lane (adds to FX, FY).
+/// viscosity_stage on every lane (adds to FX, FY).
 void viscosity(const StepContext& k, const double* X, const double* Y, const double* PX, const double* PY, double* FX,
                double* FY, int n, int registers);
 /// Simulation::centre_of_mass of every lane: cx[t], cy[t] for t < 8 registers.
 void centres(const double* X, const double* Y, int n, int registers, double* cx, double* cy);
-/// Simulation::integrate (position Verlet) on every lane.
+/// integrate_stage (position Verlet) on every lane.
 void integrate(double h2m, double* X, double* Y, double* PX, double* PY, const double* FX, const double* FY, int n,
                int registers);
 

@@ -1,7 +1,9 @@
 // The constraint stage of rings stepped side by side (ring_group_step.hpp).
 #include "ring_group_step.hpp"
 
+#include "droplet_model.hpp"
 #include "lane_policy.hpp"
+#include "ring_stages.hpp"
 
 namespace softdrop {
 
@@ -17,13 +19,13 @@ void RingGroup::constrain() {
         continue;
       }
     }
-    sim->apply_constraint();
+    constraint_stage(sim->model(), sim->runtime());
   }
   if (rings->empty()) return;
   corrections->resize(rings->size());
-  apply_length_constraint_interleaved(rings->data(), static_cast<int>(rings->size()), first->rest_length(),
-                                      first->params().max_strain, first->params().constraint_iterations,
-                                      corrections->data());
+  apply_length_constraint_interleaved(rings->data(), static_cast<int>(rings->size()),
+                                      first->model().context.rest_length, first->params().max_strain,
+                                      first->params().constraint_iterations, corrections->data());
 }
 
 }  // namespace softdrop

@@ -10,10 +10,14 @@
 #include <utility>
 #include <vector>
 
+#include "droplet_runtime.hpp"
 #include "softdrop/simulation.hpp"
 #include "step_helpers.hpp"
 
 namespace softdrop {
+
+/// Whether a grain's centre (or, in a periodic medium, a periodic copy's) is inside the ring.
+bool any_grain_inside_ring(const DropletState& state, const Medium& medium);
 
 // One droplet's run between its steps: the path, the recordings and the exit tests. A driver
 // steps the simulation and calls after_step(); run_from_current drives one droplet,
@@ -26,12 +30,12 @@ class RunStepper {
   RunStepper(Simulation* sim, const RunOptions& options, const double* placed = nullptr) : sim_(sim), o_(options) {
     std::string why;
     if (!options.IsValid(&why)) throw std::invalid_argument(why);
-    dt_ = sim->params_.dt;
-    H_ = sim->medium_.height;
+    dt_ = sim->params().dt;
+    H_ = sim->medium().height;
     sim->centre_of_mass(&cx_, &cy_);
     s_.start_x = placed ? *placed : cx_;
-    s_.start_y = placed ? sim->start_y_ : cy_;
-    sim->area_ = ring_area(sim->state_);
+    s_.start_y = placed ? sim->start_height() : cy_;
+    sim->runtime().area = ring_area(sim->state());
     window_ = std::max<std::int64_t>(1, std::llround(options.stuck_window / dt_));
     rest_window_ = options.rest_window > 0 ? std::max<std::int64_t>(1, std::llround(options.rest_window / dt_)) : 0;
     for (double t : options.snapshot_times) snapshot_steps_.push_back(std::llround(t / dt_));
@@ -58,11 +62,11 @@ class RunStepper {
     cy_ = cy;
     if (!ok || !std::isfinite(cx_) || !std::isfinite(cy_)) {
       std::ostringstream r;
-      r << "ring became invalid at step " << k << " (area " << sim_->area_ << ")";
+      r << "ring became invalid at step " << k << " (area " << sim_->area() << ")";
       return finish(Outcome::diverged, r.str(), k);
     }
-    s_.min_area_ratio = std::min(s_.min_area_ratio, sim_->area_ / sim_->area0_);
-    s_.max_penetration = std::max(s_.max_penetration, sim_->last_penetration_);
+    s_.min_area_ratio = std::min(s_.min_area_ratio, sim_->area() / sim_->initial_area());
+    s_.max_penetration = std::max(s_.max_penetration, sim_->last_penetration());
     // Path length inside the medium, with the crossings of y = H and y = 0 interpolated.
     if (!entered_ && cy_ < H_) {
       entered_ = true;
@@ -83,9 +87,9 @@ class RunStepper {
     }
     if (k % o_.check_interval == 0) {
       if (o_.cancelled && o_.cancelled()) throw RunCancelled{};
-      if (ring_self_intersects(sim_->state_))
+      if (ring_self_intersects(sim_->state()))
         return finish(Outcome::diverged, "ring self-intersects at step " + std::to_string(k), k);
-      if (sim_->any_grain_inside_ring()) {
+      if (any_grain_inside_ring(sim_->state(), sim_->medium())) {
         s_.grain_inside_ring = true;
         return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k), k);
       }
@@ -129,10 +133,10 @@ class RunStepper {
     }
     if (o_.area_interval > 0 && k % o_.area_interval == 0) {
       s_.area_t.push_back(t);
-      s_.area.push_back(ring_area(sim_->state_));
+      s_.area.push_back(ring_area(sim_->state()));
     }
     while (next_snapshot_ < snapshot_steps_.size() && snapshot_steps_[next_snapshot_] <= k) {
-      s_.snapshots.push_back({t, sim_->state_.x, sim_->state_.y});
+      s_.snapshots.push_back({t, sim_->state().x, sim_->state().y});
       ++next_snapshot_;
     }
   }
@@ -141,8 +145,8 @@ class RunStepper {
     s_.outcome = o;
     s_.reason = std::move(reason);
     s_.steps = k;
-    for (std::size_t g = 0; g + 1 < sim_->touched_.size(); ++g)
-      if (sim_->touched_[g]) s_.touched.push_back(static_cast<std::int32_t>(g));
+    for (std::size_t g = 0; g + 1 < sim_->runtime().touched.size(); ++g)
+      if (sim_->runtime().touched[g]) s_.touched.push_back(static_cast<std::int32_t>(g));
     if (o_.path_interval > 0 && (s_.path_t.empty() || s_.path_t.back() != static_cast<double>(k) * dt_)) {
       s_.path_t.push_back(static_cast<double>(k) * dt_);
       s_.path_x.push_back(cx_);

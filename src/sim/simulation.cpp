@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "droplet_model.hpp"
+#include "droplet_runtime.hpp"
 #include "lane_scalar.hpp"
 #include "run_stepper.hpp"
 #include "step_context.hpp"
@@ -57,59 +59,63 @@ bool RunOptions::IsValid(std::string* why) const {
   return true;
 }
 
-namespace {
-// The contact grid's halo, in cells: a mass's anchor ball (apply_contact_limit) may reach past its
-// cell's edge by this much, so a mass moving through open pore space leaves its ball, and is
-// tested against its whole cell, less often; a cell lists more discs (bench/README.md, "Constants
-// of the step").
-constexpr double kContactGridHalo = 0.5;
-}  // namespace
-
 Simulation::Simulation(const DropletParams& params, const Medium& medium)
-    : params_(params), medium_(medium), grid_(medium, 0, kContactGridHalo) {
-  std::string why;
-  if (!params.IsValid(&why)) throw std::invalid_argument(why);
-  if (!medium.IsValid(&why)) throw std::invalid_argument(why);
-  context_ = std::make_shared<const StepContext>(make_step_context(params));
-  area0_ = params.resting_area();
-  // Only masses are tested against grains; a grain narrower than an edge could slip between two.
-  const double longest_edge = context_->dmax;
-  for (std::size_t i = 0; i < medium.grains.size(); ++i)
-    if (medium.grains[i].r < longest_edge)
-      throw std::invalid_argument("grain " + std::to_string(i) + " radius " + detail::num(medium.grains[i].r) +
-                                  " is smaller than the droplet's longest edge " + detail::num(longest_edge) +
-                                  ": use more masses, a smaller radius or larger grains");
-  touched_.assign(medium.grains.size() + 1, 0);  // the last entry: no grain (contact_.touch's)
-  double top = medium.height;
-  for (const Grain& g : medium.grains) top = std::max(top, g.y + g.r);
-  start_y_ = top + params.radius + 0.05 * params.radius;
-  // Far above the rounding of any distance in the box (about 1e-15 of its size), far below any
-  // distance that matters.
-  contact_.clearance_margin = 1e-9 * (medium.width + start_y_);
-  place(0.5 * medium.width, start_y_);
+    : model_(std::make_shared<const DropletModel>(params, medium)), runtime_(std::make_unique<DropletRuntime>()) {
+  runtime_->touched.assign(medium.grains.size() + 1, 0);  // the last entry: no grain (contact.touch's)
+  runtime_->contact.clearance_margin = model_->clearance_margin;
+  place(0.5 * medium.width, model_->start_y);
 }
+
+Simulation::Simulation(const Simulation& other)
+    : model_(other.model_), runtime_(std::make_unique<DropletRuntime>(*other.runtime_)) {}
+
+Simulation& Simulation::operator=(const Simulation& other) {
+  if (this != &other) {
+    model_ = other.model_;
+    runtime_ = std::make_unique<DropletRuntime>(*other.runtime_);
+  }
+  return *this;
+}
+
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+Simulation::~Simulation() = default;
 
 void Simulation::place(double cx, double cy) {
-  state_changed();
-  place_droplet(params_, cx, cy, &state_);
+  const DropletParams& p = model_->params;
+  DropletRuntime& r = *runtime_;
+  DropletState& state = r.state;
+  r.changed();
+  place_droplet(p, cx, cy, &state);
   // Start at rest at t = 0: x(-dt) = x(0) + g dt^2 / 2 makes Verlet exact for free fall.
-  for (int i = 0; i < state_.size(); ++i) state_.py[i] += 0.5 * params_.gravity * params_.dt * params_.dt;
-  std::fill(touched_.begin(), touched_.end(), 0);
-  spring_force_.assign(4 * state_.x.size(), 0.0);  // so that step() allocates nothing
+  for (int i = 0; i < state.size(); ++i) state.py[i] += 0.5 * p.gravity * p.dt * p.dt;
+  std::fill(r.touched.begin(), r.touched.end(), 0);
+  r.spring_force.assign(4 * state.x.size(), 0.0);  // so that step() allocates nothing
   // A point is rarely inside more than a few discs; a mass inside more than this is looked up
   // again by the collisions. (A cell's full count could be thousands in a coarse grid.)
-  contact_.reset(state_.x.size(), std::min<std::size_t>(grid_.max_cell_entries(), 8),
-                 static_cast<std::int32_t>(medium_.grains.size()));
-  area_ = ring_area(state_);
-  last_penetration_ = 0;
+  r.contact.reset(state.x.size(), std::min<std::size_t>(model_->grid.max_cell_entries(), 8),
+                  static_cast<std::int32_t>(model_->medium.grains.size()));
+  r.area = ring_area(state);
+  r.last_penetration = 0;
 }
 
-double Simulation::rest_length() const { return context_->rest_length; }
+void Simulation::place_above(double cx) { place(cx, model_->start_y); }
 
-void Simulation::place_above(double cx) { place(cx, start_y_); }
+const DropletState& Simulation::state() const { return runtime_->state; }
+DropletState& Simulation::mutable_state() {
+  runtime_->changed();
+  return runtime_->state;
+}
+const DropletParams& Simulation::params() const { return model_->params; }
+const Medium& Simulation::medium() const { return model_->medium; }
+double Simulation::area() const { return runtime_->area; }
+double Simulation::initial_area() const { return model_->area0; }
+double Simulation::last_penetration() const { return runtime_->last_penetration; }
+double Simulation::start_height() const { return model_->start_y; }
 
 void Simulation::centre_of_mass(double* cx, double* cy) const {
-  lanes::scalar::centres_k<1>(state_.x.data(), state_.y.data(), state_.size(), cx, cy);
+  const DropletState& state = runtime_->state;
+  lanes::scalar::centres_k<1>(state.x.data(), state.y.data(), state.size(), cx, cy);
 }
 
 const char* to_string(StepStage stage) {
@@ -120,69 +126,65 @@ const char* to_string(StepStage stage) {
   return i < std::size(kNames) ? kNames[i] : "?";
 }
 
-const StepContext& Simulation::step_context() const { return *context_; }
-
-void Simulation::run_stage(StepStage stage) {
-  OneRing ring{*this};
-  run_stages(ring, stage, stage);
-}
-
 void Simulation::compute_forces() {
-  OneRing ring{*this};
+  OneRing ring(*this);
   run_stages(ring, StepStage::gravity, StepStage::viscosity);
 }
 
-void Simulation::apply_constraint() {
-  state_changed();
-  softdrop::apply_length_constraint(&state_, context_->rest_length, params_.max_strain, params_.constraint_iterations,
-                                    params_.constraint_order);
+void constraint_stage(const DropletModel& m, DropletRuntime& r) {
+  r.changed();
+  apply_length_constraint(&r.state, m.context.rest_length, m.params.max_strain, m.params.constraint_iterations,
+                          m.params.constraint_order);
 }
 
 bool Simulation::step() {
-  OneRing ring{*this};
+  OneRing ring(*this);
   run_stages(ring);
   return valid();
 }
 
 // ---- Checks and the run loop ------------------------------------------------------------------
 
-bool Simulation::any_grain_inside_ring() const {
-  const int n = state_.size();
-  double x0 = state_.x[0], x1 = x0, y0 = state_.y[0], y1 = y0;
+bool any_grain_inside_ring(const DropletState& state, const Medium& medium) {
+  const int n = state.size();
+  double x0 = state.x[0], x1 = x0, y0 = state.y[0], y1 = y0;
   for (int i = 1; i < n; ++i) {
-    x0 = std::min(x0, state_.x[i]);
-    x1 = std::max(x1, state_.x[i]);
-    y0 = std::min(y0, state_.y[i]);
-    y1 = std::max(y1, state_.y[i]);
+    x0 = std::min(x0, state.x[i]);
+    x1 = std::max(x1, state.x[i]);
+    y0 = std::min(y0, state.y[i]);
+    y1 = std::max(y1, state.y[i]);
   }
-  const double W = medium_.width;
-  for (const Grain& g : medium_.grains) {
+  const double W = medium.width;
+  for (const Grain& g : medium.grains) {
     if (g.y < y0 || g.y > y1) continue;
     // The ring is unwrapped; try the grain's periodic copies that can fall in its x range.
     double gx = g.x;
-    if (medium_.periodic) gx += W * std::floor((x0 - g.x) / W);
+    if (medium.periodic) gx += W * std::floor((x0 - g.x) / W);
     for (; gx <= x1; gx += W) {
-      if (gx >= x0 && ring_contains(state_, gx, g.y)) return true;
-      if (!medium_.periodic) break;
+      if (gx >= x0 && ring_contains(state, gx, g.y)) return true;
+      if (!medium.periodic) break;
     }
   }
   return false;
 }
 
-RunSummary Simulation::run(double cx, const RunOptions& options) {
-  place_above(cx);
-  return drive(options, &cx);
-}
-
-RunSummary Simulation::run_from_current(const RunOptions& options) { return drive(options, nullptr); }
-
-RunSummary Simulation::drive(const RunOptions& options, const double* placed) {
-  RunStepper run(this, options, placed);
-  while (!run.finished()) run.after_step(step());
+namespace {
+// Steps sim to an outcome; placed as RunStepper's (the x the ring was just placed at, or null).
+RunSummary drive(Simulation* sim, const RunOptions& options, const double* placed) {
+  RunStepper run(sim, options, placed);
+  while (!run.finished()) run.after_step(sim->step());
   return run.take();
 }
+}  // namespace
 
-bool Simulation::valid() const { return std::isfinite(area_) && area_ > 0; }
+RunSummary Simulation::run(double cx, const RunOptions& options) {
+  place_above(cx);
+  return drive(this, options, &cx);
+}
+
+RunSummary Simulation::run_from_current(const RunOptions& options) { return drive(this, options, nullptr); }
+
+bool Simulation::valid() const { return std::isfinite(runtime_->area) && runtime_->area > 0; }
 
 std::uint64_t Simulation::state_hash() const {
   std::uint64_t h = 1469598103934665603ULL;
@@ -196,10 +198,11 @@ std::uint64_t Simulation::state_hash() const {
       }
     }
   };
-  mix(state_.x);
-  mix(state_.y);
-  mix(state_.px);
-  mix(state_.py);
+  const DropletState& state = runtime_->state;
+  mix(state.x);
+  mix(state.y);
+  mix(state.px);
+  mix(state.py);
   return h;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// The one driver of the step: the stages of kStepStages (softdrop/step_stages.hpp), in their order,
+// The one driver of the step: the stages of kStepStages (step_stages.hpp), in their order,
 // over a layout of droplets. Private to the library.
 //
 // A layout is droplets laid out one way in memory, with an entry point for each stage:
@@ -12,9 +12,10 @@
 // and rings stepped side by side with their constraints interleaved (ring_group_step.cpp). Each
 // runs the same kernels for a stage, so every droplet gets the same bits in every layout; the
 // golden state hashes hold them to it (tests/layout_hash_test.cpp).
+#include "ring_stages.hpp"
 #include "softdrop/simulation.hpp"
-#include "softdrop/step_stages.hpp"
 #include "step_context.hpp"
+#include "step_stages.hpp"
 #include "step_test_seam.hpp"
 
 namespace softdrop {
@@ -50,30 +51,45 @@ void run_stages(Layout& layout, StepStage first = StepStage::gravity, StepStage 
 
 /// One droplet's ring, on its own arrays (Simulation::step).
 struct OneRing {
-  Simulation& sim;
+  const DropletModel& m;
+  DropletRuntime& r;
 
-  bool damped() const { return sim.step_context().damped; }
+  explicit OneRing(Simulation& sim) : m(sim.model()), r(sim.runtime()) {}
+  bool damped() const { return m.context.damped; }
   template <StepStage S>
   void stage() {
     if constexpr (S == StepStage::gravity)
-      sim.accumulate_gravity();
+      gravity_stage(m, r);
     else if constexpr (S == StepStage::springs)
-      sim.accumulate_springs();
+      springs_stage(m, r);
     else if constexpr (S == StepStage::pressure)
-      sim.accumulate_pressure();
+      pressure_stage(m, r);
     else if constexpr (S == StepStage::collisions)
-      sim.accumulate_collisions();
+      collisions_stage(m, r, r.state.fx.data(), r.state.fy.data(), 1, /*recorded_added=*/false);
     else if constexpr (S == StepStage::viscosity)
-      sim.accumulate_viscosity();
+      viscosity_stage(m, r);
     else if constexpr (S == StepStage::integrate)
-      sim.integrate();
+      integrate_stage(m, r);
     else if constexpr (S == StepStage::constraint)
-      sim.apply_constraint();
+      constraint_stage(m, r);
     else if constexpr (S == StepStage::contact_limit)
-      sim.apply_contact_limit();
+      contact_limit_stage(m, r);
     else
       static_assert(S != S, "a stage without code");
   }
 };
+
+/// One stage of sim's step, on its own (what step() runs for it; the viscosity only where nu > 0):
+/// for tests and benchmarks that check or time a stage.
+inline void run_stage(Simulation& sim, StepStage stage) {
+  OneRing ring(sim);
+  run_stages(ring, stage, stage);
+}
+/// run_stage for a stage known at compile time.
+template <StepStage S>
+void run_stage(Simulation& sim) {
+  OneRing ring(sim);
+  step_driver_detail::run_stage<OneRing, S>(ring);
+}
 
 }  // namespace softdrop

@@ -1,6 +1,6 @@
 #pragma once
 // What the contact limit of one step leaves for the next step's collisions and contact limit, per
-// mass of one droplet (part of Simulation's runtime state; its stages fill and read it). Positions
+// mass of one droplet (part of its DropletRuntime; its stages fill and read it). Positions
 // do not move between the contact limit and the next collisions, so a record is used only for a
 // mass still at the recorded position to the bit, and every other writer of the droplet's state
 // clears `current`.
@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "softdrop/grain_grid.hpp"
+#include "media/grain_grid.hpp"
 
 namespace softdrop {
 

@@ -1,10 +1,10 @@
 #pragma once
 /// \file step_stages.hpp
-/// The physics stages of one time step, in the order every stepper runs them: one droplet
-/// (Simulation::step), a block of droplets side by side in vector lanes, and several droplets
-/// stepped together on one thread all go through this one list, each with its
-/// own code for a stage (docs/code-layout.md names each stage's file). A run follows every step
-/// with its exit tests (passed, stuck, at rest, diverged, out of steps).
+/// The physics stages of one time step, in their order. The step's one driver (step_driver.hpp)
+/// runs this list over each layout of droplets: one ring (Simulation::step), a block of droplets
+/// side by side in vector lanes, and rings stepped side by side, each layout with its entry point
+/// for a stage (docs/code-layout.md names each stage's file). Private to the library. A run
+/// follows every step with its exit tests (passed, stuck, at rest, diverged, out of steps).
 
 #include <array>
 #include <cstddef>

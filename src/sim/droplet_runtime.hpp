@@ -1,0 +1,39 @@
+#pragma once
+// DropletRuntime: one droplet's own state between steps: its masses, what the last step measured,
+// the grains it touched, the contact limit's records for the next step, and its slot in the
+// lane-by-lane block that stepped it last. Private to the library (Simulation::runtime()).
+#include <cstdint>
+#include <vector>
+
+#include "contact_cache.hpp"
+#include "softdrop/droplet.hpp"
+
+namespace softdrop {
+
+// Where the lane-by-lane block (lane_block_step.cpp) left a droplet: the block's id and the lane,
+// and the centre of mass it computed. A droplet still in that lane with `id` unchanged need not be
+// copied into the block again; every other writer of the state clears `id`.
+struct BlockSlot {
+  std::uint64_t id = 0;  ///< 0: not as a block's step left it
+  int lane = 0;
+  std::uint64_t centre_id = 0;  ///< the block step whose centre of mass (cx, cy) is
+  double cx = 0, cy = 0;
+};
+
+struct DropletRuntime {
+  DropletState state;
+  double area = 0;                    ///< the ring's area as the pressure stage measured it (length^2)
+  double last_penetration = 0;        ///< the deepest a mass went into a grain in the last collisions
+  std::vector<std::uint8_t> touched;  ///< per grain of the medium, and one more entry for no grain
+  std::vector<double> spring_force;   ///< the spring stage's scratch: four arrays of one per spring
+  ContactCache contact;               ///< the contact limit's records, for the next step
+  BlockSlot block;
+
+  /// Something other than a stage moved a mass: no record or block slot describes the state.
+  void changed() {
+    block.id = 0;
+    contact.current = false;
+  }
+};
+
+}  // namespace softdrop
