@@ -4,7 +4,7 @@
 #include <benchmark/benchmark.h>
 
 #include "softdrop/medium.hpp"
-#include "softdrop/pore_tortuosity.hpp"
+#include "studies/pore_tortuosity.hpp"
 
 namespace {
 

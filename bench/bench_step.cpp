@@ -5,7 +5,6 @@
 
 #include "bench_media.hpp"
 #include "softdrop/medium.hpp"
-#include "softdrop/porosity.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace {

@@ -6,8 +6,8 @@
 #include <sstream>
 #include <string>
 
-#include "softdrop/averaging.hpp"
-#include "softdrop/fit.hpp"
+#include "studies/averaging.hpp"
+#include "studies/fit.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::istringstream in(std::string(reinterpret_cast<const char*>(data), size));

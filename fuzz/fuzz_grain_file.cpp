@@ -9,8 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "softdrop/grain_file.hpp"
-#include "softdrop/porosity.hpp"
+#include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

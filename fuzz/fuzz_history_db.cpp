@@ -17,11 +17,10 @@
 #include <iterator>
 #include <string>
 
-#include "softdrop/averaging.hpp"
-#include "softdrop/fit.hpp"
-#include "softdrop/history.hpp"
+#include "softdrop/store.hpp"
 #include "softdrop/sweep.hpp"
-#include "softdrop/sweep_store.hpp"
+#include "studies/averaging.hpp"
+#include "studies/fit.hpp"
 
 namespace {
 

@@ -26,7 +26,7 @@
 #include <vector>
 
 #include "media/relaxation.hpp"
-#include "softdrop/spacing.hpp"
+#include "media/spacing.hpp"
 #include "strategy_base.hpp"
 
 namespace softdrop::detail {

@@ -7,8 +7,8 @@
 
 #include "sim/lane_policy.hpp"
 #include "softdrop/search.hpp"
-#include "softdrop/strategy.hpp"
 #include "speculative_pipeline.hpp"
+#include "strategy.hpp"
 #include "util/validation.hpp"
 #include "util/worker_threads.hpp"
 

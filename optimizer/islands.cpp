@@ -1,4 +1,4 @@
-#include "softdrop/islands.hpp"
+#include "islands.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <thread>
 
-#include "softdrop/random.hpp"
 #include "util/enum_names.hpp"
+#include "util/random.hpp"
 #include "util/validation.hpp"
 #include "util/worker_threads.hpp"
 

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "softdrop/random.hpp"
+#include "media/spacing.hpp"
 #include "softdrop/search.hpp"
-#include "softdrop/spacing.hpp"
+#include "util/random.hpp"
 
 namespace softdrop {
 namespace {

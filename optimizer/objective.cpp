@@ -1,13 +1,12 @@
-// The search's objectives (objective.hpp): their starts and how K droplets become one value.
-#include "softdrop/objective.hpp"
-
+// The search's objectives (softdrop/search.hpp): their starts and how K droplets become one value.
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
-#include "softdrop/random.hpp"
+#include "softdrop/search.hpp"
 #include "util/enum_names.hpp"
 #include "util/quantile.hpp"
+#include "util/random.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "evaluation.hpp"
-#include "softdrop/spacing.hpp"
-#include "softdrop/strategy.hpp"
+#include "media/spacing.hpp"
+#include "strategy.hpp"
 #include "util/enum_names.hpp"
 #include "util/validation.hpp"
 

@@ -22,7 +22,7 @@
 #include "evaluation.hpp"
 #include "sim/interleaved.hpp"
 #include "softdrop/search.hpp"
-#include "softdrop/strategy.hpp"
+#include "strategy.hpp"
 #include "util/validation.hpp"
 #include "util/worker_threads.hpp"
 

@@ -1,6 +1,6 @@
 // The search strategies (strategy.hpp): the paper's hill climb, a (1 + lambda) evolution strategy
 // with adaptive step sizes, late acceptance hill climbing and simulated annealing.
-#include "softdrop/strategy.hpp"
+#include "strategy.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +11,8 @@
 #include <vector>
 
 #include "evaluation.hpp"
-#include "softdrop/random.hpp"
 #include "strategy_base.hpp"
+#include "util/random.hpp"
 
 namespace softdrop {
 namespace {

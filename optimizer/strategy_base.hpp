@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "evaluation.hpp"
-#include "softdrop/random.hpp"
-#include "softdrop/strategy.hpp"
+#include "strategy.hpp"
+#include "util/random.hpp"
 
 namespace softdrop::detail {
 

@@ -31,9 +31,9 @@ inline std::function<void(int, int)> stop_on_ctrl_c() {
 /// A path as every path softdrop gives it to Python: an (n, 2) array of rows x, y.
 pybind11::array_t<double> xy_array(const std::vector<double>& x, const std::vector<double>& y);
 
-/// softdrop.Medium (medium.hpp, grain_file.hpp).
+/// softdrop.Medium (medium.hpp).
 void bind_medium(py::module_& m);
-/// The held-out value of a medium (held_out.hpp).
+/// The held-out value of a medium (batch.hpp).
 void bind_held_out(py::module_& m);
 /// The pore space's tortuosities of a medium or an image (pore_tortuosity.hpp).
 void bind_tortuosity(py::module_& m);

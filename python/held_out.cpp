@@ -1,7 +1,5 @@
 // softdrop.held_out: the held-out value of a medium, as `softdrop validate` gives it, with every
 // droplet as columns for a DataFrame.
-#include "softdrop/held_out.hpp"
-
 #include <pybind11/stl.h>
 
 #include <cmath>
@@ -9,6 +7,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "softdrop/batch.hpp"
 
 namespace softdrop::python {
 namespace {

@@ -14,8 +14,6 @@
 #include <string>
 
 #include "bindings.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/porosity.hpp"
 #include "values.hpp"
 
 namespace softdrop::python {

@@ -18,15 +18,13 @@
 #include "bindings.hpp"
 #include "cli/columns.hpp"
 #include "cli/common_options.hpp"
-#include "softdrop/area_trace.hpp"
+#include "media/rigid_descent.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/droplet.hpp"
-#include "softdrop/grain_file.hpp"
 #include "softdrop/medium.hpp"
-#include "softdrop/porosity.hpp"
-#include "softdrop/rigid_descent.hpp"
 #include "softdrop/simulation.hpp"
 #include "softdrop/version.hpp"
+#include "studies/area_trace.hpp"
 #include "values.hpp"
 
 namespace py = pybind11;

@@ -13,8 +13,7 @@
 
 #include "bindings.hpp"
 #include "cli/columns.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/sweep_store.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop::python {
 namespace {

@@ -9,7 +9,7 @@
 #include <string>
 
 #include "bindings.hpp"
-#include "softdrop/pore_tortuosity.hpp"
+#include "studies/pore_tortuosity.hpp"
 
 namespace softdrop::python {
 namespace {

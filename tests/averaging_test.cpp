@@ -1,6 +1,6 @@
 // The paper's two averagings of per-medium points: the groups sorted by T or by phi, to exact
 // expected values, and the points left over after the last full group dropped or kept.
-#include "softdrop/averaging.hpp"
+#include "studies/averaging.hpp"
 
 #include <gtest/gtest.h>
 

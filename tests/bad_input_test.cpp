@@ -12,7 +12,7 @@
 #include <thread>
 
 #include "search_cli.hpp"
-#include "softdrop/grain_file.hpp"
+#include "softdrop/medium.hpp"
 
 namespace {
 using namespace softdrop::test;

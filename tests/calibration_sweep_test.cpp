@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "fixtures.hpp"
-#include "softdrop/calibration.hpp"
-#include "softdrop/params_json.hpp"
 #include "softdrop/sweep.hpp"
+#include "store/params_json.hpp"
+#include "studies/calibration.hpp"
 
 namespace softdrop {
 namespace {

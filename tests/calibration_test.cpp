@@ -1,6 +1,6 @@
 // The calibration against the paper: scan grids, area traces, one setting's figures and score,
 // determinism, and the command's bad input.
-#include "softdrop/calibration.hpp"
+#include "studies/calibration.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,7 +14,7 @@
 
 #include "cli_run.hpp"
 #include "fixtures.hpp"
-#include "softdrop/area_trace.hpp"
+#include "studies/area_trace.hpp"
 
 namespace {
 using namespace softdrop;

@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "media/spacing.hpp"
+#include "optimizer/strategy.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/spacing.hpp"
-#include "softdrop/strategy.hpp"
 
 namespace softdrop {
 namespace {

@@ -10,7 +10,6 @@
 #include "balloon.hpp"
 #include "cli_run.hpp"
 #include "softdrop/medium.hpp"
-#include "softdrop/porosity.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace softdrop {

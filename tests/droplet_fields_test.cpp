@@ -14,8 +14,8 @@
 #include "cli_run.hpp"
 #include "sim/lane_block_step.hpp"
 #include "softdrop/droplet.hpp"
-#include "softdrop/params_json.hpp"
 #include "softdrop/search.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop {
 namespace {

@@ -11,8 +11,8 @@
 #include "fixtures.hpp"
 #include "sim/lane_policy.hpp"
 #include "sim/step_driver.hpp"
-#include "softdrop/random.hpp"
 #include "softdrop/simulation.hpp"
+#include "util/random.hpp"
 
 namespace softdrop {
 namespace {

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "optimizer/islands.hpp"
 #include "softdrop/droplet.hpp"
-#include "softdrop/islands.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/simulation.hpp"

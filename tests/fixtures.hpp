@@ -6,11 +6,11 @@
 
 #include "balloon.hpp"
 #include "sim/lane_policy.hpp"
-#include "softdrop/calibration.hpp"
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"
-#include "softdrop/random.hpp"
 #include "softdrop/simulation.hpp"
+#include "studies/calibration.hpp"
+#include "util/random.hpp"
 
 namespace softdrop::test {
 

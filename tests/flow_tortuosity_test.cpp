@@ -9,7 +9,7 @@
 #include <stdexcept>
 
 #include "pore_images.hpp"
-#include "softdrop/pore_tortuosity.hpp"
+#include "studies/pore_tortuosity.hpp"
 
 namespace softdrop {
 namespace {

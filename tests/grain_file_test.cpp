@@ -1,5 +1,3 @@
-#include "softdrop/grain_file.hpp"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -11,8 +11,8 @@
 #include <sstream>
 
 #include "search_cli.hpp"
-#include "softdrop/fit.hpp"
-#include "softdrop/grain_file.hpp"
+#include "softdrop/medium.hpp"
+#include "studies/fit.hpp"
 
 namespace {
 using namespace softdrop::test;

@@ -1,7 +1,5 @@
 // The SQLite history: what is written reads back exactly; files that are not softdrop databases
 // (missing, foreign, truncated, newer) are refused with one line and left byte-for-byte unchanged.
-#include "softdrop/history.hpp"
-
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 
@@ -11,9 +9,10 @@
 #include <thread>
 
 #include "cli_run.hpp"
+#include "media/spacing.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/params_json.hpp"
-#include "softdrop/spacing.hpp"
+#include "softdrop/store.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop {
 namespace {

@@ -21,10 +21,11 @@ for h in "${headers[@]}"; do
   "$cxx" -std=c++20 -fsyntax-only -I "$prefix/include" -x c++ "$h" ||
     { echo "install_test: ${h#"$prefix"/} does not compile on its own"; exit 1; }
 done
-private='VectorWidth|vector_width|lane_policy|run_interleaved|LaneExchange|DropletJob|interleaved_lanes|fewest_block|speculative_lanes'
+private='VectorWidth|vector_width|lane_policy|run_interleaved|LaneExchange|DropletJob|interleaved_lanes|fewest_block|speculative_lanes|GrainGrid|ContactCache|kStepStages|LaneBlock|StepContext'
 if named=$(grep -lE "$private" "${headers[@]}"); then
   echo "install_test: installed headers name the step's private machinery: ${named//$prefix\//}"; exit 1
 fi
+(( ${#headers[@]} <= 10 )) || { echo "install_test: ${#headers[@]} installed headers, more than the API's 10"; exit 1; }
 echo "installed headers: ${#headers[@]}, each compiles on its own"
 "$cxx" -std=c++20 -O2 "$src/examples/library/push_droplet.cpp" -I "$prefix/include" -L "$prefix/lib" \
   -lsoftdrop_sim -lsoftdrop_media -lsoftdrop_util -ltbb -lgmp -lmpfr -o "$prefix/push_droplet"

@@ -1,6 +1,6 @@
 // The island model: islands' seeds and migrations, the same histories on any thread count, a kill
 // at random instants resumed bit for bit, and the store's island columns on old and new files.
-#include "softdrop/islands.hpp"
+#include "optimizer/islands.hpp"
 
 #include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
@@ -11,11 +11,11 @@
 #include <sstream>
 #include <thread>
 
+#include "optimizer/strategy.hpp"
 #include "search_cli.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/random.hpp"
-#include "softdrop/strategy.hpp"
+#include "softdrop/store.hpp"
+#include "util/random.hpp"
 
 namespace softdrop {
 namespace {

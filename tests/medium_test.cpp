@@ -5,8 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "softdrop/porosity.hpp"
-#include "softdrop/spacing.hpp"
+#include "media/spacing.hpp"
 
 namespace softdrop {
 namespace {

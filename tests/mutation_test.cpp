@@ -6,9 +6,9 @@
 #include <cmath>
 
 #include "fixtures.hpp"
+#include "media/spacing.hpp"
 #include "search_fixtures.hpp"
 #include "softdrop/search.hpp"
-#include "softdrop/spacing.hpp"
 
 namespace softdrop {
 namespace {

@@ -1,8 +1,6 @@
 // The robust objectives: their starts, their values over K droplets, and a search on them that
 // compares every candidate with its parent re-run on the same fresh starts, deterministically at
 // any thread count and through a resume.
-#include "softdrop/objective.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -10,10 +8,10 @@
 #include <set>
 
 #include "optimizer/evaluation.hpp"
+#include "optimizer/strategy.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/params_json.hpp"
 #include "softdrop/search.hpp"
-#include "softdrop/strategy.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop {
 namespace {

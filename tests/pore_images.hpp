@@ -3,7 +3,7 @@
 #include <cmath>
 #include <cstddef>
 
-#include "softdrop/pore_tortuosity.hpp"
+#include "studies/pore_tortuosity.hpp"
 
 namespace softdrop::test {
 

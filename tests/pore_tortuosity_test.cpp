@@ -3,7 +3,7 @@
 // Rayleigh's (1892) effective diffusivity; slanted channels give the straight path's length. Both
 // converge at first order in the pixel size, so the value extrapolated from a resolution and its
 // double (2 T(2n) - T(n), Richardson) is within a few tenths of a percent.
-#include "softdrop/pore_tortuosity.hpp"
+#include "studies/pore_tortuosity.hpp"
 
 #include <gtest/gtest.h>
 

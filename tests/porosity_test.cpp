@@ -1,5 +1,3 @@
-#include "softdrop/porosity.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -6,9 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "media/spacing.hpp"
 #include "softdrop/medium.hpp"
-#include "softdrop/porosity.hpp"
-#include "softdrop/spacing.hpp"
 
 namespace softdrop {
 namespace {

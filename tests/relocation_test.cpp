@@ -7,11 +7,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "media/spacing.hpp"
+#include "optimizer/strategy.hpp"
 #include "search_cli.hpp"
 #include "search_fixtures.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/spacing.hpp"
-#include "softdrop/strategy.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop {
 namespace {

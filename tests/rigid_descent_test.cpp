@@ -1,4 +1,4 @@
-#include "softdrop/rigid_descent.hpp"
+#include "media/rigid_descent.hpp"
 
 #include <gtest/gtest.h>
 

@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "search_fixtures.hpp"
-#include "softdrop/params_json.hpp"
 #include "softdrop/search.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop {
 namespace {

@@ -8,11 +8,11 @@
 #include <tuple>
 
 #include "fixtures.hpp"
+#include "media/spacing.hpp"
 #include "optimizer/drive_test_seam.hpp"
 #include "search_fixtures.hpp"
 #include "sim/lane_policy.hpp"
-#include "softdrop/params_json.hpp"
-#include "softdrop/spacing.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop {
 namespace {

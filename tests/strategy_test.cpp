@@ -1,7 +1,7 @@
 // The search strategies: their rules on evaluations made up for the test, the same history at any
 // thread or lane count, a stored state that resumes bit for bit (also after SIGKILLs at random
 // instants), and their options on the command line.
-#include "softdrop/strategy.hpp"
+#include "optimizer/strategy.hpp"
 
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -19,10 +19,10 @@
 
 #include "fixtures.hpp"
 #include "search_cli.hpp"
-#include "softdrop/fit.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/params_json.hpp"
-#include "softdrop/sweep_store.hpp"
+#include "softdrop/store.hpp"
+#include "store/params_json.hpp"
+#include "studies/fit.hpp"
+#include "studies/sweep_record_bytes.hpp"
 
 namespace softdrop {
 namespace {

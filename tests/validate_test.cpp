@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "search_cli.hpp"
-#include "softdrop/held_out.hpp"
+#include "softdrop/batch.hpp"
 #include "softdrop/medium.hpp"
 
 namespace {

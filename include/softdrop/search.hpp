@@ -2,7 +2,7 @@
 /// \file search.hpp
 /// The maximum-tortuosity search (docs/search.md). Each generation makes candidates from
 /// the current arrangement (all grains jiggle, or one grain the droplet touched moves), pushes the
-/// droplet through each, and its strategy (strategy.hpp) keeps one or none. The paper's strategy
+/// droplet through each, and its strategy (docs/search.md) keeps one or none. The paper's strategy
 /// is a hill climb: it keeps the best candidate whose tortuosity is strictly higher.
 ///
 /// Randomness is counter-based: candidate k of generation g draws from the stream
@@ -10,6 +10,16 @@
 /// generation) and the strategy's stored state, which makes resuming exact and results
 /// independent of the thread count.
 /// This module knows nothing about storage; callers log generations through the callback.
+///
+/// What a search maximises. The paper's objective is the tortuosity of one droplet dropped at the
+/// middle of the top; with the calibrated droplet that path is chaotic (moving the start by 0.01
+/// changes T by 0.3), so maximising it tunes one trajectory, not the medium. The robust objectives
+/// push K droplets through every arrangement, from starts that cover the top of the box, and
+/// reduce their T to one number: a property of the medium.
+///
+/// Noise is handled with common random numbers: generation g draws K fresh starts, and every
+/// candidate of g and the arrangement they were made from (re-run on the same starts) are compared
+/// on those starts alone. No start is used twice, so the search cannot tune K trajectories.
 
 #include <atomic>
 #include <cstdint>
@@ -20,10 +30,54 @@
 
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"
-#include "softdrop/objective.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace softdrop {
+
+enum class ObjectiveKind {
+  single,      ///< the paper's: T of one droplet dropped at x = W/2
+  mean,        ///< the mean T over the K droplets
+  quantile,    ///< a lower quantile of the K values of T (risk-aware)
+  lower_bound  ///< mean - se_factor x standard error of the mean (risk-aware)
+};
+const char* to_string(ObjectiveKind kind);
+/// Parses single / mean / quantile / lower-bound; throws std::invalid_argument naming the value.
+ObjectiveKind parse_objective(const std::string& name);
+std::vector<std::string> objective_names();
+
+/// Most starts one evaluation may take.
+constexpr int kMaxObjectiveStarts = 4096;
+
+struct ObjectiveOptions {
+  ObjectiveKind kind = ObjectiveKind::single;
+  /// K: droplets per evaluation of a robust objective, in [1, kMaxObjectiveStarts] (single: 1).
+  int starts = 16;
+  double quantile = 0.25;  ///< quantile: the quantile of T maximised, in (0, 1)
+  double se_factor = 1;    ///< lower-bound: k in mean - k SE, >= 0
+  /// Robust objectives: a candidate beats its parent only by more than this many standard errors
+  /// of their droplets' paired differences of T (>= 0; 0: any gain). With lambda candidates the
+  /// largest of lambda draws of noise would otherwise win most generations.
+  double margin = 2;
+  bool robust() const { return kind != ObjectiveKind::single; }
+  /// Droplets one evaluation pushes: 1 for single, starts otherwise.
+  int droplets() const { return robust() ? starts : 1; }
+  /// False, with the reason naming the option, for starts outside [1, 4096], a quantile outside
+  /// (0, 1), or a negative or non-finite se-factor or margin.
+  bool IsValid(std::string* why) const;
+};
+
+/// The start x of every droplet of an evaluation in `generation` of a search seeded `seed`.
+/// single: { W/2 }. Robust: K starts stratified over the top, droplet j uniform in the j-th of K
+/// equal intervals of [0, W) (walls: [R, W - R], R the droplet's radius), drawn from a stream of
+/// (seed, generation) that no move uses.
+std::vector<double> objective_starts(const ObjectiveOptions& objective, std::uint64_t seed, std::int64_t generation,
+                                     const Medium& medium, const DropletParams& droplet);
+
+/// The value of the objective over the droplets' runs (one per start, in start order). A droplet
+/// that did not pass counts as T = 1, a straight path: the smallest T there is, so a medium that
+/// traps droplets scores less than one that lets them through, and one that traps every droplet
+/// scores 1. single: the one droplet's T (0 when it did not pass, as before).
+double objective_value(const ObjectiveOptions& objective, const std::vector<RunSummary>& runs);
 
 /// How a candidate was made from its parent.
 enum class MoveKind {
@@ -39,7 +93,7 @@ const char* to_string(MoveKind kind);
 /// the value.
 MoveKind parse_move_kind(const std::string& name);
 
-/// How a search chooses its candidates and what it keeps (see strategy.hpp).
+/// How a search chooses its candidates and what it keeps (docs/search.md).
 enum class StrategyKind {
   paper,   ///< the paper's hill climb: keep the best candidate that beats the current arrangement
   es,      ///< (1 + lambda) evolution strategy: the paper's moves, with step sizes that adapt
@@ -92,7 +146,7 @@ struct SearchOptions {
   int max_redraws = 20;
   double gap = 0.13;         ///< spacing rule: surface gap >= gap x the larger radius
   StrategyOptions strategy;  ///< how candidates are chosen and kept
-  /// What a candidate's evaluation measures (objective.hpp): the paper's one droplet from the
+  /// What a candidate's evaluation measures (ObjectiveOptions, above): the paper's one droplet from the
   /// middle of the top, or K droplets from fresh starts each generation.
   ObjectiveOptions objective;
   DropletParams droplet;  ///< the droplet pushed through every candidate
@@ -215,7 +269,7 @@ class Search {
   /// pipelined drive both end here. Robust objectives: `parent` is the current arrangement
   /// evaluated on the generation's starts, and the candidates are compared with it.
   Generation complete(std::vector<Candidate> candidates, double seconds, Evaluation parent = {});
-  /// Generation last_generation() + 1 as a migration (islands.hpp): its one candidate is
+  /// Generation last_generation() + 1 as a migration (the island model, docs/search.md): its one candidate is
   /// `immigrant` (an arrangement another island evaluated with the same options), kept, as best
   /// and as the arrangement the strategy moves on from (its state otherwise unchanged), if its T
   /// beats this search's best. Robust objectives: the immigrant and the current arrangement run

@@ -101,12 +101,6 @@ void run_sweep_units(const SweepOptions& options, const std::vector<SweepUnit>& 
                      const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop = {},
                      const std::function<bool(const SweepUnit&)>& skip = {});
 
-/// A unit's record as bytes, every double to the bit, for sending it between the processes of a
-/// job (the byte order of the machine: both ends run the same build on the same kind of node).
-std::string encode_sweep_medium(const SweepMedium& medium);
-/// The record encode_sweep_medium made; throws std::invalid_argument if `bytes` is not one.
-SweepMedium decode_sweep_medium(const std::string& bytes);
-
 /// Per-porosity aggregate of medium records: droplets pooled over the porosity's media.
 struct SweepPoint {
   double target_porosity = 0;

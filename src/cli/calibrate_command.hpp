@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cli/common_options.hpp"
-#include "softdrop/calibration.hpp"
+#include "studies/calibration.hpp"
 
 namespace softdrop::cli {
 

@@ -17,9 +17,8 @@
 #include "cli/mpi_job.hpp"
 #include "cli/output.hpp"
 #include "cli/suggest.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/history.hpp"
 #include "softdrop/medium.hpp"
+#include "softdrop/store.hpp"
 #include "softdrop/sweep.hpp"
 #include "softdrop/version.hpp"
 
@@ -97,7 +96,9 @@ Cli::Cli() {
   optimize_cmd_ = add_optimize_command(app, optimize_);
   history_cmd_ = add_history_command(app, history_);
   export_cmd_ = add_export_command(app, export_);
-  add_sweep_commands(app, sweep_, sweep_merge_, sweep_report_);
+  add_sweep_command(app, sweep_);
+  add_sweep_merge_command(app, sweep_merge_);
+  add_sweep_report_command(app, sweep_report_);
   add_fit_commands(app, fit_, averagings_);
   render_cmd_ = add_render_command(app, render_);
   calibrate_cmd_ = add_calibrate_command(app, calibrate_);

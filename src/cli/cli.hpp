@@ -15,6 +15,8 @@
 #include "cli/render_command.hpp"
 #include "cli/simulate_command.hpp"
 #include "cli/sweep_command.hpp"
+#include "cli/sweep_merge_command.hpp"
+#include "cli/sweep_report_command.hpp"
 #include "cli/tortuosity_command.hpp"
 #include "cli/validate_command.hpp"
 

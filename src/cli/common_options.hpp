@@ -9,6 +9,7 @@
 #include "softdrop/droplet.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
+#include "util/worker_threads.hpp"
 
 namespace softdrop::cli {
 
@@ -52,7 +53,7 @@ CLI::Validator finite_check();
 void check_start_x(double x0, const Medium& medium, const DropletParams& droplet);
 
 /// Most worker threads a command accepts (--threads; 0 means all cores).
-constexpr int kMaxThreads = 4096;
+using detail::kMaxThreads;
 /// Throws std::invalid_argument unless 0 <= threads <= kMaxThreads.
 void check_threads(int threads);
 

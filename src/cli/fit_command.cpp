@@ -10,15 +10,16 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/common_options.hpp"
 #include "cli/output.hpp"
-#include "cli/sweep_command.hpp"
-#include "softdrop/averaging.hpp"
-#include "softdrop/calibration.hpp"
-#include "softdrop/fit.hpp"
-#include "softdrop/grain_file.hpp"
+#include "cli/sweep_report_command.hpp"
+#include "softdrop/medium.hpp"
 #include "softdrop/render.hpp"
-#include "softdrop/sweep_store.hpp"
+#include "softdrop/store.hpp"
 #include "softdrop/version.hpp"
+#include "studies/averaging.hpp"
+#include "studies/calibration.hpp"
+#include "studies/fit.hpp"
 
 namespace softdrop::cli {
 namespace {

@@ -10,9 +10,9 @@
 
 #include "cli/common_options.hpp"
 #include "cli/output.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/params_json.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/store.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop::cli {
 

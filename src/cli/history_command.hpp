@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "softdrop/history.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop::cli {
 

@@ -14,10 +14,10 @@
 
 #include "cli/mpi_islands.hpp"
 #include "cli/output.hpp"
-#include "softdrop/params_json.hpp"
-#include "softdrop/porosity.hpp"
-#include "softdrop/random.hpp"
+#include "softdrop/medium.hpp"
 #include "softdrop/version.hpp"
+#include "store/params_json.hpp"
+#include "util/random.hpp"
 
 namespace softdrop::cli {
 namespace {

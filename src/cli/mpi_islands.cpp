@@ -7,8 +7,8 @@
 #include <string>
 #include <utility>
 
-#include "softdrop/params_json.hpp"
-#include "softdrop/strategy.hpp"
+#include "optimizer/strategy.hpp"
+#include "store/params_json.hpp"
 #include "util/byte_codec.hpp"
 
 namespace softdrop::cli {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "cli/mpi_job.hpp"
-#include "softdrop/islands.hpp"
+#include "optimizer/islands.hpp"
 
 namespace softdrop::cli {
 

@@ -11,6 +11,8 @@
 #include <thread>
 #include <utility>
 
+#include "studies/sweep_record_bytes.hpp"
+
 namespace softdrop::cli {
 namespace {
 

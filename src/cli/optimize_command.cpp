@@ -15,11 +15,10 @@
 #include "cli/islands_command.hpp"
 #include "cli/mpi_islands.hpp"
 #include "cli/output.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/params_json.hpp"
-#include "softdrop/porosity.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/store.hpp"
 #include "softdrop/version.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop::cli {
 

@@ -13,7 +13,7 @@
 #include <stdexcept>
 
 #include "cli/columns.hpp"
-#include "softdrop/grain_file.hpp"
+#include "softdrop/medium.hpp"
 #include "softdrop/render.hpp"
 #include "util/temp_files.hpp"
 #include "util/validation.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "softdrop/area_trace.hpp"
+#include "studies/area_trace.hpp"
 
 namespace softdrop::cli {
 

@@ -10,11 +10,10 @@
 #include "cli/history_command.hpp"
 #include "cli/output.hpp"
 #include "sim/lane_policy.hpp"
-#include "softdrop/area_trace.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/porosity.hpp"
+#include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
+#include "softdrop/store.hpp"
+#include "studies/area_trace.hpp"
 #include "util/worker_threads.hpp"
 
 namespace softdrop::cli {

@@ -7,7 +7,7 @@
 
 #include "cli/output.hpp"
 #include "cli/render_command.hpp"
-#include "softdrop/history.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop::cli {
 namespace {

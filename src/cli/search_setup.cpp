@@ -7,12 +7,11 @@
 #include <stdexcept>
 
 #include "cli/output.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/params_json.hpp"
-#include "softdrop/porosity.hpp"
-#include "softdrop/random.hpp"
-#include "softdrop/strategy.hpp"
+#include "optimizer/strategy.hpp"
+#include "softdrop/medium.hpp"
 #include "softdrop/version.hpp"
+#include "store/params_json.hpp"
+#include "util/random.hpp"
 
 namespace softdrop::cli {
 
@@ -34,7 +33,7 @@ OptimizeArgs::OptimizeArgs() {
   search.objective.kind = ObjectiveKind::mean;
 }
 
-// The objective's options (objective.hpp), each noted with the objectives that use it.
+// The objective's options (search.hpp), each noted with the objectives that use it.
 void add_objective_options(CLI::Option_group* g, OptimizeArgs& a) {
   g->add_option_function<std::string>(
        "--objective", [&a](const std::string& v) { a.search.objective.kind = parse_objective(v); },

@@ -14,9 +14,9 @@
 
 #include "cli/common_options.hpp"
 #include "cli/host.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/islands.hpp"
+#include "optimizer/islands.hpp"
 #include "softdrop/search.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop::cli {
 

@@ -10,10 +10,9 @@
 
 #include "cli/columns.hpp"
 #include "cli/output.hpp"
-#include "softdrop/area_trace.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/porosity.hpp"
+#include "softdrop/medium.hpp"
 #include "softdrop/version.hpp"
+#include "studies/area_trace.hpp"
 
 namespace softdrop::cli {
 

@@ -1,6 +1,7 @@
 #pragma once
-// The tortuosity-porosity sweep on the command line: `sweep` (into a resumable SQLite store,
-// shardable; sweep_command.cpp), `sweep-merge` (sweep_merge_command.cpp) and `sweep-report`.
+// `softdrop sweep`: the tortuosity-porosity sweep into a resumable SQLite store, shardable, run by
+// the library's run_sweep (softdrop/service.hpp) with the program's progress line, Ctrl-C and MPI
+// ranks (sweep_command.cpp).
 
 #include <CLI/CLI.hpp>
 #include <cstdint>
@@ -11,10 +12,6 @@
 #include "cli/common_options.hpp"
 #include "cli/host.hpp"
 #include "softdrop/sweep.hpp"
-
-namespace softdrop {
-class SweepStore;
-}
 
 namespace softdrop::cli {
 
@@ -30,29 +27,11 @@ struct SweepArgs {
   std::string format = "table";
 };
 
-struct SweepMergeArgs {
-  std::string into;
-  std::vector<std::string> inputs;
-};
-
-struct SweepReportArgs {
-  std::string db = "sweep.db";
-  std::int64_t sweep = 0;  ///< 0: the only one
-  bool media = false;      ///< per-medium rows instead of per-porosity points
-  std::string format = "table";
-};
-
-void add_sweep_commands(CLI::App& app, SweepArgs& sweep, SweepMergeArgs& merge, SweepReportArgs& report);
+void add_sweep_command(CLI::App& app, SweepArgs& args);
 /// Applies --preset and checks the options without running; returns the shard (i, n). Throws
 /// std::invalid_argument naming the bad parameter.
 std::pair<int, int> check_sweep(SweepArgs& args, const CLI::App& command);
 /// Runs a sweep; with a host (see Host) nothing is printed on stdout and the signals are left to it.
 int run_sweep(SweepArgs& args, const CLI::App& command, Host* host = nullptr);
-int run_sweep_merge(const SweepMergeArgs& args);
-int run_sweep_report(const SweepReportArgs& args);
-/// The sweep `id` of the store, or its only sweep when id is 0; throws std::invalid_argument
-/// naming the file when it holds none or several. A sweep that holds fewer media than it has is
-/// warned of on stderr: its readers' figures are of part of it.
-std::int64_t pick_sweep(SweepStore& store, std::int64_t id, const std::string& db);
 
 }  // namespace softdrop::cli

@@ -1,5 +1,7 @@
 // sweep-merge: sweep stores (shards, or copies of one sweep) merged into one, every unit checked
 // against its other copies before anything is written.
+#include "cli/sweep_merge_command.hpp"
+
 #include <algorithm>
 #include <filesystem>
 #include <iostream>
@@ -10,10 +12,8 @@
 #include <vector>
 
 #include "cli/output.hpp"
-#include "cli/sweep_command.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/params_json.hpp"
-#include "softdrop/sweep_store.hpp"
+#include "softdrop/store.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop::cli {
 
@@ -55,6 +55,13 @@ auto naming(const std::string& option, F&& f) -> decltype(f()) {
 }
 
 }  // namespace
+
+void add_sweep_merge_command(CLI::App& app, SweepMergeArgs& m) {
+  CLI::App* mg =
+      app.add_subcommand("sweep-merge", "Merge sweep stores (e.g. shards) into one; identical units must agree");
+  mg->add_option("--into", m.into, "The store to merge into (created if missing)")->required();
+  mg->add_option("inputs", m.inputs, "Stores to merge from")->required()->check(CLI::ExistingFile);
+}
 
 int run_sweep_merge(const SweepMergeArgs& a) {
   // Every input is read and checked against the others and against the output before anything is

@@ -8,11 +8,10 @@
 #include <stdexcept>
 
 #include "cli/output.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/pore_tortuosity.hpp"
-#include "softdrop/porosity.hpp"
+#include "softdrop/medium.hpp"
 #include "softdrop/render.hpp"
 #include "softdrop/version.hpp"
+#include "studies/pore_tortuosity.hpp"
 
 namespace softdrop::cli {
 

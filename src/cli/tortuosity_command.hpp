@@ -7,8 +7,8 @@
 #include <string>
 
 #include "cli/common_options.hpp"
+#include "softdrop/batch.hpp"
 #include "softdrop/droplet.hpp"
-#include "softdrop/held_out.hpp"
 #include "softdrop/simulation.hpp"
 
 namespace softdrop::cli {

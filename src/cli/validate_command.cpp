@@ -7,11 +7,10 @@
 #include <stdexcept>
 
 #include "cli/output.hpp"
-#include "softdrop/grain_file.hpp"
-#include "softdrop/history.hpp"
-#include "softdrop/params_json.hpp"
-#include "softdrop/porosity.hpp"
+#include "softdrop/medium.hpp"
+#include "softdrop/store.hpp"
 #include "softdrop/version.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop::cli {
 
@@ -123,7 +122,7 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
     objective = stored.objective;
     source = {{"db", a.db}, {"run", a.run}, {"generation", c.generation}, {"objective", to_string(objective.kind)}};
     if (objective.robust()) {
-      // Its value in the search: the mean of its re-runs on fresh starts (objective.hpp).
+      // Its value in the search: the mean of its re-runs on fresh starts (search.hpp).
       const KeptValue kept = kept_value(history->generations(a.run), c.generation);
       source["in_search_tortuosity"] = kept.value;
       source["re_runs"] = kept.re_runs;

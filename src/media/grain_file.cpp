@@ -1,5 +1,3 @@
-#include "softdrop/grain_file.hpp"
-
 #include <unistd.h>
 
 #include <cctype>
@@ -13,6 +11,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "softdrop/medium.hpp"
 #include "util/temp_files.hpp"
 #include "util/validation.hpp"
 

@@ -4,10 +4,9 @@
 #include <stdexcept>
 
 #include "media/relaxation.hpp"
-#include "softdrop/porosity.hpp"
-#include "softdrop/random.hpp"
-#include "softdrop/spacing.hpp"
+#include "spacing.hpp"
 #include "util/enum_names.hpp"
+#include "util/random.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {

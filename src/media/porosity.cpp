@@ -1,12 +1,11 @@
-#include "softdrop/porosity.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <utility>
 #include <vector>
 
 #include "grain_grid.hpp"
-#include "softdrop/random.hpp"
+#include "softdrop/medium.hpp"
+#include "util/random.hpp"
 
 namespace softdrop {
 namespace {

@@ -5,7 +5,7 @@
 #include <cstddef>
 #include <utility>
 
-#include "softdrop/spacing.hpp"
+#include "spacing.hpp"
 
 namespace softdrop::detail {
 namespace {

@@ -1,4 +1,4 @@
-#include "softdrop/rigid_descent.hpp"
+#include "rigid_descent.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // The only translation unit that includes CGAL: keep it that way, CGAL headers are slow to compile.
-#include "softdrop/spacing.hpp"
+#include "spacing.hpp"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>

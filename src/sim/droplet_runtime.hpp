@@ -2,6 +2,7 @@
 // DropletRuntime: one droplet's own state between steps: its masses, what the last step measured,
 // the grains it touched, the contact limit's records for the next step, and its slot in the
 // lane-by-lane block that stepped it last. Private to the library (Simulation::runtime()).
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -29,6 +30,9 @@ struct DropletRuntime {
   ContactCache contact;               ///< the contact limit's records, for the next step
   BlockSlot block;
 
+  /// The step's validity test of the state it left: the area the pressure stage measured is finite
+  /// and positive.
+  bool valid() const { return std::isfinite(area) && area > 0; }
   /// Something other than a stage moved a mass: no record or block slot describes the state.
   void changed() {
     block.id = 0;

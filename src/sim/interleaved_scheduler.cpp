@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "droplet_runtime.hpp"
 #include "interleaved.hpp"
 #include "lane_block_step.hpp"
 #include "lane_exchange.hpp"
@@ -29,7 +30,8 @@ namespace {
 void centres_of_four(Simulation* const* sims, int count, double* cx, double* cy) {
   int t = 0;
   for (; t + 4 <= count; t += 4) {
-    const DropletState* s[4] = {&sims[t]->state(), &sims[t + 1]->state(), &sims[t + 2]->state(), &sims[t + 3]->state()};
+    const DropletState* s[4] = {&sims[t]->runtime().state, &sims[t + 1]->runtime().state, &sims[t + 2]->runtime().state,
+                                &sims[t + 3]->runtime().state};
     const int n = s[0]->size();
     if (s[1]->size() != n || s[2]->size() != n || s[3]->size() != n) {
       for (int k = 0; k < 4; ++k) sims[t + k]->centre_of_mass(cx + t + k, cy + t + k);
@@ -155,7 +157,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     stepped.clear();
     for (Lane& l : slots) {
       if (!l.run) continue;
-      valid[stepped.size()] = l.run->simulation()->valid();
+      valid[stepped.size()] = l.run->simulation()->runtime().valid();
       stepped.push_back(l.run->simulation());
     }
     centres_of_mass(stepped.data(), static_cast<int>(stepped.size()), cx.data(), cy.data(), rest);

@@ -9,23 +9,25 @@ namespace softdrop {
 
 void RingGroup::constrain() {
   rings->clear();
-  const Simulation* first = nullptr;
+  const DropletModel* first = nullptr;  // the first sequential ring's
   for (int t = 0; t < count; ++t) {
-    Simulation* sim = sims[t];
-    if (sim->params().constraint_order == ConstraintOrder::sequential) {
-      if (!first) first = sim;
-      if (same_fields(first->params(), sim->params(), FieldUse::constraint)) {
-        rings->push_back(&sim->mutable_state());
+    const DropletModel& m = sims[t]->model();
+    DropletRuntime& r = sims[t]->runtime();
+    if (m.params.constraint_order == ConstraintOrder::sequential) {
+      if (!first) first = &m;
+      if (same_fields(first->params, m.params, FieldUse::constraint)) {
+        r.changed();
+        rings->push_back(&r.state);
         continue;
       }
     }
-    constraint_stage(sim->model(), sim->runtime());
+    constraint_stage(m, r);
   }
   if (rings->empty()) return;
   corrections->resize(rings->size());
-  apply_length_constraint_interleaved(rings->data(), static_cast<int>(rings->size()),
-                                      first->model().context.rest_length, first->params().max_strain,
-                                      first->params().constraint_iterations, corrections->data());
+  apply_length_constraint_interleaved(rings->data(), static_cast<int>(rings->size()), first->context.rest_length,
+                                      first->params.max_strain, first->params.constraint_iterations,
+                                      corrections->data());
 }
 
 }  // namespace softdrop

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "droplet_model.hpp"
 #include "droplet_runtime.hpp"
 #include "softdrop/simulation.hpp"
 #include "step_helpers.hpp"
@@ -27,15 +28,16 @@ class RunStepper {
   /// placed: the droplet was just placed above the medium at x = *placed (place_above), which the
   /// summary reports as its start, so that running from there again gives the same bits; null: the
   /// run goes on from another state, and its start is the centre of mass.
-  RunStepper(Simulation* sim, const RunOptions& options, const double* placed = nullptr) : sim_(sim), o_(options) {
+  RunStepper(Simulation* sim, const RunOptions& options, const double* placed = nullptr)
+      : sim_(sim), m_(sim->model()), r_(sim->runtime()), o_(options) {
     std::string why;
     if (!options.IsValid(&why)) throw std::invalid_argument(why);
-    dt_ = sim->params().dt;
-    H_ = sim->medium().height;
+    dt_ = m_.params.dt;
+    H_ = m_.medium.height;
     sim->centre_of_mass(&cx_, &cy_);
     s_.start_x = placed ? *placed : cx_;
-    s_.start_y = placed ? sim->start_height() : cy_;
-    sim->runtime().area = ring_area(sim->state());
+    s_.start_y = placed ? m_.start_y : cy_;
+    r_.area = ring_area(r_.state);
     window_ = std::max<std::int64_t>(1, std::llround(options.stuck_window / dt_));
     rest_window_ = options.rest_window > 0 ? std::max<std::int64_t>(1, std::llround(options.rest_window / dt_)) : 0;
     for (double t : options.snapshot_times) snapshot_steps_.push_back(std::llround(t / dt_));
@@ -62,11 +64,11 @@ class RunStepper {
     cy_ = cy;
     if (!ok || !std::isfinite(cx_) || !std::isfinite(cy_)) {
       std::ostringstream r;
-      r << "ring became invalid at step " << k << " (area " << sim_->area() << ")";
+      r << "ring became invalid at step " << k << " (area " << r_.area << ")";
       return finish(Outcome::diverged, r.str(), k);
     }
-    s_.min_area_ratio = std::min(s_.min_area_ratio, sim_->area() / sim_->initial_area());
-    s_.max_penetration = std::max(s_.max_penetration, sim_->last_penetration());
+    s_.min_area_ratio = std::min(s_.min_area_ratio, r_.area / m_.area0);
+    s_.max_penetration = std::max(s_.max_penetration, r_.last_penetration);
     // Path length inside the medium, with the crossings of y = H and y = 0 interpolated.
     if (!entered_ && cy_ < H_) {
       entered_ = true;
@@ -87,9 +89,9 @@ class RunStepper {
     }
     if (k % o_.check_interval == 0) {
       if (o_.cancelled && o_.cancelled()) throw RunCancelled{};
-      if (ring_self_intersects(sim_->state()))
+      if (ring_self_intersects(r_.state))
         return finish(Outcome::diverged, "ring self-intersects at step " + std::to_string(k), k);
-      if (any_grain_inside_ring(sim_->state(), sim_->medium())) {
+      if (any_grain_inside_ring(r_.state, m_.medium)) {
         s_.grain_inside_ring = true;
         return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k), k);
       }
@@ -133,10 +135,10 @@ class RunStepper {
     }
     if (o_.area_interval > 0 && k % o_.area_interval == 0) {
       s_.area_t.push_back(t);
-      s_.area.push_back(ring_area(sim_->state()));
+      s_.area.push_back(ring_area(r_.state));
     }
     while (next_snapshot_ < snapshot_steps_.size() && snapshot_steps_[next_snapshot_] <= k) {
-      s_.snapshots.push_back({t, sim_->state().x, sim_->state().y});
+      s_.snapshots.push_back({t, r_.state.x, r_.state.y});
       ++next_snapshot_;
     }
   }
@@ -145,8 +147,8 @@ class RunStepper {
     s_.outcome = o;
     s_.reason = std::move(reason);
     s_.steps = k;
-    for (std::size_t g = 0; g + 1 < sim_->runtime().touched.size(); ++g)
-      if (sim_->runtime().touched[g]) s_.touched.push_back(static_cast<std::int32_t>(g));
+    for (std::size_t g = 0; g + 1 < r_.touched.size(); ++g)
+      if (r_.touched[g]) s_.touched.push_back(static_cast<std::int32_t>(g));
     if (o_.path_interval > 0 && (s_.path_t.empty() || s_.path_t.back() != static_cast<double>(k) * dt_)) {
       s_.path_t.push_back(static_cast<double>(k) * dt_);
       s_.path_x.push_back(cx_);
@@ -155,6 +157,8 @@ class RunStepper {
   }
 
   Simulation* sim_;
+  const DropletModel& m_;  // the simulation's, read at every step without a call
+  DropletRuntime& r_;
   const RunOptions& o_;
   RunSummary s_;
   double dt_ = 0, H_ = 0, cx_ = 0, cy_ = 0, checkpoint_y_ = 0, rest_travel_ = 0;

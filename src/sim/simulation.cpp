@@ -140,7 +140,7 @@ void constraint_stage(const DropletModel& m, DropletRuntime& r) {
 bool Simulation::step() {
   OneRing ring(*this);
   run_stages(ring);
-  return valid();
+  return runtime_->valid();
 }
 
 // ---- Checks and the run loop ------------------------------------------------------------------
@@ -184,7 +184,7 @@ RunSummary Simulation::run(double cx, const RunOptions& options) {
 
 RunSummary Simulation::run_from_current(const RunOptions& options) { return drive(this, options, nullptr); }
 
-bool Simulation::valid() const { return std::isfinite(runtime_->area) && runtime_->area > 0; }
+bool Simulation::valid() const { return runtime_->valid(); }
 
 std::uint64_t Simulation::state_hash() const {
   std::uint64_t h = 1469598103934665603ULL;

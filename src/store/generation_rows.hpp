@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "softdrop/history.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop::detail {
 

@@ -2,7 +2,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "softdrop/history.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop {
 

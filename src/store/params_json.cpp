@@ -1,4 +1,4 @@
-#include "softdrop/params_json.hpp"
+#include "params_json.hpp"
 
 #include <nlohmann/json.hpp>
 #include <stdexcept>

@@ -13,7 +13,7 @@
 #include <utility>
 #include <vector>
 
-#include "softdrop/history.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop::detail {
 

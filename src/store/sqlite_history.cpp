@@ -7,7 +7,7 @@
 #include <string>
 
 #include "generation_rows.hpp"
-#include "softdrop/history.hpp"
+#include "softdrop/store.hpp"
 #include "softdrop/version.hpp"
 #include "sqlite_file.hpp"
 #include "validation_rows.hpp"

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "softdrop/sweep_store.hpp"
+#include "softdrop/store.hpp"
 #include "softdrop/version.hpp"
 #include "sqlite_file.hpp"
 

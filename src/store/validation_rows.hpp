@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "softdrop/history.hpp"
+#include "softdrop/store.hpp"
 
 namespace softdrop::detail {
 

@@ -1,4 +1,4 @@
-#include "softdrop/area_trace.hpp"
+#include "area_trace.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "softdrop/averaging.hpp"
+#include "averaging.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -12,7 +12,7 @@
 
 #include "sim/interleaved.hpp"
 #include "sim/lane_policy.hpp"
-#include "softdrop/random.hpp"
+#include "util/random.hpp"
 #include "util/worker_threads.hpp"
 
 namespace softdrop {

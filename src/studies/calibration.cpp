@@ -1,4 +1,4 @@
-#include "softdrop/calibration.hpp"
+#include "calibration.hpp"
 
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -11,9 +11,9 @@
 #include <stdexcept>
 #include <utility>
 
-#include "softdrop/area_trace.hpp"
+#include "area_trace.hpp"
 #include "softdrop/batch.hpp"
-#include "softdrop/random.hpp"
+#include "util/random.hpp"
 #include "util/validation.hpp"
 
 namespace softdrop {

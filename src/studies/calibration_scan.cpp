@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "softdrop/calibration.hpp"
+#include "calibration.hpp"
 
 namespace softdrop {
 namespace {

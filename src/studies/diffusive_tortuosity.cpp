@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "pore_grid.hpp"
-#include "softdrop/pore_tortuosity.hpp"
+#include "pore_tortuosity.hpp"
 
 namespace softdrop {
 namespace detail {

@@ -1,4 +1,4 @@
-#include "softdrop/fit.hpp"
+#include "fit.hpp"
 
 #include <Eigen/Dense>
 #include <algorithm>

@@ -1,5 +1,3 @@
-#include "softdrop/held_out.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>

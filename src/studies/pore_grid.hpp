@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "softdrop/pore_tortuosity.hpp"
+#include "pore_tortuosity.hpp"
 
 namespace softdrop::detail {
 

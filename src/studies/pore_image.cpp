@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "softdrop/pore_tortuosity.hpp"
+#include "pore_tortuosity.hpp"
 
 namespace softdrop {
 

@@ -14,10 +14,10 @@
 #include "sim/interleaved.hpp"
 #include "sim/lane_policy.hpp"
 #include "softdrop/batch.hpp"
-#include "softdrop/porosity.hpp"
-#include "softdrop/random.hpp"
+#include "softdrop/medium.hpp"
 #include "studies/media_error.hpp"
 #include "util/enum_names.hpp"
+#include "util/random.hpp"
 #include "util/validation.hpp"
 #include "util/worker_threads.hpp"
 

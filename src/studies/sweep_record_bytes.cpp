@@ -1,5 +1,7 @@
 // A sweep unit's record as bytes: fixed-size fields copied as they are in memory, then the
 // droplets. Only for processes of one job, so no byte-order or version handling.
+#include "sweep_record_bytes.hpp"
+
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>

@@ -1,20 +1,36 @@
 #pragma once
-/// \file history.hpp
-/// The search history: one storage interface, implemented by an SQLite file (see README.md,
-/// "The history database", for the schema). Every generation is one transaction, so a process
-/// killed at any instant loses at most the generation in flight.
+/// \file store.hpp
+/// The stores of a softdrop database. One SQLite file holds search histories (History; README.md,
+/// "The history database", has the schema) and sweep records (SweepStore: tables sweeps,
+/// sweep_media, sweep_droplets), each behind one storage interface. Every generation, and every
+/// medium with its droplets, is one transaction, so a process killed at any instant loses at most
+/// the generation or the medium in flight, and a run or a sweep continues where it stopped.
+/// OpenMode says how a file is opened; DatabaseError, why it cannot be.
 
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "softdrop/held_out.hpp"
-#include "softdrop/open_mode.hpp"
+#include "softdrop/batch.hpp"
 #include "softdrop/search.hpp"
+#include "softdrop/sweep.hpp"
 
 namespace softdrop {
+
+/// How to open a database file.
+enum class OpenMode {
+  read_only,  ///< must exist and be a softdrop database
+  create      ///< created if missing; an existing file must be a softdrop database
+};
+
+/// A file that is not a usable softdrop database (missing, not SQLite, foreign, newer, truncated,
+/// corrupted, unwritable): one line naming the file. The Python module raises it as StoreError.
+struct DatabaseError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 
 /// The schema version this build writes (PRAGMA user_version). Files with a higher version are
 /// refused; files with a lower one are read as they are and migrated when opened for writing
@@ -43,11 +59,11 @@ struct RunRecord {
   std::int64_t droplets = 0;     ///< droplet runs so far (evaluations x starts, and the parents' re-runs)
   double best_t = 0;
   std::int64_t best_generation = 0;
-  int island = -1;               ///< the run's island (islands.hpp); -1: not one of islands
+  int island = -1;               ///< the run's island (docs/search.md); -1: not one of islands
   std::int64_t archipelago = 0;  ///< id of its archipelago's first run (island 0); 0: none
 };
 
-/// A held-out value of a run's arrangement (held_out.hpp), as stored: at dt, and at dt / 2 where
+/// A held-out value of a run's arrangement (held_out_value, batch.hpp), as stored: at dt, and at dt / 2 where
 /// it was asked. NaN where nothing (or one droplet, for an error) passed.
 struct ValidationRecord {
   std::int64_t generation = 0;  ///< the arrangement kept as of this generation
@@ -169,5 +185,41 @@ std::unique_ptr<History> open_history(const std::string& path, OpenMode mode);
 /// (for a new file: that its folder exists and is writable): lets a command refuse a bad file
 /// before long work, and create a new one only afterwards.
 void check_database(const std::string& path);
+
+/// A sweep's row.
+struct SweepRecord {
+  std::int64_t id = 0;
+  std::string created, updated, version, status;
+  std::string params;      ///< JSON of the options (the sweep's identity)
+  std::int64_t units = 0;  ///< porosities x media
+  std::int64_t done = 0;   ///< media stored
+};
+
+class SweepStore {
+ public:
+  virtual ~SweepStore() = default;
+  /// The id of the sweep with exactly these parameters, 0 if there is none. Writes nothing.
+  virtual std::int64_t find(const std::string& params_json) = 0;
+  /// The id of the sweep with exactly these parameters, created if there is none.
+  virtual std::int64_t find_or_create(const std::string& params_json, const SweepOptions& options) = 0;
+  /// Units already stored for a sweep.
+  virtual std::vector<SweepUnit> done_units(std::int64_t sweep) = 0;
+  /// Stores one medium with its droplets in one transaction. Returns false, storing nothing, if
+  /// the unit is already stored: another process running the same sweep computed it (records are
+  /// deterministic, so they are the same).
+  virtual bool add(std::int64_t sweep, const SweepMedium& medium) = 0;
+  /// Whether the unit is stored (by this process or another one).
+  virtual bool has_unit(std::int64_t sweep, const SweepUnit& unit) = 0;
+  /// running, complete or interrupted.
+  virtual void set_status(std::int64_t sweep, const std::string& status) = 0;
+  virtual std::vector<SweepRecord> sweeps() = 0;
+  /// Throws std::runtime_error naming the id if there is no such sweep.
+  virtual SweepRecord sweep(std::int64_t id) = 0;
+  /// Every stored medium of a sweep with its droplets, ordered by (porosity, medium).
+  virtual std::vector<SweepMedium> media(std::int64_t sweep) = 0;
+};
+
+/// Opens the sweep store of a softdrop database (the same checks as open_history).
+std::unique_ptr<SweepStore> open_sweep_store(const std::string& path, OpenMode mode);
 
 }  // namespace softdrop

@@ -1,0 +1,148 @@
+// The sweep's run on a database (softdrop/service.hpp), as the program and the Python module run
+// it: what its observer hears, a run stopped by the observer and run again, and what a refused
+// run leaves on disk.
+#include "softdrop/service.hpp"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cli_run.hpp"
+#include "fixtures.hpp"
+#include "softdrop/store.hpp"
+
+namespace softdrop {
+namespace {
+
+SweepRun tiny_run(const std::string& db) {
+  SweepRun r;
+  r.sweep.porosities = {0.85, 0.95};
+  r.sweep.media = 2;
+  r.sweep.droplets = 3;
+  r.sweep.medium.width = r.sweep.medium.height = 150;
+  r.sweep.medium.r_min = test::kBalloonRMin, r.sweep.medium.r_max = test::kBalloonRMax;
+  r.sweep.droplet = test::balloon_droplet();  // (a quick droplet: these tests are of the run)
+  r.db = db;
+  r.threads = 2;
+  return r;
+}
+
+// Records what it hears; stops after `stop_after` media (0: never).
+struct Recorder : SweepObserver {
+  std::size_t stop_after = 0;
+  std::vector<std::size_t> started_with;  // stored, to_do
+  std::vector<SweepProgress> progress;
+  void started(std::int64_t, std::size_t stored, std::size_t to_do) override { started_with = {stored, to_do}; }
+  bool stored(const SweepMedium&, const SweepProgress& p) override {
+    progress.push_back(p);
+    return stop_after == 0 || progress.size() < stop_after;
+  }
+};
+
+// Each stored medium's droplets' T, by unit, to the bit.
+std::vector<std::uint64_t> stored_bits(const std::string& db, std::int64_t sweep) {
+  std::vector<std::uint64_t> bits;
+  for (const SweepMedium& m : open_sweep_store(db, OpenMode::read_only)->media(sweep)) {
+    bits.push_back(static_cast<std::uint64_t>(m.unit.porosity * 100 + m.unit.medium));
+    for (const SweepDroplet& d : m.droplets) bits.push_back(std::bit_cast<std::uint64_t>(d.tortuosity));
+  }
+  return bits;
+}
+
+TEST(SweepService, ARunStoresEveryMediumAndTellsItsObserver) {
+  const std::string db = test::fresh_path("service_whole.db");
+  Recorder heard;
+  const SweepSummary s = run_sweep(tiny_run(db), heard);
+  EXPECT_EQ(s.status, "complete");
+  EXPECT_EQ(s.media, 4);
+  EXPECT_EQ(s.done, 4);
+  EXPECT_EQ(s.media_this_session, 4u);
+  EXPECT_EQ(s.media_by_another_process, 0u);
+  EXPECT_EQ(s.droplets_this_session, 12);
+  EXPECT_EQ(heard.started_with, (std::vector<std::size_t>{0, 4}));
+  ASSERT_EQ(heard.progress.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) {
+    EXPECT_EQ(heard.progress[i].done, i + 1);
+    EXPECT_EQ(heard.progress[i].to_do, 4u);
+    EXPECT_EQ(heard.progress[i].sweep, s.sweep);
+  }
+  // Run again: nothing left to do, and nothing changes.
+  Recorder again;
+  const SweepSummary t = run_sweep(tiny_run(db), again);
+  EXPECT_EQ(t.sweep, s.sweep);
+  EXPECT_EQ(t.status, "complete");
+  EXPECT_EQ(t.media_this_session, 0u);
+  EXPECT_EQ(again.started_with, (std::vector<std::size_t>{4, 0}));
+  std::filesystem::remove(db);
+}
+
+TEST(SweepService, AnObserverThatStopsTheRunLeavesAResumableSweepWithTheSameBits) {
+  const std::string whole = test::fresh_path("service_reference.db"), parts = test::fresh_path("service_parts.db");
+  Recorder reference;
+  Recorder first;
+  first.stop_after = 1;
+  SweepRun run = tiny_run(parts);
+  run.sweep.media = 6;  // more media than one thread has in flight: the stop leaves some undone
+  run.threads = 1;
+  SweepRun reference_run = tiny_run(whole);
+  reference_run.sweep.media = 6;
+  const SweepSummary r = run_sweep(reference_run, reference);
+  const SweepSummary s = run_sweep(run, first);
+  EXPECT_EQ(s.status, "interrupted");
+  EXPECT_GE(s.done, 1);
+  EXPECT_LT(s.done, 12);  // the media in flight at the stop are stored, no more
+  EXPECT_EQ(static_cast<std::int64_t>(first.progress.size()), s.done);
+  EXPECT_EQ(open_sweep_store(parts, OpenMode::read_only)->sweep(s.sweep).status, "interrupted");
+  Recorder second;
+  const SweepSummary t = run_sweep(run, second);
+  const auto before = static_cast<std::size_t>(s.done);
+  EXPECT_EQ(second.started_with, (std::vector<std::size_t>{before, 12 - before}));
+  EXPECT_EQ(t.status, "complete");
+  EXPECT_EQ(t.media_this_session, 12 - before);
+  EXPECT_EQ(stored_bits(parts, t.sweep), stored_bits(whole, r.sweep));
+  std::filesystem::remove(whole);
+  std::filesystem::remove(parts);
+}
+
+TEST(SweepService, ARefusedRunNamesTheOptionAndWritesNoFile) {
+  const std::string db = test::fresh_path("service_refused.db");
+  Recorder heard;
+  SweepRun run = tiny_run(db);
+  run.shard = 2;
+  run.shards = 2;
+  try {
+    run_sweep(run, heard);
+    FAIL() << "a shard outside its count was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("shard = 2/2"), std::string::npos) << e.what();
+  }
+  run = tiny_run(db);
+  run.sweep.porosities.clear();
+  EXPECT_THROW(run_sweep(run, heard), std::invalid_argument);
+  run = tiny_run(db);
+  run.threads = -1;
+  EXPECT_THROW(run_sweep(run, heard), std::invalid_argument);
+  EXPECT_FALSE(std::filesystem::exists(db));
+  EXPECT_TRUE(heard.started_with.empty());
+}
+
+TEST(SweepService, AFileThatIsNotADatabaseIsRefusedAndKept) {
+  const std::string db = test::fresh_path("service_text.db");
+  { std::ofstream(db) << "not a database\n"; }
+  Recorder heard;
+  EXPECT_THROW(run_sweep(tiny_run(db), heard), DatabaseError);
+  std::ifstream in(db);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "not a database");
+  std::filesystem::remove(db);
+}
+
+}  // namespace
+}  // namespace softdrop
