@@ -36,7 +36,8 @@ struct SweepProgress {
   double seconds = 0;         ///< wall time since the run began
 };
 
-/// What a sweep's run tells as it goes. Every call comes on the thread that called run_sweep.
+/// What a sweep's run tells as it goes. started() and stored() come on the thread that called
+/// run_sweep; stop_requested() may come on a worker thread.
 class SweepObserver {
  public:
   virtual ~SweepObserver() = default;
@@ -45,7 +46,8 @@ class SweepObserver {
   virtual void started(std::int64_t /*sweep*/, std::size_t /*stored*/, std::size_t /*to_do*/) {}
   /// After each medium is stored. false stops the run after the media in flight, which are stored.
   virtual bool stored(const SweepMedium& /*medium*/, const SweepProgress& /*progress*/) { return true; }
-  /// Asked between media: true stops the run as stored() returning false does (a signal's flag).
+  /// Asked before each new medium starts, on a worker thread: true stops the run as stored()
+  /// returning false does. It must be safe to call from any thread (a signal's atomic flag, say).
   virtual bool stop_requested() { return false; }
 };
 
