@@ -149,9 +149,8 @@ void check_start_x(double x0, const Medium& medium, const DropletParams& droplet
 }
 
 void check_threads(int threads) {
-  if (threads < 0 || threads > kMaxThreads)
-    throw std::invalid_argument("threads = " + std::to_string(threads) + ": must be in [0, " +
-                                std::to_string(kMaxThreads) + "] (0: all cores)");
+  std::string why;
+  if (!detail::valid_threads(threads, &why)) throw std::invalid_argument(why);
 }
 
 void check_recording(const RunOptions& run, long droplets, int masses) {

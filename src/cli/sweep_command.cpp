@@ -2,17 +2,11 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <filesystem>
-#include <fstream>
-#include <iomanip>
 #include <iostream>
-#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 
 #include "cli/mpi_sweep.hpp"
@@ -136,7 +130,6 @@ class SweepProgressLine : public SweepObserver {
           "\nsoftdrop: finishing the media in flight (Ctrl-C again to leave now; they are then redone next time)\n");
   }
   void started(std::int64_t sweep, std::size_t stored, std::size_t to_do) override {
-    id_ = sweep;
     if (a_.quiet) return;
     std::cerr << "sweep " << (sweep > 0 ? std::to_string(sweep) : std::string("(new)")) << " in " << a_.db << ": "
               << a_.sweep.porosities.size() << " porosities x " << a_.sweep.media << " media x " << a_.sweep.droplets
@@ -144,7 +137,6 @@ class SweepProgressLine : public SweepObserver {
               << " media already stored\n";
   }
   bool stored(const SweepMedium& m, const SweepProgress& p) override {
-    id_ = p.sweep;
     const auto now = std::chrono::steady_clock::now();
     if (!a_.quiet && (now - last_ > std::chrono::seconds(tty_ ? 1 : 10) || p.done == p.to_do)) {
       last_ = now;
@@ -174,7 +166,6 @@ class SweepProgressLine : public SweepObserver {
   int shard_, shards_;
   Host* host_;
   std::optional<StopOnSignal> signals_;  // a host handles the signals itself
-  std::int64_t id_ = 0;
   const bool tty_ = ::isatty(2) != 0;
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };

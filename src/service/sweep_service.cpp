@@ -20,9 +20,7 @@ bool SweepRun::IsValid(std::string* why) const {
   using detail::fail;
   if (!sweep.IsValid(why)) return false;
   if (db.empty()) return fail(why, "db: an empty file name");
-  if (threads < 0 || threads > detail::kMaxThreads)
-    return fail(why, "threads = " + std::to_string(threads) + ": must be in [0, " +
-                         std::to_string(detail::kMaxThreads) + "] (0: all cores)");
+  if (!detail::valid_threads(threads, why)) return false;
   if (shards < 1 || shard < 0 || shard >= shards)
     return fail(why,
                 "shard = " + std::to_string(shard) + "/" + std::to_string(shards) + ": expected i/n with 0 <= i < n");

@@ -22,15 +22,14 @@ struct ContactCache {
   std::vector<double> x, y;
   std::size_t capacity = 0;
   /// Each mass's anchor: within sqrt(clear_r2) of (clear_x, clear_y), where the contact limit last
-  /// tested it against its cell, no disc can hold or push the mass, by `clearance_margin` (which
-  /// covers rounding), except the clear_count discs it was inside there (clear_discs, up to
+  /// tested it against its cell, no disc can hold or push the mass, by DropletModel::clearance_margin
+  /// (which covers rounding), except the clear_count discs it was inside there (clear_discs, up to
   /// `capacity` a mass, in the cell's order). The ball stays inside that cell and clear of the
   /// periodic seam. A mass still in its ball is tested against those discs only; -1 (or NaN) in
   /// clear_r2: not known.
   std::vector<double> clear_x, clear_y, clear_r2;
   std::vector<std::int32_t> clear_count;
   std::vector<GrainGrid::Disc> clear_discs;
-  double clearance_margin = 0;
   /// The first disc each mass was last found inside (x, y, r, grain), written with `discs`: a
   /// record of one disc is this alone, and for a mass whose anchor holds one disc it is that disc,
   /// so that the contact limit loads eight masses' at once (src/sim/contact_lanes.hpp). Otherwise

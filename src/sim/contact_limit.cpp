@@ -117,7 +117,7 @@ void contact_limit_stage(const DropletModel& m, DropletRuntime& r) {
     // must not cross the periodic seam either, where the wrapped position jumps.
     double reach = std::min(gap, m.grid.edge_distance(xw, y));
     if (periodic) reach = std::min(reach, std::min(xw, W - xw));
-    reach -= r.contact.clearance_margin;
+    reach -= m.clearance_margin;
     const bool anchored = recorded && reach > 0;
     r.contact.clear_r2[i] = anchored ? reach * reach : -1.0;
     r.contact.clear_x[i] = x;

@@ -52,10 +52,14 @@ struct LaneBlockStep::Layout {
   int count, n, registers, L;
   const StepContext& k;
   const DropletParams& p;
-  double* block[6] = {};  // x, y, px, py, fx, fy
-  double area[lanes::kMaxLanes] = {};
-  int corrections[lanes::kMaxLanes] = {};
-  std::uint64_t id = 0;  // the block id the step gave its droplets (at the contact limit)
+  double* block[6];                   // x, y, px, py, fx, fy
+  double area[lanes::kMaxLanes];      // written by the gravity stage's pass, read by the collisions
+  int corrections[lanes::kMaxLanes];  // the constraint's counts (unread)
+  std::uint64_t id = 0;               // the block id the step gave its droplets (at the contact limit)
+
+  // Not an aggregate: the scratch arrays are left as they are, not zeroed at every step.
+  Layout(Simulation* const* s, int c, int masses, int regs, const StepContext& constants, const DropletParams& params)
+      : sims(s), count(c), n(masses), registers(regs), L(8 * regs), k(constants), p(params) {}
 
   bool damped() const { return k.damped; }
   template <StepStage S>
@@ -152,7 +156,7 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   memory.last_id = 0;  // until this step has finished
   if (memory.data.size() < 6 * size) memory.data.resize(6 * size);
   double* const X = memory.data.data();
-  Layout layout{sims, count, n, registers, L, model.context, model.params};
+  Layout layout(sims, count, n, registers, model.context, model.params);
   for (int a = 0; a < 6; ++a) layout.block[a] = X + static_cast<std::size_t>(a) * size;
   // The lanes whose droplet is not in the block as the last step left it (padding lanes repeat
   // the last droplet's, and are there if the last step had as many droplets).

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "lane_simd.hpp"
+#include "ring_stages.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/droplet.hpp"
 #include "spring_correction.hpp"
@@ -185,6 +186,12 @@ VectorWidth limit_constraint_vector_width(VectorWidth width) {
     throw std::invalid_argument("vector width " + std::to_string(w) + ": must be 1, 2, 4 or 8");
   width_limit.value.store(w, std::memory_order_relaxed);
   return constraint_vector_width();
+}
+
+void constraint_stage(const DropletModel& m, DropletRuntime& r) {
+  r.changed();
+  apply_length_constraint(&r.state, m.context.rest_length, m.params.max_strain, m.params.constraint_iterations,
+                          m.params.constraint_order);
 }
 
 }  // namespace softdrop

@@ -62,7 +62,6 @@ bool RunOptions::IsValid(std::string* why) const {
 Simulation::Simulation(const DropletParams& params, const Medium& medium)
     : model_(std::make_shared<const DropletModel>(params, medium)), runtime_(std::make_unique<DropletRuntime>()) {
   runtime_->touched.assign(medium.grains.size() + 1, 0);  // the last entry: no grain (contact.touch's)
-  runtime_->contact.clearance_margin = model_->clearance_margin;
   place(0.5 * medium.width, model_->start_y);
 }
 
@@ -129,12 +128,6 @@ const char* to_string(StepStage stage) {
 void Simulation::compute_forces() {
   OneRing ring(*this);
   run_stages(ring, StepStage::gravity, StepStage::viscosity);
-}
-
-void constraint_stage(const DropletModel& m, DropletRuntime& r) {
-  r.changed();
-  apply_length_constraint(&r.state, m.context.rest_length, m.params.max_strain, m.params.constraint_iterations,
-                          m.params.constraint_order);
 }
 
 bool Simulation::step() {

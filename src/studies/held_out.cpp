@@ -6,6 +6,7 @@
 #include "softdrop/batch.hpp"
 #include "util/quantile.hpp"
 #include "util/validation.hpp"
+#include "util/worker_threads.hpp"
 
 namespace softdrop {
 namespace {
@@ -36,8 +37,7 @@ HeldOutRuns describe(double dt, std::vector<RunSummary> runs) {
 bool HeldOutOptions::IsValid(std::string* why) const {
   if (starts < 1 || starts > kMaxHeldOutStarts)
     return detail::fail(why, "starts = " + std::to_string(starts) + ": must be in [1, 1e6]");
-  if (threads < 0 || threads > 4096)
-    return detail::fail(why, "threads = " + std::to_string(threads) + ": must be in [0, 4096]");
+  if (!detail::valid_threads(threads, why)) return false;
   return true;
 }
 
