@@ -75,13 +75,15 @@ py::dict summary_dict(const RunSummary& s, bool with_path) {
   d["outcome"] = to_string(s.outcome);
   d["reason"] = s.reason;
   d["tortuosity"] = s.outcome == Outcome::passed ? s.tortuosity : std::numeric_limits<double>::quiet_NaN();
+  d["route_tortuosity"] = s.outcome == Outcome::passed ? s.route_tortuosity : std::numeric_limits<double>::quiet_NaN();
   d["steps"] = s.steps;
   d["start_x"] = s.start_x;
   d["touched"] = s.touched.size();
   d["touched_grains"] = s.touched;
   d["min_area_ratio"] = s.min_area_ratio;
   d["max_penetration"] = s.max_penetration;
-  if (with_path) {  // rows of x, y as every path softdrop gives, and their times beside them
+  d["shaken_at"] = s.shaken_at;  // NaN: the medium never shook
+  if (with_path) {               // rows of x, y as every path softdrop gives, and their times beside them
     d["path"] = python::xy_array(s.path_x, s.path_y);
     d["path_time"] = py::array_t<double>(static_cast<py::ssize_t>(s.path_t.size()), s.path_t.data());
   }

@@ -50,14 +50,16 @@ DropletParams changed(const DropletParams& p, const std::string& key) {
 
 TEST(DropletFields, TheContactFieldsAloneMayDifferWithinALaneBlock) {
   const auto all = uses();
-  ASSERT_EQ(all.size(), 17u);
+  ASSERT_EQ(all.size(), 21u);
   std::set<std::string> constraint, contacts;
   for (const auto& [key, use] : all) {
     if (use == FieldUse::constraint) constraint.insert(key);
     if (use == FieldUse::contacts) contacts.insert(key);
   }
   EXPECT_EQ(constraint, (std::set<std::string>{"masses", "radius", "max-strain", "constraint-iterations"}));
-  EXPECT_EQ(contacts, (std::set<std::string>{"kc", "cc", "max-depth"}));
+  // The shaking is each droplet's own force, added lane by lane.
+  EXPECT_EQ(contacts, (std::set<std::string>{"kc", "cc", "max-depth", "vibration-amplitude", "vibration-frequency",
+                                             "vibration-axis", "vibration-start"}));
   const DropletParams p;
   for (const auto& [key, use] : all) {
     SCOPED_TRACE(key);
@@ -91,17 +93,21 @@ TEST(DropletFields, StoredParametersHoldEveryFieldAndReadItBack) {
 
 // Parameters stored by a build older than a key read as that build ran: the viscosity's share on
 // dilation as 1 (the default now is 0), no rest test, the sequential constraint order, the
-// explicit viscosity step, the paper's strategy. So a history stored with the balloon resumes as
-// the balloon.
+// explicit viscosity step, the paper's strategy, no shaking. So a history stored with the balloon
+// resumes as the balloon.
 TEST(DropletFields, StoredParametersWithoutTheNewerKeysReadAsOlderBuildsRanThem) {
   SearchOptions o;
   o.run.rest_window = 0.05, o.run.rest_distance = 0.1;
   o.strategy.kind = StrategyKind::es;
   o.droplet.viscosity_step = ViscosityStep::exponential;
+  o.droplet.vibration_amplitude = 2, o.droplet.vibration_frequency = 300;
+  o.droplet.vibration_axis = VibrationAxis::xy, o.droplet.vibration_start = VibrationStart::start;
   nlohmann::json j = nlohmann::json::parse(search_params_to_json(o));
   EXPECT_EQ(j.at("viscosity-step"), "exponential");
+  EXPECT_EQ(j.at("vibration-axis"), "xy");
   for (const char* key :
-       {"viscosity-dilation", "rest-window", "rest-distance", "constraint-order", "viscosity-step", "strategy"}) {
+       {"viscosity-dilation", "rest-window", "rest-distance", "constraint-order", "viscosity-step", "strategy",
+        "vibration-amplitude", "vibration-frequency", "vibration-axis", "vibration-start"}) {
     ASSERT_TRUE(j.contains(key)) << key;
     j.erase(key);
   }
@@ -113,6 +119,9 @@ TEST(DropletFields, StoredParametersWithoutTheNewerKeysReadAsOlderBuildsRanThem)
   EXPECT_EQ(back.droplet.constraint_order, ConstraintOrder::sequential);
   EXPECT_EQ(back.droplet.viscosity_step, ViscosityStep::explicit_euler);
   EXPECT_EQ(back.strategy.kind, StrategyKind::paper);
+  EXPECT_FALSE(back.droplet.vibrates());
+  EXPECT_EQ(back.droplet.vibration_axis, VibrationAxis::x);
+  EXPECT_EQ(back.droplet.vibration_start, VibrationStart::rest);
   EXPECT_EQ(back.droplet.ks, o.droplet.ks);  // the keys that are there are read as they are
 }
 
@@ -186,7 +195,7 @@ TEST(DropletFields, EveryFieldsRangeIsCheckedAndNamedInItsOwnWords) {
         }
       },
       defaults);
-  EXPECT_EQ(checked, static_cast<int>(uses().size()) - 2);  // all but the two enums
+  EXPECT_EQ(checked, static_cast<int>(uses().size()) - 4);  // all but the four enums
   // The words of the three kinds of range, as users see them.
   std::string message;
   EXPECT_FALSE(with_value("dt", 0).IsValid(&message));

@@ -100,4 +100,16 @@ inline Medium pore_of_three_grains() {
   return m;
 }
 
+/// A closed V: two overlapping grains (radius 30, centres 40 apart) whose tops stand 30 above
+/// the notch between them, in a periodic box 200 wide with nothing else. A droplet dropped at
+/// x = 100 comes to rest in the notch; shaken sideways at kVPocketAmplitude and 100 a time unit,
+/// it climbs out and falls free.
+inline Medium v_pocket() {
+  Medium m{200, 120, true, {}};
+  m.grains.push_back({80, 60, 30});
+  m.grains.push_back({120, 60, 30});
+  return m;
+}
+inline constexpr double kVPocketAmplitude = 4;
+
 }  // namespace softdrop::test

@@ -35,10 +35,12 @@ void expect_same(const RunSummary& a, const RunSummary& b, const std::string& wh
   EXPECT_EQ(a.reason, b.reason);
   EXPECT_EQ(a.steps, b.steps);
   EXPECT_EQ(bits(a.tortuosity), bits(b.tortuosity));
+  EXPECT_EQ(bits(a.route_tortuosity), bits(b.route_tortuosity));
   EXPECT_EQ(bits(a.path_length), bits(b.path_length));
   EXPECT_EQ(bits(a.min_area_ratio), bits(b.min_area_ratio));
   EXPECT_EQ(bits(a.max_penetration), bits(b.max_penetration));
   EXPECT_EQ(a.touched, b.touched);
+  EXPECT_EQ(bits(a.shaken_at), bits(b.shaken_at));
   EXPECT_EQ(a.path_x, b.path_x);
   EXPECT_EQ(a.path_y, b.path_y);
   EXPECT_EQ(a.area, b.area);
@@ -174,6 +176,11 @@ TEST(Interleaved, EveryDropletHasTheBitsOfItsSoloRun) {
     DropletParams p = i % 2 == 1 ? test::balloon_droplet() : DropletParams{};
     if (i % 4 == 1) p.constraint_order = ConstraintOrder::red_black;
     if (i % 3 == 2) p.masses = 32;
+    if (i == 2 || i == 5) {  // a shaken medium, from the start and from rest, along y and xy
+      p.vibration_amplitude = 1.5, p.vibration_frequency = 400;
+      p.vibration_axis = i == 2 ? VibrationAxis::y : VibrationAxis::xy;
+      p.vibration_start = i == 2 ? VibrationStart::start : VibrationStart::rest;
+    }
     cases.push_back({p, i % 5 == 4 ? &pore : &medium, 20.0 + 19.0 * i});
   }
   std::vector<RunSummary> solo;
@@ -244,6 +251,11 @@ TEST(Interleaved, DropletsSteppedLaneByLaneHaveTheBitsOfTheirSoloRuns) {
       if (i % 7 == 3) p.ks *= 1.1;
       if (i % 11 == 5) p.constraint_order = order == seq ? rb : seq;
       if (i % 13 == 6) p.masses = 32;
+      if (i % 5 == 2) {  // shaken droplets beside unshaken ones in a block (-0 in their lanes)
+        p.vibration_amplitude = 1.0 + 0.25 * (i % 3), p.vibration_frequency = 250 + 10 * i;
+        p.vibration_axis = i % 3 == 0 ? VibrationAxis::x : i % 3 == 1 ? VibrationAxis::y : VibrationAxis::xy;
+        p.vibration_start = i % 2 == 0 ? VibrationStart::start : VibrationStart::rest;
+      }
       params.push_back(p);
       x0.push_back(i % 10 == 0 ? 4.0 : i % 10 == 9 ? 196.0 : 6.0 + 6.3 * i);
     }

@@ -64,6 +64,9 @@ int first_difference(Simulation* a, Simulation* b, const std::vector<StepStage>&
         case StepStage::pressure:
           pressure_stage(m, r);
           break;
+        case StepStage::vibration:
+          if (r.shake.on) vibration_stage(m, r);
+          break;
         case StepStage::collisions:
           collisions_stage(m, r, r.state.fx.data(), r.state.fy.data(), 1, /*recorded_added=*/false);
           break;
@@ -109,7 +112,7 @@ TEST(StepStages, TheOrderMatters) {
   const Medium pore = test::pore_of_three_grains();
   const DropletParams p = test::balloon_droplet();
   std::vector<StepStage> swapped(kStepStages.begin(), kStepStages.end());
-  std::swap(swapped[5], swapped[6]);  // integrate, constraint
+  std::swap(swapped[6], swapped[7]);  // integrate, constraint
   Simulation a(p, pore), b(p, pore);
   EXPECT_GT(first_difference(&a, &b, swapped, 3000), 0);
   std::vector<StepStage> late(kStepStages.begin(), kStepStages.end());

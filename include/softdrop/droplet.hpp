@@ -39,12 +39,25 @@ enum class ViscosityStep { explicit_euler, exponential, implicit };
 ViscosityStep parse_viscosity_step(const std::string& name);
 const char* to_string(ViscosityStep step);
 
+/// The direction in which the medium is shaken: along x, along y, or along both at once, in phase
+/// (the diagonal, with the amplitude on each axis).
+enum class VibrationAxis { x, y, xy };
+/// When the shaking begins: when the run first finds the droplet at rest (the rest test of
+/// RunOptions), or with the run.
+enum class VibrationStart { rest, start };
+const char* to_string(VibrationAxis axis);
+const char* to_string(VibrationStart start);
+
 /// The enum fields of DropletParams by their names, alike for every enum: the command line, the
 /// stored parameters and the Python properties parse and list them through these.
 void parse_name(const std::string& name, ConstraintOrder* value);
 void parse_name(const std::string& name, ViscosityStep* value);
+void parse_name(const std::string& name, VibrationAxis* value);
+void parse_name(const std::string& name, VibrationStart* value);
 std::vector<std::string> value_names(ConstraintOrder);
 std::vector<std::string> value_names(ViscosityStep);
+std::vector<std::string> value_names(VibrationAxis);
+std::vector<std::string> value_names(VibrationStart);
 
 /// The defaults are a droplet whose springs carry the tension, calibrated against the paper's mean
 /// tortuosity and area (results/calibration/README.md says how and how close; docs/model.md why
@@ -89,6 +102,26 @@ struct DropletParams {
   /// parameters without this key ran; implicit lets the defaults take a 1.7 times larger dt with
   /// the reference's continuous nu and <T>(phi).
   ViscosityStep viscosity_step = ViscosityStep::implicit;
+  /// The medium shaken as a rigid body: its grains move by A (1 - cos 2 pi f t) along the axis, t
+  /// the time since the shaking began, which starts them from rest, without a jolt. The droplet is
+  /// stepped in the medium's frame, where that motion is each mass's inertial force
+  /// -m A (2 pi f)^2 cos(2 pi f t) along the axis (the vibration stage): contacts, the spring
+  /// damping and the viscosity see velocities relative to the grains, as they would, and the path,
+  /// T included, is the centre's in the medium's frame. A = 0 (the default): no shaking, and the
+  /// stage does not run. (length)
+  double vibration_amplitude = 0.0;
+  double vibration_frequency = 0.0;  ///< f (1/time); a period must span at least 20 steps
+  VibrationAxis vibration_axis = VibrationAxis::x;
+  /// When the shaking begins. From rest, the run's rest test starts it instead of ending the run,
+  /// and the stuck test alone (no net descent of stuck_distance within stuck_window) then ends a
+  /// droplet that shaking does not free.
+  VibrationStart vibration_start = VibrationStart::rest;
+
+  /// Whether the medium is shaken (vibration_amplitude > 0).
+  bool vibrates() const { return vibration_amplitude > 0; }
+  /// The inertial acceleration the shaking gives each mass in the medium's frame, t time units
+  /// after it began: -A (2 pi f)^2 cos(2 pi f t) on each axis it shakes (length / time^2).
+  void vibration_acceleration(double t, double* ax, double* ay) const;
 
   /// Rest length of a spring: d0 = 2 R sin(pi/N) / (1 + max_strain), so the ring at its stretch
   /// limit is the regular N-gon inscribed in the circle of radius R.
@@ -132,7 +165,7 @@ struct DropletParams {
 /// - forces: the other stages that can run for several droplets at once (gravity, springs, gas,
 ///   viscosity, integration, the constraint's order); droplets stepped as one block must agree on
 ///   these and the constraint's;
-/// - contacts: read droplet by droplet (collisions and the contact limit).
+/// - contacts: read droplet by droplet (collisions, the contact limit, the medium's vibration).
 enum class FieldUse { constraint, forces, contacts };
 
 /// The values a numeric field accepts on its own: finite, from lo to hi, each end included or not
@@ -151,7 +184,7 @@ constexpr FieldRange between(double lo, bool lo_included, double hi, bool hi_inc
 
 /// One field of DropletParams: `key` is its command-line option (--key) and its key in stored
 /// parameters, `use` the stages that read it, `help` its meaning and unit for --help, `range` the
-/// values it accepts (not read for the enums, constraint-order and viscosity-step).
+/// values it accepts (not read for the enums).
 struct DropletField {
   const char* key;
   FieldUse use;
@@ -201,6 +234,17 @@ void visit_droplet_fields(F&& f, Params&... p) {
                  "(deformation decays by exp(-nu dt) a step: any nu dt) or implicit (backward Euler "
                  "after the other forces: any nu dt, and a pushed ring deforms at the continuous rate)"},
     p.viscosity_step...);
+  f(DropletField{"vibration-amplitude", U::contacts,
+                 "Shaking of the medium: its grains move by A (1 - cos 2 pi f t) (length units; 0: no shaking)",
+                 at_least(0)},
+    p.vibration_amplitude...);
+  f(DropletField{"vibration-frequency", U::contacts, "Shaking frequency f (1/time units)", at_least(0)},
+    p.vibration_frequency...);
+  f(DropletField{"vibration-axis", U::contacts, "Shaking direction: x, y, or xy (both, in phase)"},
+    p.vibration_axis...);
+  f(DropletField{"vibration-start", U::contacts,
+                 "When shaking begins: rest (when the rest test first finds the droplet at rest) or start"},
+    p.vibration_start...);
 }
 
 /// Whether a and b agree, to the bit, on every field whose use is `use` or one of the uses listed

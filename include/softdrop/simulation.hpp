@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <exception>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -75,6 +76,10 @@ struct RunSummary {
   std::string reason;      ///< one line saying why the run ended
   std::int64_t steps = 0;  ///< steps taken
   double tortuosity = 0;   ///< T = path length between y = H and y = 0 over H (passed only)
+  /// T of the route: the path with the medium's shaking averaged out, the centre taken once a
+  /// shaking period (at the first step of each) from when the shaking began; T itself for a run
+  /// the medium never shook (passed only).
+  double route_tortuosity = 0;
   double path_length = 0;  ///< length of the centre-of-mass path inside the medium so far
   /// Where the run began: the placement (Simulation::run's cx and the start height), so that a run
   /// from start_x gives the same bits again; the centre of mass for run_from_current.
@@ -84,6 +89,9 @@ struct RunSummary {
   double min_area_ratio = 1;       ///< smallest S / S0 seen
   double max_penetration = 0;      ///< deepest a mass went inside a grain (length)
   bool grain_inside_ring = false;  ///< a grain centre was found inside the ring
+  /// When the medium began to shake (time units since the run began; DropletParams::vibrates),
+  /// NaN if it never did.
+  double shaken_at = std::numeric_limits<double>::quiet_NaN();
   // Optional traces.
   std::vector<double> path_t, path_x, path_y;  ///< centre of mass every path_interval steps
   std::vector<double> area_t, area;            ///< ring area every area_interval steps
@@ -109,7 +117,8 @@ class Simulation {
   void place(double cx, double cy);
   /// The usual start: centre x = cx, just above the medium (clear of the highest grain).
   void place_above(double cx);
-  /// Advances one time step: gravity, springs, gas pressure, collisions, internal viscosity,
+  /// Advances one time step: gravity, springs, gas pressure, the shaking (only within a run that
+  /// shakes the medium), collisions, internal viscosity,
   /// position Verlet, the length constraint and the contact limit (docs/model.md), in that order.
   /// Returns false if the state became invalid (NaN or area <= 0).
   bool step();

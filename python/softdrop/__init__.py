@@ -134,7 +134,7 @@ def _runs_frame(rows):
     frame = pd.DataFrame(rows)
     frame.insert(0, "droplet", range(len(frame)))
     return frame[["droplet", "start_x", "outcome", "tortuosity", "steps", "touched", "min_area_ratio",
-                  "max_penetration", "reason"]]
+                  "max_penetration", "shaken_at", "route_tortuosity", "reason"]]
 
 
 def _medium(medium):

@@ -28,6 +28,10 @@ class DropletParams:
     viscosity: float
     viscosity_dilation: float
     viscosity_step: str
+    vibration_amplitude: float
+    vibration_frequency: float
+    vibration_axis: str
+    vibration_start: str
     def __init__(self, **kwargs: Any) -> None: ...
     @staticmethod
     def balloon() -> DropletParams: ...

@@ -282,50 +282,65 @@ int render_animation_command(RenderArgs& a) {
   const Medium medium = medium_of(a);
   style.solid_grains = grains_overlap(medium);
   const double x0 = start_of(a, medium);
-  // First the whole run (deterministic), to know its length; then a replay that draws frames.
-  Simulation sim(a.droplet, medium);
-  const RunSummary whole = sim.run(x0, a.run);
+  // First the whole run (deterministic), to know its length; then the same run again, recording
+  // the ring at each frame's step and the path, from which the frames are drawn (the run's own
+  // steps, shaking included).
+  const RunSummary whole = Simulation(a.droplet, medium).run(x0, a.run);
   const double steps_per_frame = a.speed / (a.fps * a.droplet.dt);
   const int frames = static_cast<int>(std::ceil(static_cast<double>(whole.steps) / steps_per_frame)) + 1;
   if (frames > a.max_frames)
     throw std::invalid_argument("max-frames = " + std::to_string(a.max_frames) + ": the run needs " +
                                 std::to_string(frames) + " frames at --speed " + fmt(a.speed) + " and --fps " +
                                 fmt(a.fps));
-  sim.place_above(x0);
+  RunOptions recorded = a.run;
+  recorded.path_interval = 10;
+  recorded.snapshot_times.clear();
+  for (int f = 0; f < frames; ++f)
+    recorded.snapshot_times.push_back(
+        static_cast<double>(std::min<std::int64_t>(whole.steps, std::llround(f * steps_per_frame))) * a.droplet.dt);
+  Simulation sim(a.droplet, medium);
+  const RunSummary run = sim.run(x0, recorded);
   const double top_room = sim.start_height() - medium.height + 1.6 * a.droplet.radius;
-  std::int64_t done = 0;
-  std::vector<double> path_x, path_y;
   const Rgba droplet = parse_colour(a.droplet_colour), path = parse_colour(a.path_colour);
+  std::size_t path_points = 0;
   Progress progress("render: frames");
   render_animation(
       frames, a.fps,
       [&](int f, Scene& scene) {
-        const auto target = std::min<std::int64_t>(whole.steps, std::llround(f * steps_per_frame));
-        while (done < target) {
-          sim.step();
-          ++done;
-          if (done % 10 == 0) {
-            double cx, cy;
-            sim.centre_of_mass(&cx, &cy);
-            path_x.push_back(cx);
-            path_y.push_back(cy);
-          }
+        const Snapshot& sn = run.snapshots[static_cast<std::size_t>(
+            std::min<std::size_t>(static_cast<std::size_t>(f), run.snapshots.size() - 1))];
+        while (path_points < run.path_t.size() && run.path_t[path_points] <= sn.time) ++path_points;
+        // A shaken medium is drawn as it moves, A (1 - cos 2 pi f t) from where it was, and the
+        // droplet and its path with it (the run's coordinates are the medium's).
+        double dx = 0, dy = 0;
+        if (a.droplet.vibrates() && sn.time >= run.shaken_at) {
+          const double d = a.droplet.vibration_amplitude *
+                           (1 - std::cos(2 * M_PI * a.droplet.vibration_frequency * (sn.time - run.shaken_at)));
+          dx = a.droplet.vibration_axis == VibrationAxis::y ? 0.0 : d;
+          dy = a.droplet.vibration_axis == VibrationAxis::x ? 0.0 : d;
         }
         scene.medium = medium;
+        for (Grain& g : scene.medium.grains) g.x += dx, g.y += dy;
         scene.top_room = top_room;
-        scene.lines.push_back(path_line(path_x, path_y, path, 1.5));
-        Polyline ring = path_line(sim.state().x, sim.state().y, droplet, 2);
+        std::vector<double> px(run.path_x.begin(), run.path_x.begin() + static_cast<std::ptrdiff_t>(path_points));
+        std::vector<double> py(run.path_y.begin(), run.path_y.begin() + static_cast<std::ptrdiff_t>(path_points));
+        for (double& v : px) v += dx;
+        for (double& v : py) v += dy;
+        scene.lines.push_back(path_line(px, py, path, 1.5));
+        Polyline ring = path_line(sn.x, sn.y, droplet, 2);
         ring.closed = true;
         ring.fill = Rgba{droplet.r, droplet.g, droplet.b, 0.25};
-        double cx, cy;
-        sim.centre_of_mass(&cx, &cy);
+        double cx = 0;
+        for (double& v : ring.x) v += dx, cx += v / static_cast<double>(ring.x.size());
+        for (double& v : ring.y) v += dy;
         if (medium.periodic) {
           const double shift = std::floor(cx / medium.width) * medium.width;
           for (double& x : ring.x) x -= shift;
         }
         scene.lines.push_back(std::move(ring));
-        scene.caption = "t = " + fmt(static_cast<double>(done) * a.droplet.dt, 3) + " (" + to_string(whole.outcome) +
-                        (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") + ")";
+        scene.caption = "t = " + fmt(sn.time, 3) + " (" + to_string(whole.outcome) +
+                        (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") +
+                        (sn.time >= run.shaken_at ? "; shaken since t = " + fmt(run.shaken_at, 3) : "") + ")";
         if (!a.quiet) progress.update(f + 1, frames);
       },
       style, a.output);

@@ -85,10 +85,12 @@ nlohmann::json run_json(const RunSummary& r, int i) {
           {"outcome", to_string(r.outcome)},
           {"reason", r.reason},
           {"tortuosity", r.outcome == Outcome::passed ? nlohmann::json(r.tortuosity) : nlohmann::json()},
+          {"route_tortuosity", r.outcome == Outcome::passed ? nlohmann::json(r.route_tortuosity) : nlohmann::json()},
           {"steps", r.steps},
           {"touched", r.touched.size()},
           {"min_area_ratio", r.min_area_ratio},
-          {"max_penetration", r.max_penetration}};
+          {"max_penetration", r.max_penetration},
+          {"shaken_at", std::isnan(r.shaken_at) ? nlohmann::json() : nlohmann::json(r.shaken_at)}};
 }
 
 }  // namespace
@@ -174,11 +176,14 @@ int run_simulate(SimulateArgs& a) {
     for (std::size_t i = 0; i < runs.size(); ++i) rows(out, static_cast<int>(i), runs[i]);
     write_file_atomically(path, out.str());
   };
-  csv(a.runs_csv, "droplet,start_x,outcome,tortuosity,steps,touched,min_area_ratio,max_penetration",
+  csv(a.runs_csv,
+      "droplet,start_x,outcome,tortuosity,steps,touched,min_area_ratio,max_penetration,shaken_at,route_tortuosity",
       [](std::ostream& o, int i, const RunSummary& r) {
         o << i << ',' << fmt(r.start_x) << ',' << to_string(r.outcome) << ','
           << (r.outcome == Outcome::passed ? fmt(r.tortuosity) : "") << ',' << r.steps << ',' << r.touched.size() << ','
-          << fmt(r.min_area_ratio) << ',' << fmt(r.max_penetration) << '\n';
+          << fmt(r.min_area_ratio) << ',' << fmt(r.max_penetration) << ','
+          << (std::isnan(r.shaken_at) ? "" : fmt(r.shaken_at)) << ','
+          << (r.outcome == Outcome::passed ? fmt(r.route_tortuosity) : "") << '\n';
       });
   csv(a.paths_csv, "droplet,time,x,y", [](std::ostream& o, int i, const RunSummary& r) {
     for (std::size_t k = 0; k < r.path_t.size(); ++k)

@@ -147,7 +147,23 @@ bool DropletParams::IsValid(std::string* why) const {
                          ": too large for the ring's fastest mode, 4 ks dt^2 / mass + 2 (4 kd / mass + " +
                          "nu_rate) dt = " + num(a + 2 * b) + " must be < 4 (nu_rate = " + num(viscous_rate()) +
                          ", the viscosity as the step applies it)");
+  if (vibrates() && !(vibration_frequency > 0))
+    return fail(why, "vibration-frequency = " + num(vibration_frequency) +
+                         ": must be > 0 when vibration-amplitude = " + num(vibration_amplitude) + " shakes the medium");
+  // The cosine is sampled once a step; fewer than 20 samples a period would shake with another
+  // waveform than the one asked for.
+  if (vibrates() && vibration_frequency * dt > 0.05)
+    return fail(why, "vibration-frequency = " + num(vibration_frequency) + ", dt = " + num(dt) + ": a period of " +
+                         num(1 / (vibration_frequency * dt)) + " steps; it must span at least 20");
   return true;
+}
+
+void DropletParams::vibration_acceleration(double t, double* ax, double* ay) const {
+  // The grains' acceleration is A w^2 cos(w t); in their frame each mass feels its opposite.
+  const double w = 2 * M_PI * vibration_frequency;
+  const double a = -vibration_amplitude * w * w * std::cos(w * t);
+  *ax = vibration_axis == VibrationAxis::y ? 0.0 : a;
+  *ay = vibration_axis == VibrationAxis::x ? 0.0 : a;
 }
 
 void DropletState::resize(int n) {
@@ -189,5 +205,20 @@ void parse_name(const std::string& name, ConstraintOrder* value) { *value = pars
 void parse_name(const std::string& name, ViscosityStep* value) { *value = parse_viscosity_step(name); }
 std::vector<std::string> value_names(ConstraintOrder) { return constraint_order_names(); }
 std::vector<std::string> value_names(ViscosityStep) { return detail::name_list(kViscositySteps); }
+
+constexpr detail::EnumName<VibrationAxis> kVibrationAxes[] = {
+    {VibrationAxis::x, "x"}, {VibrationAxis::y, "y"}, {VibrationAxis::xy, "xy"}};
+constexpr detail::EnumName<VibrationStart> kVibrationStarts[] = {{VibrationStart::rest, "rest"},
+                                                                 {VibrationStart::start, "start"}};
+const char* to_string(VibrationAxis axis) { return detail::name_of(kVibrationAxes, axis); }
+const char* to_string(VibrationStart start) { return detail::name_of(kVibrationStarts, start); }
+void parse_name(const std::string& name, VibrationAxis* value) {
+  *value = detail::parse_name(kVibrationAxes, name, "vibration-axis");
+}
+void parse_name(const std::string& name, VibrationStart* value) {
+  *value = detail::parse_name(kVibrationStarts, name, "vibration-start");
+}
+std::vector<std::string> value_names(VibrationAxis) { return detail::name_list(kVibrationAxes); }
+std::vector<std::string> value_names(VibrationStart) { return detail::name_list(kVibrationStarts); }
 
 }  // namespace softdrop

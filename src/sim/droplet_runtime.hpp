@@ -3,6 +3,7 @@
 // the grains it touched, the contact limit's records for the next step, and its slot in the
 // lane-by-lane block that stepped it last. Private to the library (Simulation::runtime()).
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -21,6 +22,23 @@ struct BlockSlot {
   double cx = 0, cy = 0;
 };
 
+// The shaken medium's inertial force on each mass for the next step (the vibration stage), set
+// by the run between steps. A force per mass, all equal, so that a block of droplets adds each
+// lane's as it adds the contact limit's records (the same additions as one ring's).
+struct ShakeForce {
+  bool on = false;  ///< the medium shakes: the vibration stage adds fx, fy
+  std::vector<double> fx, fy;
+
+  /// On, with the force on each of n masses of parameters p, t time units after the shaking began.
+  void set(const DropletParams& p, int n, double t) {
+    double ax = 0, ay = 0;
+    p.vibration_acceleration(t, &ax, &ay);
+    on = true;
+    fx.assign(static_cast<std::size_t>(n), p.mass * ax);
+    fy.assign(static_cast<std::size_t>(n), p.mass * ay);
+  }
+};
+
 struct DropletRuntime {
   DropletState state;
   double area = 0;                    ///< the ring's area as the pressure stage measured it (length^2)
@@ -29,6 +47,7 @@ struct DropletRuntime {
   std::vector<double> spring_force;   ///< the spring stage's scratch: four arrays of one per spring
   ContactCache contact;               ///< the contact limit's records, for the next step
   BlockSlot block;
+  ShakeForce shake;
 
   /// The step's validity test of the state it left: the area the pressure stage measured is finite
   /// and positive.

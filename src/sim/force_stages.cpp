@@ -25,6 +25,15 @@ void gravity_stage(const DropletModel& m, DropletRuntime& r) {
   std::fill(r.state.fy.begin(), r.state.fy.end(), w);
 }
 
+void vibration_stage(const DropletModel&, DropletRuntime& r) {
+  // The additions of the lane block's add_in, one lane.
+  const std::size_t n = r.state.fx.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    r.state.fx[i] += r.shake.fx[i];
+    r.state.fy[i] += r.shake.fy[i];
+  }
+}
+
 void springs_stage(const DropletModel& m, DropletRuntime& r) {
   // Two passes: the force of every spring (independent; eight at a time with AVX or AVX-512, the
   // kernel the lane-by-lane step uses, where constraint_vector_width() allows), then each mass

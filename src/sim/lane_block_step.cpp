@@ -38,6 +38,12 @@ std::uint64_t new_block_id() {
   }
   return next++;
 }
+// n doubles of -0, a force that changes no double it is added to (the thread's own array).
+const double* minus_zeros(int n) {
+  thread_local std::vector<double> zeros;
+  if (zeros.size() < static_cast<std::size_t>(n)) zeros.assign(static_cast<std::size_t>(n), -0.0);
+  return zeros.data();
+}
 }  // namespace
 
 // The block as a layout of the step (step_driver.hpp): droplets sims[0..count) of one set of
@@ -62,6 +68,11 @@ struct LaneBlockStep::Layout {
       : sims(s), count(c), n(masses), registers(regs), L(8 * regs), k(constants), p(params) {}
 
   bool damped() const { return k.damped; }
+  bool shaken() const {
+    for (int t = 0; t < count; ++t)
+      if (sims[t]->runtime().shake.on) return true;
+    return false;
+  }
   template <StepStage S>
   void stage();
 };
@@ -77,16 +88,30 @@ template <>
 void LaneBlockStep::Layout::stage<StepStage::pressure>() {}  // in the gravity stage's pass
 
 template <>
+void LaneBlockStep::Layout::stage<StepStage::vibration>() {
+  // Each lane's force added as the one-ring stage adds it (padding lanes repeat the last
+  // droplet's); -0, which changes no double, for a lane whose medium does not shake.
+  const double* no_force = minus_zeros(n);
+  const double* shake[2][lanes::kMaxLanes];
+  for (int t = 0; t < L; ++t) {
+    const ShakeForce& f = sims[std::min(t, count - 1)]->runtime().shake;
+    shake[0][t] = f.on ? f.fx.data() : no_force;
+    shake[1][t] = f.on ? f.fy.data() : no_force;
+  }
+  lanes::add_in(shake[0], block[4], n, registers);
+  lanes::add_in(shake[1], block[5], n, registers);
+}
+
+template <>
 void LaneBlockStep::Layout::stage<StepStage::collisions>() {
   // First the forces the contact limit recorded, for every lane whose droplet's records are
   // current (-0, which changes no double, for the others), then each droplet's own.
-  thread_local std::vector<double> no_force;
-  if (no_force.size() < static_cast<std::size_t>(n)) no_force.assign(static_cast<std::size_t>(n), -0.0);
+  const double* no_force = minus_zeros(n);
   const double* recorded[2][lanes::kMaxLanes];
   for (int t = 0; t < L; ++t) {
     const ContactCache& contact = sims[std::min(t, count - 1)]->runtime().contact;
-    recorded[0][t] = contact.current ? contact.fx.data() : no_force.data();
-    recorded[1][t] = contact.current ? contact.fy.data() : no_force.data();
+    recorded[0][t] = contact.current ? contact.fx.data() : no_force;
+    recorded[1][t] = contact.current ? contact.fy.data() : no_force;
   }
   lanes::add_in(recorded[0], block[4], n, registers);
   lanes::add_in(recorded[1], block[5], n, registers);

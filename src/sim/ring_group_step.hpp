@@ -19,9 +19,10 @@ struct RingGroup {
   std::vector<DropletState*>* rings = nullptr;  // the constraint's scratch
   std::vector<int>* corrections = nullptr;      // the constraint's scratch
 
-  // The rings may have different parameters: each ring's own pass through the driver decides
-  // whether its viscosity stage runs.
+  // The rings may have different parameters and shaking: each ring's own pass through the driver
+  // decides whether its viscosity and vibration stages run.
   bool damped() const { return true; }
+  bool shaken() const { return true; }
   template <StepStage S>
   void stage() {
     if constexpr (S == StepStage::constraint) {

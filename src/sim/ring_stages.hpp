@@ -15,6 +15,9 @@ void gravity_stage(const DropletModel& m, DropletRuntime& r);
 void springs_stage(const DropletModel& m, DropletRuntime& r);
 /// The gas, P = nRT / S, P l_e on each edge's outward normal; measures the area S (r.area).
 void pressure_stage(const DropletModel& m, DropletRuntime& r);
+/// The shaken medium's inertial force on each mass, r.shake (the driver runs it only while
+/// r.shake.on).
+void vibration_stage(const DropletModel& m, DropletRuntime& r);
 /// Grain and wall contacts (penalty and damping) and the touched set, mass i's force added to
 /// fx[i * stride], fy[i * stride]. Right after the contact limit it adds the forces that stage
 /// recorded (unless recorded_added: the caller has added them itself) and looks at the masses it

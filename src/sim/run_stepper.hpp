@@ -43,8 +43,11 @@ class RunStepper {
     for (double t : options.snapshot_times) snapshot_steps_.push_back(std::llround(t / dt_));
     std::sort(snapshot_steps_.begin(), snapshot_steps_.end());
     record(0);
-    entered_ = cy_ < H_;
+    path_.entered = cy_ < H_;
     checkpoint_y_ = cy_;
+    next_stuck_check_ = window_;
+    r_.shake.on = false;
+    if (m_.params.vibrates() && m_.params.vibration_start == VibrationStart::start) start_shaking(0);
   }
 
   bool finished() const { return finished_; }
@@ -69,22 +72,18 @@ class RunStepper {
     }
     s_.min_area_ratio = std::min(s_.min_area_ratio, r_.area / m_.area0);
     s_.max_penetration = std::max(s_.max_penetration, r_.last_penetration);
-    // Path length inside the medium, with the crossings of y = H and y = 0 interpolated.
-    if (!entered_ && cy_ < H_) {
-      entered_ = true;
-      const double f = (pcy - H_) / (pcy - cy_);
-      s_.path_length += step_detail::distance(pcx + f * (cx_ - pcx), H_, cx_, cy_);
-    } else if (entered_) {
-      if (cy_ < 0) {
-        const double f = pcy / (pcy - cy_);
-        s_.path_length += step_detail::distance(pcx, pcy, pcx + f * (cx_ - pcx), 0);
-      } else {
-        s_.path_length += step_detail::distance(pcx, pcy, cx_, cy_);
-      }
+    path_.add(pcx, pcy, cx_, cy_, H_);
+    if (shaking_ && (cy_ < 0 || static_cast<double>(k - shaking_from_) * dt_ * m_.params.vibration_frequency >=
+                                    static_cast<double>(periods_))) {
+      // The route: the centre once a shaking period (at the first step of each), and where it left.
+      route_.add(route_x_, route_y_, cx_, cy_, H_);
+      route_x_ = cx_, route_y_ = cy_;
+      ++periods_;
     }
     record(k);
     if (cy_ < 0) {
-      s_.tortuosity = s_.path_length / H_;
+      s_.tortuosity = path_.length / H_;
+      s_.route_tortuosity = shaking_ ? route_.length / H_ : s_.tortuosity;
       return finish(Outcome::passed, "centre of mass left the medium at y = 0", k);
     }
     if (k % o_.check_interval == 0) {
@@ -96,21 +95,26 @@ class RunStepper {
         return finish(Outcome::diverged, "a grain got inside the ring at step " + std::to_string(k), k);
       }
     }
-    if (k % window_ == 0) {
+    if (k == next_stuck_check_) {
+      next_stuck_check_ += window_;
       if (checkpoint_y_ - cy_ < o_.stuck_distance) {
+        if (shaking_pending()) return start_shaking(k);
         std::ostringstream r;
         r << "centre of mass moved down " << checkpoint_y_ - cy_ << " < " << o_.stuck_distance << " in the last "
-          << o_.stuck_window << " time units, at y = " << cy_;
+          << o_.stuck_window << " time units, at y = " << cy_ << (shaking_ ? " while the medium shook" : "");
         return finish(Outcome::stuck, r.str(), k);
       }
       checkpoint_y_ = cy_;
     }
-    if (rest_window_ > 0) {
+    // While the medium shakes, the droplet's travel is mostly the shaking's: the stuck test alone
+    // judges its progress.
+    if (rest_window_ > 0 && !shaking_) {
       // The centre's travel in any direction: a droplet bouncing off a grain travels far while
       // making no net progress, and is not at rest.
       rest_travel_ += step_detail::distance(pcx, pcy, cx_, cy_);
       if (k % rest_window_ == 0) {
         if (rest_travel_ < o_.rest_distance) {
+          if (shaking_pending()) return start_shaking(k);
           std::ostringstream r;
           r << "at rest: centre of mass travelled " << rest_travel_ << " < " << o_.rest_distance << " in the last "
             << o_.rest_window << " time units, at y = " << cy_;
@@ -119,8 +123,9 @@ class RunStepper {
         rest_travel_ = 0;
       }
     }
-    if (k == o_.max_steps)
-      finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent", k);
+    if (k >= o_.max_steps)  // (>=: a step that starts the shaking skips this test)
+      return finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent", k);
+    if (shaking_) shake_for_step(k);
   }
 
   RunSummary take() { return std::move(s_); }
@@ -142,8 +147,30 @@ class RunStepper {
       ++next_snapshot_;
     }
   }
+  // The medium shakes from rest and has not begun to.
+  bool shaking_pending() const {
+    return !shaking_ && m_.params.vibrates() && m_.params.vibration_start == VibrationStart::rest;
+  }
+  // The medium begins to shake after step k: the stuck test's window starts again from here.
+  void start_shaking(std::int64_t k) {
+    shaking_ = true;
+    shaking_from_ = k;
+    s_.shaken_at = static_cast<double>(k) * dt_;
+    route_ = path_;
+    route_x_ = cx_, route_y_ = cy_;
+    periods_ = 1;
+    checkpoint_y_ = cy_;
+    next_stuck_check_ = k + window_;
+    shake_for_step(k);
+  }
+  // The shaking's force for the step after step k, at the time that step begins.
+  void shake_for_step(std::int64_t k) {
+    r_.shake.set(m_.params, r_.state.size(), static_cast<double>(k - shaking_from_) * dt_);
+  }
   void finish(Outcome o, std::string reason, std::int64_t k) {
     finished_ = true;
+    s_.path_length = path_.length;
+    r_.shake.on = false;  // steps after the run do not shake
     s_.outcome = o;
     s_.reason = std::move(reason);
     s_.steps = k;
@@ -163,9 +190,16 @@ class RunStepper {
   RunSummary s_;
   double dt_ = 0, H_ = 0, cx_ = 0, cy_ = 0, checkpoint_y_ = 0, rest_travel_ = 0;
   std::int64_t window_ = 1, rest_window_ = 0, k_ = 0;
+  std::int64_t next_stuck_check_ = 1, shaking_from_ = 0;  // the stuck test's next step; the shaking's first
+  bool shaking_ = false;
   std::vector<std::int64_t> snapshot_steps_;
   std::size_t next_snapshot_ = 0;
-  bool entered_ = false, finished_ = false;
+  bool finished_ = false;
+  step_detail::PathInMedium path_;  // the centre's path, every step
+  // From the shaking's start, the route: the path sampled once a shaking period.
+  step_detail::PathInMedium route_;
+  double route_x_ = 0, route_y_ = 0;
+  std::int64_t periods_ = 1;
 };
 
 }  // namespace softdrop

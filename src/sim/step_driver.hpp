@@ -6,6 +6,8 @@
 //   bool damped() const         whether its droplets have internal viscosity (the viscosity stage
 //                               runs only then; a layout of droplets of several parameters says
 //                               true and lets each droplet's own pass decide)
+//   bool shaken() const         whether the medium shakes for any of its droplets (the vibration
+//                               stage runs only then)
 //   template <StepStage S> void stage()
 //                               stage S for every droplet of the layout
 // The layouts: one ring (OneRing, below), a block of droplets in vector lanes (lane_block_step.cpp)
@@ -25,6 +27,9 @@ template <class Layout, StepStage S>
 void run_stage(Layout& layout) {
   if constexpr (S == StepStage::viscosity) {
     if (!layout.damped()) return;
+  }
+  if constexpr (S == StepStage::vibration) {
+    if (!layout.shaken()) return;
   }
   layout.template stage<S>();
 }
@@ -56,10 +61,13 @@ struct OneRing {
 
   explicit OneRing(Simulation& sim) : m(sim.model()), r(sim.runtime()) {}
   bool damped() const { return m.context.damped; }
+  bool shaken() const { return r.shake.on; }
   template <StepStage S>
   void stage() {
     if constexpr (S == StepStage::gravity)
       gravity_stage(m, r);
+    else if constexpr (S == StepStage::vibration)
+      vibration_stage(m, r);
     else if constexpr (S == StepStage::springs)
       springs_stage(m, r);
     else if constexpr (S == StepStage::pressure)

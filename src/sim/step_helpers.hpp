@@ -21,4 +21,27 @@ inline bool within_walls(double x, bool periodic, double W) { return periodic ||
 // Length of the segment from (ax, ay) to (bx, by).
 inline double distance(double ax, double ay, double bx, double by) { return std::hypot(bx - ax, by - ay); }
 
+// The length of a polyline's part inside the medium, 0 <= y < H, its crossings of y = H and y = 0
+// interpolated: the path length of a run's centre of mass.
+struct PathInMedium {
+  double length = 0;
+  bool entered = false;  // a point was below H
+
+  // The segment from (px, py) to (x, y).
+  void add(double px, double py, double x, double y, double H) {
+    if (!entered && y < H) {
+      entered = true;
+      const double f = (py - H) / (py - y);
+      length += distance(px + f * (x - px), H, x, y);
+    } else if (entered) {
+      if (y < 0) {
+        const double f = py / (py - y);
+        length += distance(px, py, px + f * (x - px), 0);
+      } else {
+        length += distance(px, py, x, y);
+      }
+    }
+  }
+};
+
 }  // namespace softdrop::step_detail

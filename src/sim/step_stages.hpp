@@ -18,6 +18,7 @@ enum class StepStage : std::uint8_t {
   gravity,        ///< the forces cleared to each mass's weight m g
   springs,        ///< damped springs along the ring: k_s (d - d0) + k_d (relative velocity)
   pressure,       ///< the gas, P = nRT / S, on each edge along its outward normal
+  vibration,      ///< the shaken medium's inertial force on each mass (only while it shakes)
   collisions,     ///< penalty and damping against grains and walls; the touched grains
   viscosity,      ///< internal viscosity relative to the rigid motion (only where ν > 0); last of the forces
   integrate,      ///< position Verlet
@@ -26,14 +27,14 @@ enum class StepStage : std::uint8_t {
 };
 
 /// Every stage of a step, in order.
-inline constexpr std::array<StepStage, 8> kStepStages{
-    StepStage::gravity,   StepStage::springs,   StepStage::pressure,   StepStage::collisions,
+inline constexpr std::array<StepStage, 9> kStepStages{
+    StepStage::gravity,   StepStage::springs,   StepStage::pressure,   StepStage::vibration,    StepStage::collisions,
     StepStage::viscosity, StepStage::integrate, StepStage::constraint, StepStage::contact_limit};
 
 // The implicit viscosity step damps the velocity after every other force of the step, which it
 // reads from the force arrays: viscosity must come after the other force stages, just before
 // the integration.
-static_assert(kStepStages[4] == StepStage::viscosity && kStepStages[5] == StepStage::integrate,
+static_assert(kStepStages[5] == StepStage::viscosity && kStepStages[6] == StepStage::integrate,
               "the viscosity stage must be the last force stage (the implicit step reads the others' forces)");
 
 /// The stage's name, as above ("gravity", ..., "contact_limit").

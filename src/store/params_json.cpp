@@ -11,13 +11,14 @@ namespace {
 // Keys added after files already existed. A missing one reads as what older builds did: the
 // default for the constraint order, the explicit viscosity step, the viscosity's share on dilation
 // (1), the strategy (paper) and its options, no rest test (0) for the rest test's keys, a sweep's
-// media from the calibration stream (the only one there was).
+// media from the calibration stream (the only one there was), and no shaking (the defaults of the
+// vibration's keys).
 bool optional_key(const std::string& key) {
   return key == "constraint-order" || key == "rest-window" || key == "rest-distance" || key == "strategy" ||
          key == "target-success" || key == "history-length" || key == "temperature" || key == "half-life" ||
          key == "sigma" || key == "relocate-every" || key == "viscosity-dilation" || key == "viscosity-step" ||
          key == "objective" || key == "starts" || key == "quantile" || key == "se-factor" || key == "margin" ||
-         key == "media-stream";
+         key == "media-stream" || key.rfind("vibration-", 0) == 0;
 }
 // The stored enums go through the same names as the command line (their to_string and parse), so
 // an unknown stored name is refused in the parse's words instead of read as the first value.

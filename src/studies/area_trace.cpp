@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "sim/droplet_runtime.hpp"
 namespace softdrop {
 
 AreaTrace trace_area(const DropletParams& params, const Medium& medium, double x0, const RunOptions& run,
@@ -21,7 +22,13 @@ AreaTrace trace_area(const DropletParams& params, const Medium& medium, double x
   constexpr std::int64_t kFollow = 20000;  // steps to follow a passed droplet out of the medium
   const std::int64_t end = trace.run.outcome == Outcome::passed ? trace.run.steps + kFollow : trace.run.steps;
   double lo_ratio = INFINITY, hi_ratio = -INFINITY;
+  // A shaken medium shakes the replay as it shook the run: each step after the one it began at,
+  // with the force the run gave that step (and on while the trace follows a passed droplet out).
+  const bool shaken = !std::isnan(trace.run.shaken_at);
+  const std::int64_t shaken_after = shaken ? std::llround(trace.run.shaken_at / params.dt) : 0;
   for (std::int64_t step = 0; step <= end; ++step) {
+    if (shaken && step > shaken_after)
+      sim.runtime().shake.set(params, sim.state().size(), static_cast<double>(step - 1 - shaken_after) * params.dt);
     if (step > 0 && !sim.step()) break;
     const DropletState& st = sim.state();
     const double lowest = *std::min_element(st.y.begin(), st.y.end());

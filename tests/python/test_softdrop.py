@@ -4,6 +4,7 @@ import json
 import math
 import os
 import pathlib
+import pickle
 import subprocess
 import sys
 
@@ -137,6 +138,9 @@ def test_many_droplets_are_the_programs_rows(tmp_path):
     assert frame["outcome"].tolist() == theirs["outcome"].tolist()
     passed = frame["outcome"] == "passed"
     assert frame.loc[passed, "tortuosity"].tolist() == theirs.loc[passed, "tortuosity"].tolist()
+    # Never shaken: no shaking time, and the route is the path.
+    assert frame["shaken_at"].isna().all() and theirs["shaken_at"].isna().all()
+    assert frame.loc[passed, "route_tortuosity"].tolist() == frame.loc[passed, "tortuosity"].tolist()
     assert frame.loc[~passed, "tortuosity"].isna().all()
     assert frame.dtypes["steps"] == np.int64 and frame.dtypes["tortuosity"] == np.float64
 
@@ -394,3 +398,22 @@ def test_a_bad_image_gets_one_line_naming_it(image, says):
         softdrop.tortuosity(image)
     with pytest.raises(ValueError, match="pixel_size"):
         softdrop.tortuosity(np.ones((4, 4), dtype=bool), pixel_size=float("nan"))
+
+
+def test_a_shaken_medium_frees_a_droplet_at_rest(tmp_path):
+    # Two overlapping grains make a closed V that holds the droplet; shaken sideways from when it
+    # comes to rest, it climbs out (tests/vibration_test.cpp has the same pocket).
+    pocket = tmp_path / "v.json"
+    pocket.write_text(json.dumps({"format": "softdrop-medium", "version": 1, "width": 200, "height": 120,
+                                  "periodic": True, "grains": [{"x": 80, "y": 60, "r": 30},
+                                                               {"x": 120, "y": 60, "r": 30}]}))
+    still = softdrop.simulate(pocket, x0=100)
+    assert still.outcome == "stuck" and math.isnan(still.shaken_at)
+    params = softdrop.DropletParams(vibration_amplitude=4.0, vibration_frequency=100.0, vibration_axis="x")
+    assert pickle.loads(pickle.dumps(params)) == params and "vibration_amplitude=4.0" in repr(params)
+    freed = softdrop.simulate(pocket, x0=100, params=params)
+    assert freed.outcome == "passed"
+    assert freed.shaken_at == pytest.approx(still.steps * params.dt, rel=1e-12)
+    assert 1 < freed.route_tortuosity < freed.tortuosity
+    with pytest.raises(ValueError, match="vibration-axis"):
+        params.vibration_axis = "z"
