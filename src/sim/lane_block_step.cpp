@@ -75,6 +75,25 @@ struct LaneBlockStep::Layout {
   }
   template <StepStage S>
   void stage();
+
+  // A droplet's force on each of its masses, x and y; null: none.
+  struct LaneForce {
+    const double *fx = nullptr, *fy = nullptr;
+  };
+  // Adds force_of(runtime) to each lane's masses in the block's forces (padding lanes take the
+  // last droplet's); a lane without one gets -0, which changes no double.
+  template <class ForceOf>
+  void add_lane_forces(ForceOf&& force_of) {
+    const double* no_force = minus_zeros(n);
+    const double* f[2][lanes::kMaxLanes];
+    for (int t = 0; t < L; ++t) {
+      const LaneForce lane = force_of(sims[std::min(t, count - 1)]->runtime());
+      f[0][t] = lane.fx ? lane.fx : no_force;
+      f[1][t] = lane.fy ? lane.fy : no_force;
+    }
+    lanes::add_in(f[0], block[4], n, registers);
+    lanes::add_in(f[1], block[5], n, registers);
+  }
 };
 
 template <>
@@ -89,32 +108,19 @@ void LaneBlockStep::Layout::stage<StepStage::pressure>() {}  // in the gravity s
 
 template <>
 void LaneBlockStep::Layout::stage<StepStage::vibration>() {
-  // Each lane's force added as the one-ring stage adds it (padding lanes repeat the last
-  // droplet's); -0, which changes no double, for a lane whose medium does not shake.
-  const double* no_force = minus_zeros(n);
-  const double* shake[2][lanes::kMaxLanes];
-  for (int t = 0; t < L; ++t) {
-    const ShakeForce& f = sims[std::min(t, count - 1)]->runtime().shake;
-    shake[0][t] = f.on ? f.fx.data() : no_force;
-    shake[1][t] = f.on ? f.fy.data() : no_force;
-  }
-  lanes::add_in(shake[0], block[4], n, registers);
-  lanes::add_in(shake[1], block[5], n, registers);
+  // Each lane's force added as the one-ring stage adds it.
+  add_lane_forces([](const DropletRuntime& r) {
+    return r.shake.on ? LaneForce{r.shake.fx.data(), r.shake.fy.data()} : LaneForce{};
+  });
 }
 
 template <>
 void LaneBlockStep::Layout::stage<StepStage::collisions>() {
   // First the forces the contact limit recorded, for every lane whose droplet's records are
-  // current (-0, which changes no double, for the others), then each droplet's own.
-  const double* no_force = minus_zeros(n);
-  const double* recorded[2][lanes::kMaxLanes];
-  for (int t = 0; t < L; ++t) {
-    const ContactCache& contact = sims[std::min(t, count - 1)]->runtime().contact;
-    recorded[0][t] = contact.current ? contact.fx.data() : no_force;
-    recorded[1][t] = contact.current ? contact.fy.data() : no_force;
-  }
-  lanes::add_in(recorded[0], block[4], n, registers);
-  lanes::add_in(recorded[1], block[5], n, registers);
+  // current, then each droplet's own.
+  add_lane_forces([](const DropletRuntime& r) {
+    return r.contact.current ? LaneForce{r.contact.fx.data(), r.contact.fy.data()} : LaneForce{};
+  });
   for (int t = 0; t < count; ++t) {
     DropletRuntime& r = sims[t]->runtime();
     r.area = area[t];
