@@ -23,7 +23,9 @@ __all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "s
 class Result(dict):
     """One droplet's run: outcome, reason, tortuosity (NaN unless passed), steps, start_x,
     touched (how many grains it touched) and touched_grains (their indices), min_area_ratio,
-    max_penetration, and path and trace if asked (see simulate). The names are the program's
+    max_penetration, shaken_at (when a shaken medium began to shake; NaN: never) and
+    route_tortuosity (T of the path taken once a shaking period; T itself if never shaken), and
+    path and trace if asked (see simulate). The names are the program's
     (softdrop.columns() lists them). Keys read as attributes too: run.tortuosity."""
 
     def __getattr__(self, name):
