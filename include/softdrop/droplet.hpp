@@ -112,7 +112,8 @@ struct DropletParams {
   double vibration_amplitude = 0.0;
   double vibration_frequency = 0.0;  ///< f (1/time); a period must span at least 20 steps
   VibrationAxis vibration_axis = VibrationAxis::x;
-  /// When the shaking begins. From rest, the run's rest test starts it instead of ending the run,
+  /// When the shaking begins. From rest, the run's first rest or stuck verdict starts it instead of
+  /// ending the run,
   /// and the stuck test alone (no net descent of stuck_distance within stuck_window) then ends a
   /// droplet that shaking does not free.
   VibrationStart vibration_start = VibrationStart::rest;
@@ -122,6 +123,9 @@ struct DropletParams {
   /// The inertial acceleration the shaking gives each mass in the medium's frame, t time units
   /// after it began: -A (2 pi f)^2 cos(2 pi f t) on each axis it shakes (length / time^2).
   void vibration_acceleration(double t, double* ax, double* ay) const;
+  /// How far the shaking has moved the medium t time units after it began: A (1 - cos 2 pi f t) on
+  /// each axis it shakes (length).
+  void vibration_displacement(double t, double* dx, double* dy) const;
 
   /// Rest length of a spring: d0 = 2 R sin(pi/N) / (1 + max_strain), so the ring at its stretch
   /// limit is the regular N-gon inscribed in the circle of radius R.
@@ -243,7 +247,7 @@ void visit_droplet_fields(F&& f, Params&... p) {
   f(DropletField{"vibration-axis", U::contacts, "Shaking direction: x, y, or xy (both, in phase)"},
     p.vibration_axis...);
   f(DropletField{"vibration-start", U::contacts,
-                 "When shaking begins: rest (when the rest test first finds the droplet at rest) or start"},
+                 "When shaking begins: rest (when the run first finds the droplet at rest or stuck) or start"},
     p.vibration_start...);
 }
 

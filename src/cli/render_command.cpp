@@ -313,12 +313,8 @@ int render_animation_command(RenderArgs& a) {
         // A shaken medium is drawn as it moves, A (1 - cos 2 pi f t) from where it was, and the
         // droplet and its path with it (the run's coordinates are the medium's).
         double dx = 0, dy = 0;
-        if (a.droplet.vibrates() && sn.time >= run.shaken_at) {
-          const double d = a.droplet.vibration_amplitude *
-                           (1 - std::cos(2 * M_PI * a.droplet.vibration_frequency * (sn.time - run.shaken_at)));
-          dx = a.droplet.vibration_axis == VibrationAxis::y ? 0.0 : d;
-          dy = a.droplet.vibration_axis == VibrationAxis::x ? 0.0 : d;
-        }
+        if (a.droplet.vibrates() && sn.time >= run.shaken_at)
+          a.droplet.vibration_displacement(sn.time - run.shaken_at, &dx, &dy);
         scene.medium = medium;
         for (Grain& g : scene.medium.grains) g.x += dx, g.y += dy;
         scene.top_room = top_room;

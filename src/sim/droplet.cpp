@@ -158,12 +158,22 @@ bool DropletParams::IsValid(std::string* why) const {
   return true;
 }
 
+namespace {
+// v on each axis the medium shakes along, 0 on the other.
+void along_axis(VibrationAxis axis, double v, double* x, double* y) {
+  *x = axis == VibrationAxis::y ? 0.0 : v;
+  *y = axis == VibrationAxis::x ? 0.0 : v;
+}
+}  // namespace
+
 void DropletParams::vibration_acceleration(double t, double* ax, double* ay) const {
   // The grains' acceleration is A w^2 cos(w t); in their frame each mass feels its opposite.
   const double w = 2 * M_PI * vibration_frequency;
-  const double a = -vibration_amplitude * w * w * std::cos(w * t);
-  *ax = vibration_axis == VibrationAxis::y ? 0.0 : a;
-  *ay = vibration_axis == VibrationAxis::x ? 0.0 : a;
+  along_axis(vibration_axis, -vibration_amplitude * w * w * std::cos(w * t), ax, ay);
+}
+
+void DropletParams::vibration_displacement(double t, double* dx, double* dy) const {
+  along_axis(vibration_axis, vibration_amplitude * (1 - std::cos(2 * M_PI * vibration_frequency * t)), dx, dy);
 }
 
 void DropletState::resize(int n) {
