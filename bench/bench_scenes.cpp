@@ -30,7 +30,10 @@
 // default). --width uses at most that vector width (8: AVX-512, 4: AVX, 2: SSE2, 1: scalar), to
 // time what a processor without AVX-512 runs. The last column, dropped_steps_per_kept, is a
 // speculating search's cost: the steps its dropped evaluations had taken, over the steps counted
-// (the kept evaluations').
+// (the kept evaluations'). two-droplets-079-1thread runs 24 pairs (simulate --second-droplet
+// distance) through a non-overlapping medium at phi 0.79, one pair at a time, and
+// one-droplet-079-1thread the same 24 first droplets alone: the ratio of their seconds is what a
+// second droplet costs.
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -148,6 +151,30 @@ Work sweep(int threads, int per_medium) {
   });
   w.seconds = since(t0);
   w.mass_updates = w.steps * o.droplet.masses;
+  return w;
+}
+
+// The two-droplet study's scene: `pairs` pairs through a non-overlapping medium at phi 0.79 (the
+// second released 40 below the first's start), or, alone, the same first droplets one at a time,
+// on one thread: what a second droplet costs (its steps and the ring-ring stages).
+Work two_droplets(const Medium& medium, int pairs, bool alone) {
+  const DropletParams p = scene_droplet;
+  Work w;
+  const auto t0 = Clock::now();
+  for (int i = 0; i < pairs; ++i) {
+    const double x0 = medium.width * (i + 0.5) / pairs;
+    if (alone) {
+      w.steps += static_cast<double>(Simulation(p, medium).run(x0, RunOptions{}).steps);
+      ++w.droplets;
+    } else {
+      const TwoDropletSummary s = run_two_droplets(p, medium, x0, RunOptions{}, SecondDroplet{});
+      w.steps += static_cast<double>(s.first.steps + s.second.steps);
+      w.droplets += 2;
+    }
+  }
+  w.seconds = since(t0);
+  w.mass_updates = w.steps * p.masses;
+  w.grains = static_cast<long>(medium.grains.size());
   return w;
 }
 
@@ -295,6 +322,11 @@ int main(int argc, char** argv) {
   if (droplet_name == "explicit") scene_droplet = DropletParams::explicit_step();
   if (droplet_name == "exponential") scene_droplet = DropletParams::exponential_step();
   const Medium m200 = bench::medium_200(500, r_min, r_max), m5000 = bench::medium_200(2500, r_min, r_max);
+  MediumOptions pair_options;  // the two-droplet study's case
+  pair_options.kind = MediumKind::non_overlapping;
+  pair_options.porosity = 0.79;
+  pair_options.r_min = r_min, pair_options.r_max = r_max;
+  const Medium m079 = generate_medium(pair_options);
   const std::vector<std::pair<std::string, std::function<Work()>>> scenes{
       {"free-fall", free_fall},
       {"medium-200", [&] { return stepping(m200, 300'000); }},
@@ -325,6 +357,8 @@ int main(int argc, char** argv) {
       {"search-es-l8-long", [&] { return search(8, threads, 200, ConstraintOrder::sequential, true); }},
       {"search-mean-1thread", [] { return search(8, 1, 15, ConstraintOrder::sequential, true, 16); }},
       {"search-mean", [&] { return search(8, threads, 15, ConstraintOrder::sequential, true, 16); }},
+      {"one-droplet-079-1thread", [&] { return two_droplets(m079, 24, true); }},
+      {"two-droplets-079-1thread", [&] { return two_droplets(m079, 24, false); }},
   };
   std::ostringstream csv;
   csv << "# machine: " << machine() << "\n# compiler: GCC " << __VERSION__ << ", "

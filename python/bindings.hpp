@@ -8,6 +8,8 @@
 #include <thread>
 #include <vector>
 
+#include "softdrop/simulation.hpp"
+
 namespace softdrop::python {
 
 namespace py = pybind11;
@@ -31,10 +33,19 @@ inline std::function<void(int, int)> stop_on_ctrl_c() {
 /// A path as every path softdrop gives it to Python: an (n, 2) array of rows x, y.
 pybind11::array_t<double> xy_array(const std::vector<double>& x, const std::vector<double>& y);
 
+/// `run` with Ctrl-C in the interpreter stopping it: polled through RunOptions::cancelled (the run
+/// then throws RunCancelled and *interrupted is set), with the GIL taken for the check only.
+RunOptions interruptible(RunOptions run, bool* interrupted);
+/// One run as Python's Result holds it: the --runs CSV's names, touched_grains, and with_path the
+/// path (rows x, y) and path_time.
+py::dict summary_dict(const RunSummary& s, bool with_path);
+
 /// softdrop.Medium (medium.hpp).
 void bind_medium(py::module_& m);
 /// The held-out value of a medium (batch.hpp).
 void bind_held_out(py::module_& m);
+/// Two droplets one after the other (simulation.hpp, batch.hpp): simulate_pair, simulate_pairs.
+void bind_two_droplets(py::module_& m);
 /// The pore space's tortuosities of a medium or an image (pore_tortuosity.hpp).
 void bind_tortuosity(py::module_& m);
 /// The readers of search histories and sweep stores: read_history, read_sweep, best_arrangement.

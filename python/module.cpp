@@ -56,40 +56,6 @@ T from_keywords(const py::kwargs& kwargs) {
   return object.cast<T>();
 }
 
-// Ctrl-C in the interpreter stops a run: polled through RunOptions::cancelled, with the GIL taken
-// for the check only.
-RunOptions interruptible(RunOptions run, bool* interrupted) {
-  run.cancelled = [interrupted] {
-    py::gil_scoped_acquire gil;
-    if (PyErr_CheckSignals() != 0) {
-      *interrupted = true;
-      return true;
-    }
-    return false;
-  };
-  return run;
-}
-
-py::dict summary_dict(const RunSummary& s, bool with_path) {
-  py::dict d;
-  d["outcome"] = to_string(s.outcome);
-  d["reason"] = s.reason;
-  d["tortuosity"] = s.outcome == Outcome::passed ? s.tortuosity : std::numeric_limits<double>::quiet_NaN();
-  d["route_tortuosity"] = s.outcome == Outcome::passed ? s.route_tortuosity : std::numeric_limits<double>::quiet_NaN();
-  d["steps"] = s.steps;
-  d["start_x"] = s.start_x;
-  d["touched"] = s.touched.size();
-  d["touched_grains"] = s.touched;
-  d["min_area_ratio"] = s.min_area_ratio;
-  d["max_penetration"] = s.max_penetration;
-  d["shaken_at"] = s.shaken_at;  // NaN: the medium never shook
-  if (with_path) {               // rows of x, y as every path softdrop gives, and their times beside them
-    d["path"] = python::xy_array(s.path_x, s.path_y);
-    d["path_time"] = py::array_t<double>(static_cast<py::ssize_t>(s.path_t.size()), s.path_t.data());
-  }
-  return d;
-}
-
 // One attribute per field of the one list (droplet.hpp), named as its option with '_' for '-',
 // with its help as the docstring; the constraint order as its name ("sequential", "red-black").
 template <class Field>
@@ -140,6 +106,45 @@ void check(const DropletParams& params, const RunOptions& run) {
 }
 
 }  // namespace
+
+namespace softdrop::python {
+
+RunOptions interruptible(RunOptions run, bool* interrupted) {
+  run.cancelled = [interrupted] {
+    py::gil_scoped_acquire gil;
+    if (PyErr_CheckSignals() != 0) {
+      *interrupted = true;
+      return true;
+    }
+    return false;
+  };
+  return run;
+}
+
+py::dict summary_dict(const RunSummary& s, bool with_path) {
+  py::dict d;
+  d["outcome"] = to_string(s.outcome);
+  d["reason"] = s.reason;
+  d["tortuosity"] = s.outcome == Outcome::passed ? s.tortuosity : std::numeric_limits<double>::quiet_NaN();
+  d["route_tortuosity"] = s.outcome == Outcome::passed ? s.route_tortuosity : std::numeric_limits<double>::quiet_NaN();
+  d["steps"] = s.steps;
+  d["start_x"] = s.start_x;
+  d["touched"] = s.touched.size();
+  d["touched_grains"] = s.touched;
+  d["min_area_ratio"] = s.min_area_ratio;
+  d["max_penetration"] = s.max_penetration;
+  d["shaken_at"] = s.shaken_at;  // NaN: the medium never shook
+  if (with_path) {               // rows of x, y as every path softdrop gives, and their times beside them
+    d["path"] = python::xy_array(s.path_x, s.path_y);
+    d["path_time"] = py::array_t<double>(static_cast<py::ssize_t>(s.path_t.size()), s.path_t.data());
+  }
+  return d;
+}
+
+}  // namespace softdrop::python
+
+using softdrop::python::interruptible;
+using softdrop::python::summary_dict;
 
 PYBIND11_MODULE(_core, m) {
   m.doc() = "softdrop's compiled core; use the softdrop package";
@@ -192,6 +197,7 @@ PYBIND11_MODULE(_core, m) {
   });
   bind_commands(m);
   bind_held_out(m);
+  softdrop::python::bind_two_droplets(m);
   python::bind_tortuosity(m);
 
   m.def(

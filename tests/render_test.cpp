@@ -345,6 +345,42 @@ TEST(RenderCli, EveryPictureKindRenders) {
   DGifCloseFile(g, &error);
 }
 
+// The second droplet of a pair is drawn in orange, beside the first: the palette's (204, 102, 0),
+// entry 4 * 36 + 2 * 6 of its 6 x 6 x 6 cube, which nothing of a one-droplet animation comes to.
+TEST(RenderCli, AnAnimationOfTwoDropletsDrawsTheSecondInItsOwnColour) {
+  const auto orange_pixels = [](const std::string& gif) {
+    int error = 0;
+    GifFileType* g = DGifOpenFileName(gif.c_str(), &error);
+    EXPECT_NE(g, nullptr);
+    if (!g) return -1L;
+    EXPECT_EQ(DGifSlurp(g), GIF_OK);
+    long most = 0;
+    for (int i = 0; i < g->ImageCount; ++i) {
+      const SavedImage& frame = g->SavedImages[i];
+      const long n = std::count(frame.RasterBits,
+                                frame.RasterBits + static_cast<long>(frame.ImageDesc.Width) * frame.ImageDesc.Height,
+                                GifByteType{4 * 36 + 2 * 6});
+      most = std::max(most, n);
+    }
+    DGifCloseFile(g, &error);
+    return most;
+  };
+  const std::string args = "render animation --medium " + kPore + " --x0 100 --speed 0.01 --fps 10 --size 240 --quiet";
+  const std::string one = fresh("one.gif"), two = fresh("two.gif");
+  ASSERT_EQ(test::run(args + " -o " + one).code, 0);
+  const test::Result r = test::run(args + " --second-droplet delay --second-after 0.01 -o " + two);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(orange_pixels(one), 0);
+  EXPECT_GT(orange_pixels(two), 20);
+  // A second droplet that would start inside the first is refused, and no file is written.
+  const std::string refused = fresh("refused.gif");
+  const test::Result bad = test::run(args + " --second-droplet distance --second-after 3 -o " + refused);
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.err.find("second-after = 3: the second droplet would start overlapping the first"), std::string::npos)
+      << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(refused));
+}
+
 // Progress goes to stderr, as every long command's does; --quiet leaves it out and still draws.
 TEST(RenderCli, QuietLeavesOutTheProgressAndStillDraws) {
   for (const std::string kind : {"paths --droplets 4", "animation --x0 100 --speed 0.01 --fps 10"}) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file simulation.hpp
 /// One droplet pushed by gravity through a medium: the step as named stages, exit conditions,
-/// tortuosity of the centre-of-mass path and optional traces.
+/// tortuosity of the centre-of-mass path and optional traces; and two droplets, one after the other.
 
 #include <cstddef>
 #include <cstdint>
@@ -160,6 +160,61 @@ class Simulation {
   std::shared_ptr<const DropletModel> model_;
   std::unique_ptr<DropletRuntime> runtime_;
 };
+
+// ---- Two droplets, one after the other -------------------------------------------------------
+//
+// The second is released above the medium once the first has gone a set distance into it (or after
+// a set delay), and the two rings collide with each other as they collide with grains
+// (docs/model.md, "Two droplets").
+/// When the second droplet is released.
+enum class SecondRelease {
+  distance,  ///< once the first's centre is `after` length units below its start
+  delay      ///< `after` time units after the first began
+};
+const char* to_string(SecondRelease release);
+/// Parses "distance" / "delay"; throws std::invalid_argument naming the value.
+SecondRelease parse_second_release(const std::string& name);
+
+/// The second droplet: the same droplet as the first (DropletParams), placed above the medium at
+/// the first's start x plus offset_x and held there until its release. It is released at the first
+/// step at which its rule holds and its ring is clear of the first's by max_depth (bounding boxes),
+/// and at once when the first's run has ended.
+struct SecondDroplet {
+  SecondRelease release = SecondRelease::distance;
+  /// The first's descent below its start (length units), or the delay (time units). The default
+  /// lets the first go four radii of the default droplet into the box.
+  double after = 40;
+  double offset_x = 0;  ///< the second's start x minus the first's (length units)
+
+  /// after finite and > 0, offset_x finite; and a release rule that cannot start the second ring
+  /// overlapping the first: a descent of at least 2 R + max_depth, or a delay in which free fall
+  /// covers that (|g| t^2 / 2), unless offset_x alone keeps the rings that far apart. Not with a
+  /// shaken medium (DropletParams::vibrates): each run starts the shaking on its own clock.
+  bool IsValid(const DropletParams& droplet, std::string* why) const;
+};
+
+/// The two runs. Each droplet's run is a run of its own (RunOptions apply to each, its steps and
+/// times counted from its own start), with two changes: a droplet's stuck or rest verdict does not
+/// end it while the other droplet still moves (it may push it free); the droplet is held, its
+/// stuck window starts again, and held_at records when. And a droplet that leaves the medium is
+/// no longer stepped.
+struct TwoDropletSummary {
+  RunSummary first;
+  RunSummary second;  ///< outcome timeout, 0 steps, and a reason saying so if never released
+  bool released = false;
+  /// When the second was released, in time units since the first began; NaN if never.
+  double released_at = std::numeric_limits<double>::quiet_NaN();
+  /// When each was first held (time units since its own start); NaN if never.
+  double first_held_at = std::numeric_limits<double>::quiet_NaN();
+  double second_held_at = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t contact_steps = 0;  ///< steps in which a mass of one ring was in contact with the other
+  int shared_touched = 0;          ///< grains that both touched
+};
+
+/// Runs the two droplets through `medium`, the first from start x = x0. Throws
+/// std::invalid_argument for invalid parameters, options or second droplet, naming it.
+TwoDropletSummary run_two_droplets(const DropletParams& droplet, const Medium& medium, double x0,
+                                   const RunOptions& options, const SecondDroplet& second);
 
 /// Length of the polyline (xs, ys) between its first downward crossing of y = top and its first
 /// crossing of y = 0 (crossing points interpolated), divided by `top`. Returns 0 if it does not

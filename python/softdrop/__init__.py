@@ -16,7 +16,8 @@ import os
 from ._core import DropletParams, Medium, RunOptions, StoreError, __version__  # noqa: F401
 from . import _core
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "tortuosity", "optimize",
+__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "simulate_pair",
+           "simulate_pairs", "held_out", "tortuosity", "optimize",
            "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "columns", "__version__"]
 
 
@@ -59,6 +60,51 @@ def simulate_many(medium, n, seed=1, threads=0, params=None, run=None):
     rows = _core._simulate_many(_medium(medium), _whole(n, "n"), _whole(seed, "seed", 0), _whole(threads, "threads"),
                                 params or DropletParams(), run or RunOptions())
     return _runs_frame(rows)
+
+
+def simulate_pair(medium, x0=None, release="distance", after=40.0, offset_x=0.0, params=None, run=None, path=False,
+                  trace=False, trace_interval=100):
+    """Two droplets, one after the other, as `softdrop simulate --second-droplet` runs them: the
+    first from x = x0 (default: the middle of the box), the second, the same droplet, from x0 +
+    offset_x, released once the first is `after` length units below its start (release="distance")
+    or `after` time units after it began ("delay"). Their rings collide. Returns a Result: `first`
+    and `second`, each a Result as simulate gives it (with `path` and `path_time` if path=True) plus
+    held_at (when it was first found stuck while the other still moved, since its own start; NaN:
+    never) and, with trace=True, `trace`: rows of time, area every trace_interval steps of its own
+    run; and the pair's released, released_at (since the first began; NaN: never), contact_steps
+    and shared_touched (grains both touched)."""
+    medium = _medium(medium)
+    x0 = 0.5 * medium.width if x0 is None else float(x0)
+    interval = int(trace_interval) if trace else 0
+    if trace and interval < 1:
+        raise ValueError(f"trace_interval = {interval}: must be >= 1")
+    out = _core._simulate_pair(medium, x0, str(release), float(after), float(offset_x), params or DropletParams(),
+                               run or RunOptions(), bool(path), interval)
+    out["first"], out["second"] = Result(out["first"]), Result(out["second"])
+    return Result(out)
+
+
+def simulate_pairs(medium, n, seed=1, threads=0, release="distance", after=40.0, offset_x=0.0, params=None, run=None):
+    """n pairs from random starts (the first droplets' starts drawn as simulate_many draws them), on
+    `threads` threads (0: all); see simulate_pair. Returns a pandas DataFrame, one row a droplet, with
+    the columns of `softdrop simulate --second-droplet --runs` (droplet is the pair's number, order
+    1 the first and 2 the second) plus the reason."""
+    import pandas as pd
+
+    pairs = _core._simulate_pairs(_medium(medium), _whole(n, "n"), _whole(seed, "seed", 0), _whole(threads, "threads"),
+                                  str(release), float(after), float(offset_x), params or DropletParams(),
+                                  run or RunOptions())
+    rows = []
+    for i, p in enumerate(pairs):
+        for order, key in ((1, "first"), (2, "second")):
+            if order == 2 and not p["released"]:
+                continue
+            d = dict(p[key], droplet=i, order=order, released_at=p["released_at"], contact_steps=p["contact_steps"],
+                     shared_touched=p["shared_touched"])
+            rows.append(d)
+    return pd.DataFrame(rows)[["droplet", "order", "start_x", "outcome", "tortuosity", "steps", "touched",
+                               "min_area_ratio", "max_penetration", "shaken_at", "route_tortuosity", "released_at",
+                               "held_at", "contact_steps", "shared_touched", "reason"]]
 
 
 def held_out(medium, starts=200, seed=1, half_dt=True, threads=0, params=None, run=None):

@@ -17,7 +17,8 @@ _Path = Union[str, PathLike[str]]
 _MediumLike = Union[Medium, _Path]
 _Event = dict[str, Any]
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "held_out", "tortuosity", "optimize",
+__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "simulate_pair",
+           "simulate_pairs", "held_out", "tortuosity", "optimize",
            "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "columns", "__version__"]
 
 class Result(dict[str, Any]):
@@ -28,6 +29,12 @@ def simulate(medium: _MediumLike, x0: Optional[float] = ..., params: Optional[Dr
              trace_interval: int = ...) -> Result: ...
 def simulate_many(medium: _MediumLike, n: int, seed: int = ..., threads: int = ...,
                   params: Optional[DropletParams] = ..., run: Optional[RunOptions] = ...) -> pd.DataFrame: ...
+def simulate_pair(medium: _MediumLike, x0: Optional[float] = ..., release: str = ..., after: float = ...,
+                  offset_x: float = ..., params: Optional[DropletParams] = ..., run: Optional[RunOptions] = ...,
+                  path: bool = ..., trace: bool = ..., trace_interval: int = ...) -> Result: ...
+def simulate_pairs(medium: _MediumLike, n: int, seed: int = ..., threads: int = ..., release: str = ...,
+                   after: float = ..., offset_x: float = ..., params: Optional[DropletParams] = ...,
+                   run: Optional[RunOptions] = ...) -> pd.DataFrame: ...
 def held_out(medium: _MediumLike, starts: int = ..., seed: int = ..., half_dt: bool = ..., threads: int = ...,
              params: Optional[DropletParams] = ..., run: Optional[RunOptions] = ...) -> Result: ...
 def tortuosity(medium: Union[_MediumLike, npt.NDArray[Any]], pixels: int = ..., pixel_size: float = ...,

@@ -209,4 +209,41 @@ void check_medium_file_alone(const CLI::App& command, const std::vector<std::str
                                     "medium); leave it out");
 }
 
+CLI::Option_group* add_second_droplet_options(CLI::App* app, SecondDropletArgs& a) {
+  auto* t = app->add_option_group("Two droplets", "a second droplet pushed after each");
+  t->add_option("--second-droplet", a.release,
+                "Release a second droplet after the first: distance (once the first's centre is --second-after "
+                "below its start) or delay (--second-after time units after the first began)");
+  const auto given = [&a](const std::string&) { a.given = true; };
+  t->add_option("--second-after", a.second.after,
+                "The release's descent of the first (length units) or delay (time units)")
+      ->capture_default_str()
+      ->each(given);
+  t->add_option("--second-offset-x", a.second.offset_x, "The second's start x minus the first's (length units)")
+      ->capture_default_str()
+      ->each(given);
+  return t;
+}
+
+void check_second_droplet(SecondDropletArgs& a, const DropletParams& droplet) {
+  if (!a.on()) {
+    if (a.given) throw std::invalid_argument("second-after, second-offset-x: have no effect without --second-droplet");
+    return;
+  }
+  a.second.release = parse_second_release(a.release);
+  std::string why;
+  if (!a.second.IsValid(droplet, &why)) throw std::invalid_argument(why);
+}
+
+void check_second_start(const SecondDropletArgs& a, double x0, const Medium& medium, const DropletParams& droplet) {
+  if (!a.on() || medium.periodic || a.second.offset_x == 0) return;
+  const double R = droplet.radius, W = medium.width, x1 = x0 + a.second.offset_x;
+  if (std::isnan(x0))
+    throw std::invalid_argument(
+        "second-offset-x: between walls it needs --x0 (a random start could put the second droplet outside them)");
+  if (x1 < R || x1 > W - R)
+    throw std::invalid_argument("second-offset-x = " + fmt(a.second.offset_x) +
+                                ": the second droplet's start x = " + fmt(x1) + " is not within the walls, [R, W - R]");
+}
+
 }  // namespace softdrop::cli

@@ -32,6 +32,23 @@ CLI::Option_group* add_droplet_options(CLI::App* app, DropletParams& d);
 /// (the JSON summary written to a file too) and --quiet (no progress on stderr). The command adds
 /// its own outputs to the group it returns.
 CLI::Option_group* add_summary_options(CLI::App* app, std::string& format, std::string& json_file, bool& quiet);
+/// A second droplet after the first (simulate, render animation): the release rule's name as given
+/// (empty: one droplet) and the rest of its options.
+struct SecondDropletArgs {
+  std::string release;
+  SecondDroplet second;
+  bool given = false;  ///< --second-after or --second-offset-x was given
+  bool on() const { return !release.empty(); }
+};
+/// Registers --second-droplet, --second-after and --second-offset-x in a "Two droplets" group.
+CLI::Option_group* add_second_droplet_options(CLI::App* app, SecondDropletArgs& a);
+/// Parses and checks them for `droplet`; throws std::invalid_argument naming the option (also for
+/// --second-after or --second-offset-x without --second-droplet).
+void check_second_droplet(SecondDropletArgs& a, const DropletParams& droplet);
+/// Between walls, the second droplet's start (x0 + offset) must be inside them, and with an offset
+/// x0 must be given; throws std::invalid_argument naming --second-offset-x.
+void check_second_start(const SecondDropletArgs& a, double x0, const Medium& medium, const DropletParams& droplet);
+
 /// Registers --max-steps, --stuck-window, --stuck-distance in `group`.
 void add_exit_options(CLI::Option_group* group, RunOptions& r);
 

@@ -18,22 +18,6 @@
 
 namespace softdrop::cli {
 
-RenderStyle style_of(const RenderArgs& a) {
-  RenderStyle s;
-  s.width = a.size;
-  s.dpi = a.dpi;
-  s.background = parse_colour(a.background);
-  s.grain = parse_colour(a.grain_colour);
-  s.touched = parse_colour(a.touched_colour);
-  s.caption = !a.no_caption;
-  s.scale_bar = a.scale_bar;
-  std::string why;
-  if (!s.IsValid(&why)) throw std::invalid_argument(why);
-  return s;
-}
-
-namespace {
-
 Medium medium_of(RenderArgs& a) {
   resolve_medium(a.medium);
   return a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
@@ -50,6 +34,37 @@ bool grains_overlap(const Medium& m) {
   return false;
 }
 
+Polyline path_line(const std::vector<double>& x, const std::vector<double>& y, Rgba colour, double width) {
+  Polyline p;
+  p.x = x;
+  p.y = y;
+  p.colour = colour;
+  p.width = width;
+  return p;
+}
+
+// The droplet's start: --x0, checked against the box, or the middle.
+double start_of(const RenderArgs& a, const Medium& medium) {
+  check_start_x(a.x0, medium, a.droplet);
+  return std::isnan(a.x0) ? 0.5 * medium.width : a.x0;
+}
+
+RenderStyle style_of(const RenderArgs& a) {
+  RenderStyle s;
+  s.width = a.size;
+  s.dpi = a.dpi;
+  s.background = parse_colour(a.background);
+  s.grain = parse_colour(a.grain_colour);
+  s.touched = parse_colour(a.touched_colour);
+  s.caption = !a.no_caption;
+  s.scale_bar = a.scale_bar;
+  std::string why;
+  if (!s.IsValid(&why)) throw std::invalid_argument(why);
+  return s;
+}
+
+namespace {
+
 // Overlapping grains are drawn as their solid union; others as outlined discs.
 void draw(const Scene& scene, RenderStyle style, const std::string& path) {
   style.solid_grains = grains_overlap(scene.medium);
@@ -61,15 +76,6 @@ std::string describe(const Medium& m) {
   s << m.grains.size() << " grains, porosity " << fmt(exact_porosity(m), 4) << ", " << m.width << " x " << m.height
     << (m.periodic ? ", periodic in x" : ", walls");
   return s.str();
-}
-
-Polyline path_line(const std::vector<double>& x, const std::vector<double>& y, Rgba colour, double width) {
-  Polyline p;
-  p.x = x;
-  p.y = y;
-  p.colour = colour;
-  p.width = width;
-  return p;
 }
 
 // The part of a path inside or below the medium (y <= top): the start above it is cut at y = top.
@@ -103,12 +109,6 @@ int render_medium(RenderArgs& a) {
   scene.top_room = 0;
   draw(scene, style_of(a), a.output);
   return 0;
-}
-
-// The droplet's start: --x0, checked against the box, or the middle.
-double start_of(const RenderArgs& a, const Medium& medium) {
-  check_start_x(a.x0, medium, a.droplet);
-  return std::isnan(a.x0) ? 0.5 * medium.width : a.x0;
 }
 
 int render_snapshots(RenderArgs& a) {
@@ -271,75 +271,6 @@ int render_search(RenderArgs& a) {
                   " grains, λ = " + std::to_string(run.lambda);
     render_chart(chart, style, a.curve);
   }
-  return 0;
-}
-
-int render_animation_command(RenderArgs& a) {
-  if (!std::isfinite(a.speed) || a.speed <= 0) throw std::invalid_argument("speed = " + fmt(a.speed) + ": must be > 0");
-  if (!std::isfinite(a.fps) || a.fps <= 0 || a.fps > 100)
-    throw std::invalid_argument("fps = " + fmt(a.fps) + ": must be in (0, 100]");
-  RenderStyle style = style_of(a);
-  const Medium medium = medium_of(a);
-  style.solid_grains = grains_overlap(medium);
-  const double x0 = start_of(a, medium);
-  // First the whole run (deterministic), to know its length; then the same run again, recording
-  // the ring at each frame's step and the path, from which the frames are drawn (the run's own
-  // steps, shaking included).
-  const RunSummary whole = Simulation(a.droplet, medium).run(x0, a.run);
-  const double steps_per_frame = a.speed / (a.fps * a.droplet.dt);
-  const int frames = static_cast<int>(std::ceil(static_cast<double>(whole.steps) / steps_per_frame)) + 1;
-  if (frames > a.max_frames)
-    throw std::invalid_argument("max-frames = " + std::to_string(a.max_frames) + ": the run needs " +
-                                std::to_string(frames) + " frames at --speed " + fmt(a.speed) + " and --fps " +
-                                fmt(a.fps));
-  RunOptions recorded = a.run;
-  recorded.path_interval = 10;
-  recorded.snapshot_times.clear();
-  for (int f = 0; f < frames; ++f)
-    recorded.snapshot_times.push_back(
-        static_cast<double>(std::min<std::int64_t>(whole.steps, std::llround(f * steps_per_frame))) * a.droplet.dt);
-  Simulation sim(a.droplet, medium);
-  const RunSummary run = sim.run(x0, recorded);
-  const double top_room = sim.start_height() - medium.height + 1.6 * a.droplet.radius;
-  const Rgba droplet = parse_colour(a.droplet_colour), path = parse_colour(a.path_colour);
-  std::size_t path_points = 0;
-  Progress progress("render: frames");
-  render_animation(
-      frames, a.fps,
-      [&](int f, Scene& scene) {
-        const Snapshot& sn = run.snapshots[static_cast<std::size_t>(
-            std::min<std::size_t>(static_cast<std::size_t>(f), run.snapshots.size() - 1))];
-        while (path_points < run.path_t.size() && run.path_t[path_points] <= sn.time) ++path_points;
-        // A shaken medium is drawn as it moves, A (1 - cos 2 pi f t) from where it was, and the
-        // droplet and its path with it (the run's coordinates are the medium's).
-        double dx = 0, dy = 0;
-        if (a.droplet.vibrates() && sn.time >= run.shaken_at)
-          a.droplet.vibration_displacement(sn.time - run.shaken_at, &dx, &dy);
-        scene.medium = medium;
-        for (Grain& g : scene.medium.grains) g.x += dx, g.y += dy;
-        scene.top_room = top_room;
-        std::vector<double> px(run.path_x.begin(), run.path_x.begin() + static_cast<std::ptrdiff_t>(path_points));
-        std::vector<double> py(run.path_y.begin(), run.path_y.begin() + static_cast<std::ptrdiff_t>(path_points));
-        for (double& v : px) v += dx;
-        for (double& v : py) v += dy;
-        scene.lines.push_back(path_line(px, py, path, 1.5));
-        Polyline ring = path_line(sn.x, sn.y, droplet, 2);
-        ring.closed = true;
-        ring.fill = Rgba{droplet.r, droplet.g, droplet.b, 0.25};
-        double cx = 0;
-        for (double& v : ring.x) v += dx, cx += v / static_cast<double>(ring.x.size());
-        for (double& v : ring.y) v += dy;
-        if (medium.periodic) {
-          const double shift = std::floor(cx / medium.width) * medium.width;
-          for (double& x : ring.x) x -= shift;
-        }
-        scene.lines.push_back(std::move(ring));
-        scene.caption = "t = " + fmt(sn.time, 3) + " (" + to_string(whole.outcome) +
-                        (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") +
-                        (sn.time >= run.shaken_at ? "; shaken since t = " + fmt(run.shaken_at, 3) : "") + ")";
-        if (!a.quiet) progress.update(f + 1, frames);
-      },
-      style, a.output);
   return 0;
 }
 

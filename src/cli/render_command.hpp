@@ -39,12 +39,23 @@ struct RenderArgs {
   std::string csv;                       ///< trace: the area samples
   std::vector<std::string> dbs, labels;  ///< curves: the searches and their legend labels
   std::string x_axis = "evaluations";    ///< curves: evaluations or seconds
+  SecondDropletArgs second;              ///< animation: a second droplet after the first
 };
 
+/// The medium the options name, generated or loaded.
+Medium medium_of(RenderArgs& args);
+/// Whether any two grains overlap (such grains are drawn as their solid union).
+bool grains_overlap(const Medium& medium);
+/// A polyline of the points (x, y).
+Polyline path_line(const std::vector<double>& x, const std::vector<double>& y, Rgba colour, double width);
+/// The droplet's start: --x0, checked against the box, or the middle.
+double start_of(const RenderArgs& args, const Medium& medium);
 /// The picture options as a RenderStyle; throws std::invalid_argument naming a bad colour or size.
 RenderStyle style_of(const RenderArgs& args);
 /// `render curves` (render_curves.cpp).
 int render_curves(RenderArgs& args);
+/// `render animation` (render_animation.cpp).
+int render_animation_command(RenderArgs& args);
 
 /// Registers `render` and its seven subcommands; returns `render`.
 CLI::App* add_render_command(CLI::App& app, RenderArgs& args);

@@ -71,6 +71,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
   v->add_option("--speed", a.speed, "Simulated time units per second of animation (1 = real time)")
       ->capture_default_str();
   v->add_option("--max-frames", a.max_frames, "Refuse animations longer than this")->capture_default_str();
+  add_second_droplet_options(v, a.second);
   CLI::App* t =
       r->add_subcommand("trace", "The area trace S(t)/S0 of one droplet, entry and exit marked (paper's area figure)");
   style(t, ".png, .svg or .pdf");

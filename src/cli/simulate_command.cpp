@@ -10,6 +10,7 @@
 
 #include "cli/columns.hpp"
 #include "cli/output.hpp"
+#include "cli/simulate_output.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/version.hpp"
 #include "studies/area_trace.hpp"
@@ -34,6 +35,8 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
       ->capture_default_str()
       ->check(seed_check());
   r->add_option("--threads", a.batch.threads, "Worker threads (0 = all cores)")->capture_default_str();
+
+  add_second_droplet_options(s, a.second);
 
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
   o->add_option("--runs", a.runs_csv, "CSV, one row per droplet: start, outcome, T, steps, touched");
@@ -67,6 +70,7 @@ void check_simulate(SimulateArgs& a) {
   if (!a.run.IsValid(&why)) throw std::invalid_argument(why);
   check_recording(a.run, a.batch.droplets, a.droplet.masses);
   resolve_medium(a.medium);
+  check_second_droplet(a.second, a.droplet);
   if (!std::isnan(a.x0) && !std::isfinite(a.x0)) throw std::invalid_argument("x0 = " + fmt(a.x0) + ": must be finite");
   for (const auto& [option, path] : {std::pair{"--save-medium", a.save_medium_file},
                                      {"--runs", a.runs_csv},
@@ -77,24 +81,6 @@ void check_simulate(SimulateArgs& a) {
     if (!path.empty()) check_output_path(option, path);
 }
 
-namespace {
-
-nlohmann::json run_json(const RunSummary& r, int i) {
-  return {{"droplet", i},
-          {"start_x", r.start_x},
-          {"outcome", to_string(r.outcome)},
-          {"reason", r.reason},
-          {"tortuosity", r.outcome == Outcome::passed ? nlohmann::json(r.tortuosity) : nlohmann::json()},
-          {"route_tortuosity", r.outcome == Outcome::passed ? nlohmann::json(r.route_tortuosity) : nlohmann::json()},
-          {"steps", r.steps},
-          {"touched", r.touched.size()},
-          {"min_area_ratio", r.min_area_ratio},
-          {"max_penetration", r.max_penetration},
-          {"shaken_at", std::isnan(r.shaken_at) ? nlohmann::json() : nlohmann::json(r.shaken_at)}};
-}
-
-}  // namespace
-
 int run_simulate(SimulateArgs& a) {
   check_simulate(a);
   const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
@@ -102,6 +88,7 @@ int run_simulate(SimulateArgs& a) {
   if (!a.save_medium_file.empty()) save_medium(a.save_medium_file, medium);
   const double porosity = exact_porosity(medium);
   a.batch.start_x = a.x0;
+  if (a.second.on()) return run_simulate_two(a, medium);
 
   Progress progress("simulate: droplets done");
   // The first SIGINT or SIGTERM starts no more droplets; the ones in flight finish, and the
@@ -123,11 +110,7 @@ int run_simulate(SimulateArgs& a) {
 
   nlohmann::json j;
   j["version"] = kVersion;
-  j["medium"] = {{"grains", medium.grains.size()},
-                 {"porosity", porosity},
-                 {"width", medium.width},
-                 {"height", medium.height},
-                 {"periodic", medium.periodic}};
+  j["medium"] = medium_record(medium, porosity);
   j["droplets"] = stats.droplets;
   j["passed"] = stats.passed;
   j["stuck"] = stats.stuck;
@@ -138,14 +121,17 @@ int run_simulate(SimulateArgs& a) {
   j["stuck_fraction"] = stats.stuck_fraction;
   j["wall_seconds"] = seconds;
   j["steps_per_second"] = seconds > 0 ? total_steps / seconds : 0.0;
-  if (runs.size() == 1) j["run"] = run_json(runs[0], 0);
   j["runs"] = nlohmann::json::array();  // the --runs CSV's records, with the reason
-  for (std::size_t i = 0; i < runs.size(); ++i) j["runs"].push_back(run_json(runs[i], static_cast<int>(i)));
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    nlohmann::json record = run_record(runs[i]);
+    record["droplet"] = i;
+    j["runs"].push_back(std::move(record));
+  }
+  if (runs.size() == 1) j["run"] = j["runs"][0];
 
   std::ostringstream table;
   table << std::setprecision(6);
-  table << "medium       " << medium.grains.size() << " grains, porosity " << fmt(porosity, 6) << ", " << medium.width
-        << " x " << medium.height << (medium.periodic ? ", periodic" : ", walls") << '\n';
+  table << medium_line(medium, porosity);
   if (runs.size() == 1) {
     const RunSummary& r = runs[0];
     table << "outcome      " << to_string(r.outcome) << " (" << r.reason << ")\n";
@@ -169,48 +155,26 @@ int run_simulate(SimulateArgs& a) {
 
   if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
   auto csv = [&](const std::string& path, const std::string& header, auto&& rows) {
-    if (path.empty()) return;
-    check_csv_header(header);
-    std::ostringstream out;
-    out << header << '\n';
-    for (std::size_t i = 0; i < runs.size(); ++i) rows(out, static_cast<int>(i), runs[i]);
-    write_file_atomically(path, out.str());
+    write_csv(path, header, [&](std::ostream& out) {
+      for (std::size_t i = 0; i < runs.size(); ++i) rows(out, static_cast<int>(i), runs[i]);
+    });
   };
-  csv(a.runs_csv,
-      "droplet,start_x,outcome,tortuosity,steps,touched,min_area_ratio,max_penetration,shaken_at,route_tortuosity",
-      [](std::ostream& o, int i, const RunSummary& r) {
-        o << i << ',' << fmt(r.start_x) << ',' << to_string(r.outcome) << ','
-          << (r.outcome == Outcome::passed ? fmt(r.tortuosity) : "") << ',' << r.steps << ',' << r.touched.size() << ','
-          << fmt(r.min_area_ratio) << ',' << fmt(r.max_penetration) << ','
-          << (std::isnan(r.shaken_at) ? "" : fmt(r.shaken_at)) << ','
-          << (r.outcome == Outcome::passed ? fmt(r.route_tortuosity) : "") << '\n';
-      });
-  csv(a.paths_csv, "droplet,time,x,y", [](std::ostream& o, int i, const RunSummary& r) {
-    for (std::size_t k = 0; k < r.path_t.size(); ++k)
-      o << i << ',' << fmt(r.path_t[k]) << ',' << fmt(r.path_x[k]) << ',' << fmt(r.path_y[k]) << '\n';
+  csv(a.runs_csv, std::string("droplet,") + kRunColumns, [](std::ostream& o, int i, const RunSummary& r) {
+    o << i << ',';
+    write_run_columns(o, r);
+    o << '\n';
   });
+  csv(a.paths_csv, "droplet,time,x,y",
+      [](std::ostream& o, int i, const RunSummary& r) { write_path_rows(o, std::to_string(i) + ",", r); });
   if (!a.trace_csv.empty()) {  // each droplet replayed by trace_area, as render trace does
     std::vector<AreaTrace> traces;
     for (const RunSummary& r : runs)
       traces.push_back(trace_area(a.droplet, medium, r.start_x, a.run, a.run.area_interval));
     write_area_traces(a.trace_csv, traces);
   }
-  csv(a.snapshots_csv, "droplet,time,mass,x,y", [](std::ostream& o, int i, const RunSummary& r) {
-    for (const Snapshot& sn : r.snapshots)
-      for (std::size_t k = 0; k < sn.x.size(); ++k)
-        o << i << ',' << fmt(sn.time) << ',' << k << ',' << fmt(sn.x[k]) << ',' << fmt(sn.y[k]) << '\n';
-  });
-
-  if (a.format == "json")
-    std::cout << j.dump(2) << '\n';
-  else
-    std::cout << table.str();
-  if (stop.requested()) {
-    std::cerr << "simulate: stopped by a signal after " << runs.size() << " of " << a.batch.droplets
-              << " droplets; the outputs hold those " << runs.size() << "\n";
-    return stop.exit_code();
-  }
-  return 0;
+  csv(a.snapshots_csv, "droplet,time,mass,x,y",
+      [](std::ostream& o, int i, const RunSummary& r) { write_snapshot_rows(o, std::to_string(i) + ",", r); });
+  return finish_simulate(a.format, j, table.str(), stop, runs.size(), a.batch.droplets, "droplets");
 }
 
 }  // namespace softdrop::cli

@@ -22,7 +22,8 @@ struct SimulateArgs {
   double x0 = std::numeric_limits<double>::quiet_NaN();
   std::string format = "table";
   std::string runs_csv, paths_csv, trace_csv, snapshots_csv, json_file;
-  bool quiet = false;  ///< no progress on stderr
+  bool quiet = false;        ///< no progress on stderr
+  SecondDropletArgs second;  ///< a second droplet after each
 };
 
 /// Registers the subcommand and its options on `app`; returns it.
@@ -33,5 +34,7 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args);
 /// std::invalid_argument naming the bad parameter.
 void check_simulate(SimulateArgs& args);
 int run_simulate(SimulateArgs& args);
+/// run_simulate with a second droplet after each (--second-droplet), on the medium it made.
+int run_simulate_two(SimulateArgs& args, const Medium& medium);
 
 }  // namespace softdrop::cli

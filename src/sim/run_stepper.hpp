@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -52,6 +53,15 @@ class RunStepper {
 
   bool finished() const { return finished_; }
   Simulation* simulation() const { return sim_; }
+  /// The centre of mass's y after the last step (length).
+  double centre_y() const { return cy_; }
+  /// Holds the droplet (or not) at its next stuck or rest verdict: a held droplet is not ended
+  /// there, its stuck test starts a new window, and held() is true until a window shows descent.
+  /// Two droplets hold each other so while the other still moves, which may free it.
+  void hold_when_stuck(bool hold) { hold_ = hold; }
+  bool held() const { return held_; }
+  /// When the droplet was first held, in time units since its run began; NaN if never.
+  double held_at() const { return held_at_; }
 
   /// Book-keeping of the step just taken (ok: the step's own validity test); may end the run.
   void after_step(bool ok) {
@@ -99,12 +109,14 @@ class RunStepper {
       next_stuck_check_ += window_;
       if (checkpoint_y_ - cy_ < o_.stuck_distance) {
         if (shaking_pending()) return start_shaking(k);
+        if (hold_) return hold(k);
         std::ostringstream r;
         r << "centre of mass moved down " << checkpoint_y_ - cy_ << " < " << o_.stuck_distance << " in the last "
           << o_.stuck_window << " time units, at y = " << cy_ << (shaking_ ? " while the medium shook" : "");
         return finish(Outcome::stuck, r.str(), k);
       }
       checkpoint_y_ = cy_;
+      held_ = false;
     }
     // While the medium shakes, the droplet's travel is mostly the shaking's: the stuck test alone
     // judges its progress.
@@ -115,6 +127,10 @@ class RunStepper {
       if (k % rest_window_ == 0) {
         if (rest_travel_ < o_.rest_distance) {
           if (shaking_pending()) return start_shaking(k);
+          if (hold_) {
+            rest_travel_ = 0;
+            return hold(k);
+          }
           std::ostringstream r;
           r << "at rest: centre of mass travelled " << rest_travel_ << " < " << o_.rest_distance << " in the last "
             << o_.rest_window << " time units, at y = " << cy_;
@@ -163,6 +179,16 @@ class RunStepper {
     next_stuck_check_ = k + window_;
     shake_for_step(k);
   }
+  // Not ended at a stuck or rest verdict after step k: the stuck test's window starts again.
+  void hold(std::int64_t k) {
+    if (std::isnan(held_at_)) held_at_ = static_cast<double>(k) * dt_;
+    held_ = true;
+    checkpoint_y_ = cy_;
+    next_stuck_check_ = k + window_;
+    if (k >= o_.max_steps)
+      return finish(Outcome::timeout, "step budget of " + std::to_string(o_.max_steps) + " steps spent", k);
+    if (shaking_) shake_for_step(k);
+  }
   // The shaking's force for the step after step k, at the time that step begins.
   void shake_for_step(std::int64_t k) {
     r_.shake.set(m_.params, r_.state.size(), static_cast<double>(k - shaking_from_) * dt_);
@@ -192,6 +218,8 @@ class RunStepper {
   std::int64_t window_ = 1, rest_window_ = 0, k_ = 0;
   std::int64_t next_stuck_check_ = 1, shaking_from_ = 0;  // the stuck test's next step; the shaking's first
   bool shaking_ = false;
+  bool hold_ = false, held_ = false;
+  double held_at_ = std::numeric_limits<double>::quiet_NaN();
   std::vector<std::int64_t> snapshot_steps_;
   std::size_t next_snapshot_ = 0;
   bool finished_ = false;

@@ -118,8 +118,9 @@ void Simulation::centre_of_mass(double* cx, double* cy) const {
 }
 
 const char* to_string(StepStage stage) {
-  static constexpr const char* kNames[] = {"gravity",   "springs",   "pressure",   "vibration",    "collisions",
-                                           "viscosity", "integrate", "constraint", "contact_limit"};
+  static constexpr const char* kNames[] = {"gravity",    "springs",       "pressure",  "vibration",
+                                           "collisions", "ring_contacts", "viscosity", "integrate",
+                                           "constraint", "contact_limit", "ring_limit"};
   static_assert(std::size(kNames) == kStepStages.size());
   const auto i = static_cast<std::size_t>(stage);
   return i < std::size(kNames) ? kNames[i] : "?";

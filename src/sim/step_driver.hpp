@@ -10,6 +10,9 @@
 //                               stage runs only then)
 //   template <StepStage S> void stage()
 //                               stage S for every droplet of the layout
+//   static constexpr bool kTwoRings (optional)
+//                               true: the layout holds two droplets' rings, and the ring-ring
+//                               stages run; a layout without it has no code for them
 // The layouts: one ring (OneRing, below), a block of droplets in vector lanes (lane_block_step.cpp)
 // and rings stepped side by side with their constraints interleaved (ring_group_step.cpp). Each
 // runs the same kernels for a stage, so every droplet gets the same bits in every layout; the
@@ -23,21 +26,33 @@
 namespace softdrop {
 
 namespace step_driver_detail {
+template <class Layout>
+constexpr bool two_rings() {
+  if constexpr (requires { Layout::kTwoRings; })
+    return Layout::kTwoRings;
+  else
+    return false;
+}
+
 template <class Layout, StepStage S>
 void run_stage(Layout& layout) {
-  if constexpr (S == StepStage::viscosity) {
-    if (!layout.damped()) return;
+  if constexpr (S == StepStage::ring_contacts || S == StepStage::ring_limit) {
+    if constexpr (two_rings<Layout>()) layout.template stage<S>();
+  } else {
+    if constexpr (S == StepStage::viscosity) {
+      if (!layout.damped()) return;
+    }
+    if constexpr (S == StepStage::vibration) {
+      if (!layout.shaken()) return;
+    }
+    layout.template stage<S>();
   }
-  if constexpr (S == StepStage::vibration) {
-    if (!layout.shaken()) return;
-  }
-  layout.template stage<S>();
 }
 }  // namespace step_driver_detail
 
 /// Runs the stages from `first` to `last` of kStepStages over `layout`, in their order.
 template <class Layout>
-void run_stages(Layout& layout, StepStage first = StepStage::gravity, StepStage last = StepStage::contact_limit) {
+void run_stages(Layout& layout, StepStage first = StepStage::gravity, StepStage last = StepStage::ring_limit) {
 #if defined(SOFTDROP_TEST_HOOKS)
   if (test_seam::step_mutation() == test_seam::StepMutation::damps_before_collisions && first == StepStage::gravity &&
       last >= StepStage::integrate) {
@@ -46,6 +61,7 @@ void run_stages(Layout& layout, StepStage first = StepStage::gravity, StepStage 
                     StepStage::gravity, StepStage::pressure);
     step_driver_detail::run_stage<Layout, StepStage::viscosity>(layout);
     step_driver_detail::run_stage<Layout, StepStage::collisions>(layout);
+    step_driver_detail::run_stage<Layout, StepStage::ring_contacts>(layout);
     run_step_stages([&](auto s) { step_driver_detail::run_stage<Layout, decltype(s)::value>(layout); },
                     StepStage::integrate, last);
     return;
@@ -60,6 +76,7 @@ struct OneRing {
   DropletRuntime& r;
 
   explicit OneRing(Simulation& sim) : m(sim.model()), r(sim.runtime()) {}
+  OneRing(const DropletModel& model, DropletRuntime& runtime) : m(model), r(runtime) {}
   bool damped() const { return m.context.damped; }
   bool shaken() const { return r.shake.on; }
   template <StepStage S>

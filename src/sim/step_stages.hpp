@@ -20,24 +20,27 @@ enum class StepStage : std::uint8_t {
   pressure,       ///< the gas, P = nRT / S, on each edge along its outward normal
   vibration,      ///< the shaken medium's inertial force on each mass (only while it shakes)
   collisions,     ///< penalty and damping against grains and walls; the touched grains
+  ring_contacts,  ///< penalty and damping between two droplets' rings (only where two droplets run)
   viscosity,      ///< internal viscosity relative to the rigid motion (only where ν > 0); last of the forces
   integrate,      ///< position Verlet
   constraint,     ///< the Provot length constraint, in the droplet's constraint order
   contact_limit,  ///< inverse dynamics: no mass deeper than max_depth inside a grain
+  ring_limit,     ///< inverse dynamics: no mass of two droplets' rings inside the other (as ring_contacts)
 };
 
 /// Every stage of a step, in order.
-inline constexpr std::array<StepStage, 9> kStepStages{
-    StepStage::gravity,   StepStage::springs,   StepStage::pressure,   StepStage::vibration,    StepStage::collisions,
-    StepStage::viscosity, StepStage::integrate, StepStage::constraint, StepStage::contact_limit};
+inline constexpr std::array<StepStage, 11> kStepStages{
+    StepStage::gravity,    StepStage::springs,       StepStage::pressure,  StepStage::vibration,
+    StepStage::collisions, StepStage::ring_contacts, StepStage::viscosity, StepStage::integrate,
+    StepStage::constraint, StepStage::contact_limit, StepStage::ring_limit};
 
 // The implicit viscosity step damps the velocity after every other force of the step, which it
 // reads from the force arrays: viscosity must come after the other force stages, just before
 // the integration.
-static_assert(kStepStages[5] == StepStage::viscosity && kStepStages[6] == StepStage::integrate,
+static_assert(kStepStages[6] == StepStage::viscosity && kStepStages[7] == StepStage::integrate,
               "the viscosity stage must be the last force stage (the implicit step reads the others' forces)");
 
-/// The stage's name, as above ("gravity", ..., "contact_limit").
+/// The stage's name, as above ("gravity", ..., "ring_limit").
 const char* to_string(StepStage stage);
 
 namespace step_stages_detail {
@@ -56,7 +59,7 @@ constexpr void run_in_order(Run& run, StepStage first, StepStage last, std::inde
 /// is its stages' calls one after another, with no choice among them at run time.
 template <class Run>
 constexpr void run_step_stages(Run&& run, StepStage first = StepStage::gravity,
-                               StepStage last = StepStage::contact_limit) {
+                               StepStage last = StepStage::ring_limit) {
   step_stages_detail::run_in_order(run, first, last, std::make_index_sequence<kStepStages.size()>{});
 }
 

@@ -1,0 +1,271 @@
+// Contacts between two droplets' rings (ring_contact.hpp): the edge grid, the nearest edge of the
+// other ring to a mass, and the two stages.
+#include "ring_contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace softdrop {
+
+namespace {
+
+// The smallest power of two >= n.
+std::uint64_t power_of_two_at_least(std::uint64_t n) {
+  std::uint64_t p = 1;
+  while (p < n) p <<= 1;
+  return p;
+}
+
+// Where a mass meets the other ring: its nearest edge, the place t in [0, 1] along it, the signed
+// distance d (< 0: inside the ring), and n, the unit direction out of the ring at that place.
+struct EdgeHit {
+  int edge = -1;
+  double t = 0, d = 0, nx = 0, ny = 0;
+};
+
+// The outward normal of edge j of a counter-clockwise ring, not normalised: (e_y, -e_x).
+void outward(const DropletState& s, int j, double* nx, double* ny) {
+  const int k = j + 1 == s.size() ? 0 : j + 1;
+  *nx = s.y[k] - s.y[j];
+  *ny = -(s.x[k] - s.x[j]);
+}
+
+// The nearest edge of ring e (listed in grid) to (x, y), if one is within reach.
+bool nearest_edge(const DropletState& e, const EdgeGrid& grid, double x, double y, double reach, EdgeHit* hit) {
+  const std::int32_t *j = nullptr, *end = nullptr;
+  grid.cell(x, y, &j, &end);
+  const int n = e.size();
+  const double s = grid.shift();
+  double best = reach * reach;
+  int found = -1;
+  double ft = 0, fqx = 0, fqy = 0;
+  for (; j != end; ++j) {
+    const int a = *j, b = a + 1 == n ? 0 : a + 1;
+    const double ax = e.x[a] + s, ay = e.y[a], ex = e.x[b] + s - ax, ey = e.y[b] - ay;
+    const double len2 = ex * ex + ey * ey;
+    const double t = len2 > 0 ? std::clamp(((x - ax) * ex + (y - ay) * ey) / len2, 0.0, 1.0) : 0.0;
+    const double qx = ax + t * ex, qy = ay + t * ey;
+    const double d2 = (x - qx) * (x - qx) + (y - qy) * (y - qy);
+    if (d2 < best || (found < 0 && d2 == best)) {  // the first of equals: the lists ascend
+      best = d2;
+      found = a;
+      ft = t, fqx = qx, fqy = qy;
+    }
+  }
+  if (found < 0) return false;
+  // Inside or out: the side of the edge, or at a corner the side of the corner's pseudo-normal
+  // (the sum of its two edges' unit normals), which decides rightly for any closed polyline.
+  double nx, ny;
+  outward(e, found, &nx, &ny);
+  double sx = nx / std::hypot(nx, ny), sy = ny / std::hypot(nx, ny);
+  if (ft == 0 || ft == 1) {
+    const int other = ft == 0 ? (found == 0 ? n - 1 : found - 1) : (found + 1 == n ? 0 : found + 1);
+    double ox, oy;
+    outward(e, other, &ox, &oy);
+    sx += ox / std::hypot(ox, oy);
+    sy += oy / std::hypot(ox, oy);
+  }
+  const bool inside = (x - fqx) * sx + (y - fqy) * sy < 0;
+  const double dist = std::sqrt(best);
+  hit->edge = found;
+  hit->t = ft;
+  hit->d = inside ? -dist : dist;
+  if (dist > 0) {
+    const double sign = inside ? -1.0 : 1.0;
+    hit->nx = sign * (x - fqx) / dist;
+    hit->ny = sign * (y - fqy) / dist;
+  } else {
+    const double len = std::hypot(sx, sy);
+    hit->nx = sx / len;
+    hit->ny = sy / len;
+  }
+  return true;
+}
+
+// The reach of the grids: twice the contact's, so that a mass that went a little inside the other
+// ring within a step still finds the edge it crossed.
+double grid_reach(const DropletModel& m) { return 2 * m.params.max_depth; }
+
+// The penalty between the masses of ring p and the edges of ring e (listed in grid).
+std::int64_t penalty(const DropletModel& m, DropletRuntime& p, DropletRuntime& e, const EdgeGrid& grid) {
+  const double skin = m.params.max_depth, kc = m.params.kc, cc = m.params.cc, inv_dt = m.context.inv_dt;
+  const DropletState& es = e.state;
+  DropletState& ps = p.state;
+  const int ne = es.size();
+  std::int64_t contacts = 0;
+  for (int i = 0; i < ps.size(); ++i) {
+    EdgeHit h;
+    if (!nearest_edge(es, grid, ps.x[i], ps.y[i], grid_reach(m), &h)) continue;
+    if (!(h.d < skin)) continue;
+    const int a = h.edge, b = a + 1 == ne ? 0 : a + 1;
+    const double t = h.t;
+    // The mass's velocity relative to the edge's point (position Verlet's backward velocities).
+    const double vx = (ps.x[i] - ps.px[i]) - (1 - t) * (es.x[a] - es.px[a]) - t * (es.x[b] - es.px[b]);
+    const double vy = (ps.y[i] - ps.py[i]) - (1 - t) * (es.y[a] - es.py[a]) - t * (es.y[b] - es.py[b]);
+    const double f = std::max(0.0, kc * (skin - h.d) - cc * (vx * h.nx + vy * h.ny) * inv_dt);
+    ++contacts;
+    if (f == 0) continue;
+    const double fx = f * h.nx, fy = f * h.ny;
+    ps.fx[i] += fx;
+    ps.fy[i] += fy;
+    e.state.fx[a] -= (1 - t) * fx;
+    e.state.fy[a] -= (1 - t) * fy;
+    e.state.fx[b] -= t * fx;
+    e.state.fy[b] -= t * fy;
+  }
+  return contacts;
+}
+
+// The limit between the masses of ring p and the edges of ring e (listed in grid).
+int limit(const DropletModel& m, DropletRuntime& p, DropletRuntime& e, const EdgeGrid& grid) {
+  // A mass inside is moved out to a thousandth of max_depth outside the other ring, so that the
+  // rounding of the correction leaves it outside.
+  const double clear = 1e-3 * m.params.max_depth;
+  DropletState& es = e.state;
+  DropletState& ps = p.state;
+  const int ne = es.size();
+  int moved = 0;
+  for (int i = 0; i < ps.size(); ++i) {
+    EdgeHit h;
+    if (!nearest_edge(es, grid, ps.x[i], ps.y[i], grid_reach(m), &h) || !(h.d < 0)) continue;
+    const int a = h.edge, b = a + 1 == ne ? 0 : a + 1;
+    const double t = h.t, u = 1 - t;
+    // The mass moves by s n and the edge's ends by -s (1 - t) n and -s t n: the displacements sum
+    // to zero, and the edge's point moves by -s ((1 - t)^2 + t^2) n.
+    const double w = 1 + u * u + t * t;
+    const double s = (clear - h.d) / w;
+    const double dx = s * h.nx, dy = s * h.ny;
+    ps.x[i] += dx, ps.px[i] += dx, ps.y[i] += dy, ps.py[i] += dy;
+    es.x[a] -= u * dx, es.px[a] -= u * dx, es.y[a] -= u * dy, es.py[a] -= u * dy;
+    es.x[b] -= t * dx, es.px[b] -= t * dx, es.y[b] -= t * dy, es.py[b] -= t * dy;
+    // The approach stops: an impulse along n, shared in the same proportions, takes the relative
+    // normal velocity to zero (a displacement per step, (x - px)).
+    const double vx = (ps.x[i] - ps.px[i]) - u * (es.x[a] - es.px[a]) - t * (es.x[b] - es.px[b]);
+    const double vy = (ps.y[i] - ps.py[i]) - u * (es.y[a] - es.py[a]) - t * (es.y[b] - es.py[b]);
+    const double vn = vx * h.nx + vy * h.ny;
+    if (vn < 0) {
+      const double j = -vn / w, jx = j * h.nx, jy = j * h.ny;
+      ps.px[i] -= jx, ps.py[i] -= jy;
+      es.px[a] += u * jx, es.py[a] += u * jy;
+      es.px[b] += t * jx, es.py[b] += t * jy;
+    }
+    ++moved;
+  }
+  return moved;
+}
+
+void bounds(const DropletState& s, double* x0, double* x1, double* y0, double* y1) {
+  *x0 = *x1 = s.x[0];
+  *y0 = *y1 = s.y[0];
+  for (int i = 1; i < s.size(); ++i) {
+    *x0 = std::min(*x0, s.x[i]);
+    *x1 = std::max(*x1, s.x[i]);
+    *y0 = std::min(*y0, s.y[i]);
+    *y1 = std::max(*y1, s.y[i]);
+  }
+}
+
+// Whether ring b, its x shifted by s, may come within reach of ring a: first on one mass of each
+// (every mass of a ring is within half its perimeter, N (1 + max_strain) d0 / 2, of every other),
+// then on the bounding boxes.
+bool may_touch(const DropletModel& m, const DropletState& a, const DropletState& b, double s, double reach) {
+  const double far = a.size() * (1 + m.params.max_strain) * m.context.rest_length + reach;
+  if (std::abs(b.x[0] + s - a.x[0]) > far || std::abs(b.y[0] - a.y[0]) > far) return false;
+  double ax0, ax1, ay0, ay1, bx0, bx1, by0, by1;
+  bounds(a, &ax0, &ax1, &ay0, &ay1);
+  bounds(b, &bx0, &bx1, &by0, &by1);
+  return !(bx0 + s > ax1 + reach || ax0 > bx1 + s + reach || by0 > ay1 + reach || ay0 > by1 + reach);
+}
+
+}  // namespace
+
+std::uint64_t EdgeGrid::bucket(std::int64_t ix, std::int64_t iy) const {
+  const auto ux = static_cast<std::uint64_t>(ix), uy = static_cast<std::uint64_t>(iy);
+  return ((ux * 0x9E3779B97F4A7C15ULL) ^ (uy * 0xC2B2AE3D27D4EB4FULL)) >> 20 & mask_;
+}
+
+void EdgeGrid::build(const DropletState& ring, double shift_x, double reach) {
+  const int n = ring.size();
+  shift_ = shift_x;
+  mask_ = power_of_two_at_least(2 * static_cast<std::uint64_t>(n)) - 1;
+  // A cell as wide as the longest edge's box widened by the reach on both sides: each edge is
+  // listed in at most four cells.
+  double longest = 0;
+  for (int j = 0; j < n; ++j) {
+    const int k = j + 1 == n ? 0 : j + 1;
+    longest = std::max({longest, std::abs(ring.x[k] - ring.x[j]), std::abs(ring.y[k] - ring.y[j])});
+  }
+  cell_ = longest + 2 * reach;
+  start_.assign(mask_ + 2, 0);
+  cells_.clear();
+  listed_.clear();
+  // Each edge's cells, as (bucket, edge) in edge order; then a counting sort by bucket, stable.
+  for (int j = 0; j < n; ++j) {
+    const int k = j + 1 == n ? 0 : j + 1;
+    const double xa = ring.x[j] + shift_x, xb = ring.x[k] + shift_x;
+    const auto ix0 = static_cast<std::int64_t>(std::floor((std::min(xa, xb) - reach) / cell_));
+    const auto ix1 = static_cast<std::int64_t>(std::floor((std::max(xa, xb) + reach) / cell_));
+    const auto iy0 = static_cast<std::int64_t>(std::floor((std::min(ring.y[j], ring.y[k]) - reach) / cell_));
+    const auto iy1 = static_cast<std::int64_t>(std::floor((std::max(ring.y[j], ring.y[k]) + reach) / cell_));
+    for (std::int64_t ix = ix0; ix <= ix1; ++ix)
+      for (std::int64_t iy = iy0; iy <= iy1; ++iy) {
+        const std::uint64_t key = bucket(ix, iy);
+        cells_.push_back(key);
+        listed_.push_back(j);
+        ++start_[key + 1];
+      }
+  }
+  for (std::size_t c = 1; c < start_.size(); ++c) start_[c] += start_[c - 1];
+  entries_.resize(listed_.size());
+  next_.assign(start_.begin(), start_.end() - 1);
+  for (std::size_t e = 0; e < listed_.size(); ++e) entries_[static_cast<std::size_t>(next_[cells_[e]]++)] = listed_[e];
+}
+
+void EdgeGrid::cell(double x, double y, const std::int32_t** begin, const std::int32_t** end) const {
+  const std::uint64_t key =
+      bucket(static_cast<std::int64_t>(std::floor(x / cell_)), static_cast<std::int64_t>(std::floor(y / cell_)));
+  *begin = entries_.data() + start_[key];
+  *end = entries_.data() + start_[key + 1];
+}
+
+double periodic_shift(const DropletState& a, const DropletState& b, const Medium& medium) {
+  if (!medium.periodic) return 0;
+  const double W = medium.width;
+  return -W * std::round((b.x[0] - a.x[0]) / W);
+}
+
+void ring_contacts_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b, RingContactScratch* scratch) {
+  scratch->contacts = 0;
+  const double s = periodic_shift(a.state, b.state, m.medium), reach = grid_reach(m);
+  // Rings further apart than the reach: no contact, and no grid to build.
+  if (!may_touch(m, a.state, b.state, s, reach)) return;
+  scratch->edges[1].build(b.state, s, reach);  // b in a's frame
+  scratch->contacts += penalty(m, a, b, scratch->edges[1]);
+  scratch->edges[0].build(a.state, -s, reach);  // a in b's frame
+  scratch->contacts += penalty(m, b, a, scratch->edges[0]);
+}
+
+int ring_limit_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b, RingContactScratch* scratch) {
+  const double s = periodic_shift(a.state, b.state, m.medium), reach = grid_reach(m);
+  if (!may_touch(m, a.state, b.state, s, reach)) return 0;
+  scratch->edges[1].build(b.state, s, reach);
+  const int moved_a = limit(m, a, b, scratch->edges[1]);
+  scratch->edges[0].build(a.state, -s, reach);
+  const int moved_b = limit(m, b, a, scratch->edges[0]);
+  if (moved_a + moved_b > 0) {
+    // Both rings may have moved (a mass, or an edge's ends).
+    a.changed();
+    b.changed();
+  }
+  return moved_a + moved_b;
+}
+
+bool rings_within(const DropletState& a, const DropletState& b, const Medium& medium, double reach) {
+  const double s = periodic_shift(a, b, medium);
+  double ax0, ax1, ay0, ay1, bx0, bx1, by0, by1;
+  bounds(a, &ax0, &ax1, &ay0, &ay1);
+  bounds(b, &bx0, &bx1, &by0, &by1);
+  return !(bx0 + s > ax1 + reach || ax0 > bx1 + s + reach || by0 > ay1 + reach || ay0 > by1 + reach);
+}
+
+}  // namespace softdrop

@@ -1,0 +1,51 @@
+#pragma once
+// TwoDropletRun: two droplets' runs stepped together (run_two_droplets), a step at a time, so that
+// a test can look at both rings between steps. Private to the library.
+#include <cstdint>
+#include <optional>
+
+#include "ring_contact.hpp"
+#include "run_stepper.hpp"
+#include "softdrop/simulation.hpp"
+
+namespace softdrop {
+
+class TwoDropletRun {
+ public:
+  /// Places both droplets (the second held above the medium) and begins the first's run. Throws
+  /// std::invalid_argument as run_two_droplets does.
+  TwoDropletRun(const DropletParams& droplet, const Medium& medium, double x0, const RunOptions& options,
+                const SecondDroplet& second);
+  TwoDropletRun(const TwoDropletRun&) = delete;
+  TwoDropletRun& operator=(const TwoDropletRun&) = delete;
+
+  /// Both runs have ended (or the first has, and the second could not be released).
+  bool finished() const { return first_run_->finished() && (!second_run_ || second_run_->finished()); }
+  /// One step of every droplet still running, with the ring-ring stages while both are; then
+  /// each run's book-keeping, and the second's release if it is due.
+  void step();
+  /// The summaries, once finished().
+  TwoDropletSummary take();
+
+  const Simulation& first() const { return first_; }
+  const Simulation& second() const { return second_; }
+  bool first_running() const { return !first_run_->finished(); }
+  bool second_running() const { return second_run_ && !second_run_->finished(); }
+  /// Masses the last step's ring limit moved.
+  int limited() const { return limited_; }
+
+ private:
+  void release_if_due();
+
+  Simulation first_, second_;
+  RunOptions options_;
+  SecondDroplet rule_;
+  double x0_ = 0, x1_ = 0;  // the starts
+  std::optional<RunStepper> first_run_, second_run_;
+  RingContactScratch scratch_;
+  std::int64_t k_ = 0, contact_steps_ = 0;
+  double released_at_;
+  int limited_ = 0;
+};
+
+}  // namespace softdrop

@@ -1,0 +1,60 @@
+"""Two droplets one after the other from Python: the program's pairs, the same bits, and refusals
+that name the argument."""
+import math
+import os
+import subprocess
+
+import pandas as pd
+import pytest
+
+import softdrop
+
+CLI = os.environ["SOFTDROP_CLI"]
+
+
+def test_simulate_pairs_is_the_programs_pairs(tmp_path):
+    medium = softdrop.Medium.generate("non-overlapping", porosity=0.79, seed=3, width=200, height=200)
+    path = tmp_path / "m.json"
+    medium.save(path)
+    runs = tmp_path / "runs.csv"
+    subprocess.run([CLI, "simulate", "--medium", str(path), "--droplets", "3", "--seed", "5", "--quiet",
+                    "--second-droplet", "distance", "--second-after", "20", "--runs", str(runs)],
+                   check=True, capture_output=True)
+    program = pd.read_csv(runs, float_precision="round_trip")  # the default parser can miss by an ulp
+    frame = softdrop.simulate_pairs(medium, 3, seed=5, after=20.0)
+    assert list(frame.columns[:-1]) == list(program.columns)
+    assert len(frame) == 6 and list(frame["order"]) == [1, 2, 1, 2, 1, 2]
+    for column in ["start_x", "tortuosity", "steps", "touched", "contact_steps", "shared_touched", "released_at"]:
+        pd.testing.assert_series_equal(frame[column], program[column], check_dtype=False, check_exact=True)
+
+
+def test_simulate_pair_gives_each_droplet_its_run_path_and_area():
+    medium = softdrop.Medium.generate("non-overlapping", porosity=0.79, seed=3, width=200, height=200)
+    pair = softdrop.simulate_pair(medium, x0=100.0, after=20.0, path=True, trace=True, trace_interval=50)
+    assert pair.released and pair.released_at > 0
+    for droplet in (pair.first, pair.second):
+        assert droplet.outcome in ("passed", "stuck")
+        assert droplet.path.shape[1] == 2 and len(droplet.path) == len(droplet.path_time)
+        assert droplet.trace.shape[1] == 2 and droplet.trace[0, 0] == 0
+        assert math.isnan(droplet.held_at) or droplet.held_at > 0
+    # Both start as the same ring at rest: the same area, to the bit.
+    assert pair.first.trace[0, 1] == pair.second.trace[0, 1] > 0
+    # The first droplet's run is simulate's until the rings meet; apart, it is simulate's to the bit.
+    apart = softdrop.simulate_pair(medium, x0=40.0, after=20.0, offset_x=100.0)
+    assert apart.contact_steps == 0
+    for droplet, x0 in ((apart.first, 40.0), (apart.second, 140.0)):
+        alone = softdrop.simulate(medium, x0=x0)
+        assert droplet.outcome == alone.outcome and droplet.steps == alone.steps
+        assert droplet.tortuosity == alone.tortuosity or math.isnan(alone.tortuosity)
+
+
+def test_a_bad_second_droplet_raises_value_error_naming_it():
+    medium = softdrop.Medium.generate("non-overlapping", porosity=0.79, seed=3, width=200, height=200)
+    with pytest.raises(ValueError, match="second-droplet = 'later'"):
+        softdrop.simulate_pair(medium, release="later")
+    with pytest.raises(ValueError, match="second-after = 5: the second droplet would start overlapping"):
+        softdrop.simulate_pair(medium, after=5.0)
+    with pytest.raises(ValueError, match="second-after = nan"):
+        softdrop.simulate_pairs(medium, 2, after=float("nan"))
+    with pytest.raises(TypeError, match="n: a whole number"):
+        softdrop.simulate_pairs(medium, 2.5)
