@@ -8,11 +8,12 @@
 #      media at each of phi = 0.79 (non-overlapping, the case the paper cites) and 0.5, 0.6, 0.7
 #      (overlapping, where droplets get trapped); alone_<phi>_<m>.csv: the same 20 starts, one
 #      droplet each, to tell what the second changed;
-#      The phi = 0.79 pairs again at half the time step (pairs_0.79half_<m>.csv);
+#      The phi = 0.79 pairs again released at 20 and 80 (pairs_0.79after<A>_<m>.csv), and at half
+#      the time step (pairs_0.79half_<m>.csv);
 #   2. traces: at phi = 0.79, each droplet's area and path every 50 steps (media 9401 to 9405);
 #   3. summarize.py writes pairs.csv (per porosity) and area.csv (Delta S of each droplet);
 #      figure.py draws area.png.
-# About 10 minutes on 2 cores.
+# About 3 minutes on 2 cores.
 #     bash results/two_droplets/run.sh
 set -euo pipefail
 cd "$(dirname "$0")"
@@ -29,6 +30,16 @@ for phi in 0.79 0.5 0.6 0.7; do
     # shellcheck disable=SC2046
     "$BIN" simulate $(medium "$phi") --medium-seed "$m" --droplets 20 --seed "$m" --quiet \
       --runs "$tmp/alone_${phi}_${m}.csv" > /dev/null
+  done
+done
+# The same pairs at phi = 0.79 released at 20 and at 80 below the first's start: does the answer
+# depend on the release?
+for after in 20 80; do
+  for m in $(seq 9401 9420); do
+    # shellcheck disable=SC2046
+    "$BIN" simulate $(medium 0.79) --medium-seed "$m" --droplets 20 --seed "$m" --quiet \
+      --second-droplet distance --second-after "$after" --runs "$tmp/pairs_0.79after${after}_${m}.csv" > /dev/null
+    cp "$tmp/alone_0.79_${m}.csv" "$tmp/alone_0.79after${after}_${m}.csv"
   done
 done
 # The same pairs at phi = 0.79 at half the time step (twice the step budget): does the answer hold?

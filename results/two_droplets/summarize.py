@@ -38,7 +38,7 @@ def load(folder, kind, phi):
 
 def pairs_table(folder):
     rows = []
-    for phi in ["0.79", "0.79half", "0.5", "0.6", "0.7"]:
+    for phi in ["0.79", "0.79half", "0.79after20", "0.79after80", "0.5", "0.6", "0.7"]:
         pairs = load(folder, "pairs", phi)
         alone = load(folder, "alone", phi)[["medium", "droplet", "outcome", "tortuosity", "steps"]]
         first = pairs[pairs["order"] == 1].set_index(["medium", "droplet"])
@@ -64,9 +64,10 @@ def pairs_table(folder):
         alone_stuck = d["outcome_alone"] == "stuck"
         held = d["held_at"].notna()
         row = {
-            "porosity": float(phi.replace("half", "")),
+            "porosity": float(phi[:4].rstrip("ahf")),
             "kind": "non-overlapping" if phi.startswith("0.79") else "overlapping",
             "dt": 3e-6 if phi.endswith("half") else 6e-6,
+            "second_after": int(phi.split("after")[1]) if "after" in phi else 40,
             "pairs": n,
             "released": released.mean(),
             "met": met.mean(),
