@@ -74,10 +74,12 @@ bool nearest_edge(const DropletState& e, const EdgeGrid& grid, double x, double 
     const double sign = inside ? -1.0 : 1.0;
     hit->nx = sign * (x - fqx) / dist;
     hit->ny = sign * (y - fqy) / dist;
-  } else {
-    const double len = std::hypot(sx, sy);
+  } else if (const double len = std::hypot(sx, sy); len > 0) {
     hit->nx = sx / len;
     hit->ny = sy / len;
+  } else {  // on a corner whose edges fold back onto each other: the edge's own normal
+    hit->nx = nx / std::hypot(nx, ny);
+    hit->ny = ny / std::hypot(nx, ny);
   }
   return true;
 }
