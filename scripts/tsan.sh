@@ -11,4 +11,4 @@ export CCACHE_DIR="${CCACHE_DIR:-$PWD/.ccache}"
 cmake --preset tsan  # CMakePresets.json
 cmake --build build-tsan -j "$(nproc)" --target softdrop_tests
 TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1" build-tsan/tests/softdrop_tests \
-  --gtest_filter='Interleaved.*:Sweep*:Determinism.*:Search.Speculative*:Search.Predicted*:Search.PredictionsAhead*:Search.EvolutionStrategySpeculates*:Search.ASlowCompletion*:Islands.Driven*:Objective.TheRobust*:Objective.ARobust*'
+  --gtest_filter='Interleaved.*:Sweep*:Determinism.*:Search.Speculative*:Search.Predicted*:Search.PredictionsAhead*:Search.EvolutionStrategySpeculates*:Search.ASlowCompletion*:Islands.Driven*:Objective.TheRobust*:Objective.ARobust*:TwoDroplets.ABatchOfPairs*'

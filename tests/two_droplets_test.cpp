@@ -235,6 +235,32 @@ TEST(TwoDroplets, AFirstDropletAtRestIsHeldWhileTheSecondRuns) {
             two.released_at + static_cast<double>(two.second.steps) * p.dt);
 }
 
+TEST(TwoDroplets, ABatchOfPairsIsTheSameOnAnyThreadCount) {
+  // Each pair is a sequential run of its own: one thread or four, the same bits, in pair order.
+  const Medium medium = small_medium_079();
+  SecondDroplet second;
+  second.after = 20;
+  BatchOptions b;
+  b.droplets = 6;
+  b.seed = 11;
+  b.threads = 1;
+  const std::vector<TwoDropletSummary> one = run_two_droplet_batch(DropletParams{}, medium, RunOptions{}, b, second);
+  b.threads = 4;
+  const std::vector<TwoDropletSummary> four = run_two_droplet_batch(DropletParams{}, medium, RunOptions{}, b, second);
+  ASSERT_EQ(one.size(), 6U);
+  ASSERT_EQ(four.size(), 6U);
+  for (std::size_t i = 0; i < one.size(); ++i) {
+    EXPECT_EQ(one[i].first.start_x, batch_start_x(b, medium, DropletParams{}, static_cast<int>(i)));
+    EXPECT_EQ(one[i].first.steps, four[i].first.steps);
+    EXPECT_EQ(one[i].second.steps, four[i].second.steps);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(one[i].first.tortuosity),
+              std::bit_cast<std::uint64_t>(four[i].first.tortuosity));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(one[i].second.tortuosity),
+              std::bit_cast<std::uint64_t>(four[i].second.tortuosity));
+    EXPECT_EQ(one[i].contact_steps, four[i].contact_steps);
+  }
+}
+
 TEST(TwoDroplets, ABadSecondDropletIsRefusedNamingIt) {
   const DropletParams p;
   const Medium box = test::empty_medium(400, 300);
