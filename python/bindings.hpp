@@ -33,6 +33,8 @@ inline std::function<void(int, int)> stop_on_ctrl_c() {
 /// A path as every path softdrop gives it to Python: an (n, 2) array of rows x, y.
 pybind11::array_t<double> xy_array(const std::vector<double>& x, const std::vector<double>& y);
 
+/// Throws std::invalid_argument (ValueError in Python) naming the first bad parameter of either.
+void check(const DropletParams& params, const RunOptions& run);
 /// `run` with Ctrl-C in the interpreter stopping it: polled through RunOptions::cancelled (the run
 /// then throws RunCancelled and *interrupted is set), with the GIL taken for the check only.
 RunOptions interruptible(RunOptions run, bool* interrupted);

@@ -100,14 +100,14 @@ void bind_droplet_fields(py::class_<DropletParams>& cls) {
       defaults);
 }
 
+}  // namespace
+
+namespace softdrop::python {
+
 void check(const DropletParams& params, const RunOptions& run) {
   std::string why;
   if (!params.IsValid(&why) || !run.IsValid(&why)) throw std::invalid_argument(why);
 }
-
-}  // namespace
-
-namespace softdrop::python {
 
 RunOptions interruptible(RunOptions run, bool* interrupted) {
   run.cancelled = [interrupted] {
@@ -143,6 +143,7 @@ py::dict summary_dict(const RunSummary& s, bool with_path) {
 
 }  // namespace softdrop::python
 
+using softdrop::python::check;
 using softdrop::python::interruptible;
 using softdrop::python::summary_dict;
 

@@ -23,11 +23,6 @@ SecondDroplet second_droplet(const std::string& release, double after, double of
   return s;
 }
 
-void check(const DropletParams& params, const RunOptions& run) {
-  std::string why;
-  if (!params.IsValid(&why) || !run.IsValid(&why)) throw std::invalid_argument(why);
-}
-
 // One droplet of a pair: its run, and when it was first held.
 py::dict droplet_dict(const RunSummary& s, double held_at, bool path, bool trace) {
   py::dict d = summary_dict(s, path);

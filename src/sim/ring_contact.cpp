@@ -167,16 +167,21 @@ void bounds(const DropletState& s, double* x0, double* x1, double* y0, double* y
   }
 }
 
+// Whether the bounding boxes of ring a and of ring b, its x shifted by s, come within reach.
+bool boxes_within(const DropletState& a, const DropletState& b, double s, double reach) {
+  double ax0, ax1, ay0, ay1, bx0, bx1, by0, by1;
+  bounds(a, &ax0, &ax1, &ay0, &ay1);
+  bounds(b, &bx0, &bx1, &by0, &by1);
+  return !(bx0 + s > ax1 + reach || ax0 > bx1 + s + reach || by0 > ay1 + reach || ay0 > by1 + reach);
+}
+
 // Whether ring b, its x shifted by s, may come within reach of ring a: first on one mass of each
 // (every mass of a ring is within half its perimeter, N (1 + max_strain) d0 / 2, of every other),
 // then on the bounding boxes.
 bool may_touch(const DropletModel& m, const DropletState& a, const DropletState& b, double s, double reach) {
   const double far = a.size() * (1 + m.params.max_strain) * m.context.rest_length + reach;
   if (std::abs(b.x[0] + s - a.x[0]) > far || std::abs(b.y[0] - a.y[0]) > far) return false;
-  double ax0, ax1, ay0, ay1, bx0, bx1, by0, by1;
-  bounds(a, &ax0, &ax1, &ay0, &ay1);
-  bounds(b, &bx0, &bx1, &by0, &by1);
-  return !(bx0 + s > ax1 + reach || ax0 > bx1 + s + reach || by0 > ay1 + reach || ay0 > by1 + reach);
+  return boxes_within(a, b, s, reach);
 }
 
 }  // namespace
@@ -263,11 +268,7 @@ int ring_limit_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b
 }
 
 bool rings_within(const DropletState& a, const DropletState& b, const Medium& medium, double reach) {
-  const double s = periodic_shift(a, b, medium);
-  double ax0, ax1, ay0, ay1, bx0, bx1, by0, by1;
-  bounds(a, &ax0, &ax1, &ay0, &ay1);
-  bounds(b, &bx0, &bx1, &by0, &by1);
-  return !(bx0 + s > ax1 + reach || ax0 > bx1 + s + reach || by0 > ay1 + reach || ay0 > by1 + reach);
+  return boxes_within(a, b, periodic_shift(a, b, medium), reach);
 }
 
 }  // namespace softdrop
