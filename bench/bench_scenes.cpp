@@ -33,7 +33,9 @@
 // (the kept evaluations'). two-droplets-079-1thread runs 24 pairs (simulate --second-droplet
 // distance) through a non-overlapping medium at phi 0.79, one pair at a time, and
 // one-droplet-079-1thread the same 24 first droplets alone: the ratio of their seconds is what a
-// second droplet costs.
+// second droplet costs. medium-200-image and batch-1thread-image run medium-200 and batch-1thread
+// on the same medium drawn as an image at 4 pixels a length unit (2000 x 2000 pixels), whose
+// solid the droplets meet through its distance field.
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -56,6 +58,7 @@
 #include "softdrop/search.hpp"
 #include "softdrop/simulation.hpp"
 #include "softdrop/sweep.hpp"
+#include "studies/pore_tortuosity.hpp"
 
 namespace {
 using namespace softdrop;
@@ -101,7 +104,7 @@ Work stepping(const Medium& medium, std::int64_t steps, ConstraintOrder order = 
 }
 
 Work free_fall() {
-  Medium empty{500, 1'000'000, true, {}};  // tall enough for 400 000 steps of free fall
+  Medium empty{500, 1'000'000, true, {}, nullptr};  // tall enough for 400 000 steps of free fall
   const DropletParams p = scene_droplet;
   Simulation sim(p, empty);
   sim.place(250, 999'000);
@@ -327,13 +330,16 @@ int main(int argc, char** argv) {
   pair_options.porosity = 0.79;
   pair_options.r_min = r_min, pair_options.r_max = r_max;
   const Medium m079 = generate_medium(pair_options);
+  const Medium m200_image = image_medium(pore_image(m200, static_cast<int>(4 * m200.width)));
   const std::vector<std::pair<std::string, std::function<Work()>>> scenes{
       {"free-fall", free_fall},
       {"medium-200", [&] { return stepping(m200, 300'000); }},
       {"medium-5000", [&] { return stepping(m5000, 300'000); }},
       {"medium-200-red-black", [&] { return stepping(m200, 300'000, ConstraintOrder::red_black); }},
+      {"medium-200-image", [&] { return stepping(m200_image, 300'000); }},
       {"batch-1lane-1thread", [&] { return batch(m200, 1, 1); }},
       {"batch-1thread", [&] { return batch(m200, 1, BatchOptions{}.lanes); }},
+      {"batch-1thread-image", [&] { return batch(m200_image, 1, BatchOptions{}.lanes); }},
       {"batch", [&] { return batch(m200, threads, BatchOptions{}.lanes); }},
       {"sweep-1thread", [] { return sweep(1, 16); }},
       {"sweep", [&] { return sweep(threads, 16); }},

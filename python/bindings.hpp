@@ -42,6 +42,10 @@ RunOptions interruptible(RunOptions run, bool* interrupted);
 /// path (rows x, y) and path_time.
 py::dict summary_dict(const RunSummary& s, bool with_path);
 
+/// A 2D numpy array, rows from the top, True or 1 in the pore space, as a PoreImage (rows from
+/// the bottom). Throws std::invalid_argument naming `image` or `pixel_size`: not 2D, empty, not
+/// numbers, not binary, a bad pixel size.
+PoreImage pore_image_of(const py::array& image, double pixel_size, bool periodic);
 /// softdrop.Medium (medium.hpp).
 void bind_medium(py::module_& m);
 /// The held-out value of a medium (batch.hpp).

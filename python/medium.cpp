@@ -14,6 +14,7 @@
 #include <string>
 
 #include "bindings.hpp"
+#include "studies/pore_tortuosity.hpp"
 #include "values.hpp"
 
 namespace softdrop::python {
@@ -30,10 +31,21 @@ py::array_t<double> grain_array(const Medium& m) {
   return a;
 }
 
+// A PoreImage as a boolean array, rows from the top.
+py::array_t<bool> top_first(const PoreImage& im) {
+  py::array_t<bool> image({static_cast<py::ssize_t>(im.ny), static_cast<py::ssize_t>(im.nx)});
+  auto v = image.mutable_unchecked<2>();
+  for (int r = 0; r < im.ny; ++r)
+    for (int c = 0; c < im.nx; ++c)
+      v(r, c) = im.pore[static_cast<std::size_t>(c) + static_cast<std::size_t>(im.nx) * (im.ny - 1 - r)] != 0;
+  return image;
+}
+
 // A boolean image of the box, rows from the top: True in the pore space (PoreSpy's convention).
 py::array_t<bool> pore_image(const Medium& m, int pixels) {
   if (pixels < 1 || pixels > 20000)
     throw std::invalid_argument("pixels = " + std::to_string(pixels) + ": must be in [1, 20000]");
+  if (m.image) return top_first(pixels == m.image->nx ? *m.image : softdrop::pore_image(m, pixels));
   const double scale = pixels / m.width;
   const auto rows = static_cast<py::ssize_t>(std::max(1.0, std::round(m.height * scale)));
   py::array_t<bool> image({rows, static_cast<py::ssize_t>(pixels)});
@@ -60,6 +72,32 @@ py::array_t<bool> pore_image(const Medium& m, int pixels) {
 }
 
 }  // namespace
+
+PoreImage pore_image_of(const py::array& image, double pixel_size, bool periodic) {
+  if (image.ndim() != 2) throw std::invalid_argument("image: a 2D array, not " + std::to_string(image.ndim()) + "D");
+  if (image.shape(0) < 1 || image.shape(1) < 1) throw std::invalid_argument("image: empty");
+  if (!(pixel_size > 0) || !std::isfinite(pixel_size))
+    throw std::invalid_argument("pixel_size = " + std::string(py::repr(py::float_(pixel_size))) +
+                                ": must be finite and > 0");
+  const auto values = py::array_t<double, py::array::forcecast>::ensure(image);
+  if (!values) throw std::invalid_argument("image: not an array of numbers");
+  const auto v = values.unchecked<2>();
+  PoreImage im;
+  im.ny = static_cast<int>(image.shape(0));
+  im.nx = static_cast<int>(image.shape(1));
+  im.pixel = pixel_size;
+  im.periodic = periodic;
+  im.pore.resize(static_cast<std::size_t>(im.nx) * static_cast<std::size_t>(im.ny));
+  for (int r = 0; r < im.ny; ++r)
+    for (int c = 0; c < im.nx; ++c) {
+      const double x = v(r, c);
+      if (x != 0 && x != 1)
+        throw std::invalid_argument("image: not binary (" + std::string(py::repr(py::float_(x))) + " at row " +
+                                    std::to_string(r) + ", column " + std::to_string(c) + "); True or 1 is pore space");
+      im.pore[static_cast<std::size_t>(c) + static_cast<std::size_t>(im.nx) * (im.ny - 1 - r)] = x == 1;
+    }
+  return im;
+}
 
 void bind_medium(py::module_& m) {
   const MediumOptions kMedium;  // the program's defaults are the module's
@@ -104,19 +142,44 @@ void bind_medium(py::module_& m) {
           },
           py::arg("x"), py::arg("y"), py::arg("r"), py::arg("width"), py::arg("height"), py::arg("periodic") = true)
       .def_static(
+          "from_image",
+          [](const py::array& image, double pixel_size, bool periodic) {
+            return image_medium(pore_image_of(image, pixel_size, periodic));
+          },
+          py::arg("image"), py::arg("pixel_size") = 1.0, py::arg("periodic") = true,
+          "The medium of a binary image's pore space: a 2D array, rows from the top, True or 1 in the pore "
+          "(PoreSpy's convention, and to_image's), pixels of side pixel_size (length units). The droplet meets "
+          "its solid through a signed distance field.")
+      .def_static(
           "load",
-          [](const std::filesystem::path& path) {
+          [](const std::filesystem::path& path, double pixel_size, bool periodic) {
             std::error_code ec;
             if (!std::filesystem::exists(path, ec)) {  // as open() says it
-              PyErr_SetString(PyExc_FileNotFoundError, ("grain file '" + path.string() + "': no such file").c_str());
+              const char* what = is_image_file(path.string()) ? "image" : "grain file";
+              PyErr_SetString(PyExc_FileNotFoundError,
+                              (std::string(what) + " '" + path.string() + "': no such file").c_str());
               throw py::error_already_set();
             }
+            if (is_image_file(path.string())) return load_image_medium(path.string(), pixel_size, periodic);
             return load_medium(path.string());
           },
-          py::arg("path"), "Reads a grain file (.json, or CSV); path: str or os.PathLike")
+          py::arg("path"), py::arg("pixel_size") = 1.0, py::arg("periodic") = true,
+          "Reads a grain file (.json, or CSV), or a binary image (.png, .tif, .npy: white, 1 or True is pore) "
+          "whose pixels are pixel_size wide, periodic in x or not; path: str or os.PathLike")
       .def(
           "save", [](const Medium& med, const std::filesystem::path& path) { save_medium(path.string(), med); },
-          py::arg("path"), "Writes a grain file (.json, or CSV); path: str or os.PathLike")
+          py::arg("path"),
+          "Writes a grain file (.json, or CSV), or an image medium's image (.png, .npy); path: str or os.PathLike")
+      .def_property_readonly(
+          "image",
+          [](const Medium& med) -> py::object { return med.image ? py::object(top_first(*med.image)) : py::none(); },
+          "An image medium's pore space (rows from the top, True in the pore); None for a medium of grains")
+      .def_property_readonly(
+          "pixel_size",
+          [](const Medium& med) -> py::object {
+            return med.image ? py::object(py::float_(med.image->pixel)) : py::object(py::none());
+          },
+          "An image medium's pixel side (length units); None for a medium of grains")
       .def_readonly("width", &Medium::width)
       .def_readonly("height", &Medium::height)
       .def_readonly("periodic", &Medium::periodic)
@@ -127,19 +190,38 @@ void bind_medium(py::module_& m) {
       .def("__len__", [](const Medium& med) { return med.grains.size(); })
       .def("__repr__",
            [](const Medium& med) {
+             if (med.image)
+               return "<softdrop.Medium: image of " + std::to_string(med.image->nx) + " x " +
+                      std::to_string(med.image->ny) + " pixels, " + std::string(py::repr(py::float_(med.width))) +
+                      " x " + std::string(py::repr(py::float_(med.height))) +
+                      (med.periodic ? ", periodic>" : ", walls>");
              return "<softdrop.Medium: " + std::to_string(med.grains.size()) + " grains, " +
                     std::string(py::repr(py::float_(med.width))) + " x " +
                     std::string(py::repr(py::float_(med.height))) + (med.periodic ? ", periodic>" : ", walls>");
            })
       .def("__eq__", [](const Medium& a, py::object b) { return py::isinstance<Medium>(b) && a == b.cast<Medium>(); })
-      .def(py::pickle(  // the box and every grain, to the bit (Python floats are doubles)
-          [](const Medium& med) {
+      .def(py::pickle(  // the box and every grain, to the bit (Python floats are doubles), or the image
+          [](const Medium& med) -> py::tuple {
+            if (med.image)
+              return py::make_tuple(
+                  med.image->pixel, med.periodic,
+                  py::bytes(reinterpret_cast<const char*>(med.image->pore.data()), med.image->pore.size()),
+                  med.image->nx, med.image->ny);
             py::list grains;
             for (const Grain& g : med.grains) grains.append(py::make_tuple(g.x, g.y, g.r));
             return py::make_tuple(med.width, med.height, med.periodic, grains);
           },
           [](const py::tuple& state) {
-            if (state.size() != 4) throw std::invalid_argument("Medium: a pickled state has 4 items");
+            if (state.size() == 5) {  // an image medium
+              PoreImage im;
+              im.pixel = state[0].cast<double>();
+              im.periodic = state[1].cast<bool>();
+              const std::string pore = state[2].cast<std::string>();
+              im.pore.assign(pore.begin(), pore.end());
+              im.nx = state[3].cast<int>(), im.ny = state[4].cast<int>();
+              return image_medium(std::move(im));
+            }
+            if (state.size() != 4) throw std::invalid_argument("Medium: a pickled state has 4 items (5 for an image)");
             Medium med;
             med.width = state[0].cast<double>(), med.height = state[1].cast<double>();
             med.periodic = state[2].cast<bool>();

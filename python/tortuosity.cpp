@@ -72,28 +72,7 @@ void bind_tortuosity(py::module_& m) {
   m.def(
       "_tortuosity_of_image",
       [](const py::array& image, double pixel_size, bool periodic, bool flow, int buffer_rows) {
-        if (image.ndim() != 2)
-          throw std::invalid_argument("image: a 2D array, not " + std::to_string(image.ndim()) + "D");
-        if (image.shape(0) < 1 || image.shape(1) < 1) throw std::invalid_argument("image: empty");
-        if (!(pixel_size > 0) || !std::isfinite(pixel_size))
-          throw std::invalid_argument("pixel_size = " + std::to_string(pixel_size) + ": must be finite and > 0");
-        const auto values = py::array_t<double, py::array::forcecast>::ensure(image);
-        if (!values) throw std::invalid_argument("image: not an array of numbers");
-        const auto v = values.unchecked<2>();
-        PoreImage im;
-        im.ny = static_cast<int>(image.shape(0));
-        im.nx = static_cast<int>(image.shape(1));
-        im.pixel = pixel_size;
-        im.periodic = periodic;
-        im.pore.resize(static_cast<std::size_t>(im.nx) * static_cast<std::size_t>(im.ny));
-        for (int r = 0; r < im.ny; ++r)
-          for (int c = 0; c < im.nx; ++c) {
-            const double x = v(r, c);
-            if (x != 0 && x != 1)
-              throw std::invalid_argument("image: not binary (" + std::to_string(x) + " at row " + std::to_string(r) +
-                                          ", column " + std::to_string(c) + "); True or 1 is pore space");
-            im.pore[static_cast<std::size_t>(c + im.nx * (im.ny - 1 - r))] = x == 1;
-          }
+        const PoreImage im = pore_image_of(image, pixel_size, periodic);
         return measure(im, flow, buffer_rows);
       },
       py::arg("image"), py::arg("pixel_size"), py::arg("periodic"), py::arg("flow"), py::arg("buffer_rows"));

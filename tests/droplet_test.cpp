@@ -54,7 +54,7 @@ TEST(Droplet, TheRingStartsWhereItsSpringsBalanceTheGas) {
   const double out = 2 * springs.nrt / (springs.masses * rho);
   const double in = 2 * springs.ks * (2 * rho * s - springs.rest_length()) * s;
   EXPECT_NEAR(in, out, 1e-12 * out);
-  const Medium empty{500, 500, true, {}};
+  const Medium empty{500, 500, true, {}, nullptr};
   Simulation sim(springs, empty);
   EXPECT_NEAR(sim.area(), springs.resting_area(), 1e-12 * springs.resting_area());
   EXPECT_EQ(sim.initial_area(), springs.resting_area());

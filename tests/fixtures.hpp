@@ -87,12 +87,12 @@ inline CalibrationOptions tiny_calibration() {
   return o;
 }
 /// An empty periodic box.
-inline Medium empty_medium(double width = 500, double height = 500) { return Medium{width, height, true, {}}; }
+inline Medium empty_medium(double width = 500, double height = 500) { return Medium{width, height, true, {}, nullptr}; }
 
 /// The paper's Fig. 2 scene: two grains whose gap (14) is narrower than the droplet's diameter
 /// (20), and a third grain below the pore that the droplet must flow around.
 inline Medium pore_of_three_grains() {
-  Medium m{200, 200, true, {}};
+  Medium m{200, 200, true, {}, nullptr};
   const double r = 16, gap = 14;
   m.grains.push_back({100 - gap / 2 - r, 120, r});
   m.grains.push_back({100 + gap / 2 + r, 120, r});
@@ -105,7 +105,7 @@ inline Medium pore_of_three_grains() {
 /// x = 100 comes to rest in the notch; shaken sideways at kVPocketAmplitude and 100 a time unit,
 /// it climbs out and falls free.
 inline Medium v_pocket() {
-  Medium m{200, 120, true, {}};
+  Medium m{200, 120, true, {}, nullptr};
   m.grains.push_back({80, 60, 30});
   m.grains.push_back({120, 60, 30});
   return m;

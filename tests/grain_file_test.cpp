@@ -42,11 +42,11 @@ TEST(GrainFile, JsonAndCsvRoundTripExactly) {
 // numbers in their shortest exact form. A medium without grains keeps its box in comment lines.
 TEST(GrainFile, CsvIsOnePlainTableWithTheBoxOnEveryRow) {
   const std::string path = temp_path("plain.csv");
-  save_medium(path, Medium{300, 200, true, {{0.8, 10, 8}, {150.25, 100.5, 16}}});
+  save_medium(path, Medium{300, 200, true, {{0.8, 10, 8}, {150.25, 100.5, 16}}, nullptr});
   std::ifstream in(path);
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text, "x,y,r,width,height,periodic\n0.8,10,8,300,200,true\n150.25,100.5,16,300,200,true\n");
-  const Medium empty{40, 30, false, {}};
+  const Medium empty{40, 30, false, {}, nullptr};
   save_medium(path, empty);
   EXPECT_EQ(load_medium(path), empty);
   write(path, "x,y,r,width,height,periodic\n1,2,3,40,30,false\n5,6,3,40,31,false\n");

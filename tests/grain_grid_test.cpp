@@ -121,7 +121,7 @@ TEST(GrainGrid, FewLargeGrainsAmongManySmallKeepTheGridLinearAndExact) {
   // 20 000 small grains set the cell size; 150 grains 800 times wider would each cover
   // ~10^5 cells of that size (1.5e7 entries). The grid coarsens instead, and stays exact, with the
   // simulator's halo too.
-  Medium m{2000, 2000, false, {}};
+  Medium m{2000, 2000, false, {}, nullptr};
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(0, 2000);
   for (int i = 0; i < 20000; ++i) m.grains.push_back({u(rng), u(rng), 0.5});

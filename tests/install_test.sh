@@ -28,7 +28,7 @@ fi
 (( ${#headers[@]} <= 10 )) || { echo "install_test: ${#headers[@]} installed headers, more than the API's 10"; exit 1; }
 echo "installed headers: ${#headers[@]}, each compiles on its own"
 "$cxx" -std=c++20 -O2 "$src/examples/library/push_droplet.cpp" -I "$prefix/include" -L "$prefix/lib" \
-  -lsoftdrop_sim -lsoftdrop_media -lsoftdrop_util -ltbb -lgmp -lmpfr -o "$prefix/push_droplet"
+  -lsoftdrop_sim -lsoftdrop_media -lsoftdrop_util -ltbb -lgmp -lmpfr -lpng -ltiff -o "$prefix/push_droplet"
 mine=$("$prefix/push_droplet" 250 | sed -n 's/^tortuosity //p')
 t() { sed -n 's/^ *"tortuosity": \([^,]*\),*$/\1/p;T;q'; }  # the run's T in simulate's JSON
 theirs=$("$prefix/bin/softdrop" simulate --x0 250 --format json | t)

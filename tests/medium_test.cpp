@@ -101,7 +101,7 @@ TEST(Medium, NonOverlappingKeepsTheGapBetweenEveryPair) {
 }
 
 TEST(Medium, SpacingViolationIsFoundAcrossThePeriodicSeam) {
-  Medium m{100, 100, true, {{2, 50, 5}, {95, 50, 5}}};  // 7 apart through the seam, need 10.65
+  Medium m{100, 100, true, {{2, 50, 5}, {95, 50, 5}}, nullptr};  // 7 apart through the seam, need 10.65
   const auto v = find_spacing_violation(m, 0.13);
   ASSERT_TRUE(v.has_value());
   EXPECT_EQ(*v, std::make_pair(0, 1));

@@ -80,7 +80,7 @@ TEST(Mutation, RefusedJumpsLeaveTheGrainInPlace) {
   // A grain that exactly fills a walled box: every jump would leave the box, so all are refused.
   SearchOptions o = test::small_search_options();
   Configuration parent;
-  parent.medium = Medium{24, 24, false, {{12, 12, 12}}};
+  parent.medium = Medium{24, 24, false, {{12, 12, 12}}, nullptr};
   const Candidate c = make_candidate(parent, 1, 0, o);
   EXPECT_EQ(c.moved, 0);
   EXPECT_EQ(c.medium, parent.medium);

@@ -73,7 +73,7 @@ int count_styled(const tinyxml2::XMLElement* e, const std::string& needle) {
 
 Scene small_scene() {
   Scene s;
-  s.medium = Medium{100, 80, true, {{50, 40, 10}, {20, 20, 8}, {97, 60, 9}}};  // the last crosses x = W
+  s.medium = Medium{100, 80, true, {{50, 40, 10}, {20, 20, 8}, {97, 60, 9}}, nullptr};  // the last crosses x = W
   s.caption = "three grains";
   Polyline p;
   p.x = {50, 60, 110, 120};  // unwrapped: leaves through x = W and comes back at x = 0

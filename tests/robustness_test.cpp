@@ -116,7 +116,7 @@ TEST(HardCases, AFallThroughA2000HighBoxOntoOneGrain) {
   // grain's top, and must come back whole. (The balloon, with its breathing damped, folds into
   // itself in most of these falls; results/calibration/README.md has the numbers.)
   for (const double r : {8.0, 16.0}) {
-    const Medium tall{500, 2000, true, {{250, 30, r}}};
+    const Medium tall{500, 2000, true, {{250, 30, r}}, nullptr};
     for (const double dx : {0.0, 0.5, 2.0, 6.0, 12.0}) {
       SCOPED_TRACE("grain radius " + std::to_string(r) + ", start " + std::to_string(dx) + " off its axis");
       const RunSummary run = run_checked(tall, 250 + dx);
@@ -132,7 +132,7 @@ TEST(HardCases, AGrainWhereTheRingStarts) {
   const DropletParams p;
   for (const Grain g : {Grain{100, 200, 12}, Grain{100, 195, 16}, Grain{103, 188, 8}}) {
     SCOPED_TRACE("grain at y = " + std::to_string(g.y) + ", r = " + std::to_string(g.r));
-    const Medium m{200, 200, true, {g}};
+    const Medium m{200, 200, true, {g}, nullptr};
     Simulation sim(p, m);
     EXPECT_GE(sim.start_height() - p.radius, g.y + g.r);
     // 1e-9 off the grain's axis: the droplet rolls off the grain's top and passes.
@@ -145,7 +145,7 @@ TEST(HardCases, AGrainWhereTheRingStarts) {
   // whole and on the axis of the notch.
   const Grain left{88, 195, 12}, right{112, 195, 12};
   double cx = 0, cy = 0;
-  const RunSummary balanced = run_checked(Medium{200, 200, true, {left, right}}, 100, &cx, &cy);
+  const RunSummary balanced = run_checked(Medium{200, 200, true, {left, right}, nullptr}, 100, &cx, &cy);
   EXPECT_EQ(balanced.outcome, Outcome::stuck) << balanced.reason;
   EXPECT_EQ(balanced.reason.rfind("at rest", 0), 0u) << balanced.reason;
   EXPECT_NEAR(cx, 100, 0.01);
@@ -159,7 +159,7 @@ TEST(HardCases, TheNarrowestPoreItPasses) {
   // and rests on a gap of 11. Its internal viscosity keeps its shape stiff, so it squeezes less
   // than the balloon did (a gap of 7).
   auto pore = [](double gap) {
-    return Medium{200, 200, true, {{100 - gap / 2 - 16, 120, 16}, {100 + gap / 2 + 16, 120, 16}}};
+    return Medium{200, 200, true, {{100 - gap / 2 - 16, 120, 16}, {100 + gap / 2 + 16, 120, 16}}, nullptr};
   };
   const RunSummary through = run_checked(pore(12), 100);
   EXPECT_EQ(through.outcome, Outcome::passed) << through.reason;

@@ -438,11 +438,11 @@ TEST(Search, RefusesAStartTheDropletCannotPassOrThatBreaksTheRule) {
   const SearchOptions o = test::small_search_options();
   Configuration best;
   // A wall of touching grains across a walled box: nothing passes, and the rule is broken.
-  Medium wall{100, 100, false, {}};
+  Medium wall{100, 100, false, {}, nullptr};
   for (int i = 0; i < 5; ++i) wall.grains.push_back({10.0 + 20 * i, 50, 10});
   EXPECT_THROW(initial_generation(wall, o, &best), std::invalid_argument);
   // Spaced grains, but the gaps (2.6) are far narrower than the droplet: it gets stuck.
-  Medium sieve{104, 100, false, {}};
+  Medium sieve{104, 100, false, {}, nullptr};
   for (int i = 0; i < 4; ++i) sieve.grains.push_back({14.0 + 25.3 * i, 50, 11.3});
   ASSERT_FALSE(find_spacing_violation(sieve, o.gap).has_value());
   try {

@@ -83,7 +83,7 @@ TEST(Simulation, SqueezesThroughAPoreNarrowerThanItsDiameter) {
 
 TEST(Simulation, RowOfGrainsStopsTheDroplet) {
   DropletParams p;
-  Medium floor{200, 200, true, {}};
+  Medium floor{200, 200, true, {}, nullptr};
   for (int i = 0; i < 10; ++i) floor.grains.push_back({10.0 + 20.0 * i, 100, 12});
   Simulation sim(p, floor);
   RunOptions o;
@@ -100,7 +100,7 @@ TEST(Simulation, RowOfGrainsStopsTheDroplet) {
 
 TEST(Simulation, TheRestTestEndsAStuckDropletEarlyAndChangesNothingElse) {
   DropletParams p;
-  Medium floor{200, 200, true, {}};
+  Medium floor{200, 200, true, {}, nullptr};
   for (int i = 0; i < 10; ++i) floor.grains.push_back({10.0 + 20.0 * i, 100, 12});
   RunOptions rest_test;  // the defaults: the stuck test and the rest test
   ASSERT_EQ(rest_test.rest_window, 0.05);
@@ -151,7 +151,7 @@ TEST(Simulation, NaNStateEndsInDivergedNotACrash) {
 
 TEST(Simulation, SolidWallsKeepTheDropletInTheBox) {
   DropletParams p;
-  Medium box{100, 300, false, {}};
+  Medium box{100, 300, false, {}, nullptr};
   box.grains.push_back({80, 150, 30});  // deflects the droplet towards the right wall
   Simulation sim(p, box);
   RunOptions o;
@@ -166,7 +166,7 @@ TEST(Simulation, SolidWallsKeepTheDropletInTheBox) {
 
 TEST(Simulation, GrainsNarrowerThanAnEdgeAreRefused) {
   DropletParams p;  // longest edge 2 R sin(pi / N) = 1.57
-  const Medium tiny{100, 100, true, {{50, 50, 1.0}}};
+  const Medium tiny{100, 100, true, {{50, 50, 1.0}}, nullptr};
   EXPECT_THROW(Simulation(p, tiny), std::invalid_argument);
   p.masses = 80;  // longest edge 0.785: fine
   EXPECT_NO_THROW(Simulation(p, tiny));
@@ -212,7 +212,7 @@ TEST(Simulation, StepsThatReuseContactTestsEqualStepsThatLookEverythingUp) {
   // top point, so that a mass resting there is inside more grains than the record holds (8). In
   // the third, an open random medium, masses cross wide pores, where their anchor balls reach
   // past their cells' edges into the grid's halo.
-  Medium pile{200, 200, true, {}};
+  Medium pile{200, 200, true, {}, nullptr};
   for (int k = 0; k < 12; ++k) pile.grains.push_back({100.0, 100.0 - (15.0 + k), 15.0 + k});
   MediumOptions open_options;
   open_options.porosity = 0.8;
@@ -264,8 +264,8 @@ TEST(Simulation, RecordedContactForcesEqualForcesComputedFromTheRecords) {
   // compute every contact from the records instead. Both must give the same forces, positions,
   // depth and touched set, step by step, in a pore, across the periodic seam, by the walls of a
   // box and in an open random medium.
-  const Medium seam{200, 200, true, {{0.0, 120.0, 18.0}, {196.0, 60.0, 14.0}, {30.0, 40.0, 12.0}}};
-  const Medium walled{120, 200, false, {{8.0, 120.0, 14.0}, {112.0, 80.0, 14.0}}};
+  const Medium seam{200, 200, true, {{0.0, 120.0, 18.0}, {196.0, 60.0, 14.0}, {30.0, 40.0, 12.0}}, nullptr};
+  const Medium walled{120, 200, false, {{8.0, 120.0, 14.0}, {112.0, 80.0, 14.0}}, nullptr};
   MediumOptions open_options;
   open_options.porosity = 0.8;
   open_options.width = open_options.height = 300;
@@ -319,10 +319,10 @@ TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
   // periodic seam (masses at x < 0 and x > W, where the wrapped position is not x, and discs
   // whose centres lie across the seam), one that meets grains by the walls of a box, and the pore
   // reached a period away.
-  Medium pile{200, 200, true, {}};
+  Medium pile{200, 200, true, {}, nullptr};
   for (int k = 0; k < 12; ++k) pile.grains.push_back({100.0, 100.0 - (15.0 + k), 15.0 + k});
-  const Medium seam{200, 200, true, {{0.0, 120.0, 18.0}, {196.0, 60.0, 14.0}, {30.0, 40.0, 12.0}}};
-  const Medium walled{120, 200, false, {{8.0, 120.0, 14.0}, {112.0, 80.0, 14.0}}};
+  const Medium seam{200, 200, true, {{0.0, 120.0, 18.0}, {196.0, 60.0, 14.0}, {30.0, 40.0, 12.0}}, nullptr};
+  const Medium walled{120, 200, false, {{8.0, 120.0, 14.0}, {112.0, 80.0, 14.0}}, nullptr};
   struct Scene {
     const char* name;
     const Medium* medium;

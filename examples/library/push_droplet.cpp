@@ -2,7 +2,7 @@
 // print the outcome and the tortuosity. Built against an installed softdrop:
 //   cmake --install build --prefix ~/.local
 //   g++ -std=c++20 -O2 push_droplet.cpp -I ~/.local/include -L ~/.local/lib -lsoftdrop_sim -lsoftdrop_media
-//   -lsoftdrop_util -ltbb -lgmp -lmpfr
+//   -lsoftdrop_util -ltbb -lgmp -lmpfr -lpng -ltiff
 //   ./a.out 250        # the same droplet as `softdrop simulate --x0 250`, the same T to the bit
 #include <cstdio>
 #include <cstdlib>

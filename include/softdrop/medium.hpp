@@ -15,6 +15,7 @@
 
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -33,17 +34,36 @@ struct Grain {
 /// is no longer a finite double, so its porosity would be NaN.
 inline constexpr double kMaxBoxSide = 1e9;
 
-/// A medium: the box [0, width) x [0, height] and its grains.
+/// A binary image of a pore space, pixel by pixel: pixel (i, j), column i from x = 0 and row j
+/// from y = 0 at the bottom, is pore[i + nx j], 1 for pore and 0 for solid. Its box is nx pixel by
+/// ny pixel. (Image files and numpy arrays list their rows from the top; the readers turn them.)
+struct PoreImage {
+  int nx = 0, ny = 0;    ///< columns and rows
+  double pixel = 1;      ///< side of a pixel, length units
+  bool periodic = true;  ///< periodic in x (otherwise solid side walls at x = 0 and x = W)
+  std::vector<std::uint8_t> pore;
+  /// Checks the size, the pixel (finite, > 0) and that every value is 0 or 1; names what is wrong.
+  bool IsValid(std::string* why) const;
+  double porosity() const;  ///< the share of pore pixels
+  bool operator==(const PoreImage&) const = default;
+};
+
+/// A medium: the box [0, width) x [0, height] and its grains, or the pore space of an image.
 struct Medium {
   double width = 500;    ///< W, length units
   double height = 500;   ///< H, length units
   bool periodic = true;  ///< periodic in x (otherwise solid side walls at x = 0 and x = W)
   std::vector<Grain> grains;
+  /// An image medium's pore space (image_medium, load_image_medium): its solid is what the
+  /// droplet meets, through a signed distance field, and its box is the image's. Null for a
+  /// medium of grains; an image medium has no grains.
+  std::shared_ptr<const PoreImage> image;
 
-  /// Checks box size (positive, at most kMaxBoxSide), finiteness and positive radii; names the
-  /// first bad value in `why`.
+  /// Checks box size (positive, at most kMaxBoxSide), finiteness and positive radii, or the image
+  /// and its box; names the first bad value in `why`.
   bool IsValid(std::string* why) const;
-  bool operator==(const Medium&) const = default;
+  /// Equal boxes, grains and images (compared pixel by pixel).
+  bool operator==(const Medium& other) const;
 };
 
 /// How grains are placed.
@@ -116,21 +136,43 @@ enum class GrainFileFormat { json, csv };
 GrainFileFormat grain_file_format(const std::string& path);
 
 /// Loads a grain file; throws std::runtime_error naming the file (and line) on any problem,
-/// including a file larger than kMaxGrainFileBytes or with more than kMaxFileGrains grains.
+/// including a file larger than kMaxGrainFileBytes or with more than kMaxFileGrains grains. An
+/// image file (is_image_file) loads as load_image_medium(path, 1, true) does.
 Medium load_medium(const std::string& path);
 /// Reads grain-file text from a stream (what load_medium does after opening the file); `name`
 /// is the file name used in error messages.
 Medium read_medium(std::istream& in, GrainFileFormat format, const std::string& name);
 
-/// Saves a medium atomically (temporary file then rename): JSON for `.json`, otherwise CSV.
+/// Saves a medium atomically (temporary file then rename): JSON for `.json`, otherwise CSV; an
+/// image medium as save_image_medium saves it.
 /// Values are written with 17 significant digits so that a load gives the same doubles.
 void save_medium(const std::string& path, const Medium& medium);
+
+/// The medium of an image's pore space, its box nx pixel by ny pixel. Throws
+/// std::invalid_argument naming what is wrong: an image that is not valid, or has no pore pixel.
+Medium image_medium(PoreImage image);
+
+/// Whether `path` names an image medium by its extension: .png, .tif, .tiff or .npy (any case).
+bool is_image_file(const std::string& path);
+
+/// Loads a binary image as a medium: PNG (libpng) or TIFF (libtiff) of two grey levels, black and
+/// white or 0 and 1, or a 2D numpy .npy array of booleans or of integers or floats 0 and 1. White,
+/// 1 or True is pore (PoreSpy's convention); the file's first row is the top of the box. Each
+/// pixel is `pixel` length units. Throws std::runtime_error naming the file for one that cannot be
+/// read or is not binary, and std::invalid_argument for a bad pixel size or an image without pore.
+Medium load_image_medium(const std::string& path, double pixel, bool periodic);
+
+/// Saves an image medium's pore space as load_image_medium reads it back: PNG (white pore) or .npy
+/// (booleans), by the extension, atomically. Throws std::invalid_argument for a medium of grains
+/// or another extension.
+void save_image_medium(const std::string& path, const Medium& medium);
 
 /// Writes `content` to `path` atomically: a reader sees the old file or the whole new one.
 void write_file_atomically(const std::string& path, const std::string& content);
 
 /// Exact porosity: 1 - area(union of grains, clipped to the box) / (W H), periodic in x when the
 /// medium is. Computed with Green's theorem over the uncovered circle arcs and covered box edges.
+/// An image medium's is its share of pore pixels.
 double exact_porosity(const Medium& medium);
 
 /// Area of the union of the grains clipped to the box (length units squared).

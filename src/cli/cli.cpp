@@ -146,7 +146,7 @@ void Cli::check() {
     if (tortuosity_.medium.file.empty()) check_placement(tortuosity_.medium.options);
     // The medium as the run makes it, for the resolution it needs.
     (void)check_resolution(tortuosity_.medium.file.empty() ? generate_medium(tortuosity_.medium.options)
-                                                           : load_medium(tortuosity_.medium.file),
+                                                           : load_medium_file(tortuosity_.medium),
                            tortuosity_.pixels);
   }
 }

@@ -226,7 +226,9 @@ const std::vector<ColumnName> kColumns = {
     {"time", "time", "simulated time since the droplet was released"},
     {"timeout", "1", "droplets that ran out of steps"},
     {"tortuosity", "1", "T: the length of the droplet's path inside the medium over the medium's height"},
-    {"touched", "1", "grains the droplet touched, a count (in a grain's row: 1 if it touched that grain)"},
+    {"touched", "1",
+     "grains the droplet touched, a count (in a grain's row: 1 if it touched that grain); in an image medium, the "
+     "connected parts of its solid"},
     {"touched_grains", "index", "the indices of the grains the droplet touched"},
     {"trace", "", "the area trace: rows of time, area, area_ratio"},
     {"trace_passed", "1", "calibrate: trace runs that passed"},

@@ -14,10 +14,14 @@ namespace softdrop::cli {
 
 CLI::Option_group* add_medium_options(CLI::App* s, MediumArgs& a, bool fixed_count) {
   auto* g = s->add_option_group("Medium", "generated unless --medium is given");
-  g->add_option("--medium", a.file, "Load the medium from this grain file (.json or .csv)");
   if (fixed_count) {
+    g->add_option("--medium", a.file, "Load the medium from this grain file (.json or .csv)");
     g->add_option("--grains", a.options.grains, "Number of non-overlapping grains")->capture_default_str();
   } else {
+    g->add_option("--medium", a.file,
+                  "Load the medium from this grain file (.json or .csv), or from a binary image (.png, .tif, .npy: "
+                  "white, 1 or True is pore), whose solid the droplet meets through a signed distance field");
+    g->add_option("--pixel-size", a.pixel_size, "An image medium's pixel side (length units)")->capture_default_str();
     g->add_option("--kind", a.kind,
                   "overlapping, non-overlapping (random sequential addition) or relaxed (non-overlapping, "
                   "placed at random and pushed apart: lower porosities with wider gaps)")
@@ -174,6 +178,11 @@ void check_recording(const RunOptions& run, long droplets, int masses) {
                                 " points in memory, more than the limit of 1e8");
 }
 
+Medium load_medium_file(const MediumArgs& a) {
+  if (is_image_file(a.file)) return load_image_medium(a.file, a.pixel_size, !a.walls);
+  return load_medium(a.file);
+}
+
 void resolve_medium(MediumArgs& a) {
   if (!a.file.empty()) return;
   a.options.kind = parse_medium_kind(a.kind);
@@ -198,12 +207,18 @@ void check_medium_file_alone(const CLI::App& command, const std::vector<std::str
                        [&](const std::string& w) { return w == name || w.rfind(name + "=", 0) == 0; });
   };
   const CLI::Option* file = command.get_option_no_throw("--medium");
+  const bool image = file != nullptr && file->count() > 0 && is_image_file(file->as<std::string>());
+  const CLI::Option* pixel = command.get_option_no_throw("--pixel-size");
+  if (!image && pixel != nullptr && pixel->count() > 0 && on_command_line("--pixel-size"))
+    throw std::invalid_argument(
+        "pixel-size: has an effect only with an image --medium (.png, .tif, .npy); leave it out");
   if (file == nullptr || file->count() == 0) return;
   const bool search = command.get_name() == "optimize";  // its moves keep --gap with any medium
   for (const CLI::App* group :
        command.get_subcommands([](const CLI::App* s) { return s->get_name().empty() && s->get_group() == "Medium"; }))
     for (const CLI::Option* o : group->get_options())
-      if (o != file && o->count() > 0 && on_command_line(o->get_name()) && !(search && o->get_name() == "--gap"))
+      if (o != file && o->count() > 0 && on_command_line(o->get_name()) && !(search && o->get_name() == "--gap") &&
+          !(image && (o == pixel || o->get_name() == "--walls")))
         throw std::invalid_argument(o->get_name().substr(2) +
                                     ": has no effect with --medium (the grain file fixes the "
                                     "medium); leave it out");

@@ -19,8 +19,13 @@ struct MediumArgs {
   std::string kind = "overlapping";
   std::string radii = "uniform";
   bool walls = false;
-  std::string file;  ///< load instead of generating
+  std::string file;       ///< load instead of generating
+  double pixel_size = 1;  ///< an image file's pixel side (length units)
 };
+
+/// The medium of --medium FILE: a grain file, or an image (is_image_file) of pixels --pixel-size
+/// wide, periodic in x unless --walls.
+Medium load_medium_file(const MediumArgs& a);
 
 /// Registers --medium, --kind, --porosity, --width, ... in a "Medium" group. With
 /// `fixed_count`, the medium is non-overlapping with --grains grains (the search's media) and

@@ -9,6 +9,7 @@
 
 #include "cli/history_command.hpp"
 #include "cli/output.hpp"
+#include "cli/simulate_output.hpp"
 #include "sim/lane_policy.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
@@ -20,7 +21,7 @@ namespace softdrop::cli {
 
 Medium medium_of(RenderArgs& a) {
   resolve_medium(a.medium);
-  return a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
+  return a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium_file(a.medium);
 }
 
 // Whether any two grains overlap (sorted by their left edge, each compared with those that start
@@ -71,12 +72,7 @@ void draw(const Scene& scene, RenderStyle style, const std::string& path) {
   render_scene(scene, style, path);
 }
 
-std::string describe(const Medium& m) {
-  std::ostringstream s;
-  s << m.grains.size() << " grains, porosity " << fmt(exact_porosity(m), 4) << ", " << m.width << " x " << m.height
-    << (m.periodic ? ", periodic in x" : ", walls");
-  return s.str();
-}
+std::string describe(const Medium& m) { return medium_words(m, exact_porosity(m), 4); }
 
 // The part of a path inside or below the medium (y <= top): the start above it is cut at y = top.
 Polyline below_top(Polyline p, double top) {

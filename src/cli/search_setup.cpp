@@ -167,7 +167,12 @@ void print_held_out(std::ostream& out, const nlohmann::json& held_out) {
 // Generation 0 of a new run: the loaded medium, or random media until the droplet passes. A medium
 // that cannot be generated at all (e.g. too many grains for the box) is an error, not a retry.
 Generation start(const OptimizeArgs& a, Configuration* best) {
-  if (!a.medium.file.empty()) return initial_generation(load_medium(a.medium.file), a.search, best);
+  if (!a.medium.file.empty()) {
+    if (is_image_file(a.medium.file))
+      throw std::invalid_argument("medium: " + a.medium.file +
+                                  " is an image; a search moves grains, so it starts from a grain file (.json, .csv)");
+    return initial_generation(load_medium(a.medium.file), a.search, best);
+  }
   std::string last_reason;
   for (int attempt = 0; attempt < a.start_attempts; ++attempt) {
     MediumOptions m = a.medium.options;

@@ -83,7 +83,7 @@ void check_simulate(SimulateArgs& a) {
 
 int run_simulate(SimulateArgs& a) {
   check_simulate(a);
-  const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
+  const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium_file(a.medium);
   check_start_x(a.x0, medium, a.droplet);
   if (!a.save_medium_file.empty()) save_medium(a.save_medium_file, medium);
   const double porosity = exact_porosity(medium);
@@ -138,8 +138,8 @@ int run_simulate(SimulateArgs& a) {
     if (r.outcome == Outcome::passed) table << "tortuosity   " << fmt(r.tortuosity, 10) << '\n';
     table << "start x      " << r.start_x << "\nsteps        " << r.steps
           << " (t = " << static_cast<double>(r.steps) * a.droplet.dt << ")\ntouched      " << r.touched.size()
-          << " grains\nmin area     " << r.min_area_ratio << " S0\nmax depth    " << r.max_penetration
-          << " length units\n";
+          << (medium.image ? " solid parts (connected pieces of the image's solid)" : " grains") << "\nmin area     "
+          << r.min_area_ratio << " S0\nmax depth    " << r.max_penetration << " length units\n";
   } else {
     table << "droplets     " << stats.droplets << ": " << stats.passed << " passed, " << stats.stuck << " stuck, "
           << stats.timeout << " timeout, " << stats.diverged << " diverged\n";

@@ -41,18 +41,29 @@ void write_snapshot_rows(std::ostream& o, const std::string& key, const RunSumma
 }
 
 nlohmann::json medium_record(const Medium& medium, double porosity) {
-  return {{"grains", medium.grains.size()},
-          {"porosity", porosity},
-          {"width", medium.width},
-          {"height", medium.height},
-          {"periodic", medium.periodic}};
+  nlohmann::json j{{"grains", medium.grains.size()},
+                   {"porosity", porosity},
+                   {"width", medium.width},
+                   {"height", medium.height},
+                   {"periodic", medium.periodic}};
+  if (medium.image)
+    j["image"] = {{"columns", medium.image->nx}, {"rows", medium.image->ny}, {"pixel_size", medium.image->pixel}};
+  return j;
+}
+
+std::string medium_words(const Medium& medium, double porosity, int digits) {
+  std::ostringstream s;
+  if (medium.image)
+    s << "an image of " << medium.image->nx << " x " << medium.image->ny << " pixels of " << fmt(medium.image->pixel);
+  else
+    s << medium.grains.size() << " grains";
+  s << ", porosity " << fmt(porosity, digits) << ", " << fmt(medium.width) << " x " << fmt(medium.height)
+    << (medium.periodic ? ", periodic" : ", walls");
+  return s.str();
 }
 
 std::string medium_line(const Medium& medium, double porosity) {
-  std::ostringstream s;
-  s << "medium       " << medium.grains.size() << " grains, porosity " << fmt(porosity, 6) << ", " << medium.width
-    << " x " << medium.height << (medium.periodic ? ", periodic" : ", walls") << '\n';
-  return s.str();
+  return "medium       " + medium_words(medium, porosity, 6) + "\n";
 }
 
 void write_csv(const std::string& path, const std::string& header, const std::function<void(std::ostream&)>& rows) {

@@ -28,6 +28,9 @@ void write_snapshot_rows(std::ostream& o, const std::string& key, const RunSumma
 /// The medium's record and its line of the table.
 nlohmann::json medium_record(const Medium& medium, double porosity);
 std::string medium_line(const Medium& medium, double porosity);
+/// "N grains" or "an image of C x R pixels of h", then the porosity (to `digits`), the box and its
+/// sides: the medium in a line's words.
+std::string medium_words(const Medium& medium, double porosity, int digits);
 
 /// Writes a CSV file at once (none if path is empty): the header (its names checked against the
 /// table of names) and the rows `rows` writes.

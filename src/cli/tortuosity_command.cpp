@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "cli/output.hpp"
+#include "cli/simulate_output.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/render.hpp"
 #include "softdrop/version.hpp"
@@ -173,7 +174,7 @@ double check_resolution(const Medium& medium, int pixels) {
 
 int run_tortuosity(TortuosityArgs& a) {
   check_tortuosity(a);
-  const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium(a.medium.file);
+  const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium_file(a.medium);
   const double per_radius = check_resolution(medium, a.pixels);
   const Resolved coarse = at_resolution(medium, a.pixels, a.flow, a.quiet);
   const Resolved fine = at_resolution(medium, 2 * a.pixels, a.flow, a.quiet);
@@ -187,12 +188,7 @@ int run_tortuosity(TortuosityArgs& a) {
   const HeldOutRuns& d = droplets.at_dt;
   nlohmann::json j{
       {"version", kVersion},
-      {"medium",
-       {{"grains", medium.grains.size()},
-        {"porosity", exact_porosity(medium)},
-        {"width", medium.width},
-        {"height", medium.height},
-        {"periodic", medium.periodic}}},
+      {"medium", medium_record(medium, exact_porosity(medium))},
       {"pixels_per_smallest_radius",
        medium.grains.empty() ? nlohmann::json() : nlohmann::json({per_radius, 2 * per_radius})},
       {"image_porosity", {coarse.diffusive.porosity, fine.diffusive.porosity}},
@@ -238,9 +234,8 @@ int run_tortuosity(TortuosityArgs& a) {
     std::cout << j.dump(2) << '\n';
     return 0;
   }
-  std::cout << "medium       " << medium.grains.size() << " grains, porosity " << fmt(exact_porosity(medium), 6) << ", "
-            << fmt(medium.width) << " x " << fmt(medium.height) << (medium.periodic ? ", periodic" : ", walls") << "\n"
-            << "image        " << a.pixels << " and " << 2 * a.pixels << " pixels across";
+  std::cout << medium_line(medium, exact_porosity(medium)) << "image        " << a.pixels << " and " << 2 * a.pixels
+            << " pixels across";
   if (!medium.grains.empty())
     std::cout << " (" << fmt(per_radius, 3) << " and " << fmt(2 * per_radius, 3) << " a smallest radius)";
   std::cout << ", porosity " << fmt(coarse.diffusive.porosity, 5) << " and " << fmt(fine.diffusive.porosity, 5) << "\n"

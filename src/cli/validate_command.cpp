@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "cli/output.hpp"
+#include "cli/simulate_output.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/store.hpp"
 #include "softdrop/version.hpp"
@@ -178,9 +179,8 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
     std::cout << j.dump(2) << '\n';
     return 0;
   }
-  std::cout << "medium       " << medium.grains.size() << " grains, porosity " << fmt(exact_porosity(medium), 6) << ", "
-            << fmt(medium.width) << " x " << fmt(medium.height) << (medium.periodic ? ", periodic" : ", walls") << "\n"
-            << in_search << "starts       " << a.held_out.starts << " across the top (seed " << a.held_out.seed << ")\n"
+  std::cout << medium_line(medium, exact_porosity(medium)) << in_search << "starts       " << a.held_out.starts
+            << " across the top (seed " << a.held_out.seed << ")\n"
             << runs_line("at dt        ", v.at_dt) << "\n";
   if (objective.robust())
     std::cout << "objective    " << fmt(held_out_objective, 6) << " over these starts (" << to_string(objective.kind)

@@ -192,6 +192,7 @@ Medium read_medium(std::istream& in, GrainFileFormat format, const std::string& 
 }
 
 Medium load_medium(const std::string& path) {
+  if (is_image_file(path)) return load_image_medium(path, 1, true);
   std::error_code ec;
   const auto status = std::filesystem::status(path, ec);
   if (ec) bad(path, "cannot open (" + ec.message() + ")");
@@ -230,6 +231,10 @@ void write_file_atomically(const std::string& path, const std::string& content) 
 }
 
 void save_medium(const std::string& path, const Medium& medium) {
+  if (medium.image) {
+    save_image_medium(path, medium);
+    return;
+  }
   std::ostringstream out;
   if (ends_with(path, ".json")) {
     nlohmann::json j;

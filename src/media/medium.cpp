@@ -3,6 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "media/image_medium.hpp"
 #include "media/relaxation.hpp"
 #include "spacing.hpp"
 #include "util/enum_names.hpp"
@@ -24,6 +25,7 @@ bool box_is_valid(double width, double height, std::string* why) {
 
 bool Medium::IsValid(std::string* why) const {
   if (!box_is_valid(width, height, why)) return false;
+  if (image) return detail::image_is_valid(*this, why);
   for (std::size_t i = 0; i < grains.size(); ++i) {
     const Grain& g = grains[i];
     const std::string at = "grain " + std::to_string(i) + ": ";
@@ -152,7 +154,7 @@ Medium overlapping_medium(const MediumOptions& o) {
   // The porosity of a prefix of a fixed random sequence of discs falls monotonically with its
   // length, so the smallest prefix reaching the target is found by bisection over exact porosities.
   Rng rng(derive_seed(o.seed, 0));
-  Medium m{o.width, o.height, o.periodic, {}};
+  Medium m{o.width, o.height, o.periodic, {}, nullptr};
   if (o.grains > 0) {
     for (int i = 0; i < o.grains; ++i) m.grains.push_back(random_grain(rng, o));
     return m;
@@ -161,7 +163,7 @@ Medium overlapping_medium(const MediumOptions& o) {
   std::vector<Grain> pool;
   auto porosity_of = [&](std::size_t n) {
     Medium prefix{o.width, o.height, o.periodic,
-                  std::vector<Grain>(pool.begin(), pool.begin() + static_cast<std::ptrdiff_t>(n))};
+                  std::vector<Grain>(pool.begin(), pool.begin() + static_cast<std::ptrdiff_t>(n)), nullptr};
     return exact_porosity(prefix);
   };
   std::size_t hi = static_cast<std::size_t>(1.3 * expected) + 16;
@@ -191,7 +193,7 @@ bool short_of_target(const MediumOptions& o, std::size_t count, double solid) {
 
 Medium non_overlapping_medium(const MediumOptions& o) {
   Rng rng(derive_seed(o.seed, 1));
-  Medium m{o.width, o.height, o.periodic, {}};
+  Medium m{o.width, o.height, o.periodic, {}, nullptr};
   SpacingIndex index(o.width, o.height, o.periodic, o.gap, o.r_max);
   // Grains lie inside the box in y and do not overlap, so the solid area is the sum of disc areas.
   const double box = o.width * o.height;
@@ -223,7 +225,7 @@ constexpr int kMaxRelaxationSweeps = 20000;
 
 Medium relaxed_medium(const MediumOptions& o) {
   Rng rng(derive_seed(o.seed, 2));
-  Medium m{o.width, o.height, o.periodic, {}};
+  Medium m{o.width, o.height, o.periodic, {}, nullptr};
   const double box = o.width * o.height;
   double solid = 0;
   while (short_of_target(o, m.grains.size(), solid)) {

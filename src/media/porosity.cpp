@@ -69,6 +69,7 @@ double covered_length(std::vector<std::pair<double, double>>& iv, double lo, dou
 }  // namespace
 
 double solid_area(const Medium& medium) {
+  if (medium.image) return (1.0 - medium.image->porosity()) * medium.width * medium.height;  // pixel by pixel
   const GrainGrid grid(medium);
   const auto &gx = grid.gx(), &gy = grid.gy(), &gr = grid.gr();
   const std::size_t n = gx.size();
@@ -147,7 +148,10 @@ double solid_area(const Medium& medium) {
   return area;
 }
 
-double exact_porosity(const Medium& medium) { return 1.0 - solid_area(medium) / (medium.width * medium.height); }
+double exact_porosity(const Medium& medium) {
+  if (medium.image) return medium.image->porosity();
+  return 1.0 - solid_area(medium) / (medium.width * medium.height);
+}
 
 PorosityEstimate monte_carlo_porosity(const Medium& medium, std::int64_t samples, std::uint64_t seed) {
   const GrainGrid grid(medium);
@@ -156,6 +160,12 @@ PorosityEstimate monte_carlo_porosity(const Medium& medium, std::int64_t samples
   for (std::int64_t s = 0; s < samples; ++s) {
     const double x = rng.uniform(0, medium.width), y = rng.uniform(0, medium.height);
     bool solid = false;
+    if (const PoreImage* im = medium.image.get()) {  // the pixel the point falls in
+      const int i = std::min(im->nx - 1, static_cast<int>(x / im->pixel));
+      const int j = std::min(im->ny - 1, static_cast<int>(y / im->pixel));
+      solid =
+          im->pore[static_cast<std::size_t>(i) + static_cast<std::size_t>(im->nx) * static_cast<std::size_t>(j)] == 0;
+    }
     const auto range = grid.query(x, y);
     for (const std::int32_t* it = range.begin; it != range.end && !solid; ++it) {
       const double dx = x - grid.gx()[*it], dy = y - grid.gy()[*it], r = grid.gr()[*it];

@@ -191,6 +191,25 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
     }
     return xs;
   };
+  if (const PoreImage* im = m.image.get()) {
+    // An image medium: its solid pixels, a rectangle for each run of them along a row.
+    cairo_new_path(cr);
+    const double h = im->pixel;
+    for (int j = 0; j < im->ny; ++j)
+      for (int i = 0; i < im->nx;) {
+        const std::size_t row = static_cast<std::size_t>(im->nx) * static_cast<std::size_t>(j);
+        if (im->pore[row + static_cast<std::size_t>(i)]) {
+          ++i;
+          continue;
+        }
+        int end = i;
+        while (end < im->nx && !im->pore[row + static_cast<std::size_t>(end)]) ++end;
+        cairo_rectangle(cr, px(i * h), py((j + 1) * h), g.scale * (end - i) * h, g.scale * h);
+        i = end;
+      }
+    set(cr, style.solid_grains ? style.solid : style.grain);
+    cairo_fill(cr);
+  }
   if (style.solid_grains) {
     cairo_new_path(cr);
     for (const Grain& gr : m.grains)

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "contact_lanes.hpp"
+#include "image_contacts.hpp"
 #include "lane_policy.hpp"
 #include "ring_stages.hpp"
 #include "simd_dispatch.hpp"
@@ -16,6 +17,10 @@ using step_detail::within_walls;
 using step_detail::wrap_periodic;
 
 void contact_limit_stage(const DropletModel& m, DropletRuntime& r) {
+  if (m.field) {
+    image_contact_limit(m, r);
+    return;
+  }
   // Inverse dynamics for contacts: no mass stays deeper than max_depth inside a grain, and one
   // that is pushed back loses the normal velocity that carried it in (an inelastic stop).
   const int n = r.state.size();
@@ -28,7 +33,7 @@ void contact_limit_stage(const DropletModel& m, DropletRuntime& r) {
     r.contact.disc_r[i] = g.r;
     r.contact.disc_grain[i] = g.grain;
   };
-  const std::int32_t no_grain = static_cast<std::int32_t>(m.medium.grains.size());
+  const std::int32_t no_grain = m.obstacles;
   r.contact.current = false;
   r.contact.todo.clear();
   alignas(64) double deepest[8] = {};  // of the forces recorded, lane by lane

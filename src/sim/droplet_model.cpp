@@ -29,6 +29,8 @@ const DropletParams& checked(const DropletParams& p, const Medium& m) {
 DropletModel::DropletModel(const DropletParams& p, const Medium& m)
     : params(checked(p, m)), medium(m), context(make_step_context(p)), grid(m, 0, kContactGridHalo) {
   area0 = p.resting_area();
+  if (m.image) field = DistanceField::of(m.image);
+  obstacles = field ? field->parts() : static_cast<std::int32_t>(m.grains.size());
   // Only masses are tested against grains; a grain narrower than an edge could slip between two.
   const double longest_edge = context.dmax;
   for (std::size_t i = 0; i < m.grains.size(); ++i)

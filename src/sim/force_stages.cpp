@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "contact_lanes.hpp"
+#include "image_contacts.hpp"
 #include "lane_layout.hpp"
 #include "lane_policy.hpp"
 #include "lane_scalar.hpp"
@@ -107,6 +108,10 @@ void pressure_stage(const DropletModel& m, DropletRuntime& r) {
 
 void collisions_stage(const DropletModel& m, DropletRuntime& r, double* fx, double* fy, std::ptrdiff_t stride,
                       bool recorded_added) {
+  if (m.field) {
+    image_collisions(m, r, fx, fy, stride);
+    return;
+  }
   const int n = r.state.size();
   const double kc = m.params.kc, cc = m.params.cc, inv_dt = 1.0 / m.params.dt;
   const double W = m.medium.width;

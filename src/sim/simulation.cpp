@@ -61,7 +61,8 @@ bool RunOptions::IsValid(std::string* why) const {
 
 Simulation::Simulation(const DropletParams& params, const Medium& medium)
     : model_(std::make_shared<const DropletModel>(params, medium)), runtime_(std::make_unique<DropletRuntime>()) {
-  runtime_->touched.assign(medium.grains.size() + 1, 0);  // the last entry: no grain (contact.touch's)
+  // The grains or the image's solid parts, and a last entry for none (contact.touch's).
+  runtime_->touched.assign(static_cast<std::size_t>(model_->obstacles) + 1, 0);
   place(0.5 * medium.width, model_->start_y);
 }
 
@@ -92,8 +93,7 @@ void Simulation::place(double cx, double cy) {
   r.spring_force.assign(4 * state.x.size(), 0.0);  // so that step() allocates nothing
   // A point is rarely inside more than a few discs; a mass inside more than this is looked up
   // again by the collisions. (A cell's full count could be thousands in a coarse grid.)
-  r.contact.reset(state.x.size(), std::min<std::size_t>(model_->grid.max_cell_entries(), 8),
-                  static_cast<std::int32_t>(model_->medium.grains.size()));
+  r.contact.reset(state.x.size(), std::min<std::size_t>(model_->grid.max_cell_entries(), 8), model_->obstacles);
   r.area = ring_area(state);
   r.last_penetration = 0;
 }

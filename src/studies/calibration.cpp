@@ -97,7 +97,7 @@ double resting_limit(double scale) { return 0.01 * std::sqrt(scale); }
 
 double resting_travel(const DropletParams& droplet, double scale) {
   const double time = std::sqrt(scale);  // (scale 1 leaves every number as it was)
-  Medium floor{200 * scale, 200 * scale, true, {}};
+  Medium floor{200 * scale, 200 * scale, true, {}, nullptr};
   for (int i = 0; i < 10; ++i) floor.grains.push_back({(10.0 + 20.0 * i) * scale, 100 * scale, 12 * scale});
   Simulation sim(droplet, floor);
   sim.place_above(37.0 * scale);

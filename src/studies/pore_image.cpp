@@ -8,24 +8,6 @@
 
 namespace softdrop {
 
-bool PoreImage::IsValid(std::string* why) const {
-  auto fail = [&](const std::string& w) {
-    if (why) *why = w;
-    return false;
-  };
-  if (nx < 1 || ny < 1) return fail("image: " + std::to_string(nx) + " x " + std::to_string(ny) + " pixels");
-  if (!(pixel > 0) || !std::isfinite(pixel)) return fail("pixel size: must be finite and > 0");
-  if (pore.size() != static_cast<std::size_t>(nx) * static_cast<std::size_t>(ny))
-    return fail("image: " + std::to_string(pore.size()) + " values for " + std::to_string(nx) + " x " +
-                std::to_string(ny) + " pixels");
-  return true;
-}
-
-double PoreImage::porosity() const {
-  if (pore.empty()) return 0;
-  return static_cast<double>(std::count(pore.begin(), pore.end(), std::uint8_t{1})) / static_cast<double>(pore.size());
-}
-
 PoreImage pore_image(const Medium& medium, int nx) {
   if (nx < 2) throw std::invalid_argument("pixels = " + std::to_string(nx) + ": must be >= 2 across the box");
   std::string why;
@@ -40,6 +22,19 @@ PoreImage pore_image(const Medium& medium, int nx) {
                                 std::to_string(image.ny) + " pixels, more than 6.4e7");
   image.pore.assign(static_cast<std::size_t>(image.nx) * static_cast<std::size_t>(image.ny), 1);
   const double h = image.pixel;
+  if (const PoreImage* source = medium.image.get()) {
+    // An image medium: each pixel takes the source pixel its centre falls in.
+    for (int j = 0; j < image.ny; ++j) {
+      const int sj = std::min(source->ny - 1, static_cast<int>((j + 0.5) * h / source->pixel));
+      for (int i = 0; i < image.nx; ++i) {
+        const int si = std::min(source->nx - 1, static_cast<int>((i + 0.5) * h / source->pixel));
+        image.pore[static_cast<std::size_t>(i) + static_cast<std::size_t>(nx) * static_cast<std::size_t>(j)] =
+            source->pore[static_cast<std::size_t>(si) +
+                         static_cast<std::size_t>(source->nx) * static_cast<std::size_t>(sj)];
+      }
+    }
+    return image;
+  }
   for (const Grain& g : medium.grains) {
     // The rows and columns whose centres may lie inside the grain; columns wrap in a periodic box.
     const int j0 = std::max(0, static_cast<int>(std::floor((g.y - g.r) / h - 0.5)));

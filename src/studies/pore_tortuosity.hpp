@@ -14,19 +14,9 @@
 
 namespace softdrop {
 
-/// A binary image of a box: `pore[i + nx * j]` is 1 where pixel (i, j) is pore space, rows j from
-/// the bottom (y = 0) up, columns i from x = 0. Pixels are squares of side `pixel` (length units).
-struct PoreImage {
-  int nx = 0, ny = 0;
-  double pixel = 1;      ///< side of a pixel, length units
-  bool periodic = true;  ///< periodic in x (otherwise walls at x = 0 and x = W)
-  std::vector<std::uint8_t> pore;
-  bool IsValid(std::string* why) const;
-  double porosity() const;  ///< the share of pore pixels
-};
-
 /// The medium drawn with `nx` pixels across its width (and as many rows as fill its height, at
-/// least 1): a pixel is pore where its centre lies inside no grain. Throws std::invalid_argument
+/// least 1): a pixel is pore where its centre lies inside no grain (in an image medium, where it
+/// lies in a pore pixel of the image). Throws std::invalid_argument
 /// for nx < 2 or an image of more than kMaxPoreImagePixels pixels.
 PoreImage pore_image(const Medium& medium, int nx);
 inline constexpr std::int64_t kMaxPoreImagePixels = 64'000'000;
