@@ -17,6 +17,7 @@
 
 #include "cli_run.hpp"
 #include "fixtures.hpp"
+#include "sim/droplet_runtime.hpp"
 #include "sim/ring_contact.hpp"
 #include "sim/two_droplet_run.hpp"
 #include "sim/two_rings_step.hpp"
@@ -233,6 +234,42 @@ TEST(TwoDroplets, AFirstDropletAtRestIsHeldWhileTheSecondRuns) {
   // The first ends after the second.
   EXPECT_GE(static_cast<double>(two.first.steps) * p.dt,
             two.released_at + static_cast<double>(two.second.steps) * p.dt);
+}
+
+TEST(TwoDroplets, OneShakenMediumShakesBothDropletsOnOneClock) {
+  // The medium shakes from the first step; the second droplet, released later, feels it in the
+  // same phase as the first at every step both run (the shaking's force on a mass is m a(t), t
+  // the medium's time since it began to shake).
+  const Medium medium = small_medium_079();
+  DropletParams p;
+  p.vibration_amplitude = 2;
+  p.vibration_frequency = 100;
+  p.vibration_start = VibrationStart::start;
+  SecondDroplet second;
+  second.after = 20;
+  TwoDropletRun run(p, medium, 100, RunOptions{}, second);
+  int both = 0;
+  while (!run.finished()) {
+    run.step();
+    if (!run.first_running() || !run.second_running()) continue;
+    const ShakeForce &a = run.first().runtime().shake, &b = run.second().runtime().shake;
+    ASSERT_TRUE(a.on && b.on);
+    ASSERT_EQ(a.fx, b.fx);
+    ASSERT_EQ(a.fy, b.fy);
+    ++both;
+  }
+  EXPECT_GT(both, 100);
+  const TwoDropletSummary s = run.take();
+  EXPECT_EQ(s.first.shaken_at, 0.0);
+  EXPECT_EQ(s.second.shaken_at, 0.0);  // released into a medium already shaking
+  // From rest: the first's rest starts the shaking, which then frees it or ends it stuck, and the
+  // second is released into the shaking medium.
+  p.vibration_start = VibrationStart::rest;
+  second.after = 1000;  // released when the first's run ends
+  const TwoDropletSummary rest = run_two_droplets(p, test::v_pocket(), 100, RunOptions{}, second);
+  ASSERT_TRUE(rest.released);
+  EXPECT_FALSE(std::isnan(rest.first.shaken_at));
+  EXPECT_EQ(rest.second.shaken_at, 0.0);
 }
 
 TEST(TwoDroplets, ABatchOfPairsIsTheSameOnAnyThreadCount) {

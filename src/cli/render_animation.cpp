@@ -113,6 +113,10 @@ int render_animation_command(RenderArgs& a) {
     tracks.push_back({&run, 0, parse_colour(a.droplet_colour), parse_colour(a.path_colour)});
   }
   const double top_room = sim.start_height() - medium.height + 1.6 * a.droplet.radius;
+  // When the medium began to shake, on the first droplet's clock (a pair's droplets share it; the
+  // second's run began at its release); NaN if it never did.
+  const double shaken_at =
+      two ? std::fmin(pair.first.shaken_at, pair.released_at + pair.second.shaken_at) : run.shaken_at;
   Progress progress("render: frames");
   render_animation(
       frames, a.fps,
@@ -121,8 +125,7 @@ int render_animation_command(RenderArgs& a) {
         // A shaken medium is drawn as it moves, A (1 - cos 2 pi f t) from where it was, and the
         // droplet and its path with it (the run's coordinates are the medium's).
         double dx = 0, dy = 0;
-        if (!two && a.droplet.vibrates() && t >= run.shaken_at)
-          a.droplet.vibration_displacement(t - run.shaken_at, &dx, &dy);
+        if (a.droplet.vibrates() && t >= shaken_at) a.droplet.vibration_displacement(t - shaken_at, &dx, &dy);
         scene.medium = medium;
         for (Grain& g : scene.medium.grains) g.x += dx, g.y += dy;
         scene.top_room = top_room;
@@ -135,7 +138,7 @@ int render_animation_command(RenderArgs& a) {
               ")";
         else
           scene.caption = "t = " + fmt(t, 3) + " (" + outcome_words(run) +
-                          (t >= run.shaken_at ? "; shaken since t = " + fmt(run.shaken_at, 3) : "") + ")";
+                          (t >= shaken_at ? "; shaken since t = " + fmt(shaken_at, 3) : "") + ")";
         if (!a.quiet) progress.update(f + 1, frames);
       },
       style, a.output);

@@ -62,6 +62,19 @@ class RunStepper {
   bool held() const { return held_; }
   /// When the droplet was first held, in time units since its run began; NaN if never.
   double held_at() const { return held_at_; }
+  /// Whether the medium shakes for this droplet, and for how many steps it has (by its clock).
+  bool shaking() const { return shaking_; }
+  std::int64_t shaking_for() const { return k_ - shaking_from_; }
+  /// From the next step, the medium shakes for this droplet as one that has shaken for `steps`
+  /// steps already: two droplets in one medium share its clock. A droplet that was not shaking
+  /// begins to (its shaken_at is now, its stuck window starts again); one that was keeps its
+  /// route and takes the medium's phase.
+  void join_shaking(std::int64_t steps) {
+    if (finished_) return;
+    if (!shaking_) start_shaking(k_);
+    shaking_from_ = k_ - steps;
+    shake_for_step(k_);
+  }
 
   /// Book-keeping of the step just taken (ok: the step's own validity test); may end the run.
   void after_step(bool ok) {

@@ -29,11 +29,6 @@ bool SecondDroplet::IsValid(const DropletParams& droplet, std::string* why) cons
   using detail::num;
   if (!std::isfinite(after) || after <= 0) return fail(why, "second-after = " + num(after) + ": must be > 0");
   if (!std::isfinite(offset_x)) return fail(why, "second-offset-x = " + num(offset_x) + ": must be finite");
-  // Each droplet's run starts the shaking on its own clock (when it comes to rest), and the medium
-  // is one: not yet.
-  if (droplet.vibrates())
-    return fail(why, "second-droplet: not with a shaken medium (vibration-amplitude = " +
-                         num(droplet.vibration_amplitude) + "): each droplet would shake it on its own clock");
   // Two rings within their circumradius R each, and the contact's reach between them.
   const double apart = 2 * droplet.radius + droplet.max_depth;
   if (std::abs(offset_x) >= apart) return true;
@@ -67,6 +62,18 @@ TwoDropletRun::TwoDropletRun(const DropletParams& droplet, const Medium& medium,
   first_.place_above(x0_);
   second_.place_above(x1_);
   first_run_.emplace(&first_, options_, &x0_);
+  share_shaking();
+}
+
+void TwoDropletRun::share_shaking() {
+  RunStepper* runs[2] = {&*first_run_, second_run_ ? &*second_run_ : nullptr};
+  if (shaken_from_ < 0)
+    for (const RunStepper* r : runs)
+      if (r && r->shaking()) shaken_from_ = k_ - r->shaking_for();  // it began the shaking
+  if (shaken_from_ < 0) return;
+  for (RunStepper* r : runs)
+    if (r && !r->finished() && (!r->shaking() || r->shaking_for() != k_ - shaken_from_))
+      r->join_shaking(k_ - shaken_from_);
 }
 
 void TwoDropletRun::step() {
@@ -84,6 +91,7 @@ void TwoDropletRun::step() {
   if (a_on) a.after_step(first_.runtime().valid());
   if (b_on) second_run_->after_step(second_.runtime().valid());
   if (!second_run_) release_if_due();
+  share_shaking();
 }
 
 void TwoDropletRun::release_if_due() {

@@ -36,6 +36,8 @@ class TwoDropletRun {
 
  private:
   void release_if_due();
+  // The medium is one: once either droplet's run begins to shake it, both shake on its clock.
+  void share_shaking();
 
   Simulation first_, second_;
   RunOptions options_;
@@ -44,6 +46,7 @@ class TwoDropletRun {
   std::optional<RunStepper> first_run_, second_run_;
   RingContactScratch scratch_;
   std::int64_t k_ = 0, contact_steps_ = 0;
+  std::int64_t shaken_from_ = -1;  // the pair's step at which the medium began to shake; -1: not yet
   double released_at_;
   int limited_ = 0;
 };

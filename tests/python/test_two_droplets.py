@@ -58,3 +58,12 @@ def test_a_bad_second_droplet_raises_value_error_naming_it():
         softdrop.simulate_pairs(medium, 2, after=float("nan"))
     with pytest.raises(TypeError, match="n: a whole number"):
         softdrop.simulate_pairs(medium, 2.5)
+
+
+def test_a_shaken_medium_shakes_both_droplets_from_when_it_began():
+    medium = softdrop.Medium.generate("non-overlapping", porosity=0.79, seed=3, width=200, height=200)
+    params = softdrop.DropletParams(vibration_amplitude=2.0, vibration_frequency=100.0, vibration_start="start")
+    pair = softdrop.simulate_pair(medium, x0=100.0, after=20.0, params=params)
+    assert pair.released
+    # Both feel the medium shaking from their own starts: it shook before the second was released.
+    assert pair.first.shaken_at == 0.0 and pair.second.shaken_at == 0.0
