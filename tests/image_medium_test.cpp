@@ -306,8 +306,14 @@ TEST(ImageMediumCli, SimulateRenderAndTortuosityTakeAnImageAndRefuseWhatCannotBe
   r = test::run("render paths --medium " + png + " --pixel-size 0.5 --walls --droplets 2 --quiet -o " + picture);
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(std::filesystem::exists(picture));
-  r = test::run("tortuosity --medium " + png + " --pixel-size 0.5 --walls --pixels 120 --starts 2 --no-flow --quiet");
-  EXPECT_EQ(r.code, 0) << r.err;
+  // The pore space at the image's own resolution and at twice it, unless --pixels says otherwise.
+  const std::string tortuosity = test::fresh_path("bar_tortuosity.json");
+  r = test::run("tortuosity --medium " + png + " --pixel-size 0.5 --walls --starts 2 --no-flow --quiet --json " +
+                tortuosity);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto t = nlohmann::json::parse(std::ifstream(tortuosity));
+  EXPECT_EQ(t["geometric_tortuosity"]["pixels"], nlohmann::json({120, 240}));
+  EXPECT_EQ(t["image_porosity"][0].get<double>(), exact_porosity(m));
   // Refused, in one line naming what is wrong, and no file written.
   for (const auto& [command, words] : std::vector<std::pair<std::string, std::string>>{
            {"simulate --pixel-size 2 --quiet", "pixel-size: has an effect only with an image --medium"},

@@ -145,9 +145,9 @@ void Cli::check() {
     check_tortuosity(tortuosity_);
     if (tortuosity_.medium.file.empty()) check_placement(tortuosity_.medium.options);
     // The medium as the run makes it, for the resolution it needs.
-    (void)check_resolution(tortuosity_.medium.file.empty() ? generate_medium(tortuosity_.medium.options)
-                                                           : load_medium_file(tortuosity_.medium),
-                           tortuosity_.pixels);
+    const Medium medium = tortuosity_.medium.file.empty() ? generate_medium(tortuosity_.medium.options)
+                                                          : load_medium_file(tortuosity_.medium);
+    (void)check_resolution(medium, tortuosity_pixels(tortuosity_, medium));
   }
 }
 

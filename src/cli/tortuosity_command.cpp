@@ -33,8 +33,9 @@ CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& a) {
   auto* g = s->add_option_group("Tortuosity");
   g->add_option("--pixels", a.pixels,
                 "Pixels across the box's width at the coarser resolution; the finer has twice as many (the pixel "
-                "count of the height follows)")
-      ->capture_default_str();
+                "count of the height follows). An image medium: its own columns unless given")
+      ->capture_default_str()
+      ->each([&a](const std::string&) { a.pixels_given = true; });
   g->add_option("--starts", a.droplets.starts, "Droplets from random starts for the droplet's T (0: none)")
       ->capture_default_str();
   g->add_option("--seed", a.droplets.seed, "Seed of the droplets' starts")->capture_default_str()->check(seed_check());
@@ -162,6 +163,10 @@ void draw_pictures(const Medium& medium, const Resolved& r, const TortuosityArgs
 
 }  // namespace
 
+int tortuosity_pixels(const TortuosityArgs& a, const Medium& medium) {
+  return medium.image && !a.pixels_given ? medium.image->nx : a.pixels;
+}
+
 double check_resolution(const Medium& medium, int pixels) {
   double r_min = medium.width;
   for (const Grain& g : medium.grains) r_min = std::min(r_min, g.r);
@@ -175,9 +180,10 @@ double check_resolution(const Medium& medium, int pixels) {
 int run_tortuosity(TortuosityArgs& a) {
   check_tortuosity(a);
   const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium_file(a.medium);
-  const double per_radius = check_resolution(medium, a.pixels);
-  const Resolved coarse = at_resolution(medium, a.pixels, a.flow, a.quiet);
-  const Resolved fine = at_resolution(medium, 2 * a.pixels, a.flow, a.quiet);
+  const int pixels = tortuosity_pixels(a, medium);
+  const double per_radius = check_resolution(medium, pixels);
+  const Resolved coarse = at_resolution(medium, pixels, a.flow, a.quiet);
+  const Resolved fine = at_resolution(medium, 2 * pixels, a.flow, a.quiet);
   HeldOutValue droplets;
   if (a.droplets.starts > 0) {
     Progress progress("tortuosity: droplets");
@@ -186,21 +192,20 @@ int run_tortuosity(TortuosityArgs& a) {
     });
   }
   const HeldOutRuns& d = droplets.at_dt;
-  nlohmann::json j{
-      {"version", kVersion},
-      {"medium", medium_record(medium, exact_porosity(medium))},
-      {"pixels_per_smallest_radius",
-       medium.grains.empty() ? nlohmann::json() : nlohmann::json({per_radius, 2 * per_radius})},
-      {"image_porosity", {coarse.diffusive.porosity, fine.diffusive.porosity}},
-      {"geometric_tortuosity", pair_json(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels)},
-      {"diffusive_tortuosity", pair_json(coarse.diffusive.tau, fine.diffusive.tau, a.pixels)}};
+  nlohmann::json j{{"version", kVersion},
+                   {"medium", medium_record(medium, exact_porosity(medium))},
+                   {"pixels_per_smallest_radius",
+                    medium.grains.empty() ? nlohmann::json() : nlohmann::json({per_radius, 2 * per_radius})},
+                   {"image_porosity", {coarse.diffusive.porosity, fine.diffusive.porosity}},
+                   {"geometric_tortuosity", pair_json(coarse.geometric.tortuosity, fine.geometric.tortuosity, pixels)},
+                   {"diffusive_tortuosity", pair_json(coarse.diffusive.tau, fine.diffusive.tau, pixels)}};
   j["geometric_tortuosity"]["starts"] = fine.geometric.starts;
   j["geometric_tortuosity"]["connected"] = fine.geometric.connected;
   j["diffusive_tortuosity"]["formation_factor"] = {coarse.diffusive.formation_factor, fine.diffusive.formation_factor};
   if (a.flow) {
-    j["hydrodynamic_tortuosity"] = pair_json(coarse.flow.tortuosity, fine.flow.tortuosity, a.pixels);
+    j["hydrodynamic_tortuosity"] = pair_json(coarse.flow.tortuosity, fine.flow.tortuosity, pixels);
     j["hydrodynamic_tortuosity"]["buffer_rows"] = {coarse.flow.buffer_rows, fine.flow.buffer_rows};
-    j["permeability"] = pair_json(coarse.flow.permeability, fine.flow.permeability, a.pixels);
+    j["permeability"] = pair_json(coarse.flow.permeability, fine.flow.permeability, pixels);
   }
   if (a.droplets.starts > 0)
     j["droplet_tortuosity"] = {{"starts", d.starts},
@@ -234,17 +239,17 @@ int run_tortuosity(TortuosityArgs& a) {
     std::cout << j.dump(2) << '\n';
     return 0;
   }
-  std::cout << medium_line(medium, exact_porosity(medium)) << "image        " << a.pixels << " and " << 2 * a.pixels
+  std::cout << medium_line(medium, exact_porosity(medium)) << "image        " << pixels << " and " << 2 * pixels
             << " pixels across";
   if (!medium.grains.empty())
     std::cout << " (" << fmt(per_radius, 3) << " and " << fmt(2 * per_radius, 3) << " a smallest radius)";
   std::cout << ", porosity " << fmt(coarse.diffusive.porosity, 5) << " and " << fmt(fine.diffusive.porosity, 5) << "\n"
-            << "geometric T  " << pair_line(coarse.geometric.tortuosity, fine.geometric.tortuosity, a.pixels) << "; "
+            << "geometric T  " << pair_line(coarse.geometric.tortuosity, fine.geometric.tortuosity, pixels) << "; "
             << fine.geometric.connected << " of " << fine.geometric.starts << " top pixels reach the bottom\n"
-            << "diffusive    tau = " << pair_line(coarse.diffusive.tau, fine.diffusive.tau, a.pixels) << "\n";
+            << "diffusive    tau = " << pair_line(coarse.diffusive.tau, fine.diffusive.tau, pixels) << "\n";
   if (a.flow)
-    std::cout << "flow T       " << pair_line(coarse.flow.tortuosity, fine.flow.tortuosity, a.pixels) << "\n"
-              << "permeability " << pair_line(coarse.flow.permeability, fine.flow.permeability, a.pixels)
+    std::cout << "flow T       " << pair_line(coarse.flow.tortuosity, fine.flow.tortuosity, pixels) << "\n"
+              << "permeability " << pair_line(coarse.flow.permeability, fine.flow.permeability, pixels)
               << " (length units squared)\n";
   if (a.droplets.starts > 0) {
     std::cout << "droplet T    ";

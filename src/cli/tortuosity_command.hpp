@@ -15,8 +15,9 @@ namespace softdrop::cli {
 
 struct TortuosityArgs {
   MediumArgs medium;
-  int pixels = 500;         ///< across the box's width, at the coarser resolution (the finer has twice)
-  HeldOutOptions droplets;  ///< the droplet's T: starts and seed (0 starts: no droplet)
+  int pixels = 500;           ///< across the box's width, at the coarser resolution (the finer has twice)
+  bool pixels_given = false;  ///< --pixels was given (otherwise an image medium is taken at its own)
+  HeldOutOptions droplets;    ///< the droplet's T: starts and seed (0 starts: no droplet)
   DropletParams droplet;
   RunOptions run;
   std::string format = "table";
@@ -33,6 +34,9 @@ CLI::App* add_tortuosity_command(CLI::App& app, TortuosityArgs& args);
 /// Checks the options without running; throws std::invalid_argument naming the bad one.
 void check_tortuosity(TortuosityArgs& args);
 int run_tortuosity(TortuosityArgs& args);
+/// The coarser resolution, pixels across: --pixels, or an image medium's own columns when it was
+/// not given.
+int tortuosity_pixels(const TortuosityArgs& a, const Medium& medium);
 /// Throws std::invalid_argument naming --pixels when the smallest grain's radius would span fewer
 /// than 4 pixels (the solves' first-order error is then tens of percent); returns how many it spans.
 double check_resolution(const Medium& medium, int pixels);
