@@ -160,7 +160,8 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
   Columns media({"sweep", "porosity_index", "medium_index", "target_porosity", "porosity", "grains", "medium_seed",
                  "droplets", "passed", "stuck", "timeout", "diverged", "mean_tortuosity", "standard_error",
                  "stuck_fraction", "seconds"});
-  Columns droplets({"sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity", "steps"});
+  Columns droplets({"sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity", "steps",
+                    "shaken_at", "route_tortuosity"});
   Columns points({"sweep", "target_porosity", "porosity", "media", "droplets", "passed", "mean_tortuosity",
                   "standard_error", "media_passed", "media_standard_error", "stuck_fraction", "per_medium_tortuosity",
                   "per_medium_standard_error"});
@@ -186,6 +187,7 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
         droplets["start_x"].append(d.start_x), droplets["outcome"].append(to_string(d.outcome));
         droplets["tortuosity"].append(d.outcome == Outcome::passed ? d.tortuosity : kNaN);
         droplets["steps"].append(d.steps);
+        droplets["shaken_at"].append(d.shaken_at), droplets["route_tortuosity"].append(d.route_tortuosity);
       }
     }
     for (const SweepPoint& p : sweep_points(stored)) {  // as `softdrop sweep-report` aggregates them

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -116,7 +117,7 @@ TEST(Sweep, UnitsRunAcrossThreadsEqualUnitsRunOneByOne) {
 TEST(Sweep, ARecordSentAsBytesArrivesBitForBit) {
   SweepMedium m = run_sweep_unit(tiny(), {1, 0}, 1);
   m.seconds = 0.1 + 0.2;  // not a short decimal
-  m.droplets.push_back({7, std::nextafter(3.0, 4.0), Outcome::diverged, 0.0, -1});
+  m.droplets.push_back({7, std::nextafter(3.0, 4.0), Outcome::diverged, 0.0, -1, 0.1 + 0.2, std::nextafter(1.0, 2.0)});
   const std::string bytes = encode_sweep_medium(m);
   const SweepMedium back = decode_sweep_medium(bytes);
   EXPECT_EQ(back.unit, m.unit);
@@ -135,6 +136,10 @@ TEST(Sweep, ARecordSentAsBytesArrivesBitForBit) {
     EXPECT_EQ(back.droplets[i].outcome, m.droplets[i].outcome);
     EXPECT_EQ(back.droplets[i].tortuosity, m.droplets[i].tortuosity);
     EXPECT_EQ(back.droplets[i].steps, m.droplets[i].steps);
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(back.droplets[i].shaken_at),
+              std::bit_cast<std::uint64_t>(m.droplets[i].shaken_at));
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(back.droplets[i].route_tortuosity),
+              std::bit_cast<std::uint64_t>(m.droplets[i].route_tortuosity));
   }
   EXPECT_EQ(encode_sweep_medium(back), bytes);
   // Anything but a whole record is refused.
@@ -142,7 +147,7 @@ TEST(Sweep, ARecordSentAsBytesArrivesBitForBit) {
   EXPECT_THROW(decode_sweep_medium(bytes + "x"), std::invalid_argument);
   EXPECT_THROW(decode_sweep_medium(""), std::invalid_argument);
   std::string bad_outcome = bytes;
-  bad_outcome[bytes.size() - 8 - 8 - 4] = 9;  // the last droplet's outcome
+  bad_outcome[bytes.size() - 8 - 8 - 8 - 8 - 4] = 9;  // the last droplet's outcome
   EXPECT_THROW(decode_sweep_medium(bad_outcome), std::invalid_argument);
 }
 
@@ -384,6 +389,48 @@ TEST(SweepStore, AVersionOneFileIsMigratedAndKeepsItsRuns) {
   EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), kHistorySchemaVersion);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM runs").getInt(), 1);
   EXPECT_EQ(d.execAndGet("SELECT count(*) FROM sweep_media").getInt(), 3);
+}
+
+TEST(SweepStore, EachDropletsShakingIsStoredAndAVersionEightFileReadsItAsNotRecorded) {
+  // A shaken sweep stores each droplet's shaken_at and route_tortuosity as its run reported them.
+  const std::string db = fresh("shaken.db");
+  const std::string shaken =
+      " --preset quick --quiet --media 1 --droplets 4 --porosities 0.7 --vibration-amplitude 4 "
+      "--vibration-frequency 100";
+  ASSERT_EQ(test::run("sweep --db " + db + shaken).code, 0);
+  const std::vector<SweepMedium> media = open_sweep_store(db, OpenMode::read_only)->media(1);
+  ASSERT_EQ(media.size(), 1u);
+  int shook = 0;
+  for (const SweepDroplet& d : media[0].droplets) {
+    shook += !std::isnan(d.shaken_at);
+    EXPECT_EQ(d.outcome == Outcome::passed, !std::isnan(d.route_tortuosity));
+    if (std::isnan(d.shaken_at) && d.outcome == Outcome::passed) {
+      EXPECT_EQ(d.route_tortuosity, d.tortuosity);
+    }
+  }
+  EXPECT_GT(shook, 0);
+  SQLite::Database v(db, SQLite::OPEN_READONLY);
+  EXPECT_EQ(v.execAndGet("SELECT count(*) FROM sweep_droplets_view WHERE shaken_at IS NOT NULL").getInt(), shook);
+  // A file from before version 9: no such columns. It is read as it is, and a write migrates it;
+  // its old droplets then say "not recorded" (NaN), and new ones are recorded.
+  const std::string old = fresh("v8.db");
+  ASSERT_EQ(test::run("sweep --db " + old + " --preset quick --quiet --media 1 --droplets 2").code, 0);
+  {
+    SQLite::Database d(old, SQLite::OPEN_READWRITE);
+    d.exec(
+        "DROP VIEW sweep_droplets_view; ALTER TABLE sweep_droplets DROP COLUMN shaken_at; "
+        "ALTER TABLE sweep_droplets DROP COLUMN route_tortuosity; PRAGMA user_version = 8");
+  }
+  ASSERT_EQ(open_sweep_store(old, OpenMode::read_only)->media(1).size(), 3u);
+  // A second sweep (other options) writes to it, which migrates the file.
+  ASSERT_EQ(test::run("sweep --db " + old + " --preset quick --quiet --media 2 --droplets 2").code, 0);
+  const auto store = open_sweep_store(old, OpenMode::read_only);
+  for (const std::int64_t sweep : {1, 2})
+    for (const SweepMedium& m : store->media(sweep))
+      for (const SweepDroplet& d : m.droplets)
+        EXPECT_EQ(std::isnan(d.route_tortuosity), sweep == 1 || d.outcome != Outcome::passed) << sweep;
+  SQLite::Database d(old, SQLite::OPEN_READONLY);
+  EXPECT_EQ(d.execAndGet("PRAGMA user_version").getInt(), kHistorySchemaVersion);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,12 @@ struct SweepDroplet {
   Outcome outcome = Outcome::timeout;
   double tortuosity = 0;  ///< 0 unless passed
   std::int64_t steps = 0;
+  /// When the medium began to shake (time units since the run began), NaN if it never did
+  /// (RunSummary::shaken_at); NaN too in a store older than version 9, which did not record it.
+  double shaken_at = std::numeric_limits<double>::quiet_NaN();
+  /// RunSummary::route_tortuosity: T itself if the medium never shook; NaN unless passed, and in
+  /// a store older than version 9.
+  double route_tortuosity = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// One medium's record: its summary and its droplets.

@@ -3,6 +3,7 @@
 #include "cli/sweep_merge_command.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <iostream>
 #include <map>
@@ -28,8 +29,12 @@ bool same_medium(const SweepMedium& x, const SweepMedium& y) {
                x.stuck_fraction == y.stuck_fraction && x.droplets.size() == y.droplets.size();
   for (std::size_t i = 0; equal && i < x.droplets.size(); ++i) {
     const SweepDroplet &p = x.droplets[i], &q = y.droplets[i];
+    // A store older than version 9 did not record shaken_at and route_tortuosity (NaN): compared
+    // only where both stores hold them.
+    const auto same_if_both = [](double a, double b) { return std::isnan(a) || std::isnan(b) || a == b; };
     equal = p.droplet == q.droplet && p.start_x == q.start_x && p.outcome == q.outcome &&
-            p.tortuosity == q.tortuosity && p.steps == q.steps;
+            p.tortuosity == q.tortuosity && p.steps == q.steps && same_if_both(p.shaken_at, q.shaken_at) &&
+            same_if_both(p.route_tortuosity, q.route_tortuosity);
   }
   return equal;
 }

@@ -17,6 +17,13 @@
 #include "wal_file.hpp"
 
 namespace softdrop::detail {
+
+bool has_column(SQLite::Database& db, const char* table, const char* column) {
+  return db.execAndGet(std::string("SELECT count(*) FROM pragma_table_info('") + table + "') WHERE name = '" + column +
+                       "'")
+             .getInt() > 0;
+}
+
 namespace {
 
 // Version 4 lets a generation's kind be 'relocate', version 5 'migrate', version 8 'mixed'. Earlier files have a
@@ -48,9 +55,7 @@ void widen_generation_kinds(SQLite::Database& db) {
 // Adds a column where it is not already (a file whose version was set back, or a migration a
 // crash interrupted before it set the version, may have it).
 void add_column(SQLite::Database& db, const AddedColumn& c) {
-  if (db.execAndGet(std::string("SELECT count(*) FROM pragma_table_info('") + c.table + "') WHERE name = '" + c.column +
-                    "'")
-          .getInt() == 0)
+  if (!has_column(db, c.table, c.column))
     db.exec(std::string("ALTER TABLE ") + c.table + " ADD COLUMN " + c.column + " " + c.type);
 }
 
@@ -318,9 +323,7 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     }
     if (version < 2) db->exec(kSchemaV2);  // migration 1 -> 2: the sweep tables
     // Migration 2 -> 3: the strategies' state (a column: added only where it is not already).
-    if (version < 3 &&
-        db->execAndGet("SELECT count(*) FROM pragma_table_info('generations') WHERE name = 'state'").getInt() == 0)
-      db->exec(kSchemaV3);
+    if (version < 3 && !has_column(*db, "generations", "state")) db->exec(kSchemaV3);
     if (version < 5) {  // migrations 3 -> 4 -> 5: relocation moves, islands
       widen_generation_kinds(*db);
       add_island_columns(*db);
@@ -331,6 +334,9 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
     if (version < 8) {  // migration 7 -> 8: candidates' moves, the kind 'mixed', the views
       if (version >= 1) widen_generation_kinds(*db);
       for (const AddedColumn& c : kSchemaV8) add_column(*db, c);
+    }
+    if (version < 9) {  // migration 8 -> 9: sweep droplets' shaken_at and route_tortuosity, the views
+      for (const AddedColumn& c : kSchemaV9) add_column(*db, c);
       db->exec(kViews);
     }
     if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));

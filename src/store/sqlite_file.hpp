@@ -20,6 +20,9 @@ namespace softdrop::detail {
 /// SQL for "now" in UTC, ISO 8601 with milliseconds.
 inline constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
 
+/// Whether `table` has `column`: a file of an older version, read as it is, may lack one.
+bool has_column(SQLite::Database& db, const char* table, const char* column);
+
 /// One line naming the database file.
 DatabaseError file_error(const std::string& path, const std::string& what);
 

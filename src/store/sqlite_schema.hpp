@@ -169,6 +169,11 @@ inline constexpr AddedColumn kSchemaV7[] = {{"runs", "droplets", "INTEGER"},
 // which drew each candidate's own), a generation kind 'mixed' for those, and the views below.
 inline constexpr AddedColumn kSchemaV8[] = {{"candidates", "kind", "TEXT"}};
 
+// Version 9: each sweep droplet's shaken_at and route_tortuosity (NULL before: not recorded), and
+// the views again.
+inline constexpr AddedColumn kSchemaV9[] = {{"sweep_droplets", "shaken_at", "REAL"},
+                                            {"sweep_droplets", "route_tortuosity", "REAL"}};
+
 // The views: each table under the names the program's CSV and JSON and the Python frames use
 // (`softdrop columns` lists them), for queries in SQL. Dropped and made again at each migration
 // that changes them; a view holds no data.
@@ -216,7 +221,8 @@ CREATE VIEW sweep_media_view AS SELECT
 FROM sweep_media;
 DROP VIEW IF EXISTS sweep_droplets_view;
 CREATE VIEW sweep_droplets_view AS SELECT
-  sweep_id AS sweep, porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps
+  sweep_id AS sweep, porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps, shaken_at,
+  route_tortuosity
 FROM sweep_droplets;
 )sql";
 

@@ -1,6 +1,8 @@
 // Sweep records (SweepStore) on a softdrop SQLite database (see sqlite_file.hpp).
 #include <SQLiteCpp/SQLiteCpp.h>
 
+#include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -67,10 +69,13 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
                          detail::value_if(m.passed > 1, m.standard_error), m.stuck_fraction, m.seconds);
       SQLite::Statement d(db_,
                           "INSERT INTO sweep_droplets (sweep_id, porosity_index, medium_index, droplet, start_x, "
-                          "outcome, tortuosity, steps) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+                          "outcome, tortuosity, steps, shaken_at, route_tortuosity) "
+                          "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
       for (const SweepDroplet& r : m.droplets)
         detail::insert_row(d, sweep, m.unit.porosity, m.unit.medium, r.droplet, r.start_x, to_string(r.outcome),
-                           detail::value_if(r.outcome == Outcome::passed, r.tortuosity), r.steps);
+                           detail::value_if(r.outcome == Outcome::passed, r.tortuosity), r.steps,
+                           detail::value_if(!std::isnan(r.shaken_at), r.shaken_at),
+                           detail::value_if(!std::isnan(r.route_tortuosity), r.route_tortuosity));
       SQLite::Statement u(db_, std::string("UPDATE sweeps SET updated = ") + kNow + " WHERE id = ?");
       u.bind(1, sweep);
       u.exec();
@@ -124,9 +129,14 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
         m.seconds = detail::as_real(q.getColumn(13));
         out.push_back(std::move(m));
       }
-      SQLite::Statement d(db_,
-                          "SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps "
-                          "FROM sweep_droplets WHERE sweep_id = ? ORDER BY porosity_index, medium_index, droplet");
+      SQLite::Statement d(
+          db_,
+          std::string("SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, "
+                      "steps, ") +
+              // A file older than version 9, read as it is, has not these columns.
+              (detail::has_column(db_, "sweep_droplets", "shaken_at") ? "shaken_at, route_tortuosity" : "NULL, NULL") +
+              " FROM sweep_droplets WHERE sweep_id = ? ORDER BY porosity_index, "
+              "medium_index, droplet");
       d.bind(1, sweep_id);
       std::size_t k = 0;
       while (d.executeStep()) {
@@ -136,10 +146,13 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
           throw std::runtime_error("sweep " + std::to_string(sweep_id) + ": droplets of porosity " +
                                    std::to_string(u.porosity) + " medium " + std::to_string(u.medium) +
                                    " without their medium, or out of order (damaged or edited file?)");
+        const auto real_or_nan = [&](int c) {
+          return d.getColumn(c).isNull() ? std::numeric_limits<double>::quiet_NaN() : detail::as_real(d.getColumn(c));
+        };
         out[k].droplets.push_back({detail::as_int(d.getColumn(2)), detail::as_real(d.getColumn(3)),
                                    parse_outcome(detail::as_text(d.getColumn(4))),
                                    d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)),
-                                   detail::as_int64(d.getColumn(6))});
+                                   detail::as_int64(d.getColumn(6)), real_or_nan(7), real_or_nan(8)});
       }
       t.commit();
       return out;

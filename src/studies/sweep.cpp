@@ -5,6 +5,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <exception>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -117,8 +118,10 @@ void finish_unit(SweepMedium* r, const std::vector<RunSummary>& runs) {
   r->stuck_fraction = s.stuck_fraction;
   r->droplets.clear();
   for (std::size_t i = 0; i < runs.size(); ++i)
-    r->droplets.push_back({static_cast<int>(i), runs[i].start_x, runs[i].outcome,
-                           runs[i].outcome == Outcome::passed ? runs[i].tortuosity : 0.0, runs[i].steps});
+    r->droplets.push_back(
+        {static_cast<int>(i), runs[i].start_x, runs[i].outcome,
+         runs[i].outcome == Outcome::passed ? runs[i].tortuosity : 0.0, runs[i].steps, runs[i].shaken_at,
+         runs[i].outcome == Outcome::passed ? runs[i].route_tortuosity : std::numeric_limits<double>::quiet_NaN()});
 }
 
 }  // namespace

@@ -30,7 +30,7 @@ std::string encode_sweep_medium(const SweepMedium& m) {
   w.put<std::uint64_t>(m.droplets.size());
   for (const SweepDroplet& d : m.droplets) {
     w.put(d.droplet), w.put(d.start_x), w.put(static_cast<std::int32_t>(d.outcome)), w.put(d.tortuosity);
-    w.put(d.steps);
+    w.put(d.steps), w.put(d.shaken_at), w.put(d.route_tortuosity);
   }
   return w.out;
 }
@@ -54,6 +54,7 @@ SweepMedium decode_sweep_medium(const std::string& bytes) {
     if (outcome < 0 || outcome > static_cast<std::int32_t>(Outcome::diverged)) r.fail("bad outcome");
     d.outcome = static_cast<Outcome>(outcome);
     d.tortuosity = r.get<double>(), d.steps = r.get<std::int64_t>();
+    d.shaken_at = r.get<double>(), d.route_tortuosity = r.get<double>();
   }
   if (!r.at_end()) r.fail("trailing bytes");
   return m;

@@ -190,12 +190,15 @@ def test_tables_have_the_databases_columns_and_types(tmp_path):
     softdrop.sweep(tmp_path / "w.db", **SWEEP)
     w = softdrop.read_sweep(tmp_path / "w.db")
     assert list(w["droplets"].columns) == ["sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome",
-                                           "tortuosity", "steps"]
+                                           "tortuosity", "steps", "shaken_at", "route_tortuosity"]
     assert w["droplets"].dtypes["steps"] == np.int64 and w["droplets"].dtypes["tortuosity"] == np.float64
     passed = w["droplets"]["outcome"] == "passed"
     # T >= 1 up to the rounding of a path summed over thousands of steps (a straight fall gives 1 +- 1e-15)
     assert w["droplets"].loc[~passed, "tortuosity"].isna().all()
     assert (w["droplets"].loc[passed, "tortuosity"] >= 1 - 1e-12).all()
+    # An unshaken sweep: never shaken, and the route is the path itself.
+    assert w["droplets"]["shaken_at"].isna().all()
+    assert (w["droplets"].loc[passed, "route_tortuosity"] == w["droplets"].loc[passed, "tortuosity"]).all()
 
 
 @pytest.mark.parametrize("call, says", [
