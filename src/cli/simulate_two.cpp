@@ -54,13 +54,16 @@ std::string stats_line(const BatchStats& s) {
   return o.str();
 }
 
-std::string run_line(const RunSummary& r, double dt) {
+// The touched set's entries: grains, or an image medium's solid parts.
+const char* obstacles(const Medium& medium) { return medium.image ? "solid parts" : "grains"; }
+
+std::string run_line(const RunSummary& r, double dt, const Medium& medium) {
   std::ostringstream o;
   o << to_string(r.outcome);
   if (r.outcome == Outcome::passed) o << ", T " << fmt(r.tortuosity, 10);
   o << " (start x " << fmt(r.start_x, 8) << ", " << r.steps
-    << " steps, t = " << fmt(static_cast<double>(r.steps) * dt, 6) << ", " << r.touched.size() << " grains touched; "
-    << r.reason << ")";
+    << " steps, t = " << fmt(static_cast<double>(r.steps) * dt, 6) << ", " << r.touched.size() << ' '
+    << obstacles(medium) << " touched; " << r.reason << ")";
   return o.str();
 }
 
@@ -121,14 +124,14 @@ int run_simulate_two(SimulateArgs& a, const Medium& medium) {
   table << medium_line(medium, porosity);
   if (pairs.size() == 1) {
     const TwoDropletSummary& p = pairs[0];
-    table << "first        " << run_line(p.first, a.droplet.dt) << '\n';
+    table << "first        " << run_line(p.first, a.droplet.dt, medium) << '\n';
     if (p.released)
-      table << "second       released at t = " << fmt(p.released_at, 6) << ": " << run_line(p.second, a.droplet.dt)
-            << '\n';
+      table << "second       released at t = " << fmt(p.released_at, 6) << ": "
+            << run_line(p.second, a.droplet.dt, medium) << '\n';
     else
       table << "second       " << p.second.reason << '\n';
-    table << "contact      " << p.contact_steps << " steps in contact; " << p.shared_touched
-          << " grains touched by both\n";
+    table << "contact      " << p.contact_steps << " steps in contact; " << p.shared_touched << ' ' << obstacles(medium)
+          << " touched by both\n";
     if (!std::isnan(p.first_held_at))
       table << "held         the first was held from t = " << fmt(p.first_held_at, 6)
             << " (at rest or stuck while the second still moved)\n";
