@@ -162,7 +162,7 @@ TEST(BadInputLines, DamagedRowsAreRefused) {
   for (const auto& [sql, says] : std::vector<std::pair<std::string, std::string>>{
            {"UPDATE sweeps SET units = -1", "sweep 1: column units holds -1"},
            {"INSERT INTO sweep_droplets SELECT sweep_id, porosity_index, medium_index + 7, droplet, start_x, outcome, "
-            "tortuosity, steps FROM sweep_droplets",
+            "tortuosity, steps, shaken_at, route_tortuosity FROM sweep_droplets",
             "droplets of porosity 0 medium 7 without their medium"}}) {
     SCOPED_TRACE(sql);
     const std::string db = fresh("rows_sweep.db");

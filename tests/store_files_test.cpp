@@ -11,6 +11,7 @@
 #include <string>
 
 #include "search_cli.hpp"
+#include "softdrop/store.hpp"
 
 namespace {
 using namespace softdrop::test;
@@ -36,7 +37,8 @@ TEST(RefusedFiles, AreLeftAsTheyWereFoundWithNoSideFiles) {
   };
   for (const Case& c :
        {Case{"PRAGMA application_id = 5", "not a softdrop database"},
-        Case{"PRAGMA user_version = 9", "written by a newer softdrop"},
+        Case{"PRAGMA user_version = " + std::to_string(softdrop::kHistorySchemaVersion + 1),
+             "written by a newer softdrop"},
         Case{"PRAGMA user_version = 99", "schema version 99"}, Case{"DROP TABLE paths", "without its table paths"}}) {
     SCOPED_TRACE(c.sql);
     const std::string db = fresh("refused.db");
