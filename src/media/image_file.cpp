@@ -4,7 +4,6 @@
 #include <tiffio.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -22,13 +21,6 @@ namespace {
 
 [[noreturn]] void bad(const std::string& path, const std::string& what) {
   throw std::runtime_error("image '" + path + "': " + what);
-}
-
-bool ends_with(const std::string& path, const char* e) {
-  std::string p = path;
-  std::transform(p.begin(), p.end(), p.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  const std::size_t n = std::strlen(e);
-  return p.size() >= n && p.compare(p.size() - n, n, e) == 0;
 }
 
 // Grey levels, first row at the top, as pore values: two levels at most, the higher pore (white,
@@ -181,13 +173,15 @@ std::vector<unsigned char> top_first(const PoreImage& im, unsigned char pore) {
 PoreImage read_image_file(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) bad(path, "no such file");
-  if (ends_with(path, ".png")) return read_png(path);
-  if (ends_with(path, ".npy")) return read_npy(path);
+  const std::string extension = lower_extension(path);
+  if (extension == ".png") return read_png(path);
+  if (extension == ".npy") return read_npy(path);
   return read_tiff(path);
 }
 
 std::string image_file_bytes(const std::string& path, const PoreImage& im) {
-  if (ends_with(path, ".npy")) {
+  const std::string extension = lower_extension(path);
+  if (extension == ".npy") {
     std::string header = "{'descr': '|b1', 'fortran_order': False, 'shape': (" + std::to_string(im.ny) + ", " +
                          std::to_string(im.nx) + "), }";
     // Padded with spaces and a newline so that the data start on a multiple of 64 bytes.
@@ -202,7 +196,7 @@ std::string image_file_bytes(const std::string& path, const PoreImage& im) {
     out.append(v.begin(), v.end());
     return out;
   }
-  if (!ends_with(path, ".png")) throw std::invalid_argument(path + ": an image medium is saved as .png or .npy");
+  if (extension != ".png") throw std::invalid_argument(path + ": an image medium is saved as .png or .npy");
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
   image.width = static_cast<png_uint_32>(im.nx);

@@ -62,7 +62,7 @@ Medium image_medium(PoreImage image) {
   return m;
 }
 
-namespace {
+namespace detail {
 std::string lower_extension(const std::string& path) {
   const std::size_t dot = path.find_last_of('.');
   const std::size_t slash = path.find_last_of('/');
@@ -71,10 +71,10 @@ std::string lower_extension(const std::string& path) {
   std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return e;
 }
-}  // namespace
+}  // namespace detail
 
 bool is_image_file(const std::string& path) {
-  const std::string e = lower_extension(path);
+  const std::string e = detail::lower_extension(path);
   return e == ".png" || e == ".tif" || e == ".tiff" || e == ".npy";
 }
 
@@ -93,8 +93,8 @@ Medium load_image_medium(const std::string& path, double pixel, bool periodic) {
 
 void save_image_medium(const std::string& path, const Medium& medium) {
   if (!medium.image) throw std::invalid_argument(path + ": a medium of grains is saved as a grain file (.json, .csv)");
-  if (!(is_image_file(path) && !path.ends_with(".tif") && !path.ends_with(".tiff")))
-    throw std::invalid_argument(path + ": an image medium is saved as .png or .npy");
+  const std::string e = detail::lower_extension(path);
+  if (e != ".png" && e != ".npy") throw std::invalid_argument(path + ": an image medium is saved as .png or .npy");
   write_file_atomically(path, detail::image_file_bytes(path, *medium.image));
 }
 

@@ -7,6 +7,9 @@
 
 namespace softdrop::detail {
 
+/// The extension of a file's name in lower case, with its dot (".png"); empty if it has none.
+std::string lower_extension(const std::string& path);
+
 /// Medium::IsValid's test of an image medium: a valid image, no grains, and the image's box.
 bool image_is_valid(const Medium& medium, std::string* why);
 
