@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "arguments.hpp"
 #include "bindings.hpp"
 #include "cli/cli.hpp"
 
@@ -36,6 +37,24 @@ class PendingError {
   PyObject *type_ = nullptr, *value_ = nullptr, *traceback_ = nullptr;
 };
 
+// A value the option cannot take, said as a Python keyword's wrong type: CLI11's "Could not convert:
+// --generations = 2.5" is "generations: a whole number, not 2.5".
+std::string conversion_line(const cli::Cli& cli, const std::string& command, const std::string& what) {
+  const std::size_t dashes = what.find("--"), equals = what.find(" = ");
+  if (dashes == std::string::npos || equals == std::string::npos || equals < dashes) return python_words(what);
+  const std::string option = what.substr(dashes, equals - dashes);
+  const std::string value = what.substr(equals + 3);
+  const CLI::App* sub = cli.app.get_subcommand(command);  // optimize or sweep: run_command checked
+  const CLI::Option* o = sub ? sub->get_option_no_throw(option) : nullptr;
+  const std::string type = o ? o->get_type_name() : "";
+  const char* wanted = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0 ? "a whole number"
+                       : type.rfind("FLOAT", 0) == 0                           ? "a number"
+                                                                               : "a value it takes";
+  std::string name = python_words(option);
+  if (name == "lambda") name = "lambda_";  // the keyword, as `lambda` is Python's
+  return name + ": " + wanted + ", not " + value;
+}
+
 py::object run_command(const std::vector<std::string>& args, const py::object& callback) {
   if (args.size() < 2 || (args[1] != "optimize" && args[1] != "sweep"))
     throw std::invalid_argument("command: must be optimize or sweep");
@@ -48,6 +67,18 @@ py::object run_command(const std::vector<std::string>& args, const py::object& c
   cli::Cli cli;
   try {
     cli.parse(argc, argv.data());
+  } catch (const CLI::ConversionError& e) {
+    throw py::type_error(conversion_line(cli, args[1], e.what()));
+  } catch (const CLI::ExtrasError& e) {  // an option the command does not have: Python's own words for it
+    const CLI::App* sub = cli.app.get_subcommand(args[1]);
+    for (std::size_t i = 2; i < args.size(); ++i)
+      if (args[i].rfind("--", 0) == 0 && sub->get_option_no_throw(args[i]) == nullptr) {
+        const std::string line = cli.parse_error_line(e, argc, argv.data());
+        const std::size_t mean = line.find(" (did you mean");
+        throw py::type_error(args[1] + "() got an unexpected keyword argument '" + python_words(args[i]) + "'" +
+                             (mean == std::string::npos ? "" : python_words(line.substr(mean))));
+      }
+    throw std::invalid_argument(cli.parse_error_line(e, argc, argv.data()));
   } catch (const CLI::ParseError& e) {
     throw std::invalid_argument(cli.parse_error_line(e, argc, argv.data()));
   }

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "arguments.hpp"
 #include "bindings.hpp"
 #include "studies/pore_tortuosity.hpp"
 #include "values.hpp"
@@ -71,6 +72,19 @@ py::array_t<bool> pore_image(const Medium& m, int pixels) {
   return image;
 }
 
+// A kind of medium by the name the program takes (not the older spelling it still reads in files).
+MediumKind medium_kind_arg(const py::object& kind) {
+  const std::string name = text_arg(kind, "kind");
+  const std::vector<std::string> names = medium_kind_names();
+  if (std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string list;
+    for (std::size_t i = 0; i < names.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    throw std::invalid_argument("kind = '" + name + "': must be " + list);
+  }
+  return parse_medium_kind(name);
+}
+
 }  // namespace
 
 PoreImage pore_image_of(const py::array& image, double pixel_size, bool periodic) {
@@ -104,12 +118,16 @@ void bind_medium(py::module_& m) {
   py::class_<Medium>(m, "Medium", "A box of disc grains (length units)")
       .def_static(
           "generate",
-          [](const std::string& kind, double porosity, double width, double height, double r_min, double r_max,
-             std::uint64_t seed, double gap, bool periodic, int grains) {
+          [](const py::object& kind, const py::object& porosity, const py::object& width, const py::object& height,
+             const py::object& r_min, const py::object& r_max, const py::object& seed, const py::object& gap,
+             const py::object& periodic, const py::object& grains) {
             MediumOptions o;
-            o.kind = parse_medium_kind(kind);
-            o.porosity = porosity, o.width = width, o.height = height, o.r_min = r_min, o.r_max = r_max;
-            o.seed = seed, o.gap = gap, o.periodic = periodic, o.grains = grains;
+            o.kind = medium_kind_arg(kind);
+            o.porosity = real_arg(porosity, "porosity"), o.width = real_arg(width, "width");
+            o.height = real_arg(height, "height"), o.r_min = real_arg(r_min, "r_min");
+            o.r_max = real_arg(r_max, "r_max"), o.seed = seed_arg(seed, "seed"), o.gap = real_arg(gap, "gap");
+            o.periodic = bool_arg(periodic, "periodic");
+            o.grains = int_arg(grains, "grains");
             std::string why;
             if (!o.IsValid(&why)) throw std::invalid_argument(why);
             py::gil_scoped_release release;
@@ -125,26 +143,36 @@ void bind_medium(py::module_& m) {
           py::arg("grains") = kMedium.grains,
           "A random medium, as `softdrop simulate` generates it (the same options give the same grains). "
           "kind: overlapping, non-overlapping (random sequential addition) or relaxed (non-overlapping, "
-          "placed at random and pushed apart: lower porosities with wider gaps); gap: the least surface gap "
-          "of non-overlapping and relaxed grains, as a fraction of the larger radius")
+          "placed at random and pushed apart: lower porosities with wider gaps); porosity: the target void "
+          "fraction; width, height: the box (length units); r_min, r_max: the grains' radii; seed: a whole "
+          "number from 0; gap: the least surface gap of non-overlapping and relaxed grains, as a fraction of the "
+          "larger radius; periodic: periodic in x (else walls); grains: a fixed number of grains (0: as many as "
+          "the porosity needs)")
       .def_static(
           "from_arrays",
-          [](const std::vector<double>& x, const std::vector<double>& y, const std::vector<double>& r, double width,
-             double height, bool periodic) {
-            if (x.size() != y.size() || x.size() != r.size())
+          [](const py::object& x, const py::object& y, const py::object& r, const py::object& width,
+             const py::object& height, const py::object& periodic) {
+            const std::vector<double> xs = reals_arg(x, "x"), ys = reals_arg(y, "y"), rs = reals_arg(r, "r");
+            if (xs.size() != ys.size() || xs.size() != rs.size())
               throw std::invalid_argument("x, y, r: must have the same length");
             Medium med;
-            med.width = width, med.height = height, med.periodic = periodic;
-            for (std::size_t i = 0; i < x.size(); ++i) med.grains.push_back({x[i], y[i], r[i]});
+            med.width = real_arg(width, "width"), med.height = real_arg(height, "height");
+            med.periodic = bool_arg(periodic, "periodic");
+            for (std::size_t i = 0; i < xs.size(); ++i) med.grains.push_back({xs[i], ys[i], rs[i]});
             std::string why;
             if (!med.IsValid(&why)) throw std::invalid_argument(why);
             return med;
           },
-          py::arg("x"), py::arg("y"), py::arg("r"), py::arg("width"), py::arg("height"), py::arg("periodic") = true)
+          py::arg("x"), py::arg("y"), py::arg("r"), py::arg("width"), py::arg("height"), py::arg("periodic") = true,
+          "A medium of the grains at x, y of radii r (sequences of numbers, length units) in a box width x "
+          "height, periodic in x or not")
       .def_static(
           "from_image",
-          [](const py::array& image, double pixel_size, bool periodic) {
-            return image_medium(pore_image_of(image, pixel_size, periodic));
+          [](const py::object& image, const py::object& pixel_size, const py::object& periodic) {
+            if (!py::isinstance<py::array>(image) && !py::isinstance<py::sequence>(image))
+              throw py::type_error("image: a 2D array, not " + std::string(py::repr(image)));
+            return image_medium(pore_image_of(py::module_::import("numpy").attr("asarray")(image),
+                                              real_arg(pixel_size, "pixel_size"), bool_arg(periodic, "periodic")));
           },
           py::arg("image"), py::arg("pixel_size") = 1.0, py::arg("periodic") = true,
           "The medium of a binary image's pore space: a 2D array, rows from the top, True or 1 in the pore "
@@ -152,7 +180,10 @@ void bind_medium(py::module_& m) {
           "its solid through a signed distance field.")
       .def_static(
           "load",
-          [](const std::filesystem::path& path, double pixel_size, bool periodic) {
+          [](const py::object& path_object, const py::object& pixel_size, const py::object& periodic) {
+            const std::filesystem::path path = path_arg(path_object, "path");
+            const double pixel = real_arg(pixel_size, "pixel_size");
+            const bool is_periodic = bool_arg(periodic, "periodic");
             std::error_code ec;
             if (!std::filesystem::exists(path, ec)) {  // as open() says it
               const char* what = is_image_file(path.string()) ? "image" : "grain file";
@@ -160,14 +191,14 @@ void bind_medium(py::module_& m) {
                               (std::string(what) + " '" + path.string() + "': no such file").c_str());
               throw py::error_already_set();
             }
-            if (is_image_file(path.string())) return load_image_medium(path.string(), pixel_size, periodic);
+            if (is_image_file(path.string())) return load_image_medium(path.string(), pixel, is_periodic);
             return load_medium(path.string());
           },
           py::arg("path"), py::arg("pixel_size") = 1.0, py::arg("periodic") = true,
           "Reads a grain file (.json, or CSV), or a binary image (.png, .tif, .npy: white, 1 or True is pore) "
           "whose pixels are pixel_size wide, periodic in x or not; path: str or os.PathLike")
       .def(
-          "save", [](const Medium& med, const std::filesystem::path& path) { save_medium(path.string(), med); },
+          "save", [](const Medium& med, const py::object& path) { save_medium(path_arg(path, "path").string(), med); },
           py::arg("path"),
           "Writes a grain file (.json, or CSV), or an image medium's image (.png, .npy); path: str or os.PathLike")
       .def_property_readonly(
@@ -185,8 +216,12 @@ void bind_medium(py::module_& m) {
       .def_readonly("periodic", &Medium::periodic)
       .def_property_readonly("grains", &grain_array, "N x 3 array of x, y, r")
       .def("porosity", &exact_porosity, "The exact void fraction of the box")
-      .def("to_image", &pore_image, py::arg("pixels"),
-           "Boolean image, `pixels` wide, rows from the top: True in the pore space")
+      .def(
+          "to_image",
+          [](const Medium& med, const py::object& pixels) {
+            return (pore_image)(med, int_arg(pixels, "pixels"));  // this file's, not softdrop::pore_image by ADL
+          },
+          py::arg("pixels"), "Boolean image, `pixels` wide, rows from the top: True in the pore space")
       .def("__len__", [](const Medium& med) { return med.grains.size(); })
       .def("__repr__",
            [](const Medium& med) {

@@ -14,7 +14,10 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
+#include <vector>
 
+#include "arguments.hpp"
 #include "bindings.hpp"
 #include "cli/columns.hpp"
 #include "cli/common_options.hpp"
@@ -56,6 +59,48 @@ T from_keywords(const py::kwargs& kwargs) {
   return object.cast<T>();
 }
 
+// "name (type, default value): help" for each attribute, a line each, as read from `defaults`: the
+// keyword arguments' documentation of an __init__(**kwargs).
+std::string keyword_lines(const py::object& defaults, const std::vector<std::pair<std::string, std::string>>& fields) {
+  std::string out;
+  for (const auto& [name, help] : fields) {
+    const py::object v = defaults.attr(name.c_str());
+    out += "    " + name + " (" + std::string(py::str(v.get_type().attr("__name__"))) + ", default " +
+           std::string(py::repr(v)) + "): " + help + "\n";
+  }
+  return out;
+}
+
+// RunOptions' attributes, each read and written as its member, with its meaning.
+const std::vector<std::pair<std::string, std::string>> kRunFields = {
+    {"max_steps", "the step budget: a run not ended after this many steps is a timeout"},
+    {"stuck_window", "the stuck test's window (time units)"},
+    {"stuck_distance", "the downward progress the stuck test asks per window (length units)"},
+    {"rest_window", "the rest test's window (time units; 0: no rest test)"},
+    {"rest_distance",
+     "a centre that travels less than this within rest_window is at rest, and the run ends stuck (length units)"},
+    {"path_interval", "record the centre's path every this many steps (0: no path)"},
+};
+
+void bind_run_fields(py::class_<RunOptions>& cls) {
+  const auto field = [&](const std::string& name, auto member) {
+    using T = std::decay_t<decltype(std::declval<RunOptions&>().*member)>;
+    std::string help;
+    for (const auto& f : kRunFields)
+      if (f.first == name) help = f.second;
+    cls.def_property(
+        name.c_str(), [member](const RunOptions& o) { return o.*member; },
+        [member, name](RunOptions& o, const py::object& v) { o.*member = python::number_arg<T>(v, name.c_str()); },
+        help.c_str());
+  };
+  field("max_steps", &RunOptions::max_steps);
+  field("stuck_window", &RunOptions::stuck_window);
+  field("stuck_distance", &RunOptions::stuck_distance);
+  field("rest_window", &RunOptions::rest_window);
+  field("rest_distance", &RunOptions::rest_distance);
+  field("path_interval", &RunOptions::path_interval);
+}
+
 // One attribute per field of the one list (droplet.hpp), named as its option with '_' for '-',
 // with its help as the docstring; the constraint order as its name ("sequential", "red-black").
 template <class Field>
@@ -84,7 +129,10 @@ void bind_droplet_fields(py::class_<DropletParams>& cls) {
                 with_field(p, [&](const T& v) { out = to_string(v); });
                 return out;
               },
-              [with_field](DropletParams& p, const std::string& v) { with_field(p, [&](T& f) { parse_name(v, &f); }); },
+              [with_field, name](DropletParams& p, const py::object& v) {
+                const std::string text = python::text_arg(v, name.c_str());
+                with_field(p, [&](T& f) { parse_name(text, &f); });
+              },
               field.help);
         } else {
           cls.def_property(
@@ -94,7 +142,11 @@ void bind_droplet_fields(py::class_<DropletParams>& cls) {
                 with_field(p, [&](const T& v) { out = v; });
                 return out;
               },
-              [with_field](DropletParams& p, T v) { with_field(p, [&](T& f) { f = v; }); }, field.help);
+              [with_field, name](DropletParams& p, const py::object& v) {
+                const T value = python::number_arg<T>(v, name.c_str());
+                with_field(p, [&](T& f) { f = value; });
+              },
+              field.help);
         }
       },
       defaults);
@@ -153,7 +205,6 @@ PYBIND11_MODULE(_core, m) {
 
   py::class_<DropletParams> droplet(m, "DropletParams",
                                     "The droplet, in the paper's numerical units (see docs/model.md)");
-  droplet.def(py::init(&from_keywords<DropletParams>));
   droplet.def_static("balloon", &DropletParams::balloon,
                      "The balloon: the droplet held at its stretch limit, as results/calibration/balloon.toml "
                      "(whose grains, radii 8 to 16, go to Medium.generate)");
@@ -172,22 +223,34 @@ PYBIND11_MODULE(_core, m) {
   visit_droplet_fields([&](const DropletField& f, const auto&) { droplet_fields.push_back(cli::column_name(f.key)); },
                        defaults);
   python::def_value_semantics(droplet, droplet_fields, "DropletParams");
+  std::vector<std::pair<std::string, std::string>> droplet_docs;
+  visit_droplet_fields(
+      [&](const DropletField& f, const auto&) { droplet_docs.emplace_back(cli::column_name(f.key), f.help); },
+      defaults);
+  const std::string droplet_init =
+      "The defaults' droplet, with the parameters given as keywords set (another name raises ValueError, a wrong "
+      "type TypeError):\n" +
+      keyword_lines(py::cast(DropletParams{}), droplet_docs);
+  droplet.def(py::init(&from_keywords<DropletParams>), droplet_init.c_str());
 
   py::class_<RunOptions> run_options(m, "RunOptions", "When a run ends, and what it records");
-  run_options.def(py::init(&from_keywords<RunOptions>))
-      .def_readwrite("max_steps", &RunOptions::max_steps)
-      .def_readwrite("stuck_window", &RunOptions::stuck_window)
-      .def_readwrite("stuck_distance", &RunOptions::stuck_distance)
-      .def_readwrite("rest_window", &RunOptions::rest_window)
-      .def_readwrite("rest_distance", &RunOptions::rest_distance)
-      .def_readwrite("path_interval", &RunOptions::path_interval);
-  python::def_value_semantics(
-      run_options, {"max_steps", "stuck_window", "stuck_distance", "rest_window", "rest_distance", "path_interval"},
-      "RunOptions");
+  bind_run_fields(run_options);
+  const std::string run_init =
+      "The defaults, with the options given as keywords set (another name raises ValueError, a wrong type "
+      "TypeError):\n" +
+      keyword_lines(py::cast(RunOptions{}), kRunFields);
+  run_options.def(py::init(&from_keywords<RunOptions>), run_init.c_str());
+  std::vector<std::string> run_fields;
+  for (const auto& field : kRunFields) run_fields.push_back(field.first);
+  python::def_value_semantics(run_options, run_fields, "RunOptions");
+  python::add_python_names(droplet_fields);
+  python::add_python_names(run_fields);
+  python::add_python_names({"r_min", "r_max", "pixel_size", "trace_interval", "check_interval"});
 
   python::bind_medium(m);
 
   bind_stores(m);
+  python::translate_library_errors();  // after bind_stores: its StoreError
   m.def("_columns", [] {
     py::dict d;
     py::list names, units, meanings;
@@ -207,7 +270,7 @@ PYBIND11_MODULE(_core, m) {
          int trace_interval) {
         check(params, run);
         if (!(x0 >= 0 && x0 <= medium.width))
-          throw std::invalid_argument("x0 = " + std::to_string(x0) + ": must be in [0, width]");
+          throw std::invalid_argument("x0 = " + std::string(py::repr(py::float_(x0))) + ": must be in [0, width]");
         if (trace_interval < 0)
           throw std::invalid_argument("trace_interval = " + std::to_string(trace_interval) + ": must be >= 1");
         RunOptions options = run;

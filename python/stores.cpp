@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "arguments.hpp"
 #include "bindings.hpp"
 #include "cli/columns.hpp"
 #include "softdrop/store.hpp"
@@ -49,7 +50,7 @@ auto in_store(Read&& read) {
   try {
     return read();
   } catch (const std::runtime_error& e) {
-    PyErr_SetString(g_store_error, e.what());
+    PyErr_SetString(g_store_error, python_words(e.what()).c_str());
     throw py::error_already_set();
   }
 }

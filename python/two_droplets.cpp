@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bindings.hpp"
@@ -14,13 +15,28 @@
 namespace softdrop::python {
 namespace {
 
+// A message of the library's about the pair's settings, with Python's keywords for the program's
+// options: release (--second-droplet), after (--second-after), offset_x (--second-offset-x).
+std::string pair_words(std::string message) {
+  static const std::pair<std::string, std::string> kNames[] = {
+      {"second-droplet", "release"}, {"second-after", "after"}, {"second-offset-x", "offset_x"}};
+  for (const auto& [option, keyword] : kNames)
+    for (std::size_t at = message.find(option); at != std::string::npos; at = message.find(option, at))
+      message.replace(at, option.size(), keyword);
+  return message;
+}
+
 SecondDroplet second_droplet(const std::string& release, double after, double offset_x, const DropletParams& params) {
-  SecondDroplet s;
-  s.release = parse_second_release(release);
-  s.after = after, s.offset_x = offset_x;
-  std::string why;
-  if (!s.IsValid(params, &why)) throw std::invalid_argument(why);
-  return s;
+  try {
+    SecondDroplet s;
+    s.release = parse_second_release(release);
+    s.after = after, s.offset_x = offset_x;
+    std::string why;
+    if (!s.IsValid(params, &why)) throw std::invalid_argument(why);
+    return s;
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(pair_words(e.what()));
+  }
 }
 
 // One droplet of a pair: its run, and when it was first held.
@@ -59,7 +75,7 @@ void bind_two_droplets(py::module_& m) {
          const DropletParams& params, const RunOptions& run, bool path, int trace_interval) {
         check(params, run);
         if (!(x0 >= 0 && x0 <= medium.width))
-          throw std::invalid_argument("x0 = " + std::to_string(x0) + ": must be in [0, width]");
+          throw std::invalid_argument("x0 = " + std::string(py::repr(py::float_(x0))) + ": must be in [0, width]");
         const SecondDroplet second = second_droplet(release, after, offset_x, params);
         RunOptions options = run;
         if (path && options.path_interval == 0) options.path_interval = 100;

@@ -357,9 +357,9 @@ def read_history(db, arrangements=True):
         try:
             row = json.loads(text)
         except ValueError as e:  # JSONDecodeError, or text that is not UTF-8
-            raise StoreError(f"--db '{os.fspath(db)}': run {run_id}: its params are not JSON ({e})") from None
+            raise StoreError(f"db '{os.fspath(db)}': run {run_id}: its params are not JSON ({e})") from None
         if not isinstance(row, dict):
-            raise StoreError(f"--db '{os.fspath(db)}': run {run_id}: its params are not a JSON object")
+            raise StoreError(f"db '{os.fspath(db)}': run {run_id}: its params are not a JSON object")
         rows.append(row)
     params = pd.json_normalize(rows)
     params.insert(0, "run", frames["runs"]["run"].to_numpy())

@@ -202,7 +202,6 @@ def test_tables_have_the_databases_columns_and_types(tmp_path):
 
 
 @pytest.mark.parametrize("call, says", [
-    (lambda db: softdrop.optimize(db, generatons=3), "unknown option '--generatons' (did you mean --generations?)"),
     (lambda db: softdrop.optimize(db, lambda_=-3), "lambda = -3: must be in [1, 4096]"),
     (lambda db: softdrop.optimize(db, strategy="genetic"), "genetic"),
     (lambda db: softdrop.sweep(db, porosities=[0.5, 1.5]), "1.5"),

@@ -63,7 +63,7 @@ def test_a_run_id_is_a_whole_number_from_1(history):
 
 def test_an_output_over_the_database_is_refused(history):
     before = history.read_bytes()
-    with pytest.raises(ValueError, match="--json .*: the same file as --db"):
+    with pytest.raises(ValueError, match="json .*: the same file as db"):
         softdrop.optimize(history, resume=1, generations=3, json=str(history))
     assert history.read_bytes() == before
 
@@ -168,3 +168,56 @@ def test_python_types_and_exceptions(tmp_path):
         softdrop.Medium.generate("non-overlapping", porosity=0.3)
     with pytest.raises(softdrop.StoreError, match="folder '.*' does not exist"):
         softdrop.optimize(tmp_path / "nonexistent" / "x.db", generations=1)
+
+
+@pytest.mark.parametrize("call, error, says", [
+    (lambda: softdrop.Medium.generate(seed=-1), ValueError, r"^seed = -1: must be >= 0$"),
+    (lambda: softdrop.Medium.generate(seed=2**64), ValueError, r"^seed = 18446744073709551616: must be < 2\*\*64$"),
+    (lambda: softdrop.Medium.generate(porosity="0.8"), TypeError, r"^porosity: a number, not '0.8'$"),
+    (lambda: softdrop.Medium.generate(porosity=True), TypeError, r"^porosity: a number, not True$"),
+    (lambda: softdrop.Medium.generate(grains=2.0), TypeError, r"^grains: a whole number, not 2.0$"),
+    (lambda: softdrop.Medium.generate(periodic="yes"), TypeError, r"^periodic: True or False, not 'yes'$"),
+    (lambda: softdrop.Medium.generate("nonoverlapping"), ValueError,
+     r"^kind = 'nonoverlapping': must be overlapping, non-overlapping or relaxed$"),
+    (lambda: softdrop.Medium.generate(r_min=30, r_max=10), ValueError, r"^r_max = 10: must be >= r_min$"),
+    (lambda: softdrop.Medium.generate().to_image(2.5), TypeError, r"^pixels: a whole number, not 2.5$"),
+    (lambda: softdrop.Medium.from_arrays([1], [2], ["a"], 100, 100), TypeError, r"^r: a sequence of numbers"),
+    (lambda: softdrop.Medium.from_image([[1, 0]], pixel_size="a"), TypeError, r"^pixel_size: a number, not 'a'$"),
+    (lambda: softdrop.Medium.load(3), TypeError, r"^path: a file name \(str or os.PathLike\), not 3$"),
+    (lambda: softdrop.Medium.generate().save(b"m.json"), TypeError, r"^path: a file name"),
+    (lambda: softdrop.DropletParams(radius="big"), TypeError, r"^radius: a number, not 'big'$"),
+    (lambda: softdrop.DropletParams(masses=24.5), TypeError, r"^masses: a whole number, not 24.5$"),
+    (lambda: softdrop.DropletParams(vibration_axis=1), TypeError, r"^vibration_axis: a str, not 1$"),
+    (lambda: softdrop.RunOptions(max_steps=1e6), TypeError, r"^max_steps: a whole number, not 1000000.0$"),
+    (lambda: softdrop.simulate(softdrop.Medium.generate(), params=softdrop.DropletParams(vibration_amplitude=-1)),
+     ValueError, r"^vibration_amplitude = -1: must be >= 0$"),
+    (lambda: softdrop.simulate(softdrop.Medium.generate(), run=softdrop.RunOptions(max_steps=-1)), ValueError,
+     r"^max_steps = -1: must be > 0$"),
+    (lambda: softdrop.simulate(softdrop.Medium.generate(), x0=-100), ValueError, r"^x0 = -100.0: must be in"),
+    (lambda: softdrop.optimize("h.db", generations=2.5), TypeError, r"^generations: a whole number, not 2.5$"),
+    (lambda: softdrop.optimize("h.db", lambda_=2.5), TypeError, r"^lambda_: a whole number, not 2.5$"),
+    (lambda: softdrop.optimize("h.db", porosity=0.5), TypeError,
+     r"^optimize\(\) got an unexpected keyword argument 'porosity'$"),
+    (lambda: softdrop.optimize("h.db", generatons=3), TypeError,
+     r"^optimize\(\) got an unexpected keyword argument 'generatons' \(did you mean generations\?\)$"),
+    (lambda: softdrop.optimize("h.db", r_max=-1), ValueError, r"^r_max = -1: must be >= r_min$"),
+    (lambda: softdrop.sweep("nonexistent/s.db"), softdrop.StoreError, r"^db 'nonexistent/s.db': folder"),
+    (lambda: softdrop.read_history("nonexistent.db"), softdrop.StoreError, r"^db 'nonexistent.db': no such file$"),
+])
+def test_bad_arguments_are_said_in_pythons_words(tmp_path, call, error, says):
+    # One line naming the Python argument, in Python's spelling (r_max, db: not --db or r-max), with
+    # numbers as Python writes them: not pybind11's list of overloads, and nothing written.
+    os.chdir(tmp_path)
+    with pytest.raises(error, match=says):
+        call()
+    assert os.listdir(tmp_path) == []
+
+
+def test_numpy_numbers_are_taken():
+    import numpy as np
+
+    medium = softdrop.Medium.generate(porosity=np.float32(0.8), seed=np.uint8(3), grains=np.int64(0))
+    assert medium == softdrop.Medium.generate(porosity=float(np.float32(0.8)), seed=3)
+    assert medium.to_image(np.int16(40)).shape == (40, 40)
+    assert softdrop.RunOptions(max_steps=np.int64(1000)).max_steps == 1000
+    assert softdrop.Medium.from_arrays(np.array([50.0]), (50,), [10], 100, 100, periodic=np.True_).periodic

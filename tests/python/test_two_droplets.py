@@ -50,11 +50,11 @@ def test_simulate_pair_gives_each_droplet_its_run_path_and_area():
 
 def test_a_bad_second_droplet_raises_value_error_naming_it():
     medium = softdrop.Medium.generate("non-overlapping", porosity=0.79, seed=3, width=200, height=200)
-    with pytest.raises(ValueError, match="second-droplet = 'later'"):
+    with pytest.raises(ValueError, match="release = 'later'"):
         softdrop.simulate_pair(medium, release="later")
-    with pytest.raises(ValueError, match="second-after = 5: the second droplet would start overlapping"):
+    with pytest.raises(ValueError, match="after = 5: the second droplet would start overlapping"):
         softdrop.simulate_pair(medium, after=5.0)
-    with pytest.raises(ValueError, match="second-after = nan"):
+    with pytest.raises(ValueError, match="after = nan"):
         softdrop.simulate_pairs(medium, 2, after=float("nan"))
     with pytest.raises(TypeError, match="n: a whole number"):
         softdrop.simulate_pairs(medium, 2.5)

@@ -52,3 +52,18 @@ def test_a_type_checker_passes_right_calls_and_catches_wrong_ones(tmp_path):
     assert r.returncode == 1
     lines = {int(line.split(":")[1]) for line in r.stdout.splitlines() if "error:" in line}
     assert lines == {2, 3, 4, 5}, r.stdout
+
+
+def test_the_stubs_name_every_keyword_of_the_parameter_types():
+    # The stubs list DropletParams' and RunOptions' keywords one by one (so editors complete them):
+    # exactly the attributes the module has, which __init__'s docstring lists with their defaults.
+    import ast
+
+    tree = ast.parse((pathlib.Path(softdrop.__file__).parent / "_core.pyi").read_text())
+    for cls in (softdrop.DropletParams, softdrop.RunOptions):
+        stub = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == cls.__name__)
+        init = next(n for n in stub.body if isinstance(n, ast.FunctionDef) and n.name == "__init__")
+        keywords = [a.arg for a in init.args.kwonlyargs]
+        assert keywords == list(cls().__getstate__()), cls.__name__
+        for name in keywords:
+            assert f"    {name} (" in cls.__init__.__doc__
