@@ -4,6 +4,7 @@
 // medium it takes the GIL to look for Ctrl-C and to call the Python callback.
 #include <pybind11/stl.h>
 
+#include <functional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -115,6 +116,21 @@ py::object run_command(const std::vector<std::string>& args, const py::object& c
 }  // namespace
 
 void bind_commands(py::module_& m) {
+  // Their options are the functions' keywords, '-' spelled '_': so are they in messages.
+  const cli::Cli cli;
+  std::vector<std::string> keywords;
+  const std::function<void(const CLI::App*)> collect = [&](const CLI::App* app) {
+    for (const CLI::Option* o : app->get_options())
+      for (std::string name : o->get_lnames()) {
+        for (char& c : name)
+          if (c == '-') c = '_';
+        keywords.push_back(name);
+      }
+    for (const CLI::App* group : app->get_subcommands([](const CLI::App*) { return true; })) collect(group);
+  };
+  for (const char* command : {"optimize", "sweep"}) collect(cli.app.get_subcommand(command));
+  add_python_names(keywords);
+
   m.def("_run_command", &run_command, py::arg("args"), py::arg("callback"),
         "Runs `softdrop optimize` or `softdrop sweep` with these arguments (args[0] is the program name) "
         "in this process; returns the command's JSON summary");

@@ -163,6 +163,9 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
                  "stuck_fraction", "seconds"});
   Columns droplets({"sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity", "steps",
                     "shaken_at", "route_tortuosity"});
+  Columns seconds({"sweep", "porosity_index", "medium_index", "droplet", "start_x", "outcome", "tortuosity", "steps",
+                   "shaken_at", "route_tortuosity", "released_at", "first_held_at", "held_at", "contact_steps",
+                   "shared_touched"});
   Columns points({"sweep", "target_porosity", "porosity", "media", "droplets", "passed", "mean_tortuosity",
                   "standard_error", "media_passed", "media_standard_error", "stuck_fraction", "per_medium_tortuosity",
                   "per_medium_standard_error"});
@@ -182,13 +185,21 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
       media["mean_tortuosity"].append(m.passed ? m.mean_t : kNaN);
       media["standard_error"].append(m.passed > 1 ? m.standard_error : kNaN);
       media["stuck_fraction"].append(m.stuck_fraction), media["seconds"].append(m.seconds);
-      for (const SweepDroplet& d : m.droplets) {
-        droplets["sweep"].append(s.id), droplets["porosity_index"].append(m.unit.porosity);
-        droplets["medium_index"].append(m.unit.medium), droplets["droplet"].append(d.droplet);
-        droplets["start_x"].append(d.start_x), droplets["outcome"].append(to_string(d.outcome));
-        droplets["tortuosity"].append(d.outcome == Outcome::passed ? d.tortuosity : kNaN);
-        droplets["steps"].append(d.steps);
-        droplets["shaken_at"].append(d.shaken_at), droplets["route_tortuosity"].append(d.route_tortuosity);
+      // One droplet's row of `table` (droplets, or second_droplets' first columns).
+      const auto add_droplet = [&](Columns& table, const SweepDroplet& d) {
+        table["sweep"].append(s.id), table["porosity_index"].append(m.unit.porosity);
+        table["medium_index"].append(m.unit.medium), table["droplet"].append(d.droplet);
+        table["start_x"].append(d.start_x), table["outcome"].append(to_string(d.outcome));
+        table["tortuosity"].append(d.outcome == Outcome::passed ? d.tortuosity : kNaN);
+        table["steps"].append(d.steps);
+        table["shaken_at"].append(d.shaken_at), table["route_tortuosity"].append(d.route_tortuosity);
+      };
+      for (const SweepDroplet& d : m.droplets) add_droplet(droplets, d);
+      for (const SweepSecond& p : m.second_droplets) {
+        add_droplet(seconds, p.run);
+        seconds["released_at"].append(p.released_at), seconds["first_held_at"].append(p.first_held_at);
+        seconds["held_at"].append(p.held_at), seconds["contact_steps"].append(p.contact_steps);
+        seconds["shared_touched"].append(p.shared_touched);
       }
     }
     for (const SweepPoint& p : sweep_points(stored)) {  // as `softdrop sweep-report` aggregates them
@@ -206,7 +217,7 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
   }
   py::dict out;
   out["sweeps"] = sweeps.dict(), out["media"] = media.dict(), out["droplets"] = droplets.dict();
-  out["points"] = points.dict();
+  out["second_droplets"] = seconds.dict(), out["points"] = points.dict();
   return out;
 }
 

@@ -147,7 +147,7 @@ TEST(Sweep, ARecordSentAsBytesArrivesBitForBit) {
   EXPECT_THROW(decode_sweep_medium(bytes + "x"), std::invalid_argument);
   EXPECT_THROW(decode_sweep_medium(""), std::invalid_argument);
   std::string bad_outcome = bytes;
-  bad_outcome[bytes.size() - 8 - 8 - 8 - 8 - 4] = 9;  // the last droplet's outcome
+  bad_outcome[bytes.size() - 8 - 8 - 8 - 8 - 8 - 4] = 9;  // the last droplet's outcome (then: no second droplets)
   EXPECT_THROW(decode_sweep_medium(bad_outcome), std::invalid_argument);
 }
 

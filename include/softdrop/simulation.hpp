@@ -188,8 +188,8 @@ struct SecondDroplet {
 
   /// after finite and > 0, offset_x finite; and a release rule that cannot start the second ring
   /// overlapping the first: a descent of at least 2 R + max_depth, or a delay in which free fall
-  /// covers that (|g| t^2 / 2), unless offset_x alone keeps the rings that far apart. Not with a
-  /// shaken medium (DropletParams::vibrates): each run starts the shaking on its own clock.
+  /// covers that (|g| t^2 / 2), unless offset_x alone keeps the rings that far apart. A shaken
+  /// medium shakes for both on one clock, from whichever run begins it (RunStepper::join_shaking).
   bool IsValid(const DropletParams& droplet, std::string* why) const;
 };
 

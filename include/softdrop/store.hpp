@@ -38,8 +38,8 @@ struct DatabaseError : std::runtime_error {
 /// moves, 4 -> 5 islands, 5 -> 6 the held-out values of arrangements, 6 -> 7 the robust
 /// objectives' droplet counts and re-runs, 7 -> 8 each candidate's move, the generation kind
 /// 'mixed' and the *_view views under the names of `softdrop columns`, 8 -> 9 each sweep droplet's
-/// shaken_at and route_tortuosity).
-constexpr int kHistorySchemaVersion = 9;
+/// shaken_at and route_tortuosity, 9 -> 10 the second droplets of sweeps of pairs).
+constexpr int kHistorySchemaVersion = 10;
 /// PRAGMA application_id of a softdrop database: "SDRP".
 constexpr std::int32_t kHistoryApplicationId = 0x53445250;
 

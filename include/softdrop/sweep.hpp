@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,9 @@ struct SweepOptions {
   MediumOptions medium;                                     ///< the media (porosity and seed are set per medium)
   DropletParams droplet;
   RunOptions run;  ///< exit conditions (traces are not recorded)
+  /// A second droplet pushed after each (run_two_droplets): each start is a pair's, its first
+  /// droplet from the start a one-droplet sweep would use. None (the default): one droplet.
+  std::optional<SecondDroplet> second;
 
   bool IsValid(std::string* why) const;
 };
@@ -74,6 +78,19 @@ struct SweepDroplet {
   double route_tortuosity = std::numeric_limits<double>::quiet_NaN();
 };
 
+/// A pair's second droplet (a sweep with SweepOptions::second), for pairs whose second was
+/// released: its run as SweepDroplet has it, and the pair's contacts.
+struct SweepSecond {
+  SweepDroplet run;  ///< run.droplet: the pair's number, its first droplet's
+  double released_at = std::numeric_limits<double>::quiet_NaN();  ///< since the first began (time units)
+  /// When each droplet was first held, found stuck while the other still moved (time units since
+  /// its own start); NaN if never.
+  double first_held_at = std::numeric_limits<double>::quiet_NaN();
+  double held_at = std::numeric_limits<double>::quiet_NaN();
+  std::int64_t contact_steps = 0;  ///< steps with the rings in contact
+  int shared_touched = 0;          ///< grains both droplets touched
+};
+
 /// One medium's record: its summary and its droplets.
 struct SweepMedium {
   SweepUnit unit;
@@ -86,7 +103,10 @@ struct SweepMedium {
   double standard_error = 0;  ///< of <T> (0 if fewer than 2 passed)
   double stuck_fraction = 0;
   double seconds = 0;  ///< wall time (not part of the deterministic record)
+  /// The droplets from the medium's starts (with a second droplet: each pair's first); the counts
+  /// and <T> above are theirs.
   std::vector<SweepDroplet> droplets;
+  std::vector<SweepSecond> second_droplets;  ///< with a second droplet: the released seconds, by pair
 };
 
 /// Generates the unit's medium and pushes its K droplets through it with up to `threads` threads
@@ -126,7 +146,7 @@ struct SweepPoint {
   double per_medium_t = 0, per_medium_standard_error = 0;
 };
 /// Aggregates records by target porosity (ascending); points with no passed droplet are kept with
-/// mean_t = 0 and passed = 0.
-std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media);
+/// mean_t = 0 and passed = 0. `second_droplets`: the pairs' seconds instead of the droplets.
+std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media, bool second_droplets = false);
 
 }  // namespace softdrop

@@ -369,9 +369,10 @@ def read_history(db, arrangements=True):
 
 def read_sweep(db, sweep=None):
     """The records of `softdrop sweep` (all sweeps of the file, or the one with id `sweep`), read
-    by the program's own store: a dict of pandas DataFrames `sweeps`, `media` and `droplets` (the
-    database's views; mean_tortuosity, standard_error and tortuosity are NaN where nothing passed),
-    and `points` (per target porosity, as `softdrop sweep-report` aggregates them, with the standard
+    by the program's own store: a dict of pandas DataFrames `sweeps`, `media`, `droplets` and
+    `second_droplets` (the database's views; mean_tortuosity, standard_error and tortuosity are NaN
+    where nothing passed; second_droplets is empty but for a sweep of pairs, sweep(second_droplet=...):
+    a row per released second, its pair's first the droplets row of the same droplet), and `points` (per target porosity, as `softdrop sweep-report` aggregates them, with the standard
     error over droplets and, in media_standard_error, over media as clusters; per_medium_tortuosity is the
     other averaging, each medium's <T> first and then their mean, with per_medium_standard_error).
     A file the store refuses raises StoreError naming it."""

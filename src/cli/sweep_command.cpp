@@ -56,6 +56,7 @@ void add_sweep_command(CLI::App& app, SweepArgs& a) {
   add_medium_options(s, a.medium, false)->get_option("--medium")->description("(not used by sweep)");
   auto* d = add_droplet_options(s, a.sweep.droplet);
   add_exit_options(d, a.sweep.run);
+  add_second_droplet_options(s, a.second);
 }
 
 namespace {
@@ -111,6 +112,14 @@ std::pair<int, int> check_sweep(SweepArgs& a, const CLI::App& cmd) {
   resolve_medium(a.medium);
   a.sweep.medium = a.medium.options;
   a.sweep.stream = parse_media_stream(a.media_stream);
+  check_second_droplet(a.second, a.sweep.droplet);
+  if (a.second.on()) {
+    if (!a.sweep.medium.periodic && a.second.second.offset_x != 0)
+      throw std::invalid_argument(
+          "second-offset-x: a sweep between walls takes none (a random start could put the second droplet outside "
+          "them)");
+    a.sweep.second = a.second.second;
+  }
   std::string why;
   if (!a.sweep.IsValid(&why)) throw std::invalid_argument(why);
   check_threads(a.threads);

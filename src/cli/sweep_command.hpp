@@ -19,6 +19,7 @@ struct SweepArgs {
   std::string db = "sweep.db";
   SweepOptions sweep;
   MediumArgs medium;
+  SecondDropletArgs second;               ///< parsed into sweep.second
   std::string preset;                     ///< quick or paper: defaults for options not given
   std::string media_stream = "held-out";  ///< parsed into sweep.stream
   std::string shard = "0/1";

@@ -20,21 +20,33 @@ namespace softdrop::cli {
 
 namespace {
 
+// A store older than version 9 did not record shaken_at and route_tortuosity (NaN): compared
+// only where both stores hold them.
+bool same_if_both(double a, double b) { return std::isnan(a) || std::isnan(b) || a == b; }
+
+bool same_droplet(const SweepDroplet& p, const SweepDroplet& q) {
+  return p.droplet == q.droplet && p.start_x == q.start_x && p.outcome == q.outcome && p.tortuosity == q.tortuosity &&
+         p.steps == q.steps && same_if_both(p.shaken_at, q.shaken_at) &&
+         same_if_both(p.route_tortuosity, q.route_tortuosity);
+}
+
+// Equal, or both NaN ("never").
+bool same_time(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
+
 // A medium stored twice (by two shards, or two runs of one sweep) must be the same record to the
 // bit: determinism makes it so. Only the wall seconds may differ.
 bool same_medium(const SweepMedium& x, const SweepMedium& y) {
   bool equal = x.target_porosity == y.target_porosity && x.porosity == y.porosity && x.grains == y.grains &&
                x.medium_seed == y.medium_seed && x.passed == y.passed && x.stuck == y.stuck && x.timeout == y.timeout &&
                x.diverged == y.diverged && x.mean_t == y.mean_t && x.standard_error == y.standard_error &&
-               x.stuck_fraction == y.stuck_fraction && x.droplets.size() == y.droplets.size();
-  for (std::size_t i = 0; equal && i < x.droplets.size(); ++i) {
-    const SweepDroplet &p = x.droplets[i], &q = y.droplets[i];
-    // A store older than version 9 did not record shaken_at and route_tortuosity (NaN): compared
-    // only where both stores hold them.
-    const auto same_if_both = [](double a, double b) { return std::isnan(a) || std::isnan(b) || a == b; };
-    equal = p.droplet == q.droplet && p.start_x == q.start_x && p.outcome == q.outcome &&
-            p.tortuosity == q.tortuosity && p.steps == q.steps && same_if_both(p.shaken_at, q.shaken_at) &&
-            same_if_both(p.route_tortuosity, q.route_tortuosity);
+               x.stuck_fraction == y.stuck_fraction && x.droplets.size() == y.droplets.size() &&
+               x.second_droplets.size() == y.second_droplets.size();
+  for (std::size_t i = 0; equal && i < x.droplets.size(); ++i) equal = same_droplet(x.droplets[i], y.droplets[i]);
+  for (std::size_t i = 0; equal && i < x.second_droplets.size(); ++i) {
+    const SweepSecond &p = x.second_droplets[i], &q = y.second_droplets[i];
+    equal = same_droplet(p.run, q.run) && p.released_at == q.released_at &&
+            same_time(p.first_held_at, q.first_held_at) && same_time(p.held_at, q.held_at) &&
+            p.contact_steps == q.contact_steps && p.shared_touched == q.shared_touched;
   }
   return equal;
 }

@@ -11,6 +11,7 @@
 #include "cli/common_options.hpp"
 #include "cli/options_diff.hpp"
 #include "softdrop/store.hpp"
+#include "store/params_json.hpp"
 
 namespace softdrop::cli {
 
@@ -20,6 +21,9 @@ void add_sweep_report_command(CLI::App& app, SweepReportArgs& r) {
   rp->add_option("--db", r.db, "SQLite store")->capture_default_str();
   rp->add_option("--sweep", r.sweep, "Sweep id (default: the only one)")->check(id_check());
   rp->add_flag("--media", r.media, "One row per medium instead of one per porosity");
+  rp->add_flag("--second-droplets", r.second_droplets,
+               "A sweep of pairs (sweep --second-droplet): the points of the second droplets instead of the firsts")
+      ->excludes("--media");
   rp->add_option("--format", r.format, "table, csv or json")
       ->capture_default_str()
       ->check(CLI::IsMember({"table", "csv", "json"}));
@@ -33,7 +37,8 @@ void add_sweep_report_command(CLI::App& app, SweepReportArgs& r) {
       "the other averaging, each medium's <T> first, then their plain mean over the media_passed media, with "
       "per_medium_standard_error over those media. Media (--media): "
       "one row per medium, mean_tortuosity and standard_error over its own passed droplets; seconds = its wall "
-      "time.");
+      "time. In a sweep of pairs the droplets are the pairs' firsts; --second-droplets gives the points of the "
+      "released seconds (each one row of the database's sweep_second_droplets_view).");
 }
 
 namespace {
@@ -113,9 +118,12 @@ int run_sweep_report(const SweepReportArgs& a) {
     return 0;
   }
   const std::int64_t id = pick_sweep(*store, a.sweep, a.db);
+  if (a.second_droplets && !sweep_params_from_json(store->sweep(id).params).second)
+    throw std::invalid_argument("second-droplets: sweep " + std::to_string(id) + " in '" + a.db +
+                                "' pushes one droplet at a time (no --second-droplet)");
   const auto media = store->media(id);
   if (!a.media) {
-    points_table(sweep_points(media)).print(std::cout, a.format);
+    points_table(sweep_points(media, a.second_droplets)).print(std::cout, a.format);
     return 0;
   }
   Table t;

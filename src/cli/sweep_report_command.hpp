@@ -19,8 +19,9 @@ namespace softdrop::cli {
 
 struct SweepReportArgs {
   std::string db = "sweep.db";
-  std::int64_t sweep = 0;  ///< 0: the only one
-  bool media = false;      ///< per-medium rows instead of per-porosity points
+  std::int64_t sweep = 0;        ///< 0: the only one
+  bool media = false;            ///< per-medium rows instead of per-porosity points
+  bool second_droplets = false;  ///< a sweep of pairs: the points of the second droplets
   std::string format = "table";
 };
 

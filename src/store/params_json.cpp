@@ -208,9 +208,17 @@ std::vector<std::string> simulation_param_keys() {
   return keys;
 }
 
+// A sweep of pairs adds the second droplet's keys; a sweep of one droplet has none, so its stored
+// text (by which a sweep is found again) is what it was before pairs existed.
 std::string sweep_params_to_json(const SweepOptions& options) {
   SweepFields s{options, to_string(options.medium.kind), to_string(options.medium.radii), !options.medium.periodic};
-  return fields_to_json(s, [](auto& f, auto&& g) { visit_sweep(f, g); });
+  const std::string flat = fields_to_json(s, [](auto& f, auto&& g) { visit_sweep(f, g); });
+  if (!options.second) return flat;
+  nlohmann::json j = nlohmann::json::parse(flat);
+  j["second-droplet"] = to_string(options.second->release);
+  j["second-after"] = options.second->after;
+  j["second-offset-x"] = options.second->offset_x;
+  return j.dump();
 }
 
 SweepOptions sweep_params_from_json(const std::string& text) {
@@ -218,6 +226,21 @@ SweepOptions sweep_params_from_json(const std::string& text) {
   s.o.medium.kind = parse_medium_kind(s.kind);
   s.o.medium.radii = parse_radius_distribution(s.radii);
   s.o.medium.periodic = !s.walls;
+  const nlohmann::json j = parse_object(text);
+  if (j.contains("second-droplet")) {
+    SecondDroplet second;
+    std::string release;
+    const Reader read{j};
+    read("second-droplet", release);
+    read("second-after", second.after);
+    read("second-offset-x", second.offset_x);
+    try {
+      second.release = parse_second_release(release);
+    } catch (const std::invalid_argument& e) {
+      throw std::runtime_error(std::string("stored parameters: ") + e.what());
+    }
+    s.o.second = second;
+  }
   return s.o;
 }
 

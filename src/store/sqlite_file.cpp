@@ -335,8 +335,10 @@ std::unique_ptr<SQLite::Database> open_database(const std::string& path, OpenMod
       if (version >= 1) widen_generation_kinds(*db);
       for (const AddedColumn& c : kSchemaV8) add_column(*db, c);
     }
-    if (version < 9) {  // migration 8 -> 9: sweep droplets' shaken_at and route_tortuosity, the views
+    if (version < 9)  // migration 8 -> 9: sweep droplets' shaken_at and route_tortuosity
       for (const AddedColumn& c : kSchemaV9) add_column(*db, c);
+    if (version < 10) {  // migration 9 -> 10: the pairs' second droplets, the views
+      db->exec(kSchemaV10);
       db->exec(kViews);
     }
     if (version < kHistorySchemaVersion) db->exec("PRAGMA user_version = " + std::to_string(kHistorySchemaVersion));

@@ -174,6 +174,31 @@ inline constexpr AddedColumn kSchemaV8[] = {{"candidates", "kind", "TEXT"}};
 inline constexpr AddedColumn kSchemaV9[] = {{"sweep_droplets", "shaken_at", "REAL"},
                                             {"sweep_droplets", "route_tortuosity", "REAL"}};
 
+// Version 10: the second droplets of sweeps that push two droplets one after the other (one row
+// a pair whose second was released; the pair's first is its sweep_droplets row).
+inline constexpr const char* kSchemaV10 = R"sql(
+CREATE TABLE IF NOT EXISTS sweep_second_droplets (
+  sweep_id         INTEGER NOT NULL,
+  porosity_index   INTEGER NOT NULL,
+  medium_index     INTEGER NOT NULL,
+  droplet          INTEGER NOT NULL,
+  start_x          REAL NOT NULL,
+  outcome          TEXT NOT NULL CHECK (outcome IN ('passed', 'stuck', 'timeout', 'diverged')),
+  tortuosity       REAL,
+  steps            INTEGER NOT NULL,
+  shaken_at        REAL,
+  route_tortuosity REAL,
+  released_at      REAL NOT NULL,
+  first_held_at    REAL,
+  held_at          REAL,
+  contact_steps    INTEGER NOT NULL,
+  shared_touched   INTEGER NOT NULL,
+  PRIMARY KEY (sweep_id, porosity_index, medium_index, droplet),
+  FOREIGN KEY (sweep_id, porosity_index, medium_index)
+    REFERENCES sweep_media(sweep_id, porosity_index, medium_index) ON DELETE CASCADE
+) WITHOUT ROWID;
+)sql";
+
 // The views: each table under the names the program's CSV and JSON and the Python frames use
 // (`softdrop columns` lists them), for queries in SQL. Dropped and made again at each migration
 // that changes them; a view holds no data.
@@ -224,6 +249,11 @@ CREATE VIEW sweep_droplets_view AS SELECT
   sweep_id AS sweep, porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps, shaken_at,
   route_tortuosity
 FROM sweep_droplets;
+DROP VIEW IF EXISTS sweep_second_droplets_view;
+CREATE VIEW sweep_second_droplets_view AS SELECT
+  sweep_id AS sweep, porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps, shaken_at,
+  route_tortuosity, released_at, first_held_at, held_at, contact_steps, shared_touched
+FROM sweep_second_droplets;
 )sql";
 
 }  // namespace softdrop::detail

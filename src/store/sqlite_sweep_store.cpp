@@ -76,6 +76,23 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
                            detail::value_if(r.outcome == Outcome::passed, r.tortuosity), r.steps,
                            detail::value_if(!std::isnan(r.shaken_at), r.shaken_at),
                            detail::value_if(!std::isnan(r.route_tortuosity), r.route_tortuosity));
+      if (!m.second_droplets.empty()) {
+        SQLite::Statement p(
+            db_,
+            "INSERT INTO sweep_second_droplets (sweep_id, porosity_index, medium_index, droplet, start_x, "
+            "outcome, tortuosity, steps, shaken_at, route_tortuosity, released_at, first_held_at, "
+            "held_at, contact_steps, shared_touched) "
+            "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+        for (const SweepSecond& s : m.second_droplets) {
+          const SweepDroplet& r = s.run;
+          detail::insert_row(p, sweep, m.unit.porosity, m.unit.medium, r.droplet, r.start_x, to_string(r.outcome),
+                             detail::value_if(r.outcome == Outcome::passed, r.tortuosity), r.steps,
+                             detail::value_if(!std::isnan(r.shaken_at), r.shaken_at),
+                             detail::value_if(!std::isnan(r.route_tortuosity), r.route_tortuosity), s.released_at,
+                             detail::value_if(!std::isnan(s.first_held_at), s.first_held_at),
+                             detail::value_if(!std::isnan(s.held_at), s.held_at), s.contact_steps, s.shared_touched);
+        }
+      }
       SQLite::Statement u(db_, std::string("UPDATE sweeps SET updated = ") + kNow + " WHERE id = ?");
       u.bind(1, sweep);
       u.exec();
@@ -154,12 +171,47 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
                                    d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)),
                                    detail::as_int64(d.getColumn(6)), real_or_nan(7), real_or_nan(8)});
       }
+      if (db_.tableExists("sweep_second_droplets")) read_second_droplets(sweep_id, out);  // none before version 10
       t.commit();
       return out;
     });
   }
 
  private:
+  // The pairs' seconds into their media's records (`media` in unit order).
+  void read_second_droplets(std::int64_t sweep_id, std::vector<SweepMedium>& media) {
+    SQLite::Statement d(db_,
+                        "SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps, shaken_at, "
+                        "route_tortuosity, released_at, first_held_at, held_at, contact_steps, shared_touched "
+                        "FROM sweep_second_droplets WHERE sweep_id = ? ORDER BY porosity_index, medium_index, droplet");
+    d.bind(1, sweep_id);
+    std::size_t k = 0;
+    const auto real_or_nan = [&](int c) {
+      return d.getColumn(c).isNull() ? std::numeric_limits<double>::quiet_NaN() : detail::as_real(d.getColumn(c));
+    };
+    while (d.executeStep()) {
+      const SweepUnit u{detail::as_int(d.getColumn(0)), detail::as_int(d.getColumn(1))};
+      while (k < media.size() && !(media[k].unit == u)) ++k;
+      if (k == media.size())
+        throw std::runtime_error("sweep " + std::to_string(sweep_id) + ": second droplets of porosity " +
+                                 std::to_string(u.porosity) + " medium " + std::to_string(u.medium) +
+                                 " without their medium, or out of order (damaged or edited file?)");
+      SweepSecond s;
+      s.run = {detail::as_int(d.getColumn(2)),
+               detail::as_real(d.getColumn(3)),
+               parse_outcome(detail::as_text(d.getColumn(4))),
+               d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)),
+               detail::as_int64(d.getColumn(6)),
+               real_or_nan(7),
+               real_or_nan(8)};
+      s.released_at = detail::as_real(d.getColumn(9));
+      s.first_held_at = real_or_nan(10), s.held_at = real_or_nan(11);
+      s.contact_steps = detail::as_int64(d.getColumn(12));
+      s.shared_touched = detail::as_int(d.getColumn(13));
+      media[k].second_droplets.push_back(s);
+    }
+  }
+
   static constexpr const char* kColumns =
       "SELECT s.id, s.created, s.updated, s.version, s.status, s.params, s.units, count(m.sweep_id) "
       "FROM sweeps s LEFT JOIN sweep_media m ON m.sweep_id = s.id";

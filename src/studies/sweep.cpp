@@ -41,6 +41,7 @@ bool SweepOptions::IsValid(std::string* why) const {
   m.porosity = porosities.front();
   if (!m.IsValid(why)) return false;
   if (!droplet.IsValid(why)) return false;
+  if (second && !second->IsValid(droplet, why)) return false;
   return run.IsValid(why);
 }
 
@@ -124,21 +125,61 @@ void finish_unit(SweepMedium* r, const std::vector<RunSummary>& runs) {
          runs[i].outcome == Outcome::passed ? runs[i].route_tortuosity : std::numeric_limits<double>::quiet_NaN()});
 }
 
+// A pair sweep's unit: the firsts are the droplets (their counts and <T> the medium's), and each
+// released second is recorded with its pair's contacts.
+void finish_pair_unit(SweepMedium* r, const std::vector<TwoDropletSummary>& pairs) {
+  std::vector<RunSummary> firsts;
+  firsts.reserve(pairs.size());
+  for (const TwoDropletSummary& p : pairs) firsts.push_back(p.first);
+  finish_unit(r, firsts);
+  r->second_droplets.clear();
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const TwoDropletSummary& p = pairs[i];
+    if (!p.released) continue;
+    const RunSummary& s = p.second;
+    const bool passed = s.outcome == Outcome::passed;
+    r->second_droplets.push_back({{static_cast<int>(i), s.start_x, s.outcome, passed ? s.tortuosity : 0.0, s.steps,
+                                   s.shaken_at, passed ? s.route_tortuosity : std::numeric_limits<double>::quiet_NaN()},
+                                  p.released_at,
+                                  p.first_held_at,
+                                  p.second_held_at,
+                                  p.contact_steps,
+                                  p.shared_touched});
+  }
+}
+
+// A unit run whole with `threads` threads: the droplets (or pairs) from its starts.
+SweepMedium run_unit(const SweepOptions& o, const SweepUnit& u, int threads,
+                     const std::function<void(int, int)>& progress) {
+  const auto t0 = std::chrono::steady_clock::now();
+  UnitSetup s = setup_unit(o, u);
+  s.batch.threads = threads;
+  if (o.second)
+    finish_pair_unit(&s.record, run_two_droplet_batch(o.droplet, s.medium, s.run, s.batch, *o.second, progress));
+  else
+    finish_unit(&s.record, run_batch(o.droplet, s.medium, s.run, s.batch, progress));
+  s.record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return std::move(s.record);
+}
+
 }  // namespace
 
 SweepMedium run_sweep_unit(const SweepOptions& o, const SweepUnit& u, int threads,
                            const std::function<void(int, int)>& progress) {
-  const auto t0 = std::chrono::steady_clock::now();
-  UnitSetup s = setup_unit(o, u);
-  s.batch.threads = threads;
-  finish_unit(&s.record, run_batch(o.droplet, s.medium, s.run, s.batch, progress));
-  s.record.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  return std::move(s.record);
+  return run_unit(o, u, threads, progress);
 }
 
 void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units, int threads,
                      const std::function<void(SweepMedium&&)>& on_done, const std::function<bool()>& stop,
                      const std::function<bool(const SweepUnit&)>& skip) {
+  if (o.second) {  // pairs: a unit at a time, its pairs across the threads
+    for (const SweepUnit& u : units) {
+      if (stop && stop()) return;
+      if (skip && skip(u)) continue;
+      on_done(run_unit(o, u, threads, {}));
+    }
+    return;
+  }
   const int workers = detail::worker_threads(threads);
   struct Open {
     std::once_flag made;
@@ -284,7 +325,17 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
   if (error) std::rethrow_exception(error);
 }
 
-std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media) {
+std::vector<SweepPoint> sweep_points(const std::vector<SweepMedium>& media, bool second_droplets) {
+  if (second_droplets) {  // the seconds as the droplets of copies of the media
+    std::vector<SweepMedium> as_droplets;
+    for (const SweepMedium& m : media) {
+      SweepMedium c;
+      c.target_porosity = m.target_porosity, c.porosity = m.porosity;
+      for (const SweepSecond& s : m.second_droplets) c.droplets.push_back(s.run);
+      as_droplets.push_back(std::move(c));
+    }
+    return sweep_points(as_droplets);
+  }
   std::map<double, std::vector<const SweepMedium*>> by;
   for (const SweepMedium& m : media) by[m.target_porosity].push_back(&m);
   std::vector<SweepPoint> out;

@@ -18,6 +18,20 @@ using Writer = detail::ByteWriter;
 
 constexpr std::uint32_t kMagic = 0x53445752;  // "SDWR"
 
+void put_droplet(Writer& w, const SweepDroplet& d) {
+  w.put(d.droplet), w.put(d.start_x), w.put(static_cast<std::int32_t>(d.outcome)), w.put(d.tortuosity);
+  w.put(d.steps), w.put(d.shaken_at), w.put(d.route_tortuosity);
+}
+
+void read_droplet(detail::ByteReader& r, SweepDroplet& d) {
+  d.droplet = r.get<int>(), d.start_x = r.get<double>();
+  const auto outcome = r.get<std::int32_t>();
+  if (outcome < 0 || outcome > static_cast<std::int32_t>(Outcome::diverged)) r.fail("bad outcome");
+  d.outcome = static_cast<Outcome>(outcome);
+  d.tortuosity = r.get<double>(), d.steps = r.get<std::int64_t>();
+  d.shaken_at = r.get<double>(), d.route_tortuosity = r.get<double>();
+}
+
 }  // namespace
 
 std::string encode_sweep_medium(const SweepMedium& m) {
@@ -28,9 +42,11 @@ std::string encode_sweep_medium(const SweepMedium& m) {
   w.put(m.passed), w.put(m.stuck), w.put(m.timeout), w.put(m.diverged);
   w.put(m.mean_t), w.put(m.standard_error), w.put(m.stuck_fraction), w.put(m.seconds);
   w.put<std::uint64_t>(m.droplets.size());
-  for (const SweepDroplet& d : m.droplets) {
-    w.put(d.droplet), w.put(d.start_x), w.put(static_cast<std::int32_t>(d.outcome)), w.put(d.tortuosity);
-    w.put(d.steps), w.put(d.shaken_at), w.put(d.route_tortuosity);
+  for (const SweepDroplet& d : m.droplets) put_droplet(w, d);
+  w.put<std::uint64_t>(m.second_droplets.size());
+  for (const SweepSecond& s : m.second_droplets) {
+    put_droplet(w, s.run);
+    w.put(s.released_at), w.put(s.first_held_at), w.put(s.held_at), w.put(s.contact_steps), w.put(s.shared_touched);
   }
   return w.out;
 }
@@ -48,13 +64,14 @@ SweepMedium decode_sweep_medium(const std::string& bytes) {
   const auto n = r.get<std::uint64_t>();
   if (n > bytes.size()) r.fail("truncated");
   m.droplets.resize(n);
-  for (SweepDroplet& d : m.droplets) {
-    d.droplet = r.get<int>(), d.start_x = r.get<double>();
-    const auto outcome = r.get<std::int32_t>();
-    if (outcome < 0 || outcome > static_cast<std::int32_t>(Outcome::diverged)) r.fail("bad outcome");
-    d.outcome = static_cast<Outcome>(outcome);
-    d.tortuosity = r.get<double>(), d.steps = r.get<std::int64_t>();
-    d.shaken_at = r.get<double>(), d.route_tortuosity = r.get<double>();
+  for (SweepDroplet& d : m.droplets) read_droplet(r, d);
+  const auto pairs = r.get<std::uint64_t>();
+  if (pairs > bytes.size()) r.fail("truncated");
+  m.second_droplets.resize(pairs);
+  for (SweepSecond& s : m.second_droplets) {
+    read_droplet(r, s.run);
+    s.released_at = r.get<double>(), s.first_held_at = r.get<double>(), s.held_at = r.get<double>();
+    s.contact_steps = r.get<std::int64_t>(), s.shared_touched = r.get<int>();
   }
   if (!r.at_end()) r.fail("trailing bytes");
   return m;

@@ -67,3 +67,27 @@ def test_a_shaken_medium_shakes_both_droplets_from_when_it_began():
     assert pair.released
     # Both feel the medium shaking from their own starts: it shook before the second was released.
     assert pair.first.shaken_at == 0.0 and pair.second.shaken_at == 0.0
+
+
+def test_a_sweep_of_pairs_stores_the_seconds_beside_their_firsts(tmp_path):
+    db = tmp_path / "pairs.db"
+    summary = softdrop.sweep(db, porosities=[0.79], kind="non-overlapping", width=200, height=200, media=2,
+                             droplets=4, second_droplet="distance", second_after=20, quiet=True)
+    assert summary["done"] == 2
+    frames = softdrop.read_sweep(db)
+    firsts, seconds = frames["droplets"], frames["second_droplets"]
+    assert len(firsts) == 8 and 0 < len(seconds) <= 8
+    pairs = seconds.merge(firsts, on=["sweep", "porosity_index", "medium_index", "droplet"], suffixes=("", "_first"))
+    assert len(pairs) == len(seconds)
+    assert (pairs["start_x"] == pairs["start_x_first"]).all()  # no offset: the pair's one start
+    assert (pairs["released_at"] > 0).all() and (pairs["contact_steps"] >= 0).all()
+    # Where the rings never met and neither was held, the second ran the first's run again, to the bit.
+    alone = pairs[(pairs["contact_steps"] == 0) & pairs["held_at"].isna() & pairs["first_held_at"].isna()]
+    assert (alone["steps"] == alone["steps_first"]).all()
+    assert alone["tortuosity"].equals(alone["tortuosity_first"])
+    # The same call continues the same sweep; a pair that would start overlapping is refused by its keyword.
+    assert softdrop.sweep(db, porosities=[0.79], kind="non-overlapping", width=200, height=200, media=2,
+                          droplets=4, second_droplet="distance", second_after=20, quiet=True)["sweep"] == 1
+    with pytest.raises(ValueError, match="second_after = 5: the second droplet would start overlapping"):
+        softdrop.sweep(tmp_path / "no.db", second_droplet="distance", second_after=5, quiet=True)
+    assert not (tmp_path / "no.db").exists()

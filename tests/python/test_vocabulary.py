@@ -102,6 +102,10 @@ def written(tmp_path_factory):
     sdb = str(d / "w.db")
     cli("sweep", "--db", sdb, *SWEEP)
     cli("sweep", "--db", sdb, *SWEEP, "--seed", "2")
+    cli("sweep", "--db", sdb, *SWEEP, "--seed", "3", "--second-droplet", "distance")
+    out = d / "p2.csv"
+    out.write_text(cli("sweep-report", "--db", sdb, "--sweep", "3", "--second-droplets", "--format", "csv"))
+    csv(out)
     for extra in ([], ["--media"]):
         out = d / "p.csv"
         out.write_text(cli("sweep-report", "--db", sdb, "--sweep", "1", *extra, "--format", "csv"))
@@ -135,7 +139,8 @@ def test_the_database_views_have_the_python_frames_columns(vocabulary, written):
     history, sweeps = softdrop.read_history(db), softdrop.read_sweep(sdb)
     frames = {"runs": history["runs"], "generations": history["generations"], "candidates": history["candidates"],
               "grains": history["grains"], "paths": history["paths"], "validations": history["validations"],
-              "sweeps": sweeps["sweeps"], "sweep_media": sweeps["media"], "sweep_droplets": sweeps["droplets"]}
+              "sweeps": sweeps["sweeps"], "sweep_media": sweeps["media"], "sweep_droplets": sweeps["droplets"],
+              "sweep_second_droplets": sweeps["second_droplets"]}
     for file in (db, sdb):
         with sqlite3.connect(file) as c:
             for table, frame in frames.items():
