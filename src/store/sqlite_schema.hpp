@@ -175,7 +175,8 @@ inline constexpr AddedColumn kSchemaV9[] = {{"sweep_droplets", "shaken_at", "REA
                                             {"sweep_droplets", "route_tortuosity", "REAL"}};
 
 // Version 10: the second droplets of sweeps that push two droplets one after the other (one row
-// a pair whose second was released; the pair's first is its sweep_droplets row).
+// a pair whose second was released; the pair's first is its sweep_droplets row). Its first ten
+// columns are sweep_droplets' on purpose: a second droplet is a droplet, read by the same code.
 inline constexpr const char* kSchemaV10 = R"sql(
 CREATE TABLE IF NOT EXISTS sweep_second_droplets (
   sweep_id         INTEGER NOT NULL,

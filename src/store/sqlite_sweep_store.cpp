@@ -156,21 +156,7 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
               "medium_index, droplet");
       d.bind(1, sweep_id);
       std::size_t k = 0;
-      while (d.executeStep()) {
-        const SweepUnit u{detail::as_int(d.getColumn(0)), detail::as_int(d.getColumn(1))};
-        while (k < out.size() && !(out[k].unit == u)) ++k;
-        if (k == out.size())
-          throw std::runtime_error("sweep " + std::to_string(sweep_id) + ": droplets of porosity " +
-                                   std::to_string(u.porosity) + " medium " + std::to_string(u.medium) +
-                                   " without their medium, or out of order (damaged or edited file?)");
-        const auto real_or_nan = [&](int c) {
-          return d.getColumn(c).isNull() ? std::numeric_limits<double>::quiet_NaN() : detail::as_real(d.getColumn(c));
-        };
-        out[k].droplets.push_back({detail::as_int(d.getColumn(2)), detail::as_real(d.getColumn(3)),
-                                   parse_outcome(detail::as_text(d.getColumn(4))),
-                                   d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)),
-                                   detail::as_int64(d.getColumn(6)), real_or_nan(7), real_or_nan(8)});
-      }
+      while (d.executeStep()) medium_of(out, &k, d, sweep_id, "droplets").droplets.push_back(droplet_row(d));
       if (db_.tableExists("sweep_second_droplets")) read_second_droplets(sweep_id, out);  // none before version 10
       t.commit();
       return out;
@@ -178,6 +164,34 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
   }
 
  private:
+  // The record of the unit in a row's first two columns (porosity_index, medium_index), looked
+  // for from media[*k] on: rows and media are both in unit order.
+  static SweepMedium& medium_of(std::vector<SweepMedium>& media, std::size_t* k, SQLite::Statement& row,
+                                std::int64_t sweep_id, const char* what) {
+    const SweepUnit u{detail::as_int(row.getColumn(0)), detail::as_int(row.getColumn(1))};
+    while (*k < media.size() && !(media[*k].unit == u)) ++*k;
+    if (*k == media.size())
+      throw std::runtime_error("sweep " + std::to_string(sweep_id) + ": " + what + " of porosity " +
+                               std::to_string(u.porosity) + " medium " + std::to_string(u.medium) +
+                               " without their medium, or out of order (damaged or edited file?)");
+    return media[*k];
+  }
+
+  static double real_or_nan(SQLite::Statement& row, int c) {
+    return row.getColumn(c).isNull() ? std::numeric_limits<double>::quiet_NaN() : detail::as_real(row.getColumn(c));
+  }
+
+  // A droplet from columns 2 to 8: droplet, start_x, outcome, tortuosity, steps, shaken_at, route_tortuosity.
+  static SweepDroplet droplet_row(SQLite::Statement& row) {
+    return {detail::as_int(row.getColumn(2)),
+            detail::as_real(row.getColumn(3)),
+            parse_outcome(detail::as_text(row.getColumn(4))),
+            row.getColumn(5).isNull() ? 0.0 : detail::as_real(row.getColumn(5)),
+            detail::as_int64(row.getColumn(6)),
+            real_or_nan(row, 7),
+            real_or_nan(row, 8)};
+  }
+
   // The pairs' seconds into their media's records (`media` in unit order).
   void read_second_droplets(std::int64_t sweep_id, std::vector<SweepMedium>& media) {
     SQLite::Statement d(db_,
@@ -186,29 +200,15 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
                         "FROM sweep_second_droplets WHERE sweep_id = ? ORDER BY porosity_index, medium_index, droplet");
     d.bind(1, sweep_id);
     std::size_t k = 0;
-    const auto real_or_nan = [&](int c) {
-      return d.getColumn(c).isNull() ? std::numeric_limits<double>::quiet_NaN() : detail::as_real(d.getColumn(c));
-    };
     while (d.executeStep()) {
-      const SweepUnit u{detail::as_int(d.getColumn(0)), detail::as_int(d.getColumn(1))};
-      while (k < media.size() && !(media[k].unit == u)) ++k;
-      if (k == media.size())
-        throw std::runtime_error("sweep " + std::to_string(sweep_id) + ": second droplets of porosity " +
-                                 std::to_string(u.porosity) + " medium " + std::to_string(u.medium) +
-                                 " without their medium, or out of order (damaged or edited file?)");
+      SweepMedium& m = medium_of(media, &k, d, sweep_id, "second droplets");
       SweepSecond s;
-      s.run = {detail::as_int(d.getColumn(2)),
-               detail::as_real(d.getColumn(3)),
-               parse_outcome(detail::as_text(d.getColumn(4))),
-               d.getColumn(5).isNull() ? 0.0 : detail::as_real(d.getColumn(5)),
-               detail::as_int64(d.getColumn(6)),
-               real_or_nan(7),
-               real_or_nan(8)};
+      s.run = droplet_row(d);
       s.released_at = detail::as_real(d.getColumn(9));
-      s.first_held_at = real_or_nan(10), s.held_at = real_or_nan(11);
+      s.first_held_at = real_or_nan(d, 10), s.held_at = real_or_nan(d, 11);
       s.contact_steps = detail::as_int64(d.getColumn(12));
       s.shared_touched = detail::as_int(d.getColumn(13));
-      media[k].second_droplets.push_back(s);
+      m.second_droplets.push_back(s);
     }
   }
 
