@@ -27,6 +27,18 @@ std::set<std::string, std::less<>>& hyphenated() {
   return names;
 }
 
+// A whole number as a Python int (through __index__), not a bool: the one check of whole_arg and
+// seed_arg.
+py::object index_of(py::handle value, const char* name) {
+  if (PyBool_Check(value.ptr())) wrong_type(value, name, "a whole number");
+  py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+  if (!index) {
+    PyErr_Clear();
+    wrong_type(value, name, "a whole number");
+  }
+  return index;
+}
+
 bool word_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_'; }
 
 }  // namespace
@@ -44,12 +56,7 @@ double real_arg(py::handle value, const char* name) {
 }
 
 long long whole_arg(py::handle value, const char* name) {
-  if (PyBool_Check(value.ptr())) wrong_type(value, name, "a whole number");
-  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
-  if (!index) {
-    PyErr_Clear();
-    wrong_type(value, name, "a whole number");
-  }
+  const py::object index = index_of(value, name);
   int overflow = 0;
   const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
   if (overflow != 0) throw py::value_error(std::string(name) + " = " + repr_of(index) + ": too large");
@@ -64,12 +71,7 @@ int int_arg(py::handle value, const char* name) {
 }
 
 std::uint64_t seed_arg(py::handle value, const char* name) {
-  if (PyBool_Check(value.ptr())) wrong_type(value, name, "a whole number");
-  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
-  if (!index) {
-    PyErr_Clear();
-    wrong_type(value, name, "a whole number");
-  }
+  const py::object index = index_of(value, name);
   if (index < py::int_(0)) throw py::value_error(std::string(name) + " = " + repr_of(index) + ": must be >= 0");
   const unsigned long long v = PyLong_AsUnsignedLongLong(index.ptr());
   if (PyErr_Occurred()) {

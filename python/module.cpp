@@ -218,15 +218,14 @@ PYBIND11_MODULE(_core, m) {
                      "A smaller droplet with a stiffer ring, for more passage at low porosity, as "
                      "results/calibration/passage.toml (whose grains, radii 26 to 50, go to Medium.generate)");
   bind_droplet_fields(droplet);
-  std::vector<std::string> droplet_fields;
+  std::vector<std::pair<std::string, std::string>> droplet_docs;  // each attribute's name and meaning
   DropletParams defaults;
-  visit_droplet_fields([&](const DropletField& f, const auto&) { droplet_fields.push_back(cli::column_name(f.key)); },
-                       defaults);
-  python::def_value_semantics(droplet, droplet_fields, "DropletParams");
-  std::vector<std::pair<std::string, std::string>> droplet_docs;
   visit_droplet_fields(
       [&](const DropletField& f, const auto&) { droplet_docs.emplace_back(cli::column_name(f.key), f.help); },
       defaults);
+  std::vector<std::string> droplet_fields;
+  for (const auto& field : droplet_docs) droplet_fields.push_back(field.first);
+  python::def_value_semantics(droplet, droplet_fields, "DropletParams");
   const std::string droplet_init =
       "The defaults' droplet, with the parameters given as keywords set (another name raises ValueError, a wrong "
       "type TypeError):\n" +
