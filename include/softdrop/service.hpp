@@ -5,12 +5,17 @@
 /// may stop the run, and a summary of how it ended (cf. Ceres' Solver::Options, IterationCallback
 /// and Summary). Stopped runs continue where they stopped when run again with the same options.
 
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "softdrop/search.hpp"
+#include "softdrop/store.hpp"
 #include "softdrop/sweep.hpp"
 
 namespace softdrop {
@@ -85,5 +90,99 @@ using SweepUnitsRunner =
 /// std::invalid_argument for invalid options and DatabaseError for a file that is not a usable
 /// database, naming it.
 SweepSummary run_sweep(const SweepRun& run, SweepObserver& observer, const SweepUnitsRunner& runner = {});
+
+/// Where a new search starts: the grain file `file`, or else a medium generated from `medium`;
+/// when the droplet does not pass through it, the next of `attempts` media, medium seed
+/// derive_seed(medium.seed, attempt) for attempt = 1, 2, ...
+struct SearchStart {
+  std::string file;
+  MediumOptions medium;
+  int attempts = 100;
+};
+
+/// A search's run on a history file: a new run, or a stored one continued (`resume`). A resumed
+/// run takes its search options from the history; the options given here are then only checked
+/// against it (see `given`).
+struct SearchRun {
+  SearchOptions search;  ///< a new run's options
+  SearchStart start;     ///< a new run's first arrangement
+  std::string db;        ///< the history file; a new one is created once generation 0 exists
+  std::int64_t resume = 0;  ///< the run to continue (0: start a new one)
+  /// Run up to this generation number. None: a new run's kDefaultGenerations, a resumed run's
+  /// own target (the last one given).
+  std::optional<std::int64_t> generations;
+  double time_limit = 0;  ///< wall seconds (0: none)
+  int threads = 0;        ///< 0: all cores; the history does not depend on it
+  int lanes = 0;          ///< DriveOptions::lanes
+  bool speculate = true;  ///< DriveOptions::speculate
+  /// At the end of a run that reached its target, the best arrangement's held-out value over this
+  /// many random starts, at dt and dt/2, stored in the history (0: none).
+  int validate_starts = 200;
+  /// On resume: the stored parameters' keys (the program's option names: "lambda", "seed",
+  /// "r-min", ...) that the caller set. Each must have the stored value, or the resume is refused
+  /// naming it; the others are taken from the run.
+  std::vector<std::string> given;
+  /// Parameters stored with a new run beside the search's and the start's, as a JSON object
+  /// (the program's islands keys; empty: none). On resume they take part in the `given` check.
+  std::string extra_params;
+
+  static constexpr std::int64_t kDefaultGenerations = 200;
+  /// generations in [0, 1e9], time_limit >= 0, threads, lanes, validate_starts in [0, 1e6],
+  /// start.attempts >= 1, db not empty; for a new run, the search's and the medium's options and
+  /// grains >= 1 for a generated medium.
+  bool IsValid(std::string* why) const;
+};
+
+/// What a search's run tells as it goes, on the thread that called run_search.
+class SearchObserver {
+ public:
+  virtual ~SearchObserver() = default;
+  /// A random starting medium (attempt 1, 2, ...) the droplet did not pass through, and why.
+  virtual void start_refused(int /*attempt*/, const std::string& /*why*/) {}
+  /// Before the session's first generation: the run's id, its best so far, the generation it goes
+  /// on from (0 for a new run) and its target.
+  virtual void started(std::int64_t /*run*/, const Configuration& /*best*/, std::int64_t /*from*/,
+                       std::int64_t /*target*/, bool /*resumed*/) {}
+  /// After each generation is stored. false stops the run there (Termination::callback).
+  virtual bool generation(std::int64_t /*run*/, const Generation& /*g*/, const Configuration& /*best*/,
+                          std::int64_t /*target*/) {
+    return true;
+  }
+  /// The held-out droplets of the end's validation, as they finish.
+  virtual void validating(int /*done*/, int /*total*/) {}
+  /// A flag raised asynchronously (a signal's) to stop after the generation in flight; nullptr:
+  /// none. Read once, before the first generation.
+  virtual const std::atomic<bool>* stop_flag() { return nullptr; }
+};
+
+/// How a search's run ended.
+struct SearchRunSummary {
+  std::int64_t run = 0;
+  bool resumed = false;
+  /// A resumed run already at or past the target: nothing ran; `best` then holds only the stored
+  /// best's generation and T, and drive.last_generation the run's last generation.
+  bool nothing_to_do = false;
+  std::int64_t target = 0;  ///< the generation the session ran up to
+  SearchOptions search;     ///< the run's options (a resumed run's, as stored)
+  SearchSummary drive;      ///< the session's generations: why they ended, counts, speculation
+  Configuration best;       ///< the run's best after the session
+  /// Generation 0's candidates and droplets when this session made it (a new run), else 0.
+  std::int64_t initial_evaluations = 0, initial_droplets = 0;
+  /// The held-out value stored at the end (validate_starts > 0 and the target reached).
+  std::optional<ValidationRecord> held_out;
+  /// Robust objectives: the objective over the held-out starts at dt, a droplet that did not
+  /// pass counted as T = 1 (NaN otherwise).
+  double held_out_objective = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// Runs a search on a history file: generation 0 of a new run (stored with its options once it
+/// exists, so a start that fails creates no file), or a stored run read back and checked against
+/// this build; then generations, each stored as it ends, until the target, the time limit, the
+/// stop flag or the observer stops it; the run marked finished or interrupted; and the best's
+/// held-out value stored when the target was reached. A refused run changes no file. Throws
+/// std::invalid_argument for invalid or contradicting options, std::runtime_error for a start
+/// through which no droplet passes or a stored run this build does not reproduce, and
+/// DatabaseError for a file that is not a usable history, naming it.
+SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer);
 
 }  // namespace softdrop

@@ -14,6 +14,7 @@
 
 #include "cli/mpi_islands.hpp"
 #include "cli/output.hpp"
+#include "service/search_start.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/version.hpp"
 #include "store/params_json.hpp"
@@ -112,7 +113,7 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     for (const auto& [key, value] : read_back.items())
       if (!stored.contains(key)) stored[key] = value;
     stored.erase("island");
-    if (const std::string bad = contradictions(given, stored, cmd, a.preset_keys); !bad.empty())
+    if (const std::string bad = contradictions(given, stored, given_keys(given, a, &cmd)); !bad.empty())
       throw std::invalid_argument("resume " + std::to_string(a.resume) +
                                   ": the command line contradicts the stored run: " + bad);
     const bool target_given = cmd.get_option("--generations")->count() > 0;
@@ -137,12 +138,14 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     const bool each = a.own_island_starts || a.search.objective.robust();
     const std::size_t starts = each ? static_cast<std::size_t>(a.islands.islands) : 1;
     std::vector<Generation> g0(starts);
-    std::vector<Configuration> start_of(starts);
+    std::vector<Configuration> first_of(starts);
     for (std::size_t s = 0; s < starts; ++s) {
       OptimizeArgs from = a;
       if (a.own_island_starts) from.medium.options.seed = derive_seed(a.medium.options.seed, s);
       from.search = island_search_options(a.search, static_cast<int>(s));
-      g0[s] = start(from, &start_of[s]);
+      g0[s] = starting_generation(start_of(from), from.search, &first_of[s], [&](int attempt, const std::string& why) {
+        if (!a.quiet) std::cerr << "optimize: starting medium " << attempt << ": " << why << "; trying another\n";
+      });
       initial_evaluations += static_cast<std::int64_t>(g0[s].candidates.size());
     }
     history = open_history(a.db, OpenMode::create);
@@ -152,17 +155,17 @@ int run_islands(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
       const std::size_t s = each ? static_cast<std::size_t>(i) : 0;
       params["island"] = i;
       const SearchOptions options = island_search_options(a.search, i);
-      const std::int64_t id = history->create_run(params.dump(), options, g0[s], start_of[s]);
+      const std::int64_t id = history->create_run(params.dump(), options, g0[s], first_of[s]);
       history->set_island(id, i, runs.empty() ? id : runs.front());
       runs.push_back(id);
-      islands.emplace_back(options, start_of[s], 0);
+      islands.emplace_back(options, first_of[s], 0);
     }
     if (!a.quiet)
-      for (std::size_t s = 0; s < start_of.size(); ++s)
+      for (std::size_t s = 0; s < first_of.size(); ++s)
         std::cerr << "optimize: " << (each ? "island " + std::to_string(s) + " of " : std::string()) << runs.size()
                   << " islands, runs " << runs.front() << " to " << runs.back() << " in " << a.db << ": "
-                  << start_of[s].medium.grains.size() << " grains, porosity "
-                  << fmt(exact_porosity(start_of[s].medium), 6) << ", T0 = " << fmt(start_of[s].eval.tortuosity, 8)
+                  << first_of[s].medium.grains.size() << " grains, porosity "
+                  << fmt(exact_porosity(first_of[s].medium), 6) << ", T0 = " << fmt(first_of[s].eval.tortuosity, 8)
                   << "\n";
   }
 

@@ -183,22 +183,53 @@ class SearchProgress {
   std::int64_t generations_ = 0, evaluations_ = 0, accepted_ = 0;
 };
 
+// The program's observer of a search's run: its lines and progress on stderr, the host's callback
+// (the Python module's), and Ctrl-C when no host handles the signals itself.
+class OptimizeObserver : public SearchObserver {
+ public:
+  OptimizeObserver(const OptimizeArgs& a, Host* host) : a_(a), host_(host) {
+    if (!host) signals_.emplace("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
+  }
+  void start_refused(int attempt, const std::string& why) override {
+    if (!a_.quiet) std::cerr << "optimize: starting medium " << attempt << ": " << why << "; trying another\n";
+  }
+  void started(std::int64_t run, const Configuration& best, std::int64_t from, std::int64_t target,
+               bool resumed) override {
+    if (!a_.quiet) {
+      if (resumed)
+        std::cerr << "optimize: resuming run " << run << " of " << a_.db << " at generation " << from << " (best T "
+                  << fmt(best.eval.tortuosity, 8) << ")\n";
+      else
+        std::cerr << "optimize: run " << run << " in " << a_.db << ": " << best.medium.grains.size()
+                  << " grains, porosity " << fmt(exact_porosity(best.medium), 6)
+                  << ", T0 = " << fmt(best.eval.tortuosity, 8) << "\n";
+    }
+    progress_.emplace(run, from, target, a_.quiet);
+  }
+  bool generation(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target) override {
+    progress_->update(g, best, g.number == target);
+    if (!host_ || !host_->on_progress) return true;
+    return host_->on_progress(generation_event(run, g, best, target));
+  }
+  void validating(int done, int total) override {
+    if (a_.quiet) return;
+    if (!validation_) validation_.emplace("optimize: held-out droplets");  // its clock starts here
+    validation_->update(done, total);
+  }
+  const std::atomic<bool>* stop_flag() override { return signals_ ? signals_->flag() : nullptr; }
+  int exit_code() const { return signals_ ? signals_->exit_code() : 0; }
+
+ private:
+  const OptimizeArgs& a_;
+  Host* host_;
+  std::optional<StopOnSignal> signals_;  // a host handles the signals itself
+  std::optional<SearchProgress> progress_;
+  std::optional<Progress> validation_;
+};
+
 }  // namespace
 
 void check_optimize(OptimizeArgs& a) {
-  if (a.generations < 0 || a.generations > 1'000'000'000)
-    throw std::invalid_argument("generations = " + std::to_string(a.generations) + ": must be in [0, 1e9]");
-  if (!(a.time_limit >= 0) || !std::isfinite(a.time_limit))
-    throw std::invalid_argument("time-limit = " + fmt(a.time_limit) + ": must be >= 0");
-  check_threads(a.threads);
-  DriveOptions drive;
-  drive.lanes = a.lanes;
-  if (std::string why; !drive.IsValid(&why)) throw std::invalid_argument(why);
-  if (a.validate_starts < 0 || a.validate_starts > kMaxHeldOutStarts)
-    throw std::invalid_argument("validate-starts = " + std::to_string(a.validate_starts) + ": must be in [0, 1e6]");
-  if (a.start_attempts < 1)
-    throw std::invalid_argument("start-attempts = " + std::to_string(a.start_attempts) + ": must be >= 1");
-  if (a.resume < 0) throw std::invalid_argument("resume = " + std::to_string(a.resume) + ": not a run id");
   if (a.resume == 0)  // on resume the stored strategy decides (checked against the stored run)
     for (const auto& [option, kind] : a.strategy_options)
       if (kind != a.search.strategy.kind)
@@ -211,14 +242,7 @@ void check_optimize(OptimizeArgs& a) {
     throw std::invalid_argument("island-starts = own: an option of --islands K (K > 1)");
   if (a.own_island_starts && !a.medium.file.empty())
     throw std::invalid_argument("island-starts = own: needs generated media, not --medium " + a.medium.file);
-  if (a.resume == 0) {  // a resumed run takes its options from the history
-    // (0 grains would mean "fill to a porosity" to the medium generator, which optimize does not offer)
-    if (a.medium.file.empty() && a.medium.options.grains < 1)
-      throw std::invalid_argument("grains = " + std::to_string(a.medium.options.grains) + ": must be >= 1");
-    resolve_medium(a.medium);
-    std::string why;
-    if (!a.search.IsValid(&why)) throw std::invalid_argument(why);
-  }
+  if (std::string why; !search_run_of(a, nullptr).IsValid(&why)) throw std::invalid_argument(why);
 }
 
 int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
@@ -229,117 +253,15 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     work_on_islands(*job, a.threads, a.lanes, !a.no_speculation);
     return 0;
   }
-  // (a plain run resumed with --islands is refused below, as any contradicting option is)
+  // (a plain run resumed with --islands is refused by the service, as any contradicting option is)
   const bool islands = a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1;
   if (on_ranks && !islands)
     throw std::runtime_error("optimize runs across MPI ranks only with --islands K (K > 1), or resuming islands");
   if (islands) return run_islands(a, cmd, host);
-  const nlohmann::json given = params_of(a);
-
-  std::unique_ptr<History> history;
-  std::int64_t run = a.resume;
-  std::unique_ptr<Search> search;
-  std::int64_t initial_evaluations = 0;  // generation 0's, counted with this session's when it made them
-  std::int64_t initial_droplets = 0;
-  if (run > 0) {
-    history = open_history(a.db, OpenMode::read_only);  // checks the file before any write
-    history.reset();
-    history = open_history(a.db, OpenMode::create);
-    const std::vector<RunRecord> runs = history->runs();
-    if (std::none_of(runs.begin(), runs.end(), [&](const RunRecord& r) { return r.id == run; }))
-      throw std::invalid_argument(
-          "resume = " + std::to_string(run) + ": '" + a.db + "' has no run " + std::to_string(run) +
-          (runs.empty() ? " (it has no runs)" : " (its last run is " + std::to_string(runs.back().id) + ")"));
-    history->check_run(run);
-    const RunRecord rec = history->run(run);
-    nlohmann::json stored = nlohmann::json::parse(rec.params);
-    try {
-      a.search = search_params_from_json(rec.params);
-    } catch (const std::exception& e) {
-      throw std::runtime_error("--db '" + a.db + "': run " + std::to_string(run) + ": " + e.what());
-    }
-    // Keys a run stored before they existed read as what it did (the paper's strategy, ...).
-    const nlohmann::json read_back = nlohmann::json::parse(search_params_to_json(a.search));
-    for (const auto& [key, value] : read_back.items())
-      if (!stored.contains(key)) stored[key] = value;
-    if (const std::string bad = contradictions(given, stored, cmd, a.preset_keys); !bad.empty())
-      throw std::invalid_argument("resume " + std::to_string(run) +
-                                  ": the command line contradicts the stored run: " + bad);
-    // Without --generations a resume goes on to the run's own target (runs stored before targets
-    // were: the default); a target at or below the last generation leaves the run as it is.
-    const bool target_given = cmd.get_option("--generations")->count() > 0;
-    std::optional<std::int64_t> stored_target;
-    if (stored.contains("target-generations") && stored["target-generations"].is_number_integer())
-      stored_target = stored["target-generations"].get<std::int64_t>();
-    if (!target_given && stored_target) a.generations = *stored_target;
-    if (a.generations <= rec.generations) {
-      const std::string line = "nothing to do: run " + std::to_string(run) + " is at generation " +
-                               std::to_string(rec.generations) + " (target " + std::to_string(a.generations) + ")";
-      nlohmann::json j{{"version", kVersion},
-                       {"db", a.db},
-                       {"run", run},
-                       {"termination", "nothing to do"},
-                       {"message", line},
-                       {"last_generation", rec.generations},
-                       {"generations_run", 0},
-                       {"evaluations", 0},
-                       {"best_tortuosity", rec.best_t},
-                       {"best_generation", rec.best_generation}};
-      // A run killed after its last generation but before it was marked finished is finished.
-      if (stored_target && rec.generations >= *stored_target && rec.status != "finished")
-        history->set_status(run, "finished");
-      if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
-      if (host)
-        host->summary = j;
-      else
-        std::cout << (a.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
-      return 0;
-    }
-    search = std::make_unique<Search>(resumed_search(*history, rec, a.search));
-    // Only once the run has been read back and checked: a refused resume writes nothing.
-    if (target_given && stored_target != a.generations)
-      history->set_param(run, "target-generations", std::to_string(a.generations));
-    if (!a.quiet)
-      std::cerr << "optimize: resuming run " << run << " of " << a.db << " at generation " << rec.generations
-                << " (best T " << fmt(rec.best_t, 8) << ")\n";
-  } else {
-    // An existing file is checked first; a new one is created only once generation 0 exists, so
-    // a start that fails leaves no file behind.
-    check_database(a.db);  // (a new file: its folder must exist and be writable)
-    Configuration best;
-    const Generation g0 = start(a, &best);
-    initial_evaluations = static_cast<std::int64_t>(g0.candidates.size());
-    initial_droplets = g0.candidates.front().eval.droplets;
-    history = open_history(a.db, OpenMode::create);
-    nlohmann::json params = given;
-    params["target-generations"] = a.generations;  // where a resume without --generations goes on to
-    run = history->create_run(params.dump(), a.search, g0, best);
-    search = std::make_unique<Search>(a.search, std::move(best), 0);
-    if (!a.quiet)
-      std::cerr << "optimize: run " << run << " in " << a.db << ": " << search->best().medium.grains.size()
-                << " grains, porosity " << fmt(exact_porosity(search->best().medium), 6)
-                << ", T0 = " << fmt(search->best().eval.tortuosity, 8) << "\n";
-  }
-
-  std::optional<StopOnSignal> stop;  // a host handles the signals itself
-  if (!host) stop.emplace("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
-  SearchProgress progress(run, search->last_generation(), a.generations, a.quiet);
-  const SearchSummary summary = drive(*search, drive_options_of(a, stop ? stop->flag() : nullptr),
-                                      [&](const Generation& g, const Configuration& best) {
-                                        history->append(run, g, best);
-                                        progress.update(g, best, g.number == a.generations);
-                                        if (!host || !host->on_progress) return true;
-                                        return host->on_progress(generation_event(run, g, best, a.generations));
-                                      });
-  history->set_status(run, summary.termination == Termination::generations ? "finished" : "interrupted");
-
-  const Configuration& best = search->best();
-  // A run that reached its target gets its best's held-out value; a stopped one is left to
-  // `softdrop validate`, so that Ctrl-C and --time-limit stop at once.
-  const nlohmann::json held_out =
-      summary.termination == Termination::generations ? validate_best(a, *history, run, best) : nlohmann::json();
-  report_optimize(a, summary, run, best, held_out, initial_evaluations, initial_droplets, host);
-  return summary.termination == Termination::interrupted && stop ? stop->exit_code() : 0;
+  OptimizeObserver observer(a, host);
+  const SearchRunSummary summary = run_search(search_run_of(a, &cmd), observer);
+  report_optimize(a, summary, host);
+  return summary.drive.termination == Termination::interrupted ? observer.exit_code() : 0;
 }
 
 }  // namespace softdrop::cli

@@ -9,16 +9,48 @@
 
 namespace softdrop::cli {
 
-void report_optimize(const OptimizeArgs& a, const SearchSummary& summary, std::int64_t run, const Configuration& best,
-                     const nlohmann::json& held_out, std::int64_t initial_evaluations, std::int64_t initial_droplets,
-                     Host* host) {
+namespace {
+
+// A resumed run already at its target.
+void report_nothing_to_do(const OptimizeArgs& a, const SearchRunSummary& s, Host* host) {
+  const std::string line = "nothing to do: run " + std::to_string(s.run) + " is at generation " +
+                           std::to_string(s.drive.last_generation) + " (target " + std::to_string(s.target) + ")";
+  const nlohmann::json j{{"version", kVersion},
+                         {"db", a.db},
+                         {"run", s.run},
+                         {"termination", "nothing to do"},
+                         {"message", line},
+                         {"last_generation", s.drive.last_generation},
+                         {"generations_run", 0},
+                         {"evaluations", 0},
+                         {"best_tortuosity", s.best.eval.tortuosity},
+                         {"best_generation", s.best.generation}};
+  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  if (host)
+    host->summary = j;
+  else
+    std::cout << (a.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
+}
+
+}  // namespace
+
+void report_optimize(const OptimizeArgs& a, const SearchRunSummary& s, Host* host) {
+  if (s.nothing_to_do) {
+    report_nothing_to_do(a, s, host);
+    return;
+  }
+  const SearchSummary& summary = s.drive;
+  const Configuration& best = s.best;
+  const SearchOptions& search = s.search;
+  const nlohmann::json held_out = s.held_out ? held_out_json(*s.held_out, s.held_out_objective) : nlohmann::json();
+  const std::int64_t run = s.run, initial_evaluations = s.initial_evaluations, initial_droplets = s.initial_droplets;
   nlohmann::json j;
   j["version"] = kVersion;
   j["db"] = a.db;
   j["run"] = run;
-  j["strategy"] = to_string(a.search.strategy.kind);
-  j["objective"] = to_string(a.search.objective.kind);
-  j["starts"] = a.search.objective.droplets();
+  j["strategy"] = to_string(search.strategy.kind);
+  j["objective"] = to_string(search.objective.kind);
+  j["starts"] = search.objective.droplets();
   j["termination"] = to_string(summary.termination);
   j["message"] = summary.message;
   j["last_generation"] = summary.last_generation;
@@ -46,8 +78,8 @@ void report_optimize(const OptimizeArgs& a, const SearchSummary& summary, std::i
               << "stopped      " << summary.message << "\n"
               << "best T       " << fmt(best.eval.tortuosity, 10) << " (generation " << best.generation << ", "
               << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n";
-    if (a.search.objective.robust())
-      std::cout << "objective    " << to_string(a.search.objective.kind) << " over " << a.search.objective.starts
+    if (search.objective.robust())
+      std::cout << "objective    " << to_string(search.objective.kind) << " over " << search.objective.starts
                 << " fresh starts a generation; the best T is the mean of the best's "
                 << summary.last_generation - best.generation << " re-runs"
                 << (summary.last_generation == best.generation ? " (none yet: the value it was kept with)" : "")

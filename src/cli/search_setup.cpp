@@ -7,11 +7,10 @@
 #include <stdexcept>
 
 #include "cli/output.hpp"
-#include "optimizer/strategy.hpp"
+#include "service/search_start.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/version.hpp"
 #include "store/params_json.hpp"
-#include "util/random.hpp"
 
 namespace softdrop::cli {
 
@@ -71,23 +70,21 @@ void check_objective_options(const OptimizeArgs& a) {
                                   to_string(a.search.objective.kind));
 }
 
-// The command line's view of the run: search options plus how the starting medium was made.
 const char* island_starts_name(bool own) { return own ? "own" : "shared"; }
 
+SearchStart start_of(const OptimizeArgs& a) {
+  SearchStart start;
+  start.file = a.medium.file;
+  start.medium = a.medium.options;
+  start.medium.kind = parse_medium_kind(a.medium.kind);
+  start.medium.radii = parse_radius_distribution(a.medium.radii);
+  start.medium.periodic = !a.medium.walls;
+  start.attempts = a.start_attempts;
+  return start;
+}
+
 nlohmann::json params_of(const OptimizeArgs& a) {
-  nlohmann::json j = nlohmann::json::parse(search_params_to_json(a.search));
-  const MediumOptions& m = a.medium.options;
-  j["medium"] = a.medium.file;
-  j["grains"] = m.grains;
-  j["width"] = m.width;
-  j["height"] = m.height;
-  j["r-min"] = m.r_min;
-  j["r-max"] = m.r_max;
-  j["radius-distribution"] = a.medium.radii;
-  j["r-median"] = m.r_median;
-  j["r-sigma"] = m.r_sigma;
-  j["walls"] = a.medium.walls;
-  j["medium-seed"] = m.seed;
+  nlohmann::json j = search_run_params(a.search, start_of(a));
   if (a.islands.islands > 1) {  // (plain runs keep the parameters they always had)
     j["islands"] = a.islands.islands;
     j["migrate-every"] = a.islands.migrate_every;
@@ -100,40 +97,53 @@ nlohmann::json params_of(const OptimizeArgs& a) {
   return j;
 }
 
-// Options given on the command line (or in a config file) that differ from the stored run.
-std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& cmd,
-                           const std::vector<std::string>& preset_keys) {
-  std::string out;
-  for (const auto& [key, value] : given.items()) {
-    const CLI::Option* opt = cmd.get_option_no_throw("--" + key);
-    const bool preset = std::find(preset_keys.begin(), preset_keys.end(), key) != preset_keys.end();
-    if (!preset && (!opt || opt->count() == 0)) continue;
-    const bool differs = !stored.contains(key) || stored.at(key) != value;
-    if (differs)
-      out += (out.empty() ? "" : ", ") + std::string("--") + key + " " + value.dump() + " (stored " +
-             (stored.contains(key) ? stored.at(key).dump() : std::string("nothing")) + ")";
+std::vector<std::string> given_keys(const nlohmann::json& params, const OptimizeArgs& a, const CLI::App* cmd) {
+  std::vector<std::string> keys;
+  for (const auto& [key, value] : params.items()) {
+    const CLI::Option* opt = cmd ? cmd->get_option_no_throw("--" + key) : nullptr;
+    const bool preset = std::find(a.preset_keys.begin(), a.preset_keys.end(), key) != a.preset_keys.end();
+    if (preset || (opt && opt->count() > 0)) keys.push_back(key);
   }
-  return out;
+  return keys;
+}
+
+SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
+  SearchRun run;
+  run.search = a.search;
+  run.start = start_of(a);
+  run.db = a.db;
+  run.resume = a.resume;
+  // A resume without --generations goes on to the run's own target.
+  if (a.resume == 0 || (cmd && cmd->get_option("--generations")->count() > 0)) run.generations = a.generations;
+  run.time_limit = a.time_limit;
+  run.threads = a.threads;
+  run.lanes = a.lanes;
+  run.speculate = !a.no_speculation;
+  run.validate_starts = a.validate_starts;
+  nlohmann::json params = params_of(a);
+  run.given = given_keys(params, a, cmd);
+  nlohmann::json extra = nlohmann::json::object();
+  for (const auto& key : {"islands", "migrate-every", "migration", "island-starts"})
+    if (params.contains(key)) extra[key] = params[key];
+  if (!extra.empty()) run.extra_params = extra.dump();
+  return run;
 }
 
 nlohmann::json validate_best(const OptimizeArgs& a, History& history, std::int64_t run, const Configuration& best) {
   if (a.validate_starts <= 0) return nullptr;
-  HeldOutOptions o;
-  o.starts = a.validate_starts;
-  o.threads = a.threads;
   Progress progress("optimize: held-out droplets");
-  RunOptions runs = a.search.run;
-  runs.path_interval = 0;
-  const HeldOutValue v = held_out_value(a.search.droplet, best.medium, runs, o, [&](int done, int total) {
-    if (!a.quiet) progress.update(done, total);
-  });
-  const ValidationRecord r = validation_record(best.generation, o, v);
-  history.add_validation(run, r);
-  // A robust objective over the held-out starts: the counterpart of the best's in-search value.
-  const nlohmann::json objective = a.search.objective.robust()
-                                       ? nlohmann::json(objective_value(a.search.objective, v.at_dt.runs))
-                                       : nlohmann::json();
-  return {{"objective_value", objective},
+  double objective = std::nan("");
+  const ValidationRecord r = validate_kept(
+      history, run, a.search, best, a.validate_starts, a.threads,
+      [&](int done, int total) {
+        if (!a.quiet) progress.update(done, total);
+      },
+      &objective);
+  return held_out_json(r, objective);
+}
+
+nlohmann::json held_out_json(const ValidationRecord& r, double objective) {
+  return {{"objective_value", finite_or_null(objective)},
           {"generation", r.generation},
           {"starts", r.starts},
           {"seed", r.seed},
@@ -162,32 +172,6 @@ void print_held_out(std::ostream& out, const nlohmann::json& held_out) {
   if (held_out["objective_value"].is_number())
     out << "held-out obj " << fmt(held_out["objective_value"].get<double>(), 6)
         << " (the objective over those starts, a droplet that did not pass as T = 1; beside the best T)\n";
-}
-
-// Generation 0 of a new run: the loaded medium, or random media until the droplet passes. A medium
-// that cannot be generated at all (e.g. too many grains for the box) is an error, not a retry.
-Generation start(const OptimizeArgs& a, Configuration* best) {
-  if (!a.medium.file.empty()) {
-    if (is_image_file(a.medium.file))
-      throw std::invalid_argument("medium: " + a.medium.file +
-                                  " is an image; a search moves grains, so it starts from a grain file (.json, .csv)");
-    return initial_generation(load_medium(a.medium.file), a.search, best);
-  }
-  std::string last_reason;
-  for (int attempt = 0; attempt < a.start_attempts; ++attempt) {
-    MediumOptions m = a.medium.options;
-    if (attempt > 0) m.seed = derive_seed(a.medium.options.seed, static_cast<std::uint64_t>(attempt));
-    const Medium medium = generate_medium(m);
-    try {
-      return initial_generation(medium, a.search, best);
-    } catch (const std::runtime_error& e) {  // the droplet did not pass: try another medium
-      last_reason = e.what();
-      if (!a.quiet)
-        std::cerr << "optimize: starting medium " << attempt + 1 << ": " << last_reason << "; trying another\n";
-    }
-  }
-  throw std::runtime_error("start-attempts = " + std::to_string(a.start_attempts) +
-                           ": no starting medium let the droplet pass (" + last_reason + ")");
 }
 
 DriveOptions drive_options_of(const OptimizeArgs& a, const std::atomic<bool>* stop) {
@@ -222,42 +206,6 @@ bool deliver_summary(const OptimizeArgs& a, const nlohmann::json& j, Host* host)
   if (a.format != "json") return false;
   std::cout << j.dump(2) << '\n';
   return true;
-}
-
-Search resumed_search(History& history, const RunRecord& rec, const SearchOptions& options) {
-  // The strategy moves on from the last kept arrangement; the best may be an earlier one (with a
-  // robust objective it is that arrangement, with the mean of its re-runs stored as the run's best).
-  Configuration current = history.configuration(rec.id, -1);
-  const bool robust = options.objective.robust();
-  // Both must come out the same with this build (on the starts they were kept on), or the history
-  // would fork. The best is checked apart only when it is another arrangement.
-  const auto check = [&](Configuration& c) {
-    const Evaluation again = evaluate(c.medium, options, c.generation);
-    if (again.outcome != Outcome::passed || again.tortuosity != c.eval.tortuosity || again.touched != c.eval.touched)
-      throw std::runtime_error("resume " + std::to_string(rec.id) + ": this build gives T = " + fmt(again.tortuosity) +
-                               " for the stored arrangement of generation " + std::to_string(c.generation) +
-                               ", the run stored " + fmt(c.eval.tortuosity) +
-                               " (built with other numerics? resuming would not continue the same history)");
-    c.eval = again;
-  };
-  check(current);
-  Configuration best = current;
-  if (!robust && rec.best_generation != current.generation) {
-    best = history.configuration(rec.id, rec.best_generation);
-    check(best);
-  }
-  if (robust) {
-    if (rec.best_generation != current.generation)
-      throw std::runtime_error("resume " + std::to_string(rec.id) + ": the stored best (generation " +
-                               std::to_string(rec.best_generation) + ") is not the last kept arrangement (generation " +
-                               std::to_string(current.generation) + "), as the " + to_string(options.objective.kind) +
-                               " objective keeps it");
-    best.eval.tortuosity = rec.best_t;
-  }
-  return Search(options, std::move(best), std::move(current),
-                resumes_by_replay(options.strategy.kind) ? history.strategy_states(rec.id, rec.generations)
-                                                         : history.strategy_state(rec.id, rec.generations),
-                rec.generations);
 }
 
 }  // namespace softdrop::cli

@@ -16,6 +16,7 @@
 #include "cli/host.hpp"
 #include "optimizer/islands.hpp"
 #include "softdrop/search.hpp"
+#include "softdrop/service.hpp"
 #include "softdrop/store.hpp"
 
 namespace softdrop::cli {
@@ -60,24 +61,25 @@ void add_objective_options(CLI::Option_group* g, OptimizeArgs& args);
 void check_objective_options(const OptimizeArgs& args);
 /// The stored and command-line spelling of OptimizeArgs::own_island_starts: "own" or "shared".
 const char* island_starts_name(bool own);
+/// How a new run's first arrangement is made, from the command line (the medium's names read,
+/// not yet checked).
+SearchStart start_of(const OptimizeArgs& args);
 /// The run's parameters as the command line gives them (search options and how the starting
-/// medium was made), stored with the run.
+/// medium was made, and the islands'), stored with the run.
 nlohmann::json params_of(const OptimizeArgs& args);
-/// Options given on the command line (or in a config file), or set by its --preset (`preset_keys`),
-/// that differ from the stored run's parameters, as "--key value (stored value)" items; "" when
-/// none does.
-std::string contradictions(const nlohmann::json& given, const nlohmann::json& stored, const CLI::App& command,
-                           const std::vector<std::string>& preset_keys);
+/// The keys of `params` given on the command line (or in a config file), or set by its --preset:
+/// on resume each must have the stored value.
+std::vector<std::string> given_keys(const nlohmann::json& params, const OptimizeArgs& args, const CLI::App* command);
+/// The library's run of one search (softdrop/service.hpp) for these options; `command` (nullptr:
+/// none parsed) tells which were given.
+SearchRun search_run_of(const OptimizeArgs& args, const CLI::App* command);
 /// The held-out value of the run's best as of `best.generation` (args.validate_starts > 0): run,
-/// stored in the history, and returned as the summary's JSON (null when not asked).
+/// stored in the history, and returned as held_out_json's JSON (null when not asked).
 nlohmann::json validate_best(const OptimizeArgs& args, History& history, std::int64_t run, const Configuration& best);
+/// The summary's JSON of a stored held-out value; `objective` is NaN but for a robust objective.
+nlohmann::json held_out_json(const ValidationRecord& record, double objective);
 /// The summary's line for validate_best's JSON (nothing for null).
 void print_held_out(std::ostream& out, const nlohmann::json& held_out);
-/// Generation 0 of a new run: the loaded medium, or random media until the droplet passes.
-Generation start(const OptimizeArgs& args, Configuration* best);
-/// A stored run as a search that continues it, after checking that this build evaluates its
-/// current and best arrangements as stored (throws std::runtime_error naming the run if not).
-Search resumed_search(History& history, const RunRecord& run, const SearchOptions& options);
 
 /// When the drive stops, from the command line; `stop` is the signal flag (nullptr: none).
 DriveOptions drive_options_of(const OptimizeArgs& args, const std::atomic<bool>* stop);
@@ -88,11 +90,7 @@ nlohmann::json generation_event(std::int64_t run, const Generation& g, const Con
 /// The summary `j` written to --json's file, handed to a host, or printed with --format json;
 /// false when it is still to be printed as a table.
 bool deliver_summary(const OptimizeArgs& args, const nlohmann::json& j, Host* host);
-/// The summary of run `run` after its drive (deliver_summary's, or a table on stdout): `held_out`
-/// is validate_best's JSON; generation 0's evaluations and droplets count with this session's when
-/// it made them.
-void report_optimize(const OptimizeArgs& args, const SearchSummary& summary, std::int64_t run,
-                     const Configuration& best, const nlohmann::json& held_out, std::int64_t initial_evaluations,
-                     std::int64_t initial_droplets, Host* host);
+/// The summary of a search's run (deliver_summary's, or a table on stdout).
+void report_optimize(const OptimizeArgs& args, const SearchRunSummary& summary, Host* host);
 
 }  // namespace softdrop::cli

@@ -1,0 +1,160 @@
+// A search's run on a history file (softdrop/service.hpp): a new run from its first arrangement,
+// or a stored one read back and checked; its generations stored as they end; the end's held-out
+// value.
+#include <cmath>
+#include <memory>
+#include <stdexcept>
+
+#include "service/search_start.hpp"
+#include "softdrop/service.hpp"
+#include "store/params_json.hpp"
+#include "util/validation.hpp"
+#include "util/worker_threads.hpp"
+
+namespace softdrop {
+
+bool SearchRun::IsValid(std::string* why) const {
+  using detail::fail;
+  using detail::num;
+  if (generations && (*generations < 0 || *generations > 1'000'000'000))
+    return fail(why, "generations = " + std::to_string(*generations) + ": must be in [0, 1e9]");
+  if (!(time_limit >= 0) || !std::isfinite(time_limit))
+    return fail(why, "time-limit = " + num(time_limit) + ": must be >= 0");
+  if (!detail::valid_threads(threads, why)) return false;
+  DriveOptions drive;
+  drive.lanes = lanes;
+  if (!drive.IsValid(why)) return false;
+  if (validate_starts < 0 || validate_starts > kMaxHeldOutStarts)
+    return fail(why, "validate-starts = " + std::to_string(validate_starts) + ": must be in [0, 1e6]");
+  if (start.attempts < 1) return fail(why, "start-attempts = " + std::to_string(start.attempts) + ": must be >= 1");
+  if (resume < 0) return fail(why, "resume = " + std::to_string(resume) + ": not a run id");
+  if (db.empty()) return fail(why, "db: an empty file name");
+  if (!extra_params.empty() && !nlohmann::json::accept(extra_params))
+    return fail(why, "extra_params: not a JSON object");
+  if (resume > 0) return true;  // a resumed run takes its options from the history
+  // (0 grains would mean "fill to a porosity" to the medium generator, which a search does not offer)
+  if (start.file.empty()) {
+    if (start.medium.grains < 1)
+      return fail(why, "grains = " + std::to_string(start.medium.grains) + ": must be >= 1");
+    if (!start.medium.IsValid(why)) return false;
+  }
+  return search.IsValid(why);
+}
+
+namespace {
+
+// The parameters of `run` as stored with a new run, and compared on resume.
+nlohmann::json wanted_params(const SearchRun& run) {
+  nlohmann::json j = search_run_params(run.search, run.start);
+  if (!run.extra_params.empty()) j.update(nlohmann::json::parse(run.extra_params));
+  return j;
+}
+
+// The stored run `run.resume`, read back and checked against what the caller gave; its options
+// are returned in `options`, its target in `target`. Nothing is written.
+RunRecord read_back(History& history, const SearchRun& run, SearchOptions* options, std::int64_t* target) {
+  const std::vector<RunRecord> runs = history.runs();
+  if (std::none_of(runs.begin(), runs.end(), [&](const RunRecord& r) { return r.id == run.resume; }))
+    throw std::invalid_argument(
+        "resume = " + std::to_string(run.resume) + ": '" + run.db + "' has no run " + std::to_string(run.resume) +
+        (runs.empty() ? " (it has no runs)" : " (its last run is " + std::to_string(runs.back().id) + ")"));
+  history.check_run(run.resume);
+  const RunRecord rec = history.run(run.resume);
+  try {
+    *options = search_params_from_json(rec.params);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("--db '" + run.db + "': run " + std::to_string(run.resume) + ": " + e.what());
+  }
+  const nlohmann::json stored = stored_params(rec, *options);
+  if (const std::string bad = contradictions(wanted_params(run), stored, run.given); !bad.empty())
+    throw std::invalid_argument("resume " + std::to_string(run.resume) +
+                                ": the command line contradicts the stored run: " + bad);
+  // Without a target a resume goes on to the run's own (runs stored before targets were: the
+  // default); a target at or below the last generation leaves the run as it is.
+  *target = SearchRun::kDefaultGenerations;
+  if (stored.contains("target-generations") && stored["target-generations"].is_number_integer())
+    *target = stored["target-generations"].get<std::int64_t>();
+  if (run.generations) *target = *run.generations;
+  return rec;
+}
+
+}  // namespace
+
+SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer) {
+  std::string why;
+  if (!run.IsValid(&why)) throw std::invalid_argument(why);
+  SearchRunSummary summary;
+  summary.resumed = run.resume > 0;
+  std::unique_ptr<History> history;
+  std::unique_ptr<Search> search;
+  SearchOptions options = run.search;
+  if (summary.resumed) {
+    history = open_history(run.db, OpenMode::read_only);  // checks the file before any write
+    history.reset();
+    history = open_history(run.db, OpenMode::create);
+    const RunRecord rec = read_back(*history, run, &options, &summary.target);
+    summary.run = rec.id;
+    summary.search = options;
+    if (summary.target <= rec.generations) {
+      summary.nothing_to_do = true;
+      summary.drive.last_generation = rec.generations;
+      summary.drive.best_t = rec.best_t;
+      summary.best.generation = rec.best_generation;
+      summary.best.eval.tortuosity = rec.best_t;
+      // A run killed after its last generation but before it was marked finished is finished.
+      const nlohmann::json stored = nlohmann::json::parse(rec.params);
+      if (stored.contains("target-generations") && stored["target-generations"].is_number_integer() &&
+          rec.generations >= stored["target-generations"].get<std::int64_t>() && rec.status != "finished")
+        history->set_status(rec.id, "finished");
+      return summary;
+    }
+    search = std::make_unique<Search>(resumed_search(*history, rec, options));
+    // Only once the run has been read back and checked: a refused resume writes nothing.
+    const nlohmann::json stored = nlohmann::json::parse(rec.params);
+    if (run.generations && !(stored.contains("target-generations") && stored["target-generations"] == *run.generations))
+      history->set_param(rec.id, "target-generations", std::to_string(summary.target));
+  } else {
+    summary.target = run.generations.value_or(SearchRun::kDefaultGenerations);
+    // An existing file is checked first; a new one is created only once generation 0 exists, so
+    // a start that fails leaves no file behind.
+    check_database(run.db);  // (a new file: its folder must exist and be writable)
+    Configuration best;
+    const Generation g0 =
+        starting_generation(run.start, options, &best, [&](int attempt, const std::string& reason) {
+          observer.start_refused(attempt, reason);
+        });
+    summary.initial_evaluations = static_cast<std::int64_t>(g0.candidates.size());
+    summary.initial_droplets = g0.candidates.front().eval.droplets;
+    history = open_history(run.db, OpenMode::create);
+    nlohmann::json params = wanted_params(run);
+    params["target-generations"] = summary.target;  // where a resume without a target goes on to
+    summary.run = history->create_run(params.dump(), options, g0, best);
+    search = std::make_unique<Search>(options, std::move(best), 0);
+  }
+  summary.search = options;
+
+  observer.started(summary.run, search->best(), search->last_generation(), summary.target, summary.resumed);
+  DriveOptions drive_options;
+  drive_options.generations = summary.target;
+  drive_options.time_limit = run.time_limit;
+  drive_options.stop = observer.stop_flag();
+  drive_options.threads = run.threads;
+  drive_options.speculate = run.speculate;
+  drive_options.lanes = run.lanes;
+  summary.drive = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
+    history->append(summary.run, g, best);
+    return observer.generation(summary.run, g, best, summary.target);
+  });
+  const bool reached = summary.drive.termination == Termination::generations;
+  history->set_status(summary.run, reached ? "finished" : "interrupted");
+  summary.best = search->best();
+  // A run that reached its target gets its best's held-out value; a stopped one is left to
+  // `softdrop validate`, so that a stop takes effect at once.
+  if (reached && run.validate_starts > 0)
+    summary.held_out = validate_kept(
+        *history, summary.run, options, summary.best, run.validate_starts, run.threads,
+        [&](int done, int total) { observer.validating(done, total); }, &summary.held_out_objective);
+  return summary;
+}
+
+}  // namespace softdrop

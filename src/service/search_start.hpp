@@ -1,0 +1,49 @@
+#pragma once
+// What a search's run on a history needs for one search and for islands alike (service.hpp): the
+// parameters stored with a run, its first arrangement, a stored run read back, the check of given
+// options against a stored run, and the held-out value stored at the end.
+
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "softdrop/search.hpp"
+#include "softdrop/service.hpp"
+#include "softdrop/store.hpp"
+
+namespace softdrop {
+
+/// The parameters stored with a new run: the search's (search_params_to_json) and how its first
+/// arrangement is made (medium: the grain file or ""; grains, width, height, r-min, r-max,
+/// radius-distribution, r-median, r-sigma, walls, medium-seed).
+nlohmann::json search_run_params(const SearchOptions& search, const SearchStart& start);
+
+/// Generation 0 of a new run: the grain file's medium, or random media until the droplet passes
+/// (`refused(attempt, why)` hears of each that it does not). A medium that cannot be generated at
+/// all (too many grains for the box, say) is an error, not a retry; so is an image file.
+Generation starting_generation(const SearchStart& start, const SearchOptions& search, Configuration* best,
+                               const std::function<void(int, const std::string&)>& refused = {});
+
+/// A stored run as a search that continues it, after checking that this build evaluates its
+/// current and best arrangements as stored (throws std::runtime_error naming the run if not).
+Search resumed_search(History& history, const RunRecord& run, const SearchOptions& options);
+
+/// The stored parameters of a run, with the keys a run stored before they existed read as what it
+/// did (search_params_to_json of `options`, the run's options read back).
+nlohmann::json stored_params(const RunRecord& run, const SearchOptions& options);
+
+/// The `given` keys whose value in `wanted` is not the stored one, as "--key value (stored value)"
+/// items; "" when none differs.
+std::string contradictions(const nlohmann::json& wanted, const nlohmann::json& stored,
+                           const std::vector<std::string>& given);
+
+/// The held-out value of the arrangement `best` (kept as of best.generation) over `starts` random
+/// starts at dt and dt/2, stored with run `run`; `objective`, for a robust objective, is set to its
+/// value over those starts at dt.
+ValidationRecord validate_kept(History& history, std::int64_t run, const SearchOptions& search,
+                               const Configuration& best, int starts, int threads,
+                               const std::function<void(int, int)>& progress, double* objective);
+
+}  // namespace softdrop
