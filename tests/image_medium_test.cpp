@@ -112,6 +112,40 @@ TEST(DistanceField, PartsAreTheSolidsConnectedPiecesAcrossTheSeam) {
   EXPECT_EQ(periodic.part_at(0, 5), periodic.part_at(19, 5));
   EXPECT_EQ(periodic.part_at(9, 8), periodic.part_at(11, 10));
   EXPECT_EQ(periodic.part_at(5, 5), -1);
+  // Extents, followed across the seam: the first block is 4 x 3 pixels, split into two 2 x 3
+  // halves between walls; the second, with its corner pixel, 4 x 3.
+  const auto sides = [](const DistanceField& f, int i, int j) {
+    const DistanceField::Extent& e = f.extent(f.part_at(i, j));
+    return std::pair{e.width, e.height};
+  };
+  EXPECT_EQ(sides(periodic, 0, 5), std::pair(4.0, 3.0));
+  EXPECT_EQ(sides(walls, 0, 5), std::pair(2.0, 3.0));
+  EXPECT_EQ(sides(walls, 19, 5), std::pair(2.0, 3.0));
+  EXPECT_EQ(sides(periodic, 9, 8), std::pair(4.0, 3.0));
+  EXPECT_EQ(periodic.extent(periodic.part_at(9, 8)).i, 8);  // its first pixel, in the order of the rows
+  EXPECT_EQ(periodic.extent(periodic.part_at(9, 8)).j, 8);
+}
+
+TEST(ImageMedium, ASpeckThatCouldSlipBetweenTwoMassesIsRefusedAsASmallGrainIs) {
+  // A floor, and a speck of 2 x 1 pixels of 0.5 length units, well under an edge of the
+  // default droplet (about 2.1).
+  const auto pore = [](int i, int j) { return j >= 4 && !(j == 30 && (i == 40 || i == 41)); };
+  const Medium speck = image_medium(image_of(120, 60, 0.5, true, pore));
+  const DropletParams droplet;
+  try {
+    Simulation sim(droplet, speck);
+    FAIL() << "a speck smaller than an edge was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("image: the solid part at column 40, row 29 (from the top", 0), 0u)
+        << e.what();
+  }
+  // Drawn with pixels of 3 length units, the same speck is 6 x 3, as wide as a grain of radius 3,
+  // which would pass.
+  const Medium coarse = image_medium(image_of(120, 60, 3, true, pore));
+  EXPECT_NO_THROW(Simulation(droplet, coarse));
+  // And without it the floor, as wide as the box, is no speck.
+  const Medium floor = image_medium(image_of(120, 60, 0.5, true, [](int, int j) { return j >= 4; }));
+  EXPECT_NO_THROW(Simulation(droplet, floor));
 }
 
 TEST(ImageMedium, FilesReadBackAsWrittenAndBadOnesAreNamed) {

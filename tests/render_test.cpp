@@ -292,6 +292,49 @@ TEST(Render, AnimationIsALoopingGifWithOneImagePerFrame) {
   DGifCloseFile(gif, &error);
 }
 
+// The pixels of a PNG, row by row.
+std::vector<std::uint32_t> png_pixels(const std::string& path) {
+  cairo_surface_t* s = cairo_image_surface_create_from_png(path.c_str());
+  std::vector<std::uint32_t> out;
+  if (cairo_surface_status(s) == CAIRO_STATUS_SUCCESS) {
+    const unsigned char* data = cairo_image_surface_get_data(s);
+    const int stride = cairo_image_surface_get_stride(s);
+    for (int y = 0; y < cairo_image_surface_get_height(s); ++y)
+      for (int x = 0; x < cairo_image_surface_get_width(s); ++x)
+        out.push_back(reinterpret_cast<const std::uint32_t*>(data + y * stride)[x]);
+  }
+  cairo_surface_destroy(s);
+  return out;
+}
+
+TEST(Render, AShakenImageMediumIsDrawnWhereItHasMovedAndWrapsAround) {
+  // A 100 x 100 periodic box whose left 40 % is solid.
+  PoreImage im;
+  im.nx = im.ny = 10;
+  im.pixel = 10;
+  for (int j = 0; j < 10; ++j)
+    for (int i = 0; i < 10; ++i) im.pore.push_back(i < 4 ? 0 : 1);
+  RenderStyle style;
+  style.width = 240;
+  const auto draw = [&](double sx, double sy, const std::string& name) {
+    Scene s;
+    s.medium = image_medium(im);
+    s.image_shift_x = sx, s.image_shift_y = sy;
+    const std::string out = fresh(name);
+    render_scene(s, style, out);
+    return out;
+  };
+  const auto still = png_pixels(draw(0, 0, "image_still.png"));
+  const auto half = png_pixels(draw(50, 0, "image_half.png"));
+  const auto whole = png_pixels(draw(100, 0, "image_whole.png"));
+  ASSERT_FALSE(still.empty());
+  EXPECT_EQ(whole, still) << "moved by the width, a periodic image is where it was";
+  EXPECT_NE(half, still) << "moved by half the width, the solid is elsewhere";
+  // The same solid area either way: what leaves at x = W comes back at x = 0.
+  EXPECT_EQ(read_png(fresh("image_half.png")).non_background, read_png(fresh("image_still.png")).non_background);
+  EXPECT_NE(png_pixels(draw(0, 5, "image_down.png")), still) << "a shake along y moves it too";
+}
+
 TEST(Render, BadFormatAndColourAreRefusedWithoutAFile) {
   EXPECT_THROW(render_scene(small_scene(), RenderStyle{}, fresh("scene.bmp")), std::invalid_argument);
   EXPECT_FALSE(std::filesystem::exists(fresh("scene.bmp")));

@@ -85,6 +85,9 @@ struct Scene {
   /// Extra room above the medium (length units) so that droplets starting above it are seen;
   /// -1: fit the polylines.
   double top_room = -1;
+  /// An image medium's pixels are drawn moved by this (length units): a shaken medium as it
+  /// moves (a grain medium's grains are moved in `medium` itself). Periodic in x as the medium is.
+  double image_shift_x = 0, image_shift_y = 0;
 };
 
 /// Draws a scene to a PNG, SVG or PDF file (by extension). With a periodic medium, grains that

@@ -104,9 +104,9 @@ struct SearchStart {
 /// run takes its search options from the history; the options given here are then only checked
 /// against it (see `given`).
 struct SearchRun {
-  SearchOptions search;  ///< a new run's options
-  SearchStart start;     ///< a new run's first arrangement
-  std::string db;        ///< the history file; a new one is created once generation 0 exists
+  SearchOptions search;     ///< a new run's options
+  SearchStart start;        ///< a new run's first arrangement
+  std::string db;           ///< the history file; a new one is created once generation 0 exists
   std::int64_t resume = 0;  ///< the run to continue (0: start a new one)
   /// Run up to this generation number. None: a new run's kDefaultGenerations, a resumed run's
   /// own target (the last one given).

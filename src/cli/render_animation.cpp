@@ -128,6 +128,7 @@ int render_animation_command(RenderArgs& a) {
         if (a.droplet.vibrates() && t >= shaken_at) a.droplet.vibration_displacement(t - shaken_at, &dx, &dy);
         scene.medium = medium;
         for (Grain& g : scene.medium.grains) g.x += dx, g.y += dy;
+        scene.image_shift_x = dx, scene.image_shift_y = dy;  // an image medium's pixels
         scene.top_room = top_room;
         for (const Track& k : tracks) draw_track(k, t, dx, dy, medium, scene);
         if (two)

@@ -11,6 +11,7 @@
 #include "cli/simulate_output.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/render.hpp"
+#include "softdrop/simulation.hpp"
 #include "softdrop/version.hpp"
 #include "studies/pore_tortuosity.hpp"
 
@@ -182,6 +183,13 @@ int run_tortuosity(TortuosityArgs& a) {
   const Medium medium = a.medium.file.empty() ? generate_medium(a.medium.options) : load_medium_file(a.medium);
   const int pixels = tortuosity_pixels(a, medium);
   const double per_radius = check_resolution(medium, pixels);
+  // A droplet the medium refuses (a speck or grain smaller than an edge) is refused before the
+  // solves, not after them.
+  if (a.droplets.starts > 0) try {
+      (void)Simulation(a.droplet, medium);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string(e.what()) + " (--starts 0: the pore space's tortuosities alone)");
+    }
   const Resolved coarse = at_resolution(medium, pixels, a.flow, a.quiet);
   const Resolved fine = at_resolution(medium, 2 * pixels, a.flow, a.quiet);
   HeldOutValue droplets;

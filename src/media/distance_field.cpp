@@ -88,34 +88,37 @@ DistanceField::DistanceField(const PoreImage& im)
       d_[k] = static_cast<float>(-(std::sqrt(to_pore[k]) - 0.5) * h_);
   }
   normals();
-  // The solid's connected parts, 8-neighbour, in the order of their first pixel.
+  // The solid's connected parts, 8-neighbour, in the order of their first pixel, with their
+  // extents: the fill follows a part across the seam in unwrapped columns.
   part_.assign(size, -1);
-  std::vector<std::size_t> stack;
+  std::vector<std::pair<std::size_t, int>> stack;  // a pixel and its unwrapped column
   for (std::size_t start = 0; start < size; ++start) {
     if (!solid[start] || part_[start] >= 0) continue;
     part_[start] = parts_;
-    stack.push_back(start);
+    const int i0 = static_cast<int>(start % static_cast<std::size_t>(nx_)),
+              j0 = static_cast<int>(start / static_cast<std::size_t>(nx_));
+    int lo_i = i0, hi_i = i0, lo_j = j0, hi_j = j0;
+    stack.emplace_back(start, i0);
     while (!stack.empty()) {
-      const std::size_t k = stack.back();
+      const auto [k, ui] = stack.back();
       stack.pop_back();
-      const int i = static_cast<int>(k % static_cast<std::size_t>(nx_)),
-                j = static_cast<int>(k / static_cast<std::size_t>(nx_));
+      const int j = static_cast<int>(k / static_cast<std::size_t>(nx_));
+      lo_i = std::min(lo_i, ui), hi_i = std::max(hi_i, ui), lo_j = std::min(lo_j, j), hi_j = std::max(hi_j, j);
       for (int dj = -1; dj <= 1; ++dj)
         for (int di = -1; di <= 1; ++di) {
-          int ii = i + di;
+          int ii = (ui + di) % nx_;
+          if (ii < 0) ii += nx_;
           const int jj = j + dj;
           if (jj < 0 || jj >= rows_) continue;
-          if (ii < 0 || ii >= nx_) {
-            if (!periodic_) continue;
-            ii = (ii + nx_) % nx_;
-          }
+          if (!periodic_ && (ui + di < 0 || ui + di >= nx_)) continue;
           const std::size_t n = static_cast<std::size_t>(ii) + static_cast<std::size_t>(nx_) * jj;
           if (solid[n] && part_[n] < 0) {
             part_[n] = parts_;
-            stack.push_back(n);
+            stack.emplace_back(n, ui + di);
           }
         }
     }
+    extents_.push_back({(hi_i - lo_i + 1) * h_, (hi_j - lo_j + 1) * h_, i0, j0 - kPadding});
     ++parts_;
   }
 }

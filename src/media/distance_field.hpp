@@ -30,6 +30,14 @@ class DistanceField {
   /// Connected parts of the solid (8-neighbour, across the seam of a periodic image): the
   /// touched set's entries.
   std::int32_t parts() const { return parts_; }
+  /// A solid part's extent: the sides of the smallest box of pixels that holds it (length units;
+  /// a part that wraps around a periodic image is as wide as the box or wider), and its first
+  /// pixel (column i, row j from the bottom).
+  struct Extent {
+    double width = 0, height = 0;
+    int i = 0, j = 0;
+  };
+  const Extent& extent(std::int32_t part) const { return extents_[static_cast<std::size_t>(part)]; }
   /// The field at the centre of the image's pixel (i, j), and its solid part (-1 in the pore).
   double at(int i, int j) const { return d_[index(i, j)]; }
   std::int32_t part_at(int i, int j) const { return part_[index(i, j)]; }
@@ -49,6 +57,7 @@ class DistanceField {
   std::vector<float> gx_, gy_;      // the gradient of d smoothed, at pixel centres (normals())
   std::vector<std::int32_t> part_;  // per padded pixel: its solid part, -1 in pore
   std::int32_t parts_ = 0;
+  std::vector<Extent> extents_;  // per part
 };
 
 }  // namespace softdrop

@@ -193,8 +193,11 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
   };
   if (const PoreImage* im = m.image.get()) {
     // An image medium: its solid pixels, a rectangle for each run of them along a row.
+    // Shifted (a shaken medium), a periodic image is drawn again a width to either side.
     cairo_new_path(cr);
-    const double h = im->pixel;
+    const double h = im->pixel, sx = scene.image_shift_x, sy = scene.image_shift_y;
+    std::vector<double> copies{sx};
+    if (m.periodic && sx != 0) copies.push_back(sx - m.width), copies.push_back(sx + m.width);
     for (int j = 0; j < im->ny; ++j)
       for (int i = 0; i < im->nx;) {
         const std::size_t row = static_cast<std::size_t>(im->nx) * static_cast<std::size_t>(j);
@@ -204,7 +207,8 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
         }
         int end = i;
         while (end < im->nx && !im->pore[row + static_cast<std::size_t>(end)]) ++end;
-        cairo_rectangle(cr, px(i * h), py((j + 1) * h), g.scale * (end - i) * h, g.scale * h);
+        for (double x : copies)
+          cairo_rectangle(cr, px(i * h + x), py((j + 1) * h + sy), g.scale * (end - i) * h, g.scale * h);
         i = end;
       }
     set(cr, style.solid_grains ? style.solid : style.grain);

@@ -34,8 +34,7 @@ bool SearchRun::IsValid(std::string* why) const {
   if (resume > 0) return true;  // a resumed run takes its options from the history
   // (0 grains would mean "fill to a porosity" to the medium generator, which a search does not offer)
   if (start.file.empty()) {
-    if (start.medium.grains < 1)
-      return fail(why, "grains = " + std::to_string(start.medium.grains) + ": must be >= 1");
+    if (start.medium.grains < 1) return fail(why, "grains = " + std::to_string(start.medium.grains) + ": must be >= 1");
     if (!start.medium.IsValid(why)) return false;
   }
   return search.IsValid(why);
@@ -119,10 +118,9 @@ SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer) {
     // a start that fails leaves no file behind.
     check_database(run.db);  // (a new file: its folder must exist and be writable)
     Configuration best;
-    const Generation g0 =
-        starting_generation(run.start, options, &best, [&](int attempt, const std::string& reason) {
-          observer.start_refused(attempt, reason);
-        });
+    const Generation g0 = starting_generation(run.start, options, &best, [&](int attempt, const std::string& reason) {
+      observer.start_refused(attempt, reason);
+    });
     summary.initial_evaluations = static_cast<std::int64_t>(g0.candidates.size());
     summary.initial_droplets = g0.candidates.front().eval.droplets;
     history = open_history(run.db, OpenMode::create);

@@ -4,8 +4,8 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "softdrop/batch.hpp"
 #include "optimizer/strategy.hpp"
+#include "softdrop/batch.hpp"
 #include "softdrop/medium.hpp"
 #include "store/params_json.hpp"
 #include "util/random.hpp"
