@@ -6,6 +6,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -38,6 +39,14 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
   // Droplet i's simulation while it runs. Any thread may finish a droplet (the lane exchange hands
   // the last ones to idle threads), so they are kept by droplet, not by thread.
   std::vector<std::unique_ptr<Simulation>> running(static_cast<std::size_t>(k));
+  // One droplet in the medium, made at the first droplet: every simulation is its copy and shares
+  // its model (the grain grid, the step's constants).
+  std::once_flag made;
+  std::optional<Simulation> first;
+  const auto prototype = [&]() -> const Simulation& {
+    std::call_once(made, [&] { first.emplace(params, medium); });
+    return *first;
+  };
   LaneExchange exchange;
   // Each thread takes droplets from one counter and steps `lanes` of them together; each droplet is
   // a sequential simulation of its own, so results do not depend on the schedule.
@@ -52,7 +61,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
       if (i >= k) return false;
       std::unique_ptr<Simulation>& sim = running[static_cast<std::size_t>(i)];
       if (pool.empty()) {
-        sim = std::make_unique<Simulation>(params, medium);
+        sim = std::make_unique<Simulation>(prototype());  // shares its model
       } else {
         sim = std::move(pool.back());
         pool.pop_back();

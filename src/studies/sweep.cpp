@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 
@@ -86,6 +87,10 @@ struct UnitSetup {
   Medium medium;
   BatchOptions batch;
   RunOptions run;
+  // A droplet in `medium`, made once the setup has its place: the unit's droplets are its
+  // copies, which share its model (the grain grid, the step's constants) instead of each
+  // building its own.
+  std::optional<Simulation> prototype;
 };
 
 UnitSetup setup_unit(const SweepOptions& o, const SweepUnit& u) {
@@ -247,10 +252,13 @@ void run_sweep_units(const SweepOptions& o, const std::vector<SweepUnit>& units,
       ++active;
       lock.unlock();
       try {
-        std::call_once(open[u].made, [&] { open[u].setup = std::make_unique<UnitSetup>(setup_unit(o, units[u])); });
+        std::call_once(open[u].made, [&] {
+          open[u].setup = std::make_unique<UnitSetup>(setup_unit(o, units[u]));
+          open[u].setup->prototype.emplace(o.droplet, open[u].setup->medium);
+        });
         const UnitSetup& s = *open[u].setup;
         std::unique_ptr<Simulation>& sim = open[u].sims[static_cast<std::size_t>(d)];
-        sim = std::make_unique<Simulation>(o.droplet, s.medium);
+        sim = std::make_unique<Simulation>(*s.prototype);
         job->sim = sim.get();
         job->x0 = batch_start_x(s.batch, s.medium, o.droplet, d);
         job->options = &s.run;
