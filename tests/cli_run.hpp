@@ -45,6 +45,14 @@ inline std::string fresh_path(const std::string& name) {
   return p;
 }
 
+/// The first line of a text file ("" if there is none).
+inline std::string first_line(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  return line;
+}
+
 /// Runs a shell command line, capturing its stdout, stderr and exit code.
 inline Result run_shell(const std::string& command) {
   const std::string err_path = temp_path("stderr.txt");

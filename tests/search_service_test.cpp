@@ -194,10 +194,7 @@ TEST(SearchService, AFileThatIsNotAHistoryIsRefusedAndKept) {
   { std::ofstream(db) << "not a database\n"; }
   Recorder heard;
   EXPECT_THROW(run_search(small_run(db, 2), heard), DatabaseError);
-  std::ifstream in(db);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "not a database");
+  EXPECT_EQ(test::first_line(db), "not a database");
   std::filesystem::remove(db);
 }
 

@@ -137,10 +137,7 @@ TEST(SweepService, AFileThatIsNotADatabaseIsRefusedAndKept) {
   { std::ofstream(db) << "not a database\n"; }
   Recorder heard;
   EXPECT_THROW(run_sweep(tiny_run(db), heard), DatabaseError);
-  std::ifstream in(db);
-  std::string line;
-  std::getline(in, line);
-  EXPECT_EQ(line, "not a database");
+  EXPECT_EQ(test::first_line(db), "not a database");
   std::filesystem::remove(db);
 }
 
