@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "cli_run.hpp"
 #include "fixtures.hpp"
+#include "service/calibration_service.hpp"
 #include "softdrop/store.hpp"
 
 namespace softdrop {
@@ -139,6 +141,47 @@ TEST(SweepService, AFileThatIsNotADatabaseIsRefusedAndKept) {
   EXPECT_THROW(run_sweep(tiny_run(db), heard), DatabaseError);
   EXPECT_EQ(test::first_line(db), "not a database");
   std::filesystem::remove(db);
+}
+
+// A calibration scan: each setting heard as it ends, a refused one recorded, the rows ranked, and
+// an observer that stops after the first leaves the rest unrun.
+TEST(CalibrationService, ASettingsRowsAreRankedAndTheObserverMayStopTheScan) {
+  struct Rows : CalibrationObserver {
+    std::size_t stop_after = 0;
+    std::vector<std::size_t> heard;
+    long droplets = 0;
+    void progress(int, long done, long, double) override { droplets = std::max(droplets, done); }
+    bool finished(const std::vector<CalibrationRow>& rows) override {
+      heard.push_back(rows.size());
+      return stop_after == 0 || rows.size() < stop_after;
+    }
+  };
+  CalibrationScan scan;
+  scan.calibration = test::tiny_calibration();
+  scan.calibration.sweep.porosities = {0.9};
+  DropletParams unstable;
+  unstable.mass = 1e-4;  // refused by the droplet's limits: a row, not an error
+  DropletParams soft;
+  soft.nrt *= 0.5;
+  scan.settings = {DropletParams{}, unstable, soft};
+  scan.labels = {"defaults", "unstable", "soft"};
+  scan.threads = 2;
+  Rows all;
+  const std::vector<CalibrationRow> rows = run_calibration_scan(scan, all);
+  EXPECT_EQ(all.heard, (std::vector<std::size_t>{1, 2, 3}));
+  EXPECT_EQ(all.droplets, 1 * 2 * 3 + 2);  // the setting's sweep and traces
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[2].label, "unstable");  // refused: last
+  EXPECT_FALSE(rows[2].refused.empty());
+  EXPECT_LE(rows[0].result.score, rows[1].result.score);
+  EXPECT_EQ(rows[0].result.score, run_calibration(scan.calibration, rows[0].droplet, 1).score);
+  Rows first;
+  first.stop_after = 1;
+  const std::vector<CalibrationRow> stopped = run_calibration_scan(scan, first);
+  ASSERT_EQ(stopped.size(), 1u);
+  EXPECT_EQ(stopped[0].label, "defaults");
+  scan.labels = {"one"};
+  EXPECT_THROW(run_calibration_scan(scan, first), std::invalid_argument);
 }
 
 }  // namespace

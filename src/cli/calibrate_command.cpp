@@ -11,6 +11,7 @@
 
 #include "cli/columns.hpp"
 #include "cli/output.hpp"
+#include "service/calibration_service.hpp"
 #include "softdrop/render.hpp"
 
 namespace softdrop::cli {
@@ -125,14 +126,7 @@ std::vector<DropletParams> check_calibrate(CalibrateArgs& a, std::vector<std::st
 
 namespace {
 
-struct Row {
-  int setting = 0;
-  std::string label;  ///< the setting's assignments
-  DropletParams droplet;
-  std::string refused;  ///< why the limits refuse it, or empty
-  CalibrationResult result;
-  double seconds = 0;
-};
+using Row = CalibrationRow;
 
 nlohmann::json number_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
@@ -230,77 +224,80 @@ void plot_best(const std::vector<const Row*>& ranked, int best, const std::strin
 
 }  // namespace
 
-int run_calibrate(CalibrateArgs& a) {
-  std::vector<std::string> labels;
-  const std::vector<DropletParams> settings = check_calibrate(a, &labels);
-  StopOnSignal stop("\nsoftdrop: finishing the setting in flight (Ctrl-C again to leave now)\n");
-  std::vector<Row> rows;
-  const auto t0 = std::chrono::steady_clock::now();
-  const bool tty = ::isatty(2) != 0;
-  auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); };
-  auto ranked = [&] {
-    std::vector<const Row*> r;
-    for (const Row& row : rows) r.push_back(&row);
-    std::stable_sort(r.begin(), r.end(), [](const Row* x, const Row* y) {
-      if (x->refused.empty() != y->refused.empty()) return x->refused.empty();
-      return x->result.score < y->result.score;
-    });
-    return r;
-  };
-  for (std::size_t i = 0; i < settings.size() && !stop.requested(); ++i) {
-    Row row;
-    row.setting = static_cast<int>(i);
-    row.label = labels[i];
-    row.droplet = settings[i];
-    std::string why;
-    if (!settings[i].IsValid(&why)) {
-      row.refused = why;
-    } else {
-      const auto s0 = std::chrono::steady_clock::now();
-      auto last = s0;
-      const double before = elapsed();
-      row.result = run_calibration(a.calibration, settings[i], a.threads, [&](long done, long total) {
-        const auto now = std::chrono::steady_clock::now();
-        if (a.quiet || (done != total && now - last < std::chrono::seconds(tty ? 1 : 30))) return;
-        last = now;
-        // ETA: this setting's pace for its rest, the mean setting's time for the settings after it.
-        const double spent = std::chrono::duration<double>(now - s0).count();
-        const double rest = spent / static_cast<double>(done) * static_cast<double>(total - done);
-        const double per_setting = i > 0 ? before / static_cast<double>(i) : spent + rest;
-        const double eta = rest + per_setting * static_cast<double>(settings.size() - i - 1);
-        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << " (" << i + 1 << " of " << settings.size()
-                  << "), droplets " << done << "/" << total << ", ETA " << fmt(eta, 3) << " s"
-                  << (tty ? "\033[K" : "\n") << std::flush;
-      });
-      row.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - s0).count();
-      if (!a.quiet)
-        std::cerr << (tty ? "\r" : "") << "calibrate: setting " << i << ": score " << fmt(row.result.score, 4)
-                  << ", rms " << fmt(row.result.rms_distance, 4) << " (measured " << fmt(row.result.measured_rms, 4)
-                  << ")"
-                  << ", stuck " << fmt(row.result.stuck_fraction, 3) << ", diverged "
-                  << fmt(row.result.diverged_fraction, 3)
-                  << (std::isnan(row.result.area_min)
-                          ? std::string(", no area trace")
-                          : ", S/S0 in [" + fmt(row.result.area_min, 4) + ", " + fmt(row.result.area_max, 4) + "]")
-                  << ", at rest "
-                  << (row.result.comes_to_rest ? "yes"
-                                               : "no (travels " + fmt(row.result.resting_travel, 3) + " a time unit)")
-                  << (tty ? "\033[K\n" : "\n");
+namespace {
+// The program's observer of a scan: the progress line with its ETA (this setting's pace for its
+// rest, the mean setting's time for the settings after it), each setting's figures, the tables
+// rewritten after each, and Ctrl-C.
+class CalibrationLines : public CalibrationObserver {
+ public:
+  CalibrationLines(const CalibrateArgs& a, std::size_t settings)
+      : a_(a),
+        settings_(settings),
+        stop_("\nsoftdrop: finishing the setting in flight (Ctrl-C again to leave now)\n") {}
+  void progress(int setting, long done, long total, double seconds) override {
+    const auto now = std::chrono::steady_clock::now();
+    if (setting != setting_) setting_ = setting, setting_began_ = seconds, s0_ = now, last_ = now;
+    if (a_.quiet || (done != total && now - last_ < std::chrono::seconds(tty_ ? 1 : 30))) return;
+    last_ = now;
+    const double spent = std::chrono::duration<double>(now - s0_).count();
+    const double rest = spent / static_cast<double>(done) * static_cast<double>(total - done);
+    const auto i = static_cast<std::size_t>(setting);
+    const double per_setting = i > 0 ? setting_began_ / static_cast<double>(i) : spent + rest;
+    const double eta = rest + per_setting * static_cast<double>(settings_ - i - 1);
+    std::cerr << (tty_ ? "\r" : "") << "calibrate: setting " << i << " (" << i + 1 << " of " << settings_
+              << "), droplets " << done << "/" << total << ", ETA " << fmt(eta, 3) << " s" << (tty_ ? "\033[K" : "\n")
+              << std::flush;
+  }
+  bool finished(const std::vector<CalibrationRow>& rows) override {
+    const CalibrationRow& row = rows.back();
+    if (!a_.quiet && row.refused.empty()) {
+      const CalibrationResult& r = row.result;
+      std::cerr << (tty_ ? "\r" : "") << "calibrate: setting " << row.setting << ": score " << fmt(r.score, 4)
+                << ", rms " << fmt(r.rms_distance, 4) << " (measured " << fmt(r.measured_rms, 4) << ")"
+                << ", stuck " << fmt(r.stuck_fraction, 3) << ", diverged " << fmt(r.diverged_fraction, 3)
+                << (std::isnan(r.area_min) ? std::string(", no area trace")
+                                           : ", S/S0 in [" + fmt(r.area_min, 4) + ", " + fmt(r.area_max, 4) + "]")
+                << ", at rest "
+                << (r.comes_to_rest ? "yes" : "no (travels " + fmt(r.resting_travel, 3) + " a time unit)")
+                << (tty_ ? "\033[K\n" : "\n");
     }
-    rows.push_back(std::move(row));
     std::vector<const Row*> in_order;
     for (const Row& r : rows) in_order.push_back(&r);
-    if (!a.csv.empty()) settings_table(in_order).write_csv(a.csv);
-    if (!a.points.empty()) points_table(in_order).write_csv(a.points);
+    if (!a_.csv.empty()) settings_table(in_order).write_csv(a_.csv);
+    if (!a_.points.empty()) points_table(in_order).write_csv(a_.points);
+    return true;
   }
-  const std::vector<const Row*> best = ranked();
+  bool stop_requested() override { return stop_.requested(); }
+  int exit_code() const { return stop_.exit_code(); }
+
+ private:
+  const CalibrateArgs& a_;
+  std::size_t settings_;
+  StopOnSignal stop_;
+  const bool tty_ = ::isatty(2) != 0;
+  int setting_ = -1;
+  double setting_began_ = 0;  // seconds since the scan began, at the setting's first droplet
+  std::chrono::steady_clock::time_point s0_, last_;
+};
+}  // namespace
+
+int run_calibrate(CalibrateArgs& a) {
+  CalibrationScan scan;
+  scan.settings = check_calibrate(a, &scan.labels);
+  scan.calibration = a.calibration;
+  scan.threads = a.threads;
+  const auto t0 = std::chrono::steady_clock::now();
+  CalibrationLines lines(a, scan.settings.size());
+  const std::vector<CalibrationRow> rows = run_calibration_scan(scan, lines);
+  std::vector<const Row*> best;
+  for (const Row& r : rows) best.push_back(&r);
   if (!a.plot.empty() && std::any_of(rows.begin(), rows.end(), [](const Row& r) { return r.refused.empty(); }))
     plot_best(best, a.best, a.plot);
   settings_table(best).print(std::cout, a.format);
   if (!a.quiet)
-    std::cerr << "calibrate: " << rows.size() << " of " << settings.size() << " settings in " << fmt(elapsed(), 4)
-              << " s\n";
-  return stop.exit_code();
+    std::cerr << "calibrate: " << rows.size() << " of " << scan.settings.size() << " settings in "
+              << fmt(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 4) << " s\n";
+  return lines.exit_code();
 }
 
 }  // namespace softdrop::cli
