@@ -3,6 +3,7 @@
 // the check of given options against a stored run, and what a refused run leaves on disk.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <filesystem>
@@ -46,7 +47,14 @@ struct Recorder : SearchObserver {
   void started(std::int64_t run, const Configuration&, std::int64_t from, std::int64_t target, bool resumed) override {
     started_with = {run, from, target, resumed ? 1 : 0};
   }
-  bool generation(std::int64_t, const Generation& g, const Configuration&, std::int64_t) override {
+  std::vector<std::int64_t> island_runs;
+  std::vector<int> islands_heard;
+  void islands_started(const std::vector<std::int64_t>& runs, const std::vector<std::int64_t>&,
+                       const std::vector<Configuration>&, std::int64_t, bool) override {
+    island_runs = runs;
+  }
+  bool generation(std::int64_t, int island, const Generation& g, const Configuration&, std::int64_t) override {
+    islands_heard.push_back(island);
     generations.push_back(g.number);
     return stop_after == 0 || static_cast<std::int64_t>(generations.size()) < stop_after;
   }
@@ -187,6 +195,68 @@ TEST(SearchService, ARefusedRunNamesTheOptionAndWritesNoFile) {
   refused_naming(run, "resume = 4");
   EXPECT_EQ(std::filesystem::file_size(db), size);
   std::filesystem::remove(db);
+}
+
+TEST(SearchService, IslandsAreRunsOfOneArchipelagoAndResumeTogetherToTheSameBits) {
+  const std::string whole = test::fresh_path("search_service_islands.db"),
+                    parts = test::fresh_path("search_service_islands_parts.db");
+  const auto islands_run = [](const std::string& db) {
+    SearchRun r = small_run(db, 5);
+    r.search.lambda = 1;
+    r.islands = 3;
+    r.migrate_every = 2;
+    r.migration = "broadcast";
+    return r;
+  };
+  Recorder reference;
+  const SearchRunSummary r = run_search(islands_run(whole), reference);
+  EXPECT_EQ(reference.island_runs, (std::vector<std::int64_t>{1, 2, 3}));
+  EXPECT_TRUE(reference.started_with.empty());   // islands_started instead
+  EXPECT_EQ(reference.generations.size(), 15u);  // 5 generations of 3 islands
+  EXPECT_EQ(std::count(reference.islands_heard.begin(), reference.islands_heard.end(), 2), 5);
+  ASSERT_EQ(r.islands.size(), 3u);
+  EXPECT_EQ(r.drive.termination, Termination::generations);
+  EXPECT_EQ(r.migration, "broadcast");
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(r.islands[i].last_generation, 5);
+    EXPECT_LE(r.islands[i].best.eval.tortuosity, r.best.eval.tortuosity);
+    const RunRecord rec = open_history(whole, OpenMode::read_only)->run(r.islands[i].run);
+    EXPECT_EQ(rec.island, static_cast<int>(i));
+    EXPECT_EQ(rec.archipelago, 1);
+    EXPECT_EQ(rec.status, "finished");
+  }
+  // Stopped after four generations (of any islands), then resumed from island 2's run: all of
+  // them go on, and every island's history is the uninterrupted one's.
+  Recorder first;
+  first.stop_after = 4;
+  const SearchRunSummary s = run_search(islands_run(parts), first);
+  EXPECT_EQ(s.drive.termination, Termination::callback);
+  SearchRun resume = islands_run(parts);
+  resume.resume = 3;
+  resume.generations.reset();
+  resume.given = {"islands"};  // 3, as stored
+  Recorder second;
+  const SearchRunSummary t = run_search(resume, second);
+  EXPECT_TRUE(t.resumed);
+  EXPECT_EQ(second.island_runs, (std::vector<std::int64_t>{1, 2, 3}));
+  EXPECT_EQ(t.best.eval.tortuosity, r.best.eval.tortuosity);
+  for (std::int64_t run = 1; run <= 3; ++run) EXPECT_EQ(history_bits(parts, run), history_bits(whole, run)) << run;
+  // A run of one search is not resumed as islands.
+  resume = small_run(whole, 6);
+  std::filesystem::remove(parts);
+  run_search(small_run(parts, 1), first);
+  resume.db = parts;
+  resume.resume = 1;
+  resume.islands = 2;
+  resume.given = {"islands"};
+  try {
+    run_search(resume, first);
+    ADD_FAILURE() << "a run of one search resumed as islands";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--islands 2 (stored nothing)"), std::string::npos) << e.what();
+  }
+  std::filesystem::remove(whole);
+  std::filesystem::remove(parts);
 }
 
 TEST(SearchService, AFileThatIsNotAHistoryIsRefusedAndKept) {

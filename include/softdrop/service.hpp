@@ -122,9 +122,15 @@ struct SearchRun {
   /// "r-min", ...) that the caller set. Each must have the stored value, or the resume is refused
   /// naming it; the others are taken from the run.
   std::vector<std::string> given;
-  /// Parameters stored with a new run beside the search's and the start's, as a JSON object
-  /// (the program's islands keys; empty: none). On resume they take part in the `given` check.
-  std::string extra_params;
+  /// The island model (docs/search.md): `islands` > 1 searches side by side, each a run of the
+  /// history with a seed of its own, every `migrate_every` generations each taking another
+  /// island's best (`migration`: ring or broadcast; 0: never, independent lineages), all from one
+  /// start or, with `own_island_starts`, each from a generated medium of its own. Resuming any
+  /// island's run resumes them all, with their stored options.
+  int islands = 1;
+  int migrate_every = 50;
+  std::string migration = "ring";
+  bool own_island_starts = false;
 
   static constexpr std::int64_t kDefaultGenerations = 200;
   /// generations in [0, 1e9], time_limit >= 0, threads, lanes, validate_starts in [0, 1e6],
@@ -132,6 +138,9 @@ struct SearchRun {
   /// grains >= 1 for a generated medium.
   bool IsValid(std::string* why) const;
 };
+
+/// How islands are driven (private to the library: its threads, or the program's MPI ranks).
+struct IslandsDrive;
 
 /// What a search's run tells as it goes, on the thread that called run_search.
 class SearchObserver {
@@ -143,8 +152,15 @@ class SearchObserver {
   /// on from (0 for a new run) and its target.
   virtual void started(std::int64_t /*run*/, const Configuration& /*best*/, std::int64_t /*from*/,
                        std::int64_t /*target*/, bool /*resumed*/) {}
-  /// After each generation is stored. false stops the run there (Termination::callback).
-  virtual bool generation(std::int64_t /*run*/, const Generation& /*g*/, const Configuration& /*best*/,
+  /// Islands, instead of started(): before the session's first generation, the islands' runs, the
+  /// generation each goes on from, their starting arrangements (a new search: one shared by all,
+  /// or one an island) or, resumed, each island's best so far, and the target.
+  virtual void islands_started(const std::vector<std::int64_t>& /*runs*/, const std::vector<std::int64_t>& /*from*/,
+                               const std::vector<Configuration>& /*starts*/, std::int64_t /*target*/,
+                               bool /*resumed*/) {}
+  /// After each generation is stored (island: its index, or -1 for a run of one search). false
+  /// stops the run there (Termination::callback); islands stop after the generations in flight.
+  virtual bool generation(std::int64_t /*run*/, int /*island*/, const Generation& /*g*/, const Configuration& /*best*/,
                           std::int64_t /*target*/) {
     return true;
   }
@@ -173,6 +189,17 @@ struct SearchRunSummary {
   /// Robust objectives: the objective over the held-out starts at dt, a droplet that did not
   /// pass counted as T = 1 (NaN otherwise).
   double held_out_objective = std::numeric_limits<double>::quiet_NaN();
+  /// Islands: each island's run, last generation and best, in island order; `run` is island 0's,
+  /// `best` and the held-out value the best island's (the lowest-numbered among equals).
+  struct Island {
+    std::int64_t run = 0;
+    std::int64_t last_generation = 0;
+    Configuration best;
+  };
+  std::vector<Island> islands;
+  int best_island = -1;
+  int migrate_every = 0;
+  std::string migration;
 };
 
 /// Runs a search on a history file: generation 0 of a new run (stored with its options once it
@@ -184,5 +211,8 @@ struct SearchRunSummary {
 /// through which no droplet passes or a stored run this build does not reproduce, and
 /// DatabaseError for a file that is not a usable history, naming it.
 SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer);
+/// The same, with the islands driven by `drive` (the program's MPI ranks; nullptr: this process's
+/// threads).
+SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer, const IslandsDrive* drive);
 
 }  // namespace softdrop

@@ -15,6 +15,7 @@
 #include "cli/islands_command.hpp"
 #include "cli/mpi_islands.hpp"
 #include "cli/output.hpp"
+#include "service/search_start.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/store.hpp"
 #include "softdrop/version.hpp"
@@ -206,7 +207,8 @@ class OptimizeObserver : public SearchObserver {
     }
     progress_.emplace(run, from, target, a_.quiet);
   }
-  bool generation(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target) override {
+  bool generation(std::int64_t run, int /*island*/, const Generation& g, const Configuration& best,
+                  std::int64_t target) override {
     progress_->update(g, best, g.number == target);
     if (!host_ || !host_->on_progress) return true;
     return host_->on_progress(generation_event(run, g, best, target));
@@ -237,11 +239,6 @@ void check_optimize(OptimizeArgs& a) {
                                     ", not used by --strategy " + to_string(a.search.strategy.kind));
   if (a.resume == 0) check_objective_options(a);  // on resume the stored objective decides
   if (!a.json_file.empty()) check_output_path("--json", a.json_file);
-  if (std::string why; !a.islands.IsValid(&why)) throw std::invalid_argument(why);
-  if (a.own_island_starts && a.resume == 0 && a.islands.islands < 2)
-    throw std::invalid_argument("island-starts = own: an option of --islands K (K > 1)");
-  if (a.own_island_starts && !a.medium.file.empty())
-    throw std::invalid_argument("island-starts = own: needs generated media, not --medium " + a.medium.file);
   if (std::string why; !search_run_of(a, nullptr).IsValid(&why)) throw std::invalid_argument(why);
 }
 
@@ -257,9 +254,18 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   const bool islands = a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1;
   if (on_ranks && !islands)
     throw std::runtime_error("optimize runs across MPI ranks only with --islands K (K > 1), or resuming islands");
-  if (islands) return run_islands(a, cmd, host);
+  const SearchRun run = search_run_of(a, &cmd);
+  if (islands) {
+    IslandsDrive ranks;  // rank 0's part of a job: the islands on every rank
+    if (on_ranks)
+      ranks.drive = [job](std::vector<Search>& searches, const IslandOptions& options, const DriveOptions& drive,
+                          const IslandCallbacks& callbacks) {
+        return drive_islands_on_ranks(*job, searches, options, drive, callbacks);
+      };
+    return run_islands(a, run, host, on_ranks ? &ranks : nullptr);
+  }
   OptimizeObserver observer(a, host);
-  const SearchRunSummary summary = run_search(search_run_of(a, &cmd), observer);
+  const SearchRunSummary summary = run_search(run, observer);
   report_optimize(a, summary, host);
   return summary.drive.termination == Termination::interrupted ? observer.exit_code() : 0;
 }

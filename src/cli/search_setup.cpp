@@ -83,20 +83,9 @@ SearchStart start_of(const OptimizeArgs& a) {
   return start;
 }
 
-nlohmann::json params_of(const OptimizeArgs& a) {
-  nlohmann::json j = search_run_params(a.search, start_of(a));
-  if (a.islands.islands > 1) {  // (plain runs keep the parameters they always had)
-    j["islands"] = a.islands.islands;
-    j["migrate-every"] = a.islands.migrate_every;
-    j["migration"] = to_string(a.islands.migration);
-    j["island-starts"] = island_starts_name(a.own_island_starts);
-  } else if (a.own_island_starts) {
-    j["island-starts"] =
-        island_starts_name(true);  // (refused: for a new run here, on a resumed plain run as a contradiction)
-  }
-  return j;
-}
-
+namespace {
+// The keys of `params` given on the command line (or in a config file), or set by its --preset:
+// on resume each must have the stored value.
 std::vector<std::string> given_keys(const nlohmann::json& params, const OptimizeArgs& a, const CLI::App* cmd) {
   std::vector<std::string> keys;
   for (const auto& [key, value] : params.items()) {
@@ -106,6 +95,7 @@ std::vector<std::string> given_keys(const nlohmann::json& params, const Optimize
   }
   return keys;
 }
+}  // namespace
 
 SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
   SearchRun run;
@@ -120,26 +110,18 @@ SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
   run.lanes = a.lanes;
   run.speculate = !a.no_speculation;
   run.validate_starts = a.validate_starts;
-  nlohmann::json params = params_of(a);
+  run.islands = a.islands.islands;
+  run.migrate_every = a.islands.migrate_every;
+  run.migration = to_string(a.islands.migration);
+  run.own_island_starts = a.own_island_starts;
+  // The islands' keys count as given when they are, whatever --islands says.
+  nlohmann::json params = wanted_params(run);
+  params["islands"] = run.islands;
+  params["migrate-every"] = run.migrate_every;
+  params["migration"] = run.migration;
+  params["island-starts"] = island_starts_name(run.own_island_starts);
   run.given = given_keys(params, a, cmd);
-  nlohmann::json extra = nlohmann::json::object();
-  for (const auto& key : {"islands", "migrate-every", "migration", "island-starts"})
-    if (params.contains(key)) extra[key] = params[key];
-  if (!extra.empty()) run.extra_params = extra.dump();
   return run;
-}
-
-nlohmann::json validate_best(const OptimizeArgs& a, History& history, std::int64_t run, const Configuration& best) {
-  if (a.validate_starts <= 0) return nullptr;
-  Progress progress("optimize: held-out droplets");
-  double objective = std::nan("");
-  const ValidationRecord r = validate_kept(
-      history, run, a.search, best, a.validate_starts, a.threads,
-      [&](int done, int total) {
-        if (!a.quiet) progress.update(done, total);
-      },
-      &objective);
-  return held_out_json(r, objective);
 }
 
 nlohmann::json held_out_json(const ValidationRecord& r, double objective) {
@@ -172,17 +154,6 @@ void print_held_out(std::ostream& out, const nlohmann::json& held_out) {
   if (held_out["objective_value"].is_number())
     out << "held-out obj " << fmt(held_out["objective_value"].get<double>(), 6)
         << " (the objective over those starts, a droplet that did not pass as T = 1; beside the best T)\n";
-}
-
-DriveOptions drive_options_of(const OptimizeArgs& a, const std::atomic<bool>* stop) {
-  DriveOptions d;
-  d.generations = a.generations;
-  d.time_limit = a.time_limit;
-  d.stop = stop;
-  d.threads = a.threads;
-  d.speculate = !a.no_speculation;
-  d.lanes = a.lanes;
-  return d;
 }
 
 nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target) {

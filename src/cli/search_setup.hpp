@@ -64,25 +64,14 @@ const char* island_starts_name(bool own);
 /// How a new run's first arrangement is made, from the command line (the medium's names read,
 /// not yet checked).
 SearchStart start_of(const OptimizeArgs& args);
-/// The run's parameters as the command line gives them (search options and how the starting
-/// medium was made, and the islands'), stored with the run.
-nlohmann::json params_of(const OptimizeArgs& args);
-/// The keys of `params` given on the command line (or in a config file), or set by its --preset:
-/// on resume each must have the stored value.
-std::vector<std::string> given_keys(const nlohmann::json& params, const OptimizeArgs& args, const CLI::App* command);
 /// The library's run of one search (softdrop/service.hpp) for these options; `command` (nullptr:
 /// none parsed) tells which were given.
 SearchRun search_run_of(const OptimizeArgs& args, const CLI::App* command);
-/// The held-out value of the run's best as of `best.generation` (args.validate_starts > 0): run,
-/// stored in the history, and returned as held_out_json's JSON (null when not asked).
-nlohmann::json validate_best(const OptimizeArgs& args, History& history, std::int64_t run, const Configuration& best);
 /// The summary's JSON of a stored held-out value; `objective` is NaN but for a robust objective.
 nlohmann::json held_out_json(const ValidationRecord& record, double objective);
 /// The summary's line for validate_best's JSON (nothing for null).
 void print_held_out(std::ostream& out, const nlohmann::json& held_out);
 
-/// When the drive stops, from the command line; `stop` is the signal flag (nullptr: none).
-DriveOptions drive_options_of(const OptimizeArgs& args, const std::atomic<bool>* stop);
 /// What a host hears after each generation of run `run` (see Host): its number, kind, kept
 /// candidate, candidates, seconds, the best T and its generation, and the target generation.
 nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target);

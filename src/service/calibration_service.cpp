@@ -16,8 +16,8 @@ bool CalibrationScan::IsValid(std::string* why) const {
   if (!calibration.IsValid(why)) return false;
   if (settings.empty()) return fail(why, "settings: none to run");
   if (!labels.empty() && labels.size() != settings.size())
-    return fail(why, "labels: " + std::to_string(labels.size()) + " for " + std::to_string(settings.size()) +
-                         " settings");
+    return fail(why,
+                "labels: " + std::to_string(labels.size()) + " for " + std::to_string(settings.size()) + " settings");
   return detail::valid_threads(threads, why);
 }
 

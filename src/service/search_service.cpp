@@ -1,7 +1,9 @@
 // A search's run on a history file (softdrop/service.hpp): a new run from its first arrangement,
 // or a stored one read back and checked; its generations stored as they end; the end's held-out
 // value.
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
@@ -29,9 +31,15 @@ bool SearchRun::IsValid(std::string* why) const {
   if (start.attempts < 1) return fail(why, "start-attempts = " + std::to_string(start.attempts) + ": must be >= 1");
   if (resume < 0) return fail(why, "resume = " + std::to_string(resume) + ": not a run id");
   if (db.empty()) return fail(why, "db: an empty file name");
-  if (!extra_params.empty() && !nlohmann::json::accept(extra_params))
-    return fail(why, "extra_params: not a JSON object");
+  try {
+    if (!island_options(*this).IsValid(why)) return false;
+  } catch (const std::invalid_argument& e) {
+    return fail(why, e.what());
+  }
+  if (own_island_starts && !start.file.empty())
+    return fail(why, "island-starts = own: needs generated media, not --medium " + start.file);
   if (resume > 0) return true;  // a resumed run takes its options from the history
+  if (own_island_starts && islands < 2) return fail(why, "island-starts = own: an option of --islands K (K > 1)");
   // (0 grains would mean "fill to a porosity" to the medium generator, which a search does not offer)
   if (start.file.empty()) {
     if (start.medium.grains < 1) return fail(why, "grains = " + std::to_string(start.medium.grains) + ": must be >= 1");
@@ -40,13 +48,48 @@ bool SearchRun::IsValid(std::string* why) const {
   return search.IsValid(why);
 }
 
-namespace {
+IslandOptions island_options(const SearchRun& run) {
+  IslandOptions o;
+  o.islands = run.islands;
+  o.migrate_every = run.migrate_every;
+  o.migration = parse_migration(run.migration);
+  return o;
+}
 
-// The parameters of `run` as stored with a new run, and compared on resume.
 nlohmann::json wanted_params(const SearchRun& run) {
   nlohmann::json j = search_run_params(run.search, run.start);
-  if (!run.extra_params.empty()) j.update(nlohmann::json::parse(run.extra_params));
+  const char* starts = run.own_island_starts ? "own" : "shared";
+  if (run.islands > 1) {  // (runs of one search keep the parameters they always had)
+    j["islands"] = run.islands;
+    j["migrate-every"] = run.migrate_every;
+    j["migration"] = run.migration;
+    j["island-starts"] = starts;
+  } else if (run.own_island_starts) {
+    j["island-starts"] = starts;  // (on a resumed run of one search: a contradiction)
+  }
   return j;
+}
+
+DriveOptions drive_options(const SearchRun& run, std::int64_t target, SearchObserver& observer) {
+  DriveOptions d;
+  d.generations = target;
+  d.time_limit = run.time_limit;
+  d.stop = observer.stop_flag();
+  d.threads = run.threads;
+  d.speculate = run.speculate;
+  d.lanes = run.lanes;
+  return d;
+}
+
+namespace {
+
+// Whether `run` resumes one of islands.
+bool resumes_islands(const SearchRun& run) {
+  if (run.resume <= 0 || !std::filesystem::exists(run.db)) return false;
+  auto history = open_history(run.db, OpenMode::read_only);
+  for (const RunRecord& r : history->runs())
+    if (r.id == run.resume) return r.archipelago != 0;
+  return false;  // the one search's path says the run is missing
 }
 
 // The stored run `run.resume`, read back and checked against what the caller gave; its options
@@ -80,8 +123,14 @@ RunRecord read_back(History& history, const SearchRun& run, SearchOptions* optio
 }  // namespace
 
 SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer) {
+  return run_search(run, observer, nullptr);
+}
+
+SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer, const IslandsDrive* islands) {
   std::string why;
   if (!run.IsValid(&why)) throw std::invalid_argument(why);
+  // (a run of one search resumed with islands > 1 is refused below, as any contradicting option is)
+  if (run.resume > 0 ? resumes_islands(run) : run.islands > 1) return run_islands(run, observer, islands);
   SearchRunSummary summary;
   summary.resumed = run.resume > 0;
   std::unique_ptr<History> history;
@@ -132,17 +181,11 @@ SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer) {
   summary.search = options;
 
   observer.started(summary.run, search->best(), search->last_generation(), summary.target, summary.resumed);
-  DriveOptions drive_options;
-  drive_options.generations = summary.target;
-  drive_options.time_limit = run.time_limit;
-  drive_options.stop = observer.stop_flag();
-  drive_options.threads = run.threads;
-  drive_options.speculate = run.speculate;
-  drive_options.lanes = run.lanes;
-  summary.drive = drive(*search, drive_options, [&](const Generation& g, const Configuration& best) {
-    history->append(summary.run, g, best);
-    return observer.generation(summary.run, g, best, summary.target);
-  });
+  summary.drive =
+      drive(*search, drive_options(run, summary.target, observer), [&](const Generation& g, const Configuration& best) {
+        history->append(summary.run, g, best);
+        return observer.generation(summary.run, -1, g, best, summary.target);
+      });
   const bool reached = summary.drive.termination == Termination::generations;
   history->set_status(summary.run, reached ? "finished" : "interrupted");
   summary.best = search->best();

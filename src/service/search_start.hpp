@@ -9,11 +9,40 @@
 #include <string>
 #include <vector>
 
+#include "optimizer/islands.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/service.hpp"
 #include "softdrop/store.hpp"
 
 namespace softdrop {
+
+/// How islands are driven: drive_islands on this process's threads by default, the program's MPI
+/// ranks otherwise (drive_islands' contract).
+struct IslandsDrive {
+  std::function<SearchSummary(std::vector<Search>& islands, const IslandOptions& options, const DriveOptions& drive,
+                              const IslandCallbacks& callbacks)>
+      drive;
+};
+
+/// The island options of a run (SearchRun's islands, migrate_every and migration). Throws
+/// std::invalid_argument naming an unknown migration.
+IslandOptions island_options(const SearchRun& run);
+
+/// The parameters of `run` as stored with a new run and compared on resume: the search's, the
+/// start's (search_run_params) and, for islands, theirs (islands, migrate-every, migration,
+/// island-starts).
+nlohmann::json wanted_params(const SearchRun& run);
+
+/// A search of islands (SearchRun::islands > 1, or a resume of one of islands): run_search's
+/// contract for each island's run.
+SearchRunSummary run_islands(const SearchRun& run, SearchObserver& observer, const IslandsDrive* drive);
+
+/// The drive's options of a run: its target, time limit, threads, lanes and speculation, and the
+/// observer's stop flag.
+DriveOptions drive_options(const SearchRun& run, std::int64_t target, SearchObserver& observer);
+
+/// The island with the highest best T (the lowest-numbered among equals).
+std::size_t best_island(const std::vector<Configuration>& bests);
 
 /// The parameters stored with a new run: the search's (search_params_to_json) and how its first
 /// arrangement is made (medium: the grain file or ""; grains, width, height, r-min, r-max,
