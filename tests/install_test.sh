@@ -2,8 +2,9 @@
 # Installs the build into a scratch prefix (cmake --install), checks that each installed header
 # compiles on its own and keeps the step's private machinery out, builds
 # examples/library/push_droplet.cpp against the installed headers and libraries only, and checks
-# that it gives the program's own tortuosity for the same droplet, to the last digit; the installed
-# configs are the options they stand for.
+# that it gives the program's own tortuosity for the same droplet, to the last digit; builds
+# examples/library/search_run.cpp, a search through the installed service, resumed midway, and
+# checks that it keeps the program's best T; the installed configs are the options they stand for.
 #   bash tests/install_test.sh BUILD_DIR SOURCE_DIR CXX
 set -euo pipefail
 build=$(realpath "$1"); src=$(realpath "$2"); cxx=$3
@@ -34,6 +35,18 @@ t() { sed -n 's/^ *"tortuosity": \([^,]*\),*$/\1/p;T;q'; }  # the run's T in sim
 theirs=$("$prefix/bin/softdrop" simulate --x0 250 --format json | t)
 echo "library: T = $mine; softdrop simulate: T = $theirs"
 [[ -n $mine && $(printf '%.17g' "$mine") == $(printf '%.17g' "$theirs") ]]
+# A search through the installed service (examples/library/search_run.cpp), stopped at generation
+# 2 and resumed to 4, keeps the history `softdrop optimize` writes for the same search.
+"$cxx" -std=c++20 -O2 "$src/examples/library/search_run.cpp" -I "$prefix/include" -L "$prefix/lib" \
+  -lsoftdrop_service -lsoftdrop_store -lsoftdrop_opt -lsoftdrop_studies -lsoftdrop_sim -lsoftdrop_media \
+  -lsoftdrop_util -lSQLiteCpp -lsqlite3 -lpagmo -lnlopt -lcholmod -ltbb -lgmp -lmpfr -lpng -ltiff \
+  -o "$prefix/search_run"
+"$prefix/search_run" "$prefix/lib.db" 2 > /dev/null
+lib_best=$("$prefix/search_run" "$prefix/lib.db" 4 | sed -n 's/^best T \([^ ]*\) .*/\1/p')
+cli_best=$("$prefix/bin/softdrop" optimize --db "$prefix/cli.db" --generations 4 --lambda 4 --starts 8 \
+  --validate-starts 0 --quiet --format json | sed -n 's/^ *"best_tortuosity": \([^,]*\),*$/\1/p')
+echo "library search, resumed: best T = $lib_best; softdrop optimize: best T = $cli_best"
+[[ -n $lib_best && $(printf '%.17g' "$lib_best") == $(printf '%.17g' "$cli_best") ]]
 # An installed config gives the T of the options it stands for, which differs from the defaults'.
 #   config_is FILE OPTION...
 config_is() {
