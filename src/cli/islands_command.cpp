@@ -23,14 +23,12 @@ namespace {
 // The program's observer of islands: the lines on stderr (each start, then the progress at most
 // once a second on a terminal, every 10 s otherwise), the host's callback with each island's
 // generations (the Python module's), and Ctrl-C when no host handles the signals itself.
-class IslandsLines : public SearchObserver {
+class IslandsLines : public ProgramSearchObserver {
  public:
-  IslandsLines(const OptimizeArgs& a, Host* host) : a_(a), host_(host), tty_(::isatty(2) != 0) {
-    if (!host) signals_.emplace("\nsoftdrop: stopping after the generations in flight (Ctrl-C again to drop them)\n");
-  }
-  void start_refused(int attempt, const std::string& why) override {
-    if (!a_.quiet) std::cerr << "optimize: starting medium " << attempt << ": " << why << "; trying another\n";
-  }
+  IslandsLines(const OptimizeArgs& a, Host* host)
+      : ProgramSearchObserver(a, host,
+                              "\nsoftdrop: stopping after the generations in flight (Ctrl-C again to drop them)\n"),
+        tty_(::isatty(2) != 0) {}
   void islands_started(const std::vector<std::int64_t>& runs, const std::vector<std::int64_t>& from,
                        const std::vector<Configuration>& starts, std::int64_t target, bool resumed) override {
     runs_ = runs, last_ = from, target_ = target;
@@ -60,13 +58,6 @@ class IslandsLines : public SearchObserver {
     event["island"] = island;
     return host_->on_progress(event);
   }
-  void validating(int done, int total) override {
-    if (a_.quiet) return;
-    if (!validation_) validation_.emplace("optimize: held-out droplets");  // its clock starts here
-    validation_->update(done, total);
-  }
-  const std::atomic<bool>* stop_flag() override { return signals_ ? signals_->flag() : nullptr; }
-  int exit_code() const { return signals_ ? signals_->exit_code() : 0; }
   void update(bool force) {
     if (a_.quiet || last_.empty()) return;
     const auto now = clock::now();
@@ -84,11 +75,7 @@ class IslandsLines : public SearchObserver {
 
  private:
   using clock = std::chrono::steady_clock;
-  const OptimizeArgs& a_;
-  Host* host_;
   bool tty_;
-  std::optional<StopOnSignal> signals_;  // a host handles the signals itself
-  std::optional<Progress> validation_;
   std::vector<std::int64_t> runs_, last_;
   std::vector<Configuration> best_of_;
   std::int64_t target_ = 0, evaluations_ = 0;

@@ -186,14 +186,11 @@ class SearchProgress {
 
 // The program's observer of a search's run: its lines and progress on stderr, the host's callback
 // (the Python module's), and Ctrl-C when no host handles the signals itself.
-class OptimizeObserver : public SearchObserver {
+class OptimizeObserver : public ProgramSearchObserver {
  public:
-  OptimizeObserver(const OptimizeArgs& a, Host* host) : a_(a), host_(host) {
-    if (!host) signals_.emplace("\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n");
-  }
-  void start_refused(int attempt, const std::string& why) override {
-    if (!a_.quiet) std::cerr << "optimize: starting medium " << attempt << ": " << why << "; trying another\n";
-  }
+  OptimizeObserver(const OptimizeArgs& a, Host* host)
+      : ProgramSearchObserver(a, host,
+                              "\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n") {}
   void started(std::int64_t run, const Configuration& best, std::int64_t from, std::int64_t target,
                bool resumed) override {
     if (!a_.quiet) {
@@ -213,20 +210,9 @@ class OptimizeObserver : public SearchObserver {
     if (!host_ || !host_->on_progress) return true;
     return host_->on_progress(generation_event(run, g, best, target));
   }
-  void validating(int done, int total) override {
-    if (a_.quiet) return;
-    if (!validation_) validation_.emplace("optimize: held-out droplets");  // its clock starts here
-    validation_->update(done, total);
-  }
-  const std::atomic<bool>* stop_flag() override { return signals_ ? signals_->flag() : nullptr; }
-  int exit_code() const { return signals_ ? signals_->exit_code() : 0; }
 
  private:
-  const OptimizeArgs& a_;
-  Host* host_;
-  std::optional<StopOnSignal> signals_;  // a host handles the signals itself
   std::optional<SearchProgress> progress_;
-  std::optional<Progress> validation_;
 };
 
 }  // namespace

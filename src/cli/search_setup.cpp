@@ -124,6 +124,21 @@ SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
   return run;
 }
 
+ProgramSearchObserver::ProgramSearchObserver(const OptimizeArgs& args, Host* host, const char* interrupt)
+    : a_(args), host_(host) {
+  if (!host) signals_.emplace(interrupt);
+}
+
+void ProgramSearchObserver::start_refused(int attempt, const std::string& why) {
+  if (!a_.quiet) std::cerr << "optimize: starting medium " << attempt << ": " << why << "; trying another\n";
+}
+
+void ProgramSearchObserver::validating(int done, int total) {
+  if (a_.quiet) return;
+  if (!validation_) validation_.emplace("optimize: held-out droplets");  // its clock starts here
+  validation_->update(done, total);
+}
+
 nlohmann::json held_out_json(const ValidationRecord& r, double objective) {
   return {{"objective_value", finite_or_null(objective)},
           {"generation", r.generation},

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 
 #include "cli/common_options.hpp"
 #include "cli/host.hpp"
+#include "cli/output.hpp"
 #include "optimizer/islands.hpp"
 #include "softdrop/search.hpp"
 #include "softdrop/service.hpp"
@@ -71,6 +73,26 @@ SearchRun search_run_of(const OptimizeArgs& args, const CLI::App* command);
 nlohmann::json held_out_json(const ValidationRecord& record, double objective);
 /// The summary's line for validate_best's JSON (nothing for null).
 void print_held_out(std::ostream& out, const nlohmann::json& held_out);
+
+/// What the program's observers of a search share: the lines of a refused start and of the end's
+/// validation on stderr (unless --quiet), and Ctrl-C when no host handles the signals itself
+/// (`interrupt`: what the first Ctrl-C says).
+class ProgramSearchObserver : public SearchObserver {
+ public:
+  ProgramSearchObserver(const OptimizeArgs& args, Host* host, const char* interrupt);
+  void start_refused(int attempt, const std::string& why) override;
+  void validating(int done, int total) override;
+  const std::atomic<bool>* stop_flag() override { return signals_ ? signals_->flag() : nullptr; }
+  int exit_code() const { return signals_ ? signals_->exit_code() : 0; }
+
+ protected:
+  const OptimizeArgs& a_;
+  Host* host_;
+
+ private:
+  std::optional<StopOnSignal> signals_;  // a host handles the signals itself
+  std::optional<Progress> validation_;
+};
 
 /// What a host hears after each generation of run `run` (see Host): its number, kind, kept
 /// candidate, candidates, seconds, the best T and its generation, and the target generation.
