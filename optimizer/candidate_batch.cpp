@@ -7,13 +7,13 @@
 #include <exception>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <thread>
 #include <vector>
 
 #include "evaluation.hpp"
 #include "sim/interleaved.hpp"
 #include "sim/lane_policy.hpp"
+#include "sim/simulation_prototype.hpp"
 #include "util/worker_threads.hpp"
 
 namespace softdrop::detail {
@@ -31,10 +31,8 @@ void evaluate_candidates(std::vector<Candidate>& candidates, const SearchOptions
   if (lanes <= 0) lanes = std::max(1, std::min(interleaved_lanes(), (jobs + workers - 1) / workers));
   const RunOptions run = evaluation_run(options.run);
   std::vector<std::unique_ptr<Simulation>> sims(static_cast<std::size_t>(jobs));
-  // One droplet in each candidate's medium, made at its first droplet: its droplets are copies
-  // that share its model (the grain grid, the step's constants).
-  std::vector<std::once_flag> made(static_cast<std::size_t>(n));
-  std::vector<std::optional<Simulation>> prototypes(static_cast<std::size_t>(n));
+  // Each candidate's droplets share one model of its medium.
+  std::vector<SimulationPrototype> prototypes(static_cast<std::size_t>(n));
   std::vector<RunSummary> runs(static_cast<std::size_t>(jobs));
   std::vector<int> left(static_cast<std::size_t>(n), per);  // droplets of each candidate not yet done
   std::vector<std::chrono::steady_clock::time_point> started(static_cast<std::size_t>(n));
@@ -50,8 +48,7 @@ void evaluate_candidates(std::vector<Candidate>& candidates, const SearchOptions
         if (i >= jobs) return false;
         const auto u = static_cast<std::size_t>(i);
         const auto c = static_cast<std::size_t>(i / per);
-        std::call_once(made[c], [&] { prototypes[c].emplace(options.droplet, candidates[c].medium); });
-        sims[u] = std::make_unique<Simulation>(*prototypes[c]);
+        sims[u] = prototypes[c].copy(options.droplet, candidates[c].medium);
         if (i % per == 0) started[c] = std::chrono::steady_clock::now();
         job->sim = sims[u].get();
         job->x0 = starts[static_cast<std::size_t>(i % per)];

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <chrono>
-#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -83,14 +82,6 @@ class IslandsLines : public ProgramSearchObserver {
 };
 
 }  // namespace
-
-bool resumes_islands(const OptimizeArgs& a) {
-  if (a.resume <= 0 || !std::filesystem::exists(a.db)) return false;
-  auto history = open_history(a.db, OpenMode::read_only);
-  for (const RunRecord& r : history->runs())
-    if (r.id == a.resume) return r.archipelago != 0;
-  return false;  // the single-run path says the run is missing
-}
 
 int run_islands(const OptimizeArgs& a, const SearchRun& run, Host* host, const IslandsDrive* drive) {
   IslandsLines lines(a, host);

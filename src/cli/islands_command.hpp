@@ -9,8 +9,6 @@
 
 namespace softdrop::cli {
 
-/// Whether --resume names a run that is one of islands.
-bool resumes_islands(const OptimizeArgs& args);
 /// optimize with --islands K > 1, or resuming one of islands: the library's run (`run`), driven on
 /// `drive` (the MPI ranks; nullptr: this process's threads), with the program's lines and summary.
 int run_islands(const OptimizeArgs& args, const SearchRun& run, Host* host, const IslandsDrive* drive);

@@ -237,10 +237,10 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
     return 0;
   }
   // (a plain run resumed with --islands is refused by the service, as any contradicting option is)
-  const bool islands = a.resume > 0 ? resumes_islands(a) : a.islands.islands > 1;
+  const SearchRun run = search_run_of(a, &cmd);
+  const bool islands = run.resume > 0 ? resumes_islands(run) : run.islands > 1;
   if (on_ranks && !islands)
     throw std::runtime_error("optimize runs across MPI ranks only with --islands K (K > 1), or resuming islands");
-  const SearchRun run = search_run_of(a, &cmd);
   if (islands) {
     IslandsDrive ranks;  // rank 0's part of a job: the islands on every rank
     if (on_ranks)

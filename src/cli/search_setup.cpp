@@ -70,8 +70,6 @@ void check_objective_options(const OptimizeArgs& a) {
                                   to_string(a.search.objective.kind));
 }
 
-const char* island_starts_name(bool own) { return own ? "own" : "shared"; }
-
 SearchStart start_of(const OptimizeArgs& a) {
   SearchStart start;
   start.file = a.medium.file;
@@ -116,10 +114,7 @@ SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
   run.own_island_starts = a.own_island_starts;
   // The islands' keys count as given when they are, whatever --islands says.
   nlohmann::json params = wanted_params(run);
-  params["islands"] = run.islands;
-  params["migrate-every"] = run.migrate_every;
-  params["migration"] = run.migration;
-  params["island-starts"] = island_starts_name(run.own_island_starts);
+  set_island_params(run, &params);
   run.given = given_keys(params, a, cmd);
   return run;
 }

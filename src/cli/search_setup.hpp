@@ -61,8 +61,6 @@ struct OptimizeArgs {
 void add_objective_options(CLI::Option_group* g, OptimizeArgs& args);
 /// Refuses an option of an objective other than the one chosen, naming both.
 void check_objective_options(const OptimizeArgs& args);
-/// The stored and command-line spelling of OptimizeArgs::own_island_starts: "own" or "shared".
-const char* island_starts_name(bool own);
 /// How a new run's first arrangement is made, from the command line (the medium's names read,
 /// not yet checked).
 SearchStart start_of(const OptimizeArgs& args);

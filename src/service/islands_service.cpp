@@ -44,19 +44,17 @@ struct Archipelago {
 Archipelago resumed(History& history, const SearchRun& run, const nlohmann::json& wanted) {
   Archipelago a;
   const std::vector<RunRecord> members = archipelago_of(history, history.run(run.resume), run.db);
-  nlohmann::json stored = nlohmann::json::parse(members.front().params);
+  nlohmann::json stored;
   try {
     a.search = search_params_from_json(members.front().params);
+    stored = stored_params(members.front(), a.search);
     a.islands.islands = stored.at("islands").get<int>();
     a.islands.migrate_every = stored.at("migrate-every").get<int>();
     a.islands.migration = parse_migration(stored.at("migration").get<std::string>());
-    if (!stored.contains("island-starts")) stored["island-starts"] = "shared";  // made before it
   } catch (const std::exception& e) {
     throw std::runtime_error("--db '" + run.db + "': run " + std::to_string(members.front().id) + ": " + e.what());
   }
-  const nlohmann::json read_back = nlohmann::json::parse(search_params_to_json(a.search));
-  for (const auto& [key, value] : read_back.items())
-    if (!stored.contains(key)) stored[key] = value;
+  if (!stored.contains("island-starts")) stored["island-starts"] = island_starts_name(false);  // made before it
   stored.erase("island");
   if (const std::string bad = contradictions(wanted, stored, run.given); !bad.empty())
     throw std::invalid_argument("resume " + std::to_string(run.resume) +
@@ -90,10 +88,7 @@ SearchRunSummary run_islands(const SearchRun& run, SearchObserver& observer, con
   summary.resumed = run.resume > 0;
   // Given or not, the islands' keys take part in the check of a resume (only those given count).
   nlohmann::json wanted = wanted_params(run);
-  wanted["islands"] = run.islands;
-  wanted["migrate-every"] = run.migrate_every;
-  wanted["migration"] = run.migration;
-  wanted["island-starts"] = run.own_island_starts ? "own" : "shared";
+  set_island_params(run, &wanted);
   std::unique_ptr<History> history;
   Archipelago a;
   if (summary.resumed) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "service/search_start.hpp"
@@ -56,17 +57,22 @@ IslandOptions island_options(const SearchRun& run) {
   return o;
 }
 
+const char* island_starts_name(bool own) { return own ? "own" : "shared"; }
+
+void set_island_params(const SearchRun& run, nlohmann::json* params) {
+  nlohmann::json& j = *params;
+  j["islands"] = run.islands;
+  j["migrate-every"] = run.migrate_every;
+  j["migration"] = run.migration;
+  j["island-starts"] = island_starts_name(run.own_island_starts);
+}
+
 nlohmann::json wanted_params(const SearchRun& run) {
   nlohmann::json j = search_run_params(run.search, run.start);
-  const char* starts = run.own_island_starts ? "own" : "shared";
-  if (run.islands > 1) {  // (runs of one search keep the parameters they always had)
-    j["islands"] = run.islands;
-    j["migrate-every"] = run.migrate_every;
-    j["migration"] = run.migration;
-    j["island-starts"] = starts;
-  } else if (run.own_island_starts) {
-    j["island-starts"] = starts;  // (on a resumed run of one search: a contradiction)
-  }
+  if (run.islands > 1)  // (runs of one search keep the parameters they always had)
+    set_island_params(run, &j);
+  else if (run.own_island_starts)
+    j["island-starts"] = island_starts_name(true);  // (on a resumed run of one search: a contradiction)
   return j;
 }
 
@@ -81,9 +87,6 @@ DriveOptions drive_options(const SearchRun& run, std::int64_t target, SearchObse
   return d;
 }
 
-namespace {
-
-// Whether `run` resumes one of islands.
 bool resumes_islands(const SearchRun& run) {
   if (run.resume <= 0 || !std::filesystem::exists(run.db)) return false;
   auto history = open_history(run.db, OpenMode::read_only);
@@ -92,32 +95,37 @@ bool resumes_islands(const SearchRun& run) {
   return false;  // the one search's path says the run is missing
 }
 
+namespace {
+
+// A stored run read back: its record, and the target stored with it (none for a run stored before
+// targets were).
+struct ReadBack {
+  RunRecord record;
+  std::optional<std::int64_t> stored_target;
+};
+
 // The stored run `run.resume`, read back and checked against what the caller gave; its options
-// are returned in `options`, its target in `target`. Nothing is written.
-RunRecord read_back(History& history, const SearchRun& run, SearchOptions* options, std::int64_t* target) {
+// are returned in `options`. Nothing is written.
+ReadBack read_back(History& history, const SearchRun& run, SearchOptions* options) {
   const std::vector<RunRecord> runs = history.runs();
   if (std::none_of(runs.begin(), runs.end(), [&](const RunRecord& r) { return r.id == run.resume; }))
     throw std::invalid_argument(
         "resume = " + std::to_string(run.resume) + ": '" + run.db + "' has no run " + std::to_string(run.resume) +
         (runs.empty() ? " (it has no runs)" : " (its last run is " + std::to_string(runs.back().id) + ")"));
   history.check_run(run.resume);
-  const RunRecord rec = history.run(run.resume);
+  ReadBack r{history.run(run.resume), std::nullopt};
   try {
-    *options = search_params_from_json(rec.params);
+    *options = search_params_from_json(r.record.params);
   } catch (const std::exception& e) {
     throw std::runtime_error("--db '" + run.db + "': run " + std::to_string(run.resume) + ": " + e.what());
   }
-  const nlohmann::json stored = stored_params(rec, *options);
+  const nlohmann::json stored = stored_params(r.record, *options);
   if (const std::string bad = contradictions(wanted_params(run), stored, run.given); !bad.empty())
     throw std::invalid_argument("resume " + std::to_string(run.resume) +
                                 ": the command line contradicts the stored run: " + bad);
-  // Without a target a resume goes on to the run's own (runs stored before targets were: the
-  // default); a target at or below the last generation leaves the run as it is.
-  *target = SearchRun::kDefaultGenerations;
   if (stored.contains("target-generations") && stored["target-generations"].is_number_integer())
-    *target = stored["target-generations"].get<std::int64_t>();
-  if (run.generations) *target = *run.generations;
-  return rec;
+    r.stored_target = stored["target-generations"].get<std::int64_t>();
+  return r;
 }
 
 }  // namespace
@@ -140,7 +148,11 @@ SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer, cons
     history = open_history(run.db, OpenMode::read_only);  // checks the file before any write
     history.reset();
     history = open_history(run.db, OpenMode::create);
-    const RunRecord rec = read_back(*history, run, &options, &summary.target);
+    const ReadBack back = read_back(*history, run, &options);
+    const RunRecord& rec = back.record;
+    // Without a target a resume goes on to the run's own (runs stored before targets were: the
+    // default); a target at or below the last generation leaves the run as it is.
+    summary.target = run.generations.value_or(back.stored_target.value_or(SearchRun::kDefaultGenerations));
     summary.run = rec.id;
     summary.search = options;
     if (summary.target <= rec.generations) {
@@ -150,16 +162,13 @@ SearchRunSummary run_search(const SearchRun& run, SearchObserver& observer, cons
       summary.best.generation = rec.best_generation;
       summary.best.eval.tortuosity = rec.best_t;
       // A run killed after its last generation but before it was marked finished is finished.
-      const nlohmann::json stored = nlohmann::json::parse(rec.params);
-      if (stored.contains("target-generations") && stored["target-generations"].is_number_integer() &&
-          rec.generations >= stored["target-generations"].get<std::int64_t>() && rec.status != "finished")
+      if (back.stored_target && rec.generations >= *back.stored_target && rec.status != "finished")
         history->set_status(rec.id, "finished");
       return summary;
     }
     search = std::make_unique<Search>(resumed_search(*history, rec, options));
     // Only once the run has been read back and checked: a refused resume writes nothing.
-    const nlohmann::json stored = nlohmann::json::parse(rec.params);
-    if (run.generations && !(stored.contains("target-generations") && stored["target-generations"] == *run.generations))
+    if (run.generations && back.stored_target != run.generations)
       history->set_param(rec.id, "target-generations", std::to_string(summary.target));
   } else {
     summary.target = run.generations.value_or(SearchRun::kDefaultGenerations);

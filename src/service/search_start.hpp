@@ -28,6 +28,14 @@ struct IslandsDrive {
 /// std::invalid_argument naming an unknown migration.
 IslandOptions island_options(const SearchRun& run);
 
+/// The stored and command-line spelling of SearchRun::own_island_starts: "own" or "shared".
+const char* island_starts_name(bool own);
+/// Sets the islands' keys of the stored parameters (islands, migrate-every, migration,
+/// island-starts) to `run`'s.
+void set_island_params(const SearchRun& run, nlohmann::json* params);
+/// Whether `run` resumes one of islands (reads its history; false if it has no such run).
+bool resumes_islands(const SearchRun& run);
+
 /// The parameters of `run` as stored with a new run and compared on resume: the search's, the
 /// start's (search_run_params) and, for islands, theirs (islands, migrate-every, migration,
 /// island-starts).

@@ -6,13 +6,13 @@
 #include <exception>
 #include <memory>
 #include <mutex>
-#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
 
 #include "sim/interleaved.hpp"
 #include "sim/lane_policy.hpp"
+#include "sim/simulation_prototype.hpp"
 #include "util/random.hpp"
 #include "util/worker_threads.hpp"
 
@@ -39,14 +39,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
   // Droplet i's simulation while it runs. Any thread may finish a droplet (the lane exchange hands
   // the last ones to idle threads), so they are kept by droplet, not by thread.
   std::vector<std::unique_ptr<Simulation>> running(static_cast<std::size_t>(k));
-  // One droplet in the medium, made at the first droplet: every simulation is its copy and shares
-  // its model (the grain grid, the step's constants).
-  std::once_flag made;
-  std::optional<Simulation> first;
-  const auto prototype = [&]() -> const Simulation& {
-    std::call_once(made, [&] { first.emplace(params, medium); });
-    return *first;
-  };
+  SimulationPrototype prototype;  // every droplet's simulation shares one model
   LaneExchange exchange;
   // Each thread takes droplets from one counter and steps `lanes` of them together; each droplet is
   // a sequential simulation of its own, so results do not depend on the schedule.
@@ -61,7 +54,7 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
       if (i >= k) return false;
       std::unique_ptr<Simulation>& sim = running[static_cast<std::size_t>(i)];
       if (pool.empty()) {
-        sim = std::make_unique<Simulation>(prototype());  // shares its model
+        sim = prototype.copy(params, medium);
       } else {
         sim = std::move(pool.back());
         pool.pop_back();
