@@ -1,23 +1,28 @@
-// The program's optimize and sweep commands run in this process, parsed and run by the command
-// line's own code: the same options, defaults, checks, messages and files as `softdrop optimize`
-// and `softdrop sweep`. The command runs with the GIL released; after each committed generation or
-// medium it takes the GIL to look for Ctrl-C and to call the Python callback.
+// optimize and sweep: the library's run of a search or a sweep (softdrop/service.hpp), built from
+// keywords read as its named values (service/run_values.hpp), with the program's defaults, presets,
+// checks, progress lines and summary. The run goes on with the GIL released; after each committed
+// generation or medium it takes the GIL to look for Ctrl-C and to call the Python callback.
 #include <pybind11/stl.h>
 
 #include <functional>
+#include <map>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "arguments.hpp"
 #include "bindings.hpp"
-#include "cli/cli.hpp"
+#include "cli/file_roles.hpp"
+#include "cli/output.hpp"
+#include "cli/search_setup.hpp"
+#include "cli/sweep_command.hpp"
+#include "keyword_values.hpp"
+#include "service/run_values.hpp"
+#include "softdrop/service.hpp"
 
 namespace softdrop::python {
 namespace {
-
-// JSON to Python objects (the summaries and progress events are small).
-py::object to_python(const nlohmann::json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
 // A Python error raised inside the command (the callback's exception, KeyboardInterrupt), held
 // while the command winds down and raised again once it has returned.
@@ -38,51 +43,12 @@ class PendingError {
   PyObject *type_ = nullptr, *value_ = nullptr, *traceback_ = nullptr;
 };
 
-// A value the option cannot take, said as a Python keyword's wrong type: CLI11's "Could not convert:
-// --generations = 2.5" is "generations: a whole number, not 2.5".
-std::string conversion_line(const cli::Cli& cli, const std::string& command, const std::string& what) {
-  const std::size_t dashes = what.find("--"), equals = what.find(" = ");
-  if (dashes == std::string::npos || equals == std::string::npos || equals < dashes) return python_words(what);
-  const std::string option = what.substr(dashes, equals - dashes);
-  const std::string value = what.substr(equals + 3);
-  const CLI::App* sub = cli.app.get_subcommand(command);  // optimize or sweep: run_command checked
-  const CLI::Option* o = sub ? sub->get_option_no_throw(option) : nullptr;
-  const std::string type = o ? o->get_type_name() : "";
-  const char* wanted = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0 ? "a whole number"
-                       : type.rfind("FLOAT", 0) == 0                           ? "a number"
-                                                                               : "a value it takes";
-  std::string name = python_words(option);
-  if (name == "lambda") name = "lambda_";  // the keyword, as `lambda` is Python's
-  return name + ": " + wanted + ", not " + value;
-}
-
-py::object run_command(const std::vector<std::string>& args, const py::object& callback) {
-  if (args.size() < 2 || (args[1] != "optimize" && args[1] != "sweep"))
-    throw std::invalid_argument("command: must be optimize or sweep");
+// Runs `run` (the program's run of a search or a sweep, with a host) with the GIL released, the
+// host's events going to `callback`; raises the callback's exception or KeyboardInterrupt once
+// the run has returned.
+py::object run_hosted(const py::object& callback, const std::function<void(cli::Host*)>& run) {
   if (!callback.is_none() && !PyCallable_Check(callback.ptr()))
     throw std::invalid_argument("callback: must be callable (or None)");
-  std::vector<const char*> argv;
-  for (const std::string& a : args) argv.push_back(a.c_str());
-  const int argc = static_cast<int>(argv.size());
-
-  cli::Cli cli;
-  try {
-    cli.parse(argc, argv.data());
-  } catch (const CLI::ConversionError& e) {
-    throw py::type_error(conversion_line(cli, args[1], e.what()));
-  } catch (const CLI::ExtrasError& e) {  // an option the command does not have: Python's own words for it
-    const CLI::App* sub = cli.app.get_subcommand(args[1]);
-    for (std::size_t i = 2; i < args.size(); ++i)
-      if (args[i].rfind("--", 0) == 0 && sub->get_option_no_throw(args[i]) == nullptr) {
-        const std::string line = cli.parse_error_line(e, argc, argv.data());
-        const std::size_t mean = line.find(" (did you mean");
-        throw py::type_error(args[1] + "() got an unexpected keyword argument '" + python_words(args[i]) + "'" +
-                             (mean == std::string::npos ? "" : python_words(line.substr(mean))));
-      }
-    throw std::invalid_argument(cli.parse_error_line(e, argc, argv.data()));
-  } catch (const CLI::ParseError& e) {
-    throw std::invalid_argument(cli.parse_error_line(e, argc, argv.data()));
-  }
   PendingError error;
   cli::Host host;
   host.on_progress = [&](const nlohmann::json& event) {
@@ -96,7 +62,7 @@ py::object run_command(const std::vector<std::string>& args, const py::object& c
     }
     if (callback.is_none()) return true;
     try {
-      const py::object answer = callback(to_python(event));
+      const py::object answer = callback(json_to_python(event));
       return answer.is_none() || PyObject_IsTrue(answer.ptr()) != 0;
     } catch (py::error_already_set& e) {
       e.restore();
@@ -104,36 +70,111 @@ py::object run_command(const std::vector<std::string>& args, const py::object& c
       return false;
     }
   };
-  cli.set_host(&host);
   {
     py::gil_scoped_release release;
-    cli.run();
+    run(&host);
   }
   if (error.pending()) error.raise();
-  return to_python(host.summary);
+  return json_to_python(host.summary);
+}
+
+// The options of optimize that are not stored with its run.
+std::map<std::string, CallOption> search_call_options(SearchRun* run, cli::SearchOutput* out, std::string* preset) {
+  return {
+      {"resume",
+       [run](py::handle v, const char* k) {
+         run->resume = whole_arg(v, k);
+         if (run->resume < 1)
+           throw py::value_error(std::string(k) + " = " + std::to_string(run->resume) +
+                                 ": run ids are whole numbers from 1");
+       }},
+      {"generations", [run](py::handle v, const char* k) { run->generations = whole_arg(v, k); }},
+      {"time-limit", [run](py::handle v, const char* k) { run->time_limit = real_arg(v, k); }},
+      {"threads", [run](py::handle v, const char* k) { run->threads = int_arg(v, k); }},
+      {"lanes", [run](py::handle v, const char* k) { run->lanes = int_arg(v, k); }},
+      {"no-speculation", [run](py::handle v, const char* k) { run->speculate = !bool_arg(v, k); }},
+      {"validate-starts", [run](py::handle v, const char* k) { run->validate_starts = int_arg(v, k); }},
+      {"start-attempts", [run](py::handle v, const char* k) { run->start.attempts = int_arg(v, k); }},
+      {"preset", [preset](py::handle v, const char* k) { *preset = text_arg(v, k); }},
+      {"quiet", [out](py::handle v, const char* k) { out->quiet = bool_arg(v, k); }},
+      {"verbose", [out](py::handle v, const char* k) { out->verbose = bool_arg(v, k); }},
+      {"json", [out](py::handle v, const char* k) { out->json_file = path_arg(v, k).string(); }},
+      {"format", [out](py::handle v, const char* k) { out->format = text_arg(v, k); }},
+  };
+}
+
+// What the program's config files may give a command beside its own options: the keys that shape a
+// generated medium, which a command that does not take them leaves alone.
+bool shapes_a_medium(const std::string& key) {
+  static const nlohmann::json sweep = sweep_values(default_sweep());
+  const std::vector<std::string>& search = search_medium_keys();
+  return key == "medium" || key == "pixel-size" || key == "porosity" || key == "grains" || sweep.contains(key) ||
+         std::find(search.begin(), search.end(), key) != search.end();
+}
+
+py::object optimize(const py::object& db, const py::dict& keywords, const py::object& callback) {
+  SearchRun run = default_search_run();
+  cli::SearchOutput out;
+  std::string preset;
+  run.db = out.db = path_arg(db, "db").string();
+  nlohmann::json values = search_run_values(run);
+  std::vector<std::string> given =
+      read_keywords("optimize", keywords, &values, search_call_options(&run, &out, &preset), shapes_a_medium);
+  set_search_run_values(values, &run);
+  if (!run.start.file.empty())  // (a config file may name the grains its droplet was calibrated among)
+    for (const std::string& key : search_medium_keys())
+      if (keywords.contains(keyword_of(key)))
+        throw std::invalid_argument(key +
+                                    ": has no effect with --medium (the grain file fixes the medium); leave it out");
+  for (const std::string& key : apply_search_preset(preset, given, &run.search)) given.push_back(key);
+  run.given = given;
+  if (out.format != "table" && out.format != "json")
+    throw std::invalid_argument("format = '" + out.format + "': must be table or json");
+  if (std::string why; !run.IsValid(&why)) throw std::invalid_argument(why);
+  if (!out.json_file.empty()) {
+    cli::check_output_path("--json", out.json_file);
+    cli::check_distinct_files({{"--db", run.db, true, true}, {"--json", out.json_file, true, false}});
+  }
+  return run_hosted(callback, [&](cli::Host* host) { cli::run_search_run(run, out, host, nullptr); });
+}
+
+py::object sweep(const py::object& db, const py::dict& keywords, const py::object& callback) {
+  SweepRun run;
+  run.db = path_arg(db, "db").string();
+  std::string preset, shard = "0/1", format = "table";
+  bool quiet = false;
+  const std::map<std::string, CallOption> options{
+      {"threads", [&](py::handle v, const char* k) { run.threads = int_arg(v, k); }},
+      {"shard", [&](py::handle v, const char* k) { shard = text_arg(v, k); }},
+      {"preset", [&](py::handle v, const char* k) { preset = text_arg(v, k); }},
+      {"quiet", [&](py::handle v, const char* k) { quiet = bool_arg(v, k); }},
+      {"format", [&](py::handle v, const char* k) { format = text_arg(v, k); }},
+  };
+  nlohmann::json values = sweep_values(default_sweep());
+  const std::vector<std::string> given = read_keywords("sweep", keywords, &values, options, shapes_a_medium);
+  run.sweep = sweep_of_values(values, given);
+  apply_sweep_preset(preset, given, &run.sweep);
+  std::tie(run.shard, run.shards) = cli::parse_shard(shard);
+  if (std::string why; !run.IsValid(&why)) throw std::invalid_argument(why);
+  return run_hosted(callback, [&](cli::Host* host) { cli::run_sweep_run(run, quiet, format, host); });
 }
 
 }  // namespace
 
 void bind_commands(py::module_& m) {
   // Their options are the functions' keywords, '-' spelled '_': so are they in messages.
-  const cli::Cli cli;
-  std::vector<std::string> keywords;
-  const std::function<void(const CLI::App*)> collect = [&](const CLI::App* app) {
-    for (const CLI::Option* o : app->get_options())
-      for (std::string name : o->get_lnames()) {
-        for (char& c : name)
-          if (c == '-') c = '_';
-        keywords.push_back(name);
-      }
-    for (const CLI::App* group : app->get_subcommands([](const CLI::App*) { return true; })) collect(group);
-  };
-  for (const char* command : {"optimize", "sweep"}) collect(cli.app.get_subcommand(command));
-  add_python_names(keywords);
+  SearchRun run;
+  cli::SearchOutput out;
+  std::string preset;
+  add_python_names(keyword_names(search_run_values(run), search_call_options(&run, &out, &preset)));
+  add_python_names(keyword_names(sweep_values(default_sweep()), {}));
+  add_python_names({"shard"});
 
-  m.def("_run_command", &run_command, py::arg("args"), py::arg("callback"),
-        "Runs `softdrop optimize` or `softdrop sweep` with these arguments (args[0] is the program name) "
-        "in this process; returns the command's JSON summary");
+  m.def("_optimize", &optimize, py::arg("db"), py::arg("keywords"), py::arg("callback"),
+        "Runs a search as `softdrop optimize` does, on the history `db`, with these keywords (the program's long "
+        "options, '-' spelled '_'); returns its JSON summary");
+  m.def("_sweep", &sweep, py::arg("db"), py::arg("keywords"), py::arg("callback"),
+        "Runs a sweep as `softdrop sweep` does, on the store `db`, with these keywords; returns its summary");
 }
 
 }  // namespace softdrop::python

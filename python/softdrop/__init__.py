@@ -214,39 +214,6 @@ def _db_path(db, name="db"):
     return path
 
 
-def _command_line(command, db, options):
-    """The program's command line for keyword options: name=value is --name value (underscores
-    become dashes; lambda_ is --lambda), True is a flag given, False or None an option left out, a
-    list or array is comma-separated. Numbers are written so that they read back exactly."""
-    args = ["softdrop", command, "--db", _db_path(db)]
-    for name, value in options.items():
-        if value is None or value is False:
-            continue
-        flag = "--" + name.rstrip("_").replace("_", "-")
-        if value is True:
-            args.append(flag)
-        elif isinstance(value, (list, tuple)) or getattr(value, "ndim", 0) > 0:
-            if len(value) == 0:
-                raise ValueError(f"{name}: an empty list")
-            args += [flag, ",".join(_number(v) for v in value)]
-        elif isinstance(value, numbers.Number):
-            args += [flag, _number(value)]
-        elif isinstance(value, (str, os.PathLike)):
-            args += [flag, os.fspath(value)]
-        elif isinstance(value, Medium):
-            raise TypeError(f"{name}: a grain file name, not a Medium (save it first: medium.save(path))")
-        else:
-            raise TypeError(f"{name}: a number, a string, a path or a list of numbers, not {type(value).__name__}")
-    return args
-
-
-def _number(value):
-    """An integer as itself, any other real number as the shortest text that reads back the same."""
-    if isinstance(value, numbers.Integral):
-        return str(int(value))
-    return repr(float(value))
-
-
 def _with_progress(callback, progress, unit, done_and_total):
     """The callback, with a progress bar in Python (tqdm when it is installed, else a logging line
     each tenth of the way) fed by its events: what a notebook shows, where the program's own
@@ -288,20 +255,24 @@ def _postfix(event):
     return f"<T> {mean:.4f}" if isinstance(mean, float) and mean == mean else ""
 
 
-def _run_with_progress(command, db, callback, progress, options, unit, done_and_total):
+def _run_with_progress(run, db, callback, progress, options, unit, done_and_total):
+    for name, value in options.items():
+        if isinstance(value, Medium):
+            raise TypeError(f"{name}: a grain file name, not a Medium (save it first: medium.save(path))")
     if progress:
         options = dict(options, quiet=True)  # the bar instead of the program's line on the C-level stderr
     step, close = _with_progress(callback, progress, unit, done_and_total)
     try:
-        return Result(_core._run_command(_command_line(command, db, options), step if (callback or progress) else None))
+        return Result(run(db, options, step if (callback or progress) else None))
     finally:
         close()
 
 
 def optimize(db="softdrop.db", callback=None, progress=False, **options):
-    """Runs `softdrop optimize` in this process: the options are the program's long options as
-    keywords (generations=500, lambda_=4, strategy="es", relocate_every=3, resume=1, quiet=True,
-    ...), with the same defaults and checks, and the history file is the one the program writes.
+    """Runs a search in this process, as `softdrop optimize` does: the options are the program's
+    long options as keywords (generations=500, lambda_=4, strategy="es", relocate_every=3,
+    resume=1, quiet=True, config="droplet.toml", ...), each read as the type of its default, with
+    the same defaults, presets and checks, and the history file is the one the program writes.
 
     `callback(event)`, if given, is called after each generation is committed, with a dict: run,
     generation, kind, accepted_candidate (None: none kept), candidates, seconds, best_tortuosity,
@@ -315,14 +286,15 @@ def optimize(db="softdrop.db", callback=None, progress=False, **options):
     Returns the summary `softdrop optimize --format json` prints (run, termination, best_tortuosity,
     evaluations, ...). Bad options raise ValueError with the program's message; a database the
     store refuses raises StoreError naming it."""
-    return _run_with_progress("optimize", db, callback, progress, options, "generation",
+    return _run_with_progress(_core._optimize, db, callback, progress, options, "generation",
                               lambda e: (e["generation"], e["target_generations"]))
 
 
 def sweep(db="sweep.db", callback=None, progress=False, **options):
-    """Runs `softdrop sweep` in this process (the tortuosity-porosity study): options as for
-    optimize (porosities=[0.6, 0.8], media=4, droplets=20, preset="quick", threads=2, ...). The
-    store is the program's: running it again goes on with the media not yet stored.
+    """Runs a sweep in this process, as `softdrop sweep` does (the tortuosity-porosity study):
+    options as for optimize (porosities=[0.6, 0.8], media=4, droplets=20, preset="quick",
+    threads=2, ...). The store is the program's: running it again goes on with the media not yet
+    stored.
 
     `callback(event)` is called after each medium is committed, with a dict: sweep,
     porosity_index, medium_index, target_porosity, passed, mean_tortuosity, media_done, media_to_do.
@@ -330,7 +302,7 @@ def sweep(db="sweep.db", callback=None, progress=False, **options):
     raises KeyboardInterrupt. Returns a summary: sweep, status, media, done (media stored),
     media_this_session, droplets_this_session, wall_seconds. read_sweep(db) has the records.
     progress=True shows a progress bar over the media, as for optimize."""
-    return _run_with_progress("sweep", db, callback, progress, options, "medium",
+    return _run_with_progress(_core._sweep, db, callback, progress, options, "medium",
                               lambda e: (e["media_done"], e["media_to_do"]))
 
 

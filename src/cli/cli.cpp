@@ -123,9 +123,9 @@ void Cli::check() {
   // A database the run would refuse (a missing or read-only folder, a foreign or damaged file) is
   // refused here too; the check reads it and writes nothing.
   if (optimize_cmd_->parsed()) {
-    check_optimize(optimize_);
+    check_optimize(optimize_, *optimize_cmd_);
     if (optimize_.medium.file.empty() && optimize_.resume == 0) check_placement(optimize_.medium.options);
-    check_database(optimize_.db);
+    check_database(optimize_.out.db);
   }
   if (app.got_subcommand("sweep")) {
     check_sweep(sweep_, *app.get_subcommand("sweep"));

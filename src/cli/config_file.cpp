@@ -2,6 +2,7 @@
 
 #include <toml++/toml.h>
 
+#include <fstream>
 #include <iterator>
 #include <sstream>
 #include <stdexcept>
@@ -118,6 +119,50 @@ std::vector<CLI::ConfigItem> SubcommandConfig::from_config(std::istream& input) 
   }
   kept.insert(kept.end(), std::make_move_iterator(top_level.begin()), std::make_move_iterator(top_level.end()));
   return kept;
+}
+
+namespace {
+nlohmann::json json_value(const toml::node& v, const std::string& where) {
+  if (const auto* s = v.as_string()) return s->get();
+  if (const auto* i = v.as_integer()) return i->get();
+  if (const auto* d = v.as_floating_point()) return d->get();
+  if (const auto* b = v.as_boolean()) return b->get();
+  if (const auto* array = v.as_array()) {
+    if (array->empty())
+      throw std::invalid_argument(where + " = []: an empty array (give a value, or leave the key out)");
+    nlohmann::json out = nlohmann::json::array();
+    for (const toml::node& e : *array) {
+      if (e.is_array() || e.is_table()) throw std::invalid_argument(where + ": an array of arrays or tables");
+      out.push_back(json_value(e, where));
+    }
+    return out;
+  }
+  throw std::invalid_argument(where + ": expected a string, number, boolean or array of them");
+}
+}  // namespace
+
+std::vector<std::pair<std::string, nlohmann::json>> config_values(const std::string& file, const std::string& command) {
+  std::ifstream in(file);
+  if (!in) throw std::invalid_argument("config file '" + file + "': cannot be read");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream where;
+    where << "config file '" << file << "' line " << e.source().begin.line << ", column " << e.source().begin.column
+          << ": " << e.description() << " (not TOML)";
+    throw std::invalid_argument(where.str());
+  }
+  std::vector<std::pair<std::string, nlohmann::json>> out;
+  for (const auto& [k, v] : root)
+    if (!v.is_table())
+      out.emplace_back(std::string(k.str()), json_value(v, "config file '" + file + "': " + std::string(k.str())));
+  if (const toml::table* own = root[command].as_table())
+    for (const auto& [k, v] : *own)
+      if (!v.is_table())
+        out.emplace_back(std::string(k.str()), json_value(v, "config file '" + file + "': " + std::string(k.str())));
+  return out;
 }
 
 }  // namespace softdrop::cli

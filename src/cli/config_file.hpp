@@ -3,7 +3,9 @@
 // the options they name.
 #include <CLI/CLI.hpp>
 #include <istream>
+#include <nlohmann/json.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace softdrop::cli {
@@ -27,5 +29,12 @@ class SubcommandConfig : public CLI::ConfigTOML {
   bool shapes_a_medium(const std::string& key) const;
   const CLI::App& app_;
 };
+
+/// The values a TOML config file gives the command `command`, for a host that takes options as
+/// named values rather than a command line (the Python module): its plain keys, then those of its
+/// [command] table, which win; each a string, number, boolean or array of them, as JSON. Throws
+/// std::invalid_argument naming the file (and line and column) if it cannot be read or is not
+/// TOML, or naming the key for a value of another kind or an empty array.
+std::vector<std::pair<std::string, nlohmann::json>> config_values(const std::string& file, const std::string& command);
 
 }  // namespace softdrop::cli

@@ -24,24 +24,24 @@ namespace {
 // generations (the Python module's), and Ctrl-C when no host handles the signals itself.
 class IslandsLines : public ProgramSearchObserver {
  public:
-  IslandsLines(const OptimizeArgs& a, Host* host)
-      : ProgramSearchObserver(a, host,
+  IslandsLines(const SearchOutput& out, Host* host)
+      : ProgramSearchObserver(out, host,
                               "\nsoftdrop: stopping after the generations in flight (Ctrl-C again to drop them)\n"),
         tty_(::isatty(2) != 0) {}
   void islands_started(const std::vector<std::int64_t>& runs, const std::vector<std::int64_t>& from,
                        const std::vector<Configuration>& starts, std::int64_t target, bool resumed) override {
     runs_ = runs, last_ = from, target_ = target;
     for (std::size_t i = 0; i < runs.size(); ++i) best_of_.push_back(starts[starts.size() == 1 ? 0 : i]);
-    if (a_.quiet) return;
+    if (out_.quiet) return;
     if (resumed) {
-      std::cerr << "optimize: resuming the " << runs.size() << " islands of run " << runs.front() << " in " << a_.db
+      std::cerr << "optimize: resuming the " << runs.size() << " islands of run " << runs.front() << " in " << out_.db
                 << "\n";
       return;
     }
     const bool each = starts.size() > 1;
     for (std::size_t s = 0; s < starts.size(); ++s)
       std::cerr << "optimize: " << (each ? "island " + std::to_string(s) + " of " : std::string()) << runs.size()
-                << " islands, runs " << runs.front() << " to " << runs.back() << " in " << a_.db << ": "
+                << " islands, runs " << runs.front() << " to " << runs.back() << " in " << out_.db << ": "
                 << starts[s].medium.grains.size() << " grains, porosity " << fmt(exact_porosity(starts[s].medium), 6)
                 << ", T0 = " << fmt(starts[s].eval.tortuosity, 8) << "\n";
   }
@@ -58,7 +58,7 @@ class IslandsLines : public ProgramSearchObserver {
     return host_->on_progress(event);
   }
   void update(bool force) {
-    if (a_.quiet || last_.empty()) return;
+    if (out_.quiet || last_.empty()) return;
     const auto now = clock::now();
     if (!force && now - shown_ < (tty_ ? std::chrono::seconds(1) : std::chrono::seconds(10))) return;
     shown_ = now;
@@ -83,8 +83,8 @@ class IslandsLines : public ProgramSearchObserver {
 
 }  // namespace
 
-int run_islands(const OptimizeArgs& a, const SearchRun& run, Host* host, const IslandsDrive* drive) {
-  IslandsLines lines(a, host);
+int run_islands(const SearchOutput& out, const SearchRun& run, Host* host, const IslandsDrive* drive) {
+  IslandsLines lines(out, host);
   const SearchRunSummary s = run_search(run, lines, drive);
   lines.update(true);
   const SearchSummary& summary = s.drive;
@@ -99,7 +99,7 @@ int run_islands(const OptimizeArgs& a, const SearchRun& run, Host* host, const I
   const std::int64_t first = s.islands.front().run, final_run = s.islands.back().run, best_run = s.islands[top].run;
   const nlohmann::json held_out = s.held_out ? held_out_json(*s.held_out, s.held_out_objective) : nlohmann::json();
   nlohmann::json j{{"version", kVersion},
-                   {"db", a.db},
+                   {"db", out.db},
                    {"run", first},
                    {"strategy", to_string(s.search.strategy.kind)},
                    {"islands", per_island},
@@ -117,8 +117,8 @@ int run_islands(const OptimizeArgs& a, const SearchRun& run, Host* host, const I
                    {"held_out", held_out},
                    {"wall_seconds", summary.seconds},
                    {"evaluations_per_second", summary.evaluations_per_second()}};
-  if (!deliver_summary(a, j, host)) {
-    std::cout << "runs         " << first << " to " << final_run << " in " << a.db << " (" << s.islands.size()
+  if (!deliver_summary(out, j, host)) {
+    std::cout << "runs         " << first << " to " << final_run << " in " << out.db << " (" << s.islands.size()
               << " islands, "
               << (s.migrate_every > 0
                       ? s.migration + " migration every " + std::to_string(s.migrate_every) + " generations"

@@ -11,6 +11,6 @@ namespace softdrop::cli {
 
 /// optimize with --islands K > 1, or resuming one of islands: the library's run (`run`), driven on
 /// `drive` (the MPI ranks; nullptr: this process's threads), with the program's lines and summary.
-int run_islands(const OptimizeArgs& args, const SearchRun& run, Host* host, const IslandsDrive* drive);
+int run_islands(const SearchOutput& out, const SearchRun& run, Host* host, const IslandsDrive* drive);
 
 }  // namespace softdrop::cli

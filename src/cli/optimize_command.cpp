@@ -15,6 +15,7 @@
 #include "cli/islands_command.hpp"
 #include "cli/mpi_islands.hpp"
 #include "cli/output.hpp"
+#include "service/run_values.hpp"
 #include "service/search_start.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/store.hpp"
@@ -29,7 +30,7 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   s->fallthrough();
 
   auto* h = s->add_option_group("History");
-  h->add_option("--db", a.db, "SQLite history file (created if missing; holds many runs)")->capture_default_str();
+  h->add_option("--db", a.out.db, "SQLite history file (created if missing; holds many runs)")->capture_default_str();
   h->add_option("--resume", a.resume, "Continue this run of the database instead of starting a new one")
       ->check(id_check());
 
@@ -65,24 +66,19 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
       ->default_str(to_string(a.search.strategy.kind));
   g->add_option("--target-success", a.search.strategy.target_success,
                 "es: share of candidates that should improve; steps grow above it, shrink below")
-      ->capture_default_str()
-      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--target-success", StrategyKind::es); });
+      ->capture_default_str();
   g->add_option("--history-length", a.search.strategy.history_length,
                 "lahc: generations back that a candidate is compared with")
-      ->capture_default_str()
-      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--history-length", StrategyKind::lahc); });
+      ->capture_default_str();
   g->add_option("--temperature", a.search.strategy.temperature,
                 "anneal: temperature at generation 0 (units of T): a candidate dT worse is kept with probability "
                 "exp(dT / temperature)")
-      ->capture_default_str()
-      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--temperature", StrategyKind::anneal); });
+      ->capture_default_str();
   g->add_option("--half-life", a.search.strategy.half_life, "anneal: generations in which the temperature halves")
-      ->capture_default_str()
-      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--half-life", StrategyKind::anneal); });
+      ->capture_default_str();
   g->add_option("--sigma", a.search.strategy.sigma,
                 "cmaes: the Gaussian's first standard deviation of each grain coordinate (length units); it adapts")
-      ->capture_default_str()
-      ->each([&a](const std::string&) { a.strategy_options.emplace_back("--sigma", StrategyKind::cmaes); });
+      ->capture_default_str();
   add_objective_options(g, a);
   g->add_option("--islands", a.islands.islands,
                 "Island model: this many searches with seeds of their own, run side by side, each a run of the "
@@ -133,20 +129,14 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   // The preset fills in the options not given, once the command line and config are read, so that
   // --check, the run and the stored parameters all see the search that runs.
   s->parse_complete_callback([&a, s] {
-    if (a.preset != "paper") return;
-    const auto fill = [&](const char* key, auto apply) {
-      if (s->get_option(std::string("--") + key)->count() > 0) return;
-      apply();
-      a.preset_keys.emplace_back(key);
-    };
-    fill("strategy", [&] { a.search.strategy.kind = StrategyKind::paper; });
-    fill("lambda", [&] { a.search.lambda = 1; });
-    fill("relocate-every", [&] { a.search.relocate_every = 0; });
-    fill("objective", [&] { a.search.objective.kind = ObjectiveKind::single; });
+    std::vector<std::string> given;
+    for (const std::string& key : search_param_keys())
+      if (const CLI::Option* o = s->get_option_no_throw("--" + key); o && o->count() > 0) given.push_back(key);
+    a.preset_keys = apply_search_preset(a.preset, given, &a.search);
   });
 
-  auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
-  o->add_flag("--verbose", a.verbose,
+  auto* o = add_summary_options(s, a.out.format, a.out.json_file, a.out.quiet);
+  o->add_flag("--verbose", a.out.verbose,
               "Also print how the speculation went: threads, lanes, evaluations dropped (JSON always has it)");
   return s;
 }
@@ -188,21 +178,21 @@ class SearchProgress {
 // (the Python module's), and Ctrl-C when no host handles the signals itself.
 class OptimizeObserver : public ProgramSearchObserver {
  public:
-  OptimizeObserver(const OptimizeArgs& a, Host* host)
-      : ProgramSearchObserver(a, host,
+  OptimizeObserver(const SearchOutput& out, Host* host)
+      : ProgramSearchObserver(out, host,
                               "\nsoftdrop: stopping after the generation in flight (Ctrl-C again to drop it)\n") {}
   void started(std::int64_t run, const Configuration& best, std::int64_t from, std::int64_t target,
                bool resumed) override {
-    if (!a_.quiet) {
+    if (!out_.quiet) {
       if (resumed)
-        std::cerr << "optimize: resuming run " << run << " of " << a_.db << " at generation " << from << " (best T "
+        std::cerr << "optimize: resuming run " << run << " of " << out_.db << " at generation " << from << " (best T "
                   << fmt(best.eval.tortuosity, 8) << ")\n";
       else
-        std::cerr << "optimize: run " << run << " in " << a_.db << ": " << best.medium.grains.size()
+        std::cerr << "optimize: run " << run << " in " << out_.db << ": " << best.medium.grains.size()
                   << " grains, porosity " << fmt(exact_porosity(best.medium), 6)
                   << ", T0 = " << fmt(best.eval.tortuosity, 8) << "\n";
     }
-    progress_.emplace(run, from, target, a_.quiet);
+    progress_.emplace(run, from, target, out_.quiet);
   }
   bool generation(std::int64_t run, int /*island*/, const Generation& g, const Configuration& best,
                   std::int64_t target) override {
@@ -217,19 +207,21 @@ class OptimizeObserver : public ProgramSearchObserver {
 
 }  // namespace
 
-void check_optimize(OptimizeArgs& a) {
-  if (a.resume == 0)  // on resume the stored strategy decides (checked against the stored run)
-    for (const auto& [option, kind] : a.strategy_options)
-      if (kind != a.search.strategy.kind)
-        throw std::invalid_argument(option.substr(2) + ": an option of --strategy " + to_string(kind) +
-                                    ", not used by --strategy " + to_string(a.search.strategy.kind));
-  if (a.resume == 0) check_objective_options(a);  // on resume the stored objective decides
-  if (!a.json_file.empty()) check_output_path("--json", a.json_file);
-  if (std::string why; !search_run_of(a, nullptr).IsValid(&why)) throw std::invalid_argument(why);
+void check_optimize(const OptimizeArgs& a, const CLI::App& cmd) {
+  if (!a.out.json_file.empty()) check_output_path("--json", a.out.json_file);
+  if (std::string why; !search_run_of(a, &cmd).IsValid(&why)) throw std::invalid_argument(why);
+}
+
+int run_search_run(const SearchRun& run, const SearchOutput& out, Host* host, const IslandsDrive* ranks) {
+  if (run.resume > 0 ? resumes_islands(run) : run.islands > 1) return run_islands(out, run, host, ranks);
+  OptimizeObserver observer(out, host);
+  const SearchRunSummary summary = run_search(run, observer);
+  report_optimize(out, summary, host);
+  return summary.drive.termination == Termination::interrupted ? observer.exit_code() : 0;
 }
 
 int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
-  check_optimize(a);
+  check_optimize(a, cmd);
   const Job* job = current_job();
   const bool on_ranks = job && job->size() > 1;  // under mpirun: islands only
   if (on_ranks && job->rank() != 0) {            // rank 0 has the history and gives this rank its islands
@@ -241,19 +233,13 @@ int run_optimize(OptimizeArgs& a, const CLI::App& cmd, Host* host) {
   const bool islands = run.resume > 0 ? resumes_islands(run) : run.islands > 1;
   if (on_ranks && !islands)
     throw std::runtime_error("optimize runs across MPI ranks only with --islands K (K > 1), or resuming islands");
-  if (islands) {
-    IslandsDrive ranks;  // rank 0's part of a job: the islands on every rank
-    if (on_ranks)
-      ranks.drive = [job](std::vector<Search>& searches, const IslandOptions& options, const DriveOptions& drive,
-                          const IslandCallbacks& callbacks) {
-        return drive_islands_on_ranks(*job, searches, options, drive, callbacks);
-      };
-    return run_islands(a, run, host, on_ranks ? &ranks : nullptr);
-  }
-  OptimizeObserver observer(a, host);
-  const SearchRunSummary summary = run_search(run, observer);
-  report_optimize(a, summary, host);
-  return summary.drive.termination == Termination::interrupted ? observer.exit_code() : 0;
+  IslandsDrive ranks;  // rank 0's part of a job: the islands on every rank
+  if (on_ranks)
+    ranks.drive = [job](std::vector<Search>& searches, const IslandOptions& options, const DriveOptions& drive,
+                        const IslandCallbacks& callbacks) {
+      return drive_islands_on_ranks(*job, searches, options, drive, callbacks);
+    };
+  return run_search_run(run, a.out, host, on_ranks ? &ranks : nullptr);
 }
 
 }  // namespace softdrop::cli

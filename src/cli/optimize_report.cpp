@@ -12,11 +12,11 @@ namespace softdrop::cli {
 namespace {
 
 // A resumed run already at its target.
-void report_nothing_to_do(const OptimizeArgs& a, const SearchRunSummary& s, Host* host) {
+void report_nothing_to_do(const SearchOutput& out, const SearchRunSummary& s, Host* host) {
   const std::string line = "nothing to do: run " + std::to_string(s.run) + " is at generation " +
                            std::to_string(s.drive.last_generation) + " (target " + std::to_string(s.target) + ")";
   const nlohmann::json j{{"version", kVersion},
-                         {"db", a.db},
+                         {"db", out.db},
                          {"run", s.run},
                          {"termination", "nothing to do"},
                          {"message", line},
@@ -25,18 +25,18 @@ void report_nothing_to_do(const OptimizeArgs& a, const SearchRunSummary& s, Host
                          {"evaluations", 0},
                          {"best_tortuosity", s.best.eval.tortuosity},
                          {"best_generation", s.best.generation}};
-  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+  if (!out.json_file.empty()) write_file_atomically(out.json_file, j.dump(2) + "\n");
   if (host)
     host->summary = j;
   else
-    std::cout << (a.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
+    std::cout << (out.format == "json" ? j.dump(2) : "optimize: " + line) << '\n';
 }
 
 }  // namespace
 
-void report_optimize(const OptimizeArgs& a, const SearchRunSummary& s, Host* host) {
+void report_optimize(const SearchOutput& out, const SearchRunSummary& s, Host* host) {
   if (s.nothing_to_do) {
-    report_nothing_to_do(a, s, host);
+    report_nothing_to_do(out, s, host);
     return;
   }
   const SearchSummary& summary = s.drive;
@@ -46,7 +46,7 @@ void report_optimize(const OptimizeArgs& a, const SearchRunSummary& s, Host* hos
   const std::int64_t run = s.run, initial_evaluations = s.initial_evaluations, initial_droplets = s.initial_droplets;
   nlohmann::json j;
   j["version"] = kVersion;
-  j["db"] = a.db;
+  j["db"] = out.db;
   j["run"] = run;
   j["strategy"] = to_string(search.strategy.kind);
   j["objective"] = to_string(search.objective.kind);
@@ -73,8 +73,8 @@ void report_optimize(const OptimizeArgs& a, const SearchRunSummary& s, Host* hos
                       {"predictions", summary.speculation.predictions},
                       {"mispredictions", summary.speculation.mispredictions},
                       {"predictions_ahead", summary.speculation.predictions_ahead}};
-  if (!deliver_summary(a, j, host)) {
-    std::cout << "run          " << run << " in " << a.db << "\n"
+  if (!deliver_summary(out, j, host)) {
+    std::cout << "run          " << run << " in " << out.db << "\n"
               << "stopped      " << summary.message << "\n"
               << "best T       " << fmt(best.eval.tortuosity, 10) << " (generation " << best.generation << ", "
               << best.eval.touched.size() << " of " << best.medium.grains.size() << " grains touched)\n";
@@ -88,7 +88,7 @@ void report_optimize(const OptimizeArgs& a, const SearchRunSummary& s, Host* hos
               << summary.evaluations + initial_evaluations << " evaluations (" << summary.droplets + initial_droplets
               << " droplets), " << fmt(summary.evaluations_per_second(), 3) << " eval/s\n";
     print_held_out(std::cout, held_out);
-    if (a.verbose) {  // for those who tune --lanes and --threads
+    if (out.verbose) {  // for those who tune --lanes and --threads
       const SpeculationStats& sp = summary.speculation;
       const double dropped_share =
           sp.kept_steps > 0 ? 100.0 * static_cast<double>(sp.dropped_steps) / static_cast<double>(sp.kept_steps) : 0.0;

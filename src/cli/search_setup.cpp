@@ -15,24 +15,17 @@
 namespace softdrop::cli {
 
 OptimizeArgs::OptimizeArgs() {
-  // The default search scene: the default 500 x 500 periodic box with 20 non-overlapping grains of
-  // the default radii (phi ~ 0.72).
-  medium.options.kind = MediumKind::non_overlapping;
-  medium.options.grains = 20;
-  // The measured best of the strategies (results/search/README.md): the evolution strategy with a
-  // relocation every third generation and a generation of 8, enough candidates for every thread
-  // and lane. The library's SearchOptions{} stays the paper's algorithm, and a stored run without
-  // these keys reads as that.
-  search.strategy.kind = StrategyKind::es;
-  search.relocate_every = 3;
-  search.lambda = 8;
-  // The paper's objective, one droplet from the middle of the top, tunes that one chaotic path
-  // (results/search/README.md): the default scores a medium by the mean T of droplets from fresh
-  // starts, compared on common starts.
-  search.objective.kind = ObjectiveKind::mean;
+  const SearchRun d = default_search_run();
+  search = d.search;
+  medium.options = d.start.medium;
+  start_attempts = d.start.attempts;
+  generations = SearchRun::kDefaultGenerations;
+  validate_starts = d.validate_starts;
+  islands.islands = d.islands;
+  islands.migrate_every = d.migrate_every;
 }
 
-// The objective's options (search.hpp), each noted with the objectives that use it.
+// The objective's options (search.hpp).
 void add_objective_options(CLI::Option_group* g, OptimizeArgs& a) {
   g->add_option_function<std::string>(
        "--objective", [&a](const std::string& v) { a.search.objective.kind = parse_objective(v); },
@@ -42,32 +35,18 @@ void add_objective_options(CLI::Option_group* g, OptimizeArgs& a) {
        "<T> - --se-factor x its standard error. A droplet that does not pass counts as T = 1")
       ->check(CLI::IsMember(objective_names()))
       ->default_str(to_string(a.search.objective.kind));
-  const auto of_objectives = [&a](const char* option, std::vector<ObjectiveKind> kinds) {
-    return [&a, option, kinds](const std::string&) { a.objective_options.emplace_back(option, kinds); };
-  };
   g->add_option("--starts", a.search.objective.starts,
                 "mean, quantile, lower-bound: droplets per evaluation, in [1, 4096], stratified over the top and "
                 "drawn afresh each generation")
-      ->capture_default_str()
-      ->each(of_objectives("--starts", {ObjectiveKind::mean, ObjectiveKind::quantile, ObjectiveKind::lower_bound}));
+      ->capture_default_str();
   g->add_option("--quantile", a.search.objective.quantile, "quantile: the quantile of the droplets' T, in (0, 1)")
-      ->capture_default_str()
-      ->each(of_objectives("--quantile", {ObjectiveKind::quantile}));
+      ->capture_default_str();
   g->add_option("--se-factor", a.search.objective.se_factor, "lower-bound: k in <T> - k x standard error")
-      ->capture_default_str()
-      ->each(of_objectives("--se-factor", {ObjectiveKind::lower_bound}));
+      ->capture_default_str();
   g->add_option("--margin", a.search.objective.margin,
                 "mean, quantile, lower-bound: a candidate beats its parent only by more than this many standard "
                 "errors of their droplets' paired differences (0: any gain)")
-      ->capture_default_str()
-      ->each(of_objectives("--margin", {ObjectiveKind::mean, ObjectiveKind::quantile, ObjectiveKind::lower_bound}));
-}
-
-void check_objective_options(const OptimizeArgs& a) {
-  for (const auto& [option, kinds] : a.objective_options)
-    if (std::find(kinds.begin(), kinds.end(), a.search.objective.kind) == kinds.end())
-      throw std::invalid_argument(option.substr(2) + ": not an option of --objective " +
-                                  to_string(a.search.objective.kind));
+      ->capture_default_str();
 }
 
 SearchStart start_of(const OptimizeArgs& a) {
@@ -98,8 +77,9 @@ std::vector<std::string> given_keys(const nlohmann::json& params, const Optimize
 SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
   SearchRun run;
   run.search = a.search;
+  run.search.gap = a.medium.options.gap;  // one spacing rule: the generator's and the moves' (--gap)
   run.start = start_of(a);
-  run.db = a.db;
+  run.db = a.out.db;
   run.resume = a.resume;
   // A resume without --generations goes on to the run's own target.
   if (a.resume == 0 || (cmd && cmd->get_option("--generations")->count() > 0)) run.generations = a.generations;
@@ -119,17 +99,17 @@ SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
   return run;
 }
 
-ProgramSearchObserver::ProgramSearchObserver(const OptimizeArgs& args, Host* host, const char* interrupt)
-    : a_(args), host_(host) {
+ProgramSearchObserver::ProgramSearchObserver(const SearchOutput& out, Host* host, const char* interrupt)
+    : out_(out), host_(host) {
   if (!host) signals_.emplace(interrupt);
 }
 
 void ProgramSearchObserver::start_refused(int attempt, const std::string& why) {
-  if (!a_.quiet) std::cerr << "optimize: starting medium " << attempt << ": " << why << "; trying another\n";
+  if (!out_.quiet) std::cerr << "optimize: starting medium " << attempt << ": " << why << "; trying another\n";
 }
 
 void ProgramSearchObserver::validating(int done, int total) {
-  if (a_.quiet) return;
+  if (out_.quiet) return;
   if (!validation_) validation_.emplace("optimize: held-out droplets");  // its clock starts here
   validation_->update(done, total);
 }
@@ -178,13 +158,13 @@ nlohmann::json generation_event(std::int64_t run, const Generation& g, const Con
           {"target_generations", target}};
 }
 
-bool deliver_summary(const OptimizeArgs& a, const nlohmann::json& j, Host* host) {
-  if (!a.json_file.empty()) write_file_atomically(a.json_file, j.dump(2) + "\n");
+bool deliver_summary(const SearchOutput& out, const nlohmann::json& j, Host* host) {
+  if (!out.json_file.empty()) write_file_atomically(out.json_file, j.dump(2) + "\n");
   if (host) {
     host->summary = j;
     return true;
   }
-  if (a.format != "json") return false;
+  if (out.format != "json") return false;
   std::cout << j.dump(2) << '\n';
   return true;
 }

@@ -23,11 +23,22 @@
 
 namespace softdrop::cli {
 
-/// The options of `softdrop optimize`. The constructor sets the program's defaults where they differ
-/// from the library's: the default scene and the measured best strategy (es, lambda 8, relocation,
-/// the rest test); SearchOptions{} itself stays the paper's algorithm.
-struct OptimizeArgs {
+/// Where the program tells of a search: the history file it names, the lines on stderr (none with
+/// `quiet`; `verbose` adds the speculation's), and the summary (`format` table or json on stdout,
+/// and `json_file` if not empty).
+struct SearchOutput {
   std::string db = "softdrop.db";
+  bool quiet = false;
+  bool verbose = false;
+  std::string format = "table";
+  std::string json_file;
+};
+
+/// The options of `softdrop optimize`. The constructor takes the program's defaults
+/// (default_search_run: the default scene and the measured best strategy); SearchOptions{} itself
+/// stays the paper's algorithm.
+struct OptimizeArgs {
+  SearchOutput out;
   std::int64_t resume = 0;         ///< run id to continue (0: start a new run)
   std::int64_t generations = 200;  ///< run up to this generation number
   double time_limit = 0;           ///< wall seconds, 0: none
@@ -41,26 +52,16 @@ struct OptimizeArgs {
   /// derive_seed(medium seed, i)) instead of all from one: restarts that sample starting media.
   bool own_island_starts = false;
   MediumArgs medium;
-  bool quiet = false;
-  bool verbose = false;  ///< also print how the speculation went
-  std::string format = "table";
-  std::string json_file;
   std::string preset;                    ///< "paper": the paper's algorithm for the search options not given
   int validate_starts = 200;             ///< at the end, the best's held-out value over this many starts (0: none)
   std::vector<std::string> preset_keys;  ///< the stored keys the preset set (compared on resume as if given)
-  /// Options of one strategy given on the command line, with the strategy that uses each.
-  std::vector<std::pair<std::string, StrategyKind>> strategy_options;
-  /// Options of one objective given on the command line, with the objectives that use each.
-  std::vector<std::pair<std::string, std::vector<ObjectiveKind>>> objective_options;
 
   OptimizeArgs();
 };
 
 /// The options of --objective on the search group `g`: --objective, --starts, --quantile,
-/// --se-factor and --margin, each noted in args.objective_options with the objectives that use it.
+/// --se-factor and --margin.
 void add_objective_options(CLI::Option_group* g, OptimizeArgs& args);
-/// Refuses an option of an objective other than the one chosen, naming both.
-void check_objective_options(const OptimizeArgs& args);
 /// How a new run's first arrangement is made, from the command line (the medium's names read,
 /// not yet checked).
 SearchStart start_of(const OptimizeArgs& args);
@@ -73,18 +74,18 @@ nlohmann::json held_out_json(const ValidationRecord& record, double objective);
 void print_held_out(std::ostream& out, const nlohmann::json& held_out);
 
 /// What the program's observers of a search share: the lines of a refused start and of the end's
-/// validation on stderr (unless --quiet), and Ctrl-C when no host handles the signals itself
+/// validation on stderr (unless quiet), and Ctrl-C when no host handles the signals itself
 /// (`interrupt`: what the first Ctrl-C says).
 class ProgramSearchObserver : public SearchObserver {
  public:
-  ProgramSearchObserver(const OptimizeArgs& args, Host* host, const char* interrupt);
+  ProgramSearchObserver(const SearchOutput& out, Host* host, const char* interrupt);
   void start_refused(int attempt, const std::string& why) override;
   void validating(int done, int total) override;
   const std::atomic<bool>* stop_flag() override { return signals_ ? signals_->flag() : nullptr; }
   int exit_code() const { return signals_ ? signals_->exit_code() : 0; }
 
  protected:
-  const OptimizeArgs& a_;
+  const SearchOutput& out_;
   Host* host_;
 
  private:
@@ -96,10 +97,16 @@ class ProgramSearchObserver : public SearchObserver {
 /// candidate, candidates, seconds, the best T and its generation, and the target generation.
 nlohmann::json generation_event(std::int64_t run, const Generation& g, const Configuration& best, std::int64_t target);
 
-/// The summary `j` written to --json's file, handed to a host, or printed with --format json;
-/// false when it is still to be printed as a table.
-bool deliver_summary(const OptimizeArgs& args, const nlohmann::json& j, Host* host);
+/// The summary `j` written to the json file, handed to a host, or printed with format json; false
+/// when it is still to be printed as a table.
+bool deliver_summary(const SearchOutput& out, const nlohmann::json& j, Host* host);
 /// The summary of a search's run (deliver_summary's, or a table on stdout).
-void report_optimize(const OptimizeArgs& args, const SearchRunSummary& summary, Host* host);
+void report_optimize(const SearchOutput& out, const SearchRunSummary& summary, Host* host);
+
+/// The program's run of a search, of one or of islands (driven on `ranks`, the MPI ranks; nullptr:
+/// this process's threads): run_search with the program's lines on stderr and its summary, or with
+/// a host, the host's events and the summary handed to it. Returns the exit code (130 or 143 after
+/// a signal the program handled, else 0).
+int run_search_run(const SearchRun& run, const SearchOutput& out, Host* host, const IslandsDrive* ranks);
 
 }  // namespace softdrop::cli

@@ -47,6 +47,10 @@ std::string joined(const std::vector<std::string>& names) {
 
 }  // namespace
 
+std::string nearest_name(const std::string& word, const std::vector<std::string>& names) {
+  return nearest(word, names);
+}
+
 std::string nearest_option(const CLI::App& app, const CLI::App& command, const std::string& name) {
   std::vector<std::string> names;
   long_names(command, &names);

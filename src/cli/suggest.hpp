@@ -2,6 +2,7 @@
 // "Did you mean": the nearest known option or command to a mistyped one.
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 namespace softdrop::cli {
 
@@ -16,5 +17,8 @@ std::string suggest_correction(const CLI::App& app, int argc, const char* const*
 /// The long option name (without dashes) of `command` or of the program `app` nearest to `name`,
 /// by the same rule; "" if none is close. For keys of config files, which name options so.
 std::string nearest_option(const CLI::App& app, const CLI::App& command, const std::string& name);
+
+/// The nearest of `names` to `word` by the same rule; "" if none is close.
+std::string nearest_name(const std::string& word, const std::vector<std::string>& names);
 
 }  // namespace softdrop::cli

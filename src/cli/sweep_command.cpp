@@ -13,6 +13,7 @@
 #include "cli/options_diff.hpp"
 #include "cli/output.hpp"
 #include "cli/sweep_report_command.hpp"
+#include "service/run_values.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/service.hpp"
 #include "softdrop/store.hpp"
@@ -61,16 +62,16 @@ void add_sweep_command(CLI::App& app, SweepArgs& a) {
 
 namespace {
 
-void apply_preset(SweepArgs& a, const CLI::App& cmd) {
-  if (a.preset.empty()) return;
-  auto unset = [&](const char* name) { return cmd.get_option_no_throw(name)->count() == 0; };
-  const bool quick = a.preset == "quick";
-  if (unset("--porosities"))
-    a.sweep.porosities = quick ? std::vector<double>{0.7, 0.8, 0.9}
-                               : std::vector<double>{0.45, 0.5, 0.55, 0.6, 0.65, 0.7, 0.75, 0.8, 0.85, 0.9};
-  if (unset("--media")) a.sweep.media = quick ? 2 : 200;
-  if (unset("--droplets")) a.sweep.droplets = quick ? 8 : 200;
+// The options of a sweep's values (run_values.hpp) given on the command line or in a config file.
+std::vector<std::string> given_values(const SweepOptions& sweep, const CLI::App& cmd) {
+  const nlohmann::json values = sweep_values(sweep);
+  std::vector<std::string> given;
+  for (const auto& [key, value] : values.items())
+    if (const CLI::Option* o = cmd.get_option_no_throw("--" + key); o && o->count() > 0) given.push_back(key);
+  return given;
 }
+
+}  // namespace
 
 std::pair<int, int> parse_shard(const std::string& text) {
   const auto slash = text.find('/');
@@ -84,6 +85,8 @@ std::pair<int, int> parse_shard(const std::string& text) {
   }
   throw std::invalid_argument("shard = '" + text + "': expected i/n with 0 <= i < n");
 }
+
+namespace {
 
 // A new sweep in a file that holds others: which one it is nearest, and in what it differs, so a
 // sweep meant to continue another is seen not to.
@@ -107,19 +110,13 @@ void say_how_it_differs(SweepStore& store, const std::string& db, const std::str
 }  // namespace
 
 std::pair<int, int> check_sweep(SweepArgs& a, const CLI::App& cmd) {
-  apply_preset(a, cmd);
+  apply_sweep_preset(a.preset, given_values(a.sweep, cmd), &a.sweep);
   if (!a.medium.file.empty()) throw std::invalid_argument("medium: sweep generates its media; --medium is not used");
   resolve_medium(a.medium);
   a.sweep.medium = a.medium.options;
   a.sweep.stream = parse_media_stream(a.media_stream);
   check_second_droplet(a.second, a.sweep.droplet);
-  if (a.second.on()) {
-    if (!a.sweep.medium.periodic && a.second.second.offset_x != 0)
-      throw std::invalid_argument(
-          "second-offset-x: a sweep between walls takes none (a random start could put the second droplet outside "
-          "them)");
-    a.sweep.second = a.second.second;
-  }
+  if (a.second.on()) a.sweep.second = a.second.second;
   std::string why;
   if (!a.sweep.IsValid(&why)) throw std::invalid_argument(why);
   check_threads(a.threads);
@@ -132,22 +129,21 @@ namespace {
 // handles the signals itself.
 class SweepProgressLine : public SweepObserver {
  public:
-  SweepProgressLine(const SweepArgs& a, int shard, int shards, Host* host)
-      : a_(a), shard_(shard), shards_(shards), host_(host) {
+  SweepProgressLine(const SweepRun& run, bool quiet, Host* host) : run_(run), quiet_(quiet), host_(host) {
     if (!host)
       signals_.emplace(
           "\nsoftdrop: finishing the media in flight (Ctrl-C again to leave now; they are then redone next time)\n");
   }
   void started(std::int64_t sweep, std::size_t stored, std::size_t to_do) override {
-    if (a_.quiet) return;
-    std::cerr << "sweep " << (sweep > 0 ? std::to_string(sweep) : std::string("(new)")) << " in " << a_.db << ": "
-              << a_.sweep.porosities.size() << " porosities x " << a_.sweep.media << " media x " << a_.sweep.droplets
-              << " droplets; shard " << shard_ << "/" << shards_ << ": " << stored << " of " << stored + to_do
-              << " media already stored\n";
+    if (quiet_) return;
+    std::cerr << "sweep " << (sweep > 0 ? std::to_string(sweep) : std::string("(new)")) << " in " << run_.db << ": "
+              << run_.sweep.porosities.size() << " porosities x " << run_.sweep.media << " media x "
+              << run_.sweep.droplets << " droplets; shard " << run_.shard << "/" << run_.shards << ": " << stored
+              << " of " << stored + to_do << " media already stored\n";
   }
   bool stored(const SweepMedium& m, const SweepProgress& p) override {
     const auto now = std::chrono::steady_clock::now();
-    if (!a_.quiet && (now - last_ > std::chrono::seconds(tty_ ? 1 : 10) || p.done == p.to_do)) {
+    if (!quiet_ && (now - last_ > std::chrono::seconds(tty_ ? 1 : 10) || p.done == p.to_do)) {
       last_ = now;
       // The pace so far, and the medium just stored: its porosity, how many passed and their <T>.
       std::cerr << (tty_ ? "\r" : "") << "sweep: " << p.done << "/" << p.to_do << " media ("
@@ -171,8 +167,8 @@ class SweepProgressLine : public SweepObserver {
   int exit_code() const { return signals_ ? signals_->exit_code() : 0; }
 
  private:
-  const SweepArgs& a_;
-  int shard_, shards_;
+  const SweepRun& run_;
+  bool quiet_;
   Host* host_;
   std::optional<StopOnSignal> signals_;  // a host handles the signals itself
   const bool tty_ = ::isatty(2) != 0;
@@ -188,9 +184,6 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
     work_on_sweep_units(*job, a.sweep, a.threads);
     return 0;
   }
-  if (!a.quiet && std::filesystem::exists(a.db))
-    say_how_it_differs(*open_sweep_store(a.db, OpenMode::create), a.db, sweep_params_to_json(a.sweep));
-  SweepProgressLine progress(a, shard, shards, host);
   SweepUnitsRunner runner;
   if (on_ranks)
     runner = [job](const SweepOptions& options, const std::vector<SweepUnit>& units, int threads,
@@ -199,10 +192,18 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
       RanksReport r = run_sweep_units_on_ranks(*job, options, units, threads, on_done, stop, stored);
       return SweepUnitsRun{std::move(r.ran), r.serve_seconds};
     };
-  const SweepSummary s = softdrop::run_sweep(SweepRun{a.sweep, a.db, a.threads, shard, shards}, progress, runner);
+  return run_sweep_run(SweepRun{a.sweep, a.db, a.threads, shard, shards}, a.quiet, a.format, host, runner);
+}
+
+int run_sweep_run(const SweepRun& run, bool quiet, const std::string& format, Host* host,
+                  const SweepUnitsRunner& runner) {
+  if (!quiet && std::filesystem::exists(run.db))
+    say_how_it_differs(*open_sweep_store(run.db, OpenMode::create), run.db, sweep_params_to_json(run.sweep));
+  SweepProgressLine progress(run, quiet, host);
+  const SweepSummary s = softdrop::run_sweep(run, progress, runner);
   if (host) {
     host->summary = {{"version", kVersion},
-                     {"db", a.db},
+                     {"db", run.db},
                      {"sweep", s.sweep},
                      {"status", s.status},
                      {"media", s.media},
@@ -214,8 +215,8 @@ int run_sweep(SweepArgs& a, const CLI::App& cmd, Host* host) {
                      {"commit_seconds", s.commit_seconds}};
     return 0;
   }
-  points_table(sweep_points(open_sweep_store(a.db, OpenMode::read_only)->media(s.sweep))).print(std::cout, a.format);
-  if (!a.quiet) {
+  points_table(sweep_points(open_sweep_store(run.db, OpenMode::read_only)->media(s.sweep))).print(std::cout, format);
+  if (!quiet) {
     std::cerr << "sweep " << s.sweep << ": " << s.done << " of " << s.media << " media stored; this session "
               << s.media_this_session << " media, " << s.droplets_this_session << " droplets in "
               << fmt(s.wall_seconds, 4) << " s"

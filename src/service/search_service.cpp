@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "service/run_values.hpp"
 #include "service/search_start.hpp"
 #include "softdrop/service.hpp"
 #include "store/params_json.hpp"
@@ -41,6 +42,7 @@ bool SearchRun::IsValid(std::string* why) const {
     return fail(why, "island-starts = own: needs generated media, not --medium " + start.file);
   if (resume > 0) return true;  // a resumed run takes its options from the history
   if (own_island_starts && islands < 2) return fail(why, "island-starts = own: an option of --islands K (K > 1)");
+  if (!given_options_used(search, given, why)) return false;
   // (0 grains would mean "fill to a porosity" to the medium generator, which a search does not offer)
   if (start.file.empty()) {
     if (start.medium.grains < 1) return fail(why, "grains = " + std::to_string(start.medium.grains) + ": must be >= 1");

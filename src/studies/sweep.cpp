@@ -43,6 +43,10 @@ bool SweepOptions::IsValid(std::string* why) const {
   if (!m.IsValid(why)) return false;
   if (!droplet.IsValid(why)) return false;
   if (second && !second->IsValid(droplet, why)) return false;
+  if (second && !medium.periodic && second->offset_x != 0)
+    return fail(why,
+                "second-offset-x: a sweep between walls takes none (a random start could put the second droplet "
+                "outside them)");
   return run.IsValid(why);
 }
 
