@@ -1,6 +1,7 @@
 // A search's run on a history file (softdrop/service.hpp), as the program and the Python module
 // run it: what its observer hears, a run stopped by the observer and resumed to the same bits,
 // the check of given options against a stored run, and what a refused run leaves on disk.
+#include <SQLiteCpp/SQLiteCpp.h>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -257,6 +258,31 @@ TEST(SearchService, IslandsAreRunsOfOneArchipelagoAndResumeTogetherToTheSameBits
   }
   std::filesystem::remove(whole);
   std::filesystem::remove(parts);
+}
+
+TEST(SearchService, AStoredTargetThatIsNotAWholeNumberIsRefusedByOneSearchAndByIslands) {
+  for (const int islands : {1, 2}) {
+    const std::string db = test::fresh_path("search_service_target.db");
+    SearchRun run = small_run(db, 1);
+    run.islands = islands;
+    Recorder heard;
+    run_search(run, heard);
+    SQLite::Database(db, SQLite::OPEN_READWRITE)
+        .exec(R"(UPDATE runs SET params = json_set(params, '$."target-generations"', 2.5))");
+    const auto before = history_bits(db, 1);
+    run.resume = 1;
+    run.generations.reset();
+    try {
+      run_search(run, heard);
+      ADD_FAILURE() << islands << " island(s): a target of 2.5 was read";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("run 1: its stored target-generations 2.5 is not a whole number"),
+                std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(history_bits(db, 1), before);
+    std::filesystem::remove(db);
+  }
 }
 
 TEST(SearchService, AFileThatIsNotAHistoryIsRefusedAndKept) {

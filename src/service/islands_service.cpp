@@ -59,9 +59,8 @@ Archipelago resumed(History& history, const SearchRun& run, const nlohmann::json
   if (const std::string bad = contradictions(wanted, stored, run.given); !bad.empty())
     throw std::invalid_argument("resume " + std::to_string(run.resume) +
                                 ": the command line contradicts the stored run: " + bad);
-  a.target = SearchRun::kDefaultGenerations;
-  if (stored.contains("target-generations")) a.target = stored["target-generations"].get<std::int64_t>();
-  if (run.generations) a.target = *run.generations;
+  a.target = run.generations.value_or(
+      stored_target(stored, run.db, members.front().id).value_or(SearchRun::kDefaultGenerations));
   for (const RunRecord& r : members) {
     history.check_run(r.id);
     a.runs.push_back(r.id);

@@ -125,8 +125,7 @@ ReadBack read_back(History& history, const SearchRun& run, SearchOptions* option
   if (const std::string bad = contradictions(wanted_params(run), stored, run.given); !bad.empty())
     throw std::invalid_argument("resume " + std::to_string(run.resume) +
                                 ": the command line contradicts the stored run: " + bad);
-  if (stored.contains("target-generations") && stored["target-generations"].is_number_integer())
-    r.stored_target = stored["target-generations"].get<std::int64_t>();
+  r.stored_target = stored_target(stored, run.db, run.resume);
   return r;
 }
 

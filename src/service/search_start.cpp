@@ -100,6 +100,15 @@ nlohmann::json stored_params(const RunRecord& run, const SearchOptions& options)
   return stored;
 }
 
+std::optional<std::int64_t> stored_target(const nlohmann::json& stored, const std::string& db, std::int64_t run) {
+  if (!stored.contains("target-generations")) return std::nullopt;
+  const nlohmann::json& t = stored.at("target-generations");
+  if (!t.is_number_integer() || t.get<std::int64_t>() < 0 || t.get<std::int64_t>() > 1'000'000'000)
+    throw std::runtime_error("--db '" + db + "': run " + std::to_string(run) + ": its stored target-generations " +
+                             t.dump() + " is not a whole number in [0, 1e9]");
+  return t.get<std::int64_t>();
+}
+
 std::string contradictions(const nlohmann::json& wanted, const nlohmann::json& stored,
                            const std::vector<std::string>& given) {
   std::string out;

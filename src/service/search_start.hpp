@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,11 @@ Search resumed_search(History& history, const RunRecord& run, const SearchOption
 /// The stored parameters of a run, with the keys a run stored before they existed read as what it
 /// did (search_params_to_json of `options`, the run's options read back).
 nlohmann::json stored_params(const RunRecord& run, const SearchOptions& options);
+
+/// The target a resume without one goes on to, as stored with the run (`stored`: its parameters;
+/// none if it has no target stored). Throws std::runtime_error naming the db and run if the stored
+/// target is not a whole number in [0, 1e9].
+std::optional<std::int64_t> stored_target(const nlohmann::json& stored, const std::string& db, std::int64_t run);
 
 /// The `given` keys whose value in `wanted` is not the stored one, as "--key value (stored value)"
 /// items; "" when none differs.
