@@ -155,6 +155,8 @@ py::object sweep(const py::object& db, const py::dict& keywords, const py::objec
   run.sweep = sweep_of_values(values, given);
   apply_sweep_preset(preset, given, &run.sweep);
   std::tie(run.shard, run.shards) = cli::parse_shard(shard);
+  if (format != "table" && format != "csv" && format != "json")
+    throw std::invalid_argument("format = '" + format + "': must be table, csv or json");
   if (std::string why; !run.IsValid(&why)) throw std::invalid_argument(why);
   return run_hosted(callback, [&](cli::Host* host) { cli::run_sweep_run(run, quiet, format, host); });
 }

@@ -62,7 +62,7 @@ std::vector<std::string> read_keywords(const std::string& command, const py::dic
   for (const auto& [name, value] : values->items()) names.push_back(name);
   for (const auto& [name, option] : options) names.push_back(name);
 
-  if (keywords.contains("config")) {
+  if (keywords.contains("config") && !keywords["config"].is_none()) {
     const std::string file = path_arg(keywords["config"], "config").string();
     for (const auto& [key, value] : cli::config_values(file, command)) {
       const std::string where = "config file '" + file + "': " + key;
@@ -77,7 +77,7 @@ std::vector<std::string> read_keywords(const std::string& command, const py::dic
   }
   for (const auto& [k, value] : keywords) {
     const std::string keyword = py::str(k);
-    if (keyword == "config") continue;
+    if (keyword == "config" || value.is_none()) continue;  // None: the option's default, as if not given
     const std::string name = library_name(keyword);
     if (!known(name)) {
       const std::string near = cli::nearest_name(name, names);

@@ -18,7 +18,8 @@ namespace py = pybind11;
 /// value, read and checked by `set` (which names the keyword in its errors), applies.
 using CallOption = std::function<void(py::handle value, const char* keyword)>;
 
-/// Reads `keywords` (and the values of the file named by its `config`, first) into `values`,
+/// Reads `keywords` (and the values of the file named by its `config`, first) into `values`
+/// (a keyword of None is left out, as if not given),
 /// whose keys are the named values and the type of each the type it takes, or hands them to
 /// `options`. Returns the names given (by keyword or config file), for SearchRun::given.
 /// A keyword no option has raises TypeError as Python does ("optimize() got an unexpected keyword

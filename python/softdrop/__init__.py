@@ -271,8 +271,9 @@ def _run_with_progress(run, db, callback, progress, options, unit, done_and_tota
 def optimize(db="softdrop.db", callback=None, progress=False, **options):
     """Runs a search in this process, as `softdrop optimize` does: the options are the program's
     long options as keywords (generations=500, lambda_=4, strategy="es", relocate_every=3,
-    resume=1, quiet=True, config="droplet.toml", ...), each read as the type of its default, with
-    the same defaults, presets and checks, and the history file is the one the program writes.
+    resume=1, quiet=True, config="droplet.toml", ...), each read as the type of its default (None:
+    the default, as if not given), with the same defaults, presets and checks, and the history file
+    is the one the program writes.
 
     `callback(event)`, if given, is called after each generation is committed, with a dict: run,
     generation, kind, accepted_candidate (None: none kept), candidates, seconds, best_tortuosity,

@@ -88,6 +88,14 @@ def test_a_config_file_is_refused_naming_it_and_the_key(tmp_path, text, says):
     assert not (tmp_path / "never.db").exists()
 
 
+def test_none_leaves_an_option_at_its_default(tmp_path):
+    db = tmp_path / "n.db"
+    summary = softdrop.optimize(db, generations=1, resume=None, strategy=None, **SEARCH, **balloon.OPTIONS)
+    assert summary.run == 1 and summary.strategy == "es"
+    with pytest.raises(ValueError, match="r_max"):  # no config: the default droplet's radii in this box
+        softdrop.optimize(tmp_path / "never.db", config=None, r_max=-1, **SEARCH)
+
+
 def test_the_paper_preset_is_the_programs(tmp_path):
     ours, theirs = tmp_path / "ours.db", tmp_path / "theirs.db"
     options = {k: v for k, v in SEARCH.items() if k not in ("objective", "lambda_")}
