@@ -67,14 +67,23 @@ TEST(BadInputLines, OptionsACommandWouldIgnoreAreRefused) {
        {"simulate --medium " + medium + " --walls", "walls: has no effect with --medium"},
        {"simulate --snapshot-times 0.1", "snapshot-times: has no effect without --snapshots"},
        {"simulate --trace-interval 50", "trace-interval: has no effect without --trace"},
+       {"sweep --db " + store + " --porosity 0.7", "porosity: not an option of sweep, whose media take --porosities"},
+       {"sweep --db " + store + " --medium-seed=3",
+        "medium-seed: not an option of sweep, whose media take their seeds"},
        {"simulate --trace-interval 0 --trace " + temp_path("t.csv"),
         "--trace-interval: '0' is not a whole number >= 1"},
        {"averagings --db " + store + " --group 0", "--group: '0' is not a whole number >= 1"},
        {"render snapshots --times 0.01,1e308 -o " + temp_path("t.png"), "times: 1e+308 is after the run's last step"}});
-  // A config file may name a generated medium's grains (the installed droplets' configs do).
+  // A config file may name a generated medium's grains (the installed droplets' configs do), and
+  // a porosity and a medium seed that a sweep leaves alone.
   const Result r = run("simulate --medium " + medium + " --x0 250 --config " + SOFTDROP_SOURCE_DIR +
                        "/results/calibration/passage.toml");
   EXPECT_EQ(r.code, 0) << r.err;
+  const std::string config = fresh("medium.toml");
+  std::ofstream(config) << "porosity = 0.6\nmedium-seed = 3\n";
+  const Result c =
+      run("--config " + config + " --check sweep --db " + store + " --porosities 0.8 --media 4 --droplets 2");
+  EXPECT_EQ(c.code, 0) << c.err;
 }
 
 TEST(BadInputLines, GrainFilesNameTheFieldNotTheJsonLibrary) {

@@ -1,5 +1,6 @@
 #include "cli/cli.hpp"
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -75,6 +76,15 @@ void check_command_line(const CLI::App& app, const std::vector<std::string>& wor
     a = a->get_subcommands().back();
     check_medium_file_alone(*a, words);
   }
+  // A sweep's media take the porosities of --porosities and seeds derived from --seed: one
+  // medium's porosity or seed on its command line would be ignored (a config file's are left alone).
+  if (app.got_subcommand("sweep"))
+    for (const char* unused : {"--porosity", "--medium-seed"})
+      if (std::any_of(words.begin(), words.end(),
+                      [&](const std::string& w) { return w == unused || w.rfind(std::string(unused) + "=", 0) == 0; }))
+        throw std::invalid_argument(std::string(unused + 2) + ": not an option of sweep, whose media take " +
+                                    (unused == std::string("--porosity") ? "--porosities" : "their seeds from --seed") +
+                                    "; leave it out");
 }
 
 }  // namespace

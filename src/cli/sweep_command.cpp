@@ -54,7 +54,10 @@ void add_sweep_command(CLI::App& app, SweepArgs& a) {
   g->add_option("--format", a.format, "Summary on stdout: table, csv or json")
       ->capture_default_str()
       ->check(CLI::IsMember({"table", "csv", "json"}));
-  add_medium_options(s, a.medium, false)->get_option("--medium")->description("(not used by sweep)");
+  CLI::Option_group* medium = add_medium_options(s, a.medium, false);
+  medium->get_option("--medium")->description("(not used by sweep)");
+  medium->get_option("--porosity")->description("(not used by sweep: see --porosities)");
+  medium->get_option("--medium-seed")->description("(not used by sweep: each medium's seed comes from --seed)");
   auto* d = add_droplet_options(s, a.sweep.droplet);
   add_exit_options(d, a.sweep.run);
   add_second_droplet_options(s, a.second);

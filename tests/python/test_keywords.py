@@ -16,7 +16,7 @@ import balloon
 CLI = os.environ["SOFTDROP_CLI"]
 SEARCH = dict(objective="single", grains=16, width=160, height=120, medium_seed=2, stuck_window=0.1, stuck_distance=1,
               lambda_=2, quiet=True, validate_starts=0)
-# Options the program's sweep takes but ignores (it generates its media from --seed, by porosity).
+# Options the program's sweep takes only to refuse them (it generates its media).
 SWEEP_IGNORES = {"medium", "pixel-size", "porosity", "medium-seed"}
 
 
