@@ -312,7 +312,7 @@ TEST(Simulation, RecordedContactForcesEqualForcesComputedFromTheRecords) {
 
 TEST(Simulation, TheContactLimitGivesTheSameBitsEightMassesAtATime) {
   // With AVX or AVX-512 the contact limit tests the masses free in their anchor's ball, or inside
-  // its one disc, eight at a time (src/sim/contact_kernels.inc); the scalar width tests them one by
+  // its one disc, eight at a time (src/sim/contact_limit_kernels.inc); the scalar width tests them one by
   // one. Every step must leave the same state and records: compared by the next step's forces
   // (the collisions read the records) and the positions, step by step, over contact-heavy runs:
   // the pore, a mass resting inside 12 discs at once, a droplet that lands on a grain across the

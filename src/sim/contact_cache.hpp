@@ -32,7 +32,7 @@ struct ContactCache {
   std::vector<GrainGrid::Disc> clear_discs;
   /// The first disc each mass was last found inside (x, y, r, grain), written with `discs`: a
   /// record of one disc is this alone, and for a mass whose anchor holds one disc it is that disc,
-  /// so that the contact limit loads eight masses' at once (src/sim/contact_lanes.hpp). Otherwise
+  /// so that the contact limit loads eight masses' at once (src/sim/contact_limit_wide.hpp). Otherwise
   /// it holds anything.
   std::vector<double> disc_x, disc_y, disc_r;
   std::vector<std::int32_t> disc_grain;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "contact_lanes.hpp"
+#include "contact_limit_wide.hpp"
 #include "image_contacts.hpp"
 #include "lane_policy.hpp"
 #include "ring_stages.hpp"
@@ -134,7 +134,7 @@ void contact_limit_stage(const DropletModel& m, DropletRuntime& r) {
 #if defined(SOFTDROP_AVX_DISPATCH)
   if (constraint_vector_width() >= VectorWidth::avx) {
     // Eight masses at a time: most are in their balls, free or inside their anchor's one disc. The
-    // vector code reads plain arrays (contact_lanes.hpp), so each field is set here, once.
+    // vector code reads plain arrays (contact_limit_wide.hpp), so each field is set here, once.
     lanes::ContactRecords records;
     records.x = r.state.x.data();
     records.y = r.state.y.data();

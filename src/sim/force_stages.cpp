@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "contact_lanes.hpp"
+#include "contact_limit_wide.hpp"
 #include "image_contacts.hpp"
 #include "lane_layout.hpp"
 #include "lane_policy.hpp"

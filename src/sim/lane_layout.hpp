@@ -2,7 +2,7 @@
 // Rings laid out lane by lane (internal): up to kMaxLaneRegisters x 8 rings of n masses each,
 // mass i of ring t at X[i * L + t], L = 8 x registers, so one group of eight lanes (an AVX-512
 // register, or two AVX ones) holds mass i of eight rings. The functions here run AVX-512 or AVX
-// code (lane_stages.cpp, lane_kernels.inc), whichever constraint_vector_width() says: call them
+// code (stages_wide.cpp, lane_kernels.inc), whichever constraint_vector_width() says: call them
 // only where it is at least VectorWidth::avx. Each lane gets the operations the one-ring code does,
 // in the same order, so each ring gets the same bits with either.
 

@@ -6,10 +6,10 @@
 // store_minus_ones, select_lanes), and Limits and constrain_springs (one spring on each lane,
 // length_constraint_kernel.inc). `x2_sse2` and `x4_avx` have the operations of that kernel on two
 // and four lanes, for the one-ring constraints; lane_scalar.hpp has one lane. src/sim/stage_kernels.inc,
-// lane_kernels.inc and contact_kernels.inc are written against these names and compiled once for each. Every operation
-// gives each lane the bits the scalar one gives, so both instruction sets, and the one-ring code, agree to the bit.
-// Call these only where constraint_vector_width() has the instruction set. These wrappers of intrinsics are the one
-// place where code is written once per instruction set, so they are alike by design.
+// lane_kernels.inc and contact_limit_kernels.inc are written against these names and compiled once for each. Every
+// operation gives each lane the bits the scalar one gives, so both instruction sets, and the one-ring code, agree to
+// the bit. Call these only where constraint_vector_width() has the instruction set. These wrappers of intrinsics are
+// the one place where code is written once per instruction set, so they are alike by design.
 
 #include <cstdint>
 
@@ -22,7 +22,7 @@ namespace softdrop::lanes {
 /// Which of the two the dispatchers call: x8_avx512 if the width in use has it, else x8_avx.
 inline bool avx512_in_use() { return constraint_vector_width() == VectorWidth::avx512; }
 
-// Two and four lanes, for the one-ring constraints (length_constraint.cpp, interleaved_constraint.cpp):
+// Two and four lanes, for the one-ring constraints (length_constraint.cpp, length_constraint_wide.cpp):
 // only the operations length_constraint_kernel.inc needs.
 namespace x2_sse2 {
 constexpr int kWidth = 2;  // lanes of a V

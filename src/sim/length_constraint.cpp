@@ -41,7 +41,7 @@ int vector_width() {
 }
 
 #if defined(SOFTDROP_AVX_DISPATCH)
-// The red-black half-pass two, four and eight springs at a time (disjoint_spring_passes.inc), the
+// The red-black half-pass two, four and eight springs at a time (length_constraint_half_pass.inc), the
 // correction being the kernel of lane_simd.hpp (length_constraint_kernel.inc) shared with the lane-by-lane
 // step. Only the split of kWidth interleaved pairs of ends into two registers is per width.
 namespace two_lanes {
@@ -57,7 +57,7 @@ inline void store_ends(double* p, V i, V j) {
   _mm_storeu_pd(p + 2, _mm_unpackhi_pd(i, j));
 }
 #define SOFTDROP_LANE_TARGET
-#include "disjoint_spring_passes.inc"
+#include "length_constraint_half_pass.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace two_lanes
 
@@ -75,7 +75,7 @@ SOFTDROP_AVX inline void store_ends(double* p, V i, V j) {
   _mm256_storeu_pd(p + 4, _mm256_unpackhi_pd(i, j));
 }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX
-#include "disjoint_spring_passes.inc"
+#include "length_constraint_half_pass.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace four_lanes
 
@@ -93,8 +93,8 @@ SOFTDROP_AVX512 inline void store_ends(double* p, V i, V j) {
   _mm512_storeu_pd(p + 8, _mm512_permutex2var_pd(i, _mm512_set_epi64(15, 7, 14, 6, 13, 5, 12, 4), j));
 }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
-#include "disjoint_spring_passes.inc"
 #include "lane_policy.hpp"
+#include "length_constraint_half_pass.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace eight_lanes
 #endif

@@ -16,7 +16,7 @@ namespace {
 
 // The interleaved sequential order keeps its rings as lanes of vector registers (a padding lane
 // repeats a ring, doing the same work on the same memory): two or four rings to a register with
-// SSE2 or AVX (ring_lane_passes.inc, one loop for both), and with AVX-512 the lane-by-lane
+// SSE2 or AVX (length_constraint_wide_passes.inc, one loop for both), and with AVX-512 the lane-by-lane
 // constraint of the block on a copy laid out lane by lane.
 #if defined(SOFTDROP_AVX_DISPATCH)
 // Two rings per SSE2 register.
@@ -30,7 +30,7 @@ inline void store_lanes(double* const* x, int base, int i, const V& v) {
   _mm_storeh_pd(x[base + 1] + i, v);
 }
 #define SOFTDROP_LANE_TARGET
-#include "ring_lane_passes.inc"
+#include "length_constraint_wide_passes.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace pairs
 
@@ -48,7 +48,7 @@ SOFTDROP_AVX inline void store_lanes(double* const* x, int base, int i, const V&
   _mm_storeh_pd(x[base + 3] + i, hi);
 }
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX
-#include "ring_lane_passes.inc"
+#include "length_constraint_wide_passes.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace quads
 #endif

@@ -1,10 +1,11 @@
-// The contact limit's common cases eight masses at a time (contact_lanes.hpp): contact_kernels.inc
+// The contact limit's common cases eight masses at a time (contact_limit_wide.hpp): contact_limit_kernels.inc
 // compiled for AVX-512 and for AVX. The two namespace blocks below, alike with those of
-// lane_stages.cpp, are how a kernel written once is compiled for each instruction set.
+// stages_wide.cpp, are how a kernel written once is compiled for each instruction set.
+
+#include "contact_limit_wide.hpp"
 
 #include <cstdint>
 
-#include "contact_lanes.hpp"
 #include "lane_simd.hpp"
 #include "softdrop/droplet.hpp"
 
@@ -14,7 +15,7 @@ namespace softdrop::lanes {
 namespace x8_avx {
 namespace {
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX
-#include "contact_kernels.inc"
+#include "contact_limit_kernels.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace
 }  // namespace x8_avx
@@ -22,7 +23,7 @@ namespace {
 namespace x8_avx512 {
 namespace {
 #define SOFTDROP_LANE_TARGET SOFTDROP_AVX512
-#include "contact_kernels.inc"
+#include "contact_limit_kernels.inc"
 #undef SOFTDROP_LANE_TARGET
 }  // namespace
 }  // namespace x8_avx512
