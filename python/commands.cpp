@@ -123,7 +123,7 @@ py::object optimize(const py::object& db, const py::dict& keywords, const py::ob
   set_search_run_values(values, &run);
   if (!run.start.file.empty())  // (a config file may name the grains its droplet was calibrated among)
     for (const std::string& key : search_medium_keys())
-      if (keywords.contains(keyword_of(key)))
+      if (const std::string k = keyword_of(key); keywords.contains(k) && !keywords[k.c_str()].is_none())
         throw std::invalid_argument(key +
                                     ": has no effect with --medium (the grain file fixes the medium); leave it out");
   for (const std::string& key : apply_search_preset(preset, given, &run.search)) given.push_back(key);

@@ -92,6 +92,11 @@ def test_none_leaves_an_option_at_its_default(tmp_path):
     db = tmp_path / "n.db"
     summary = softdrop.optimize(db, generations=1, resume=None, strategy=None, **SEARCH, **balloon.OPTIONS)
     assert summary.run == 1 and summary.strategy == "es"
+    grains = tmp_path / "m.json"
+    softdrop.best_arrangement(db).medium.save(grains)
+    options = {k: v for k, v in SEARCH.items() if k not in ("grains", "width", "height", "medium_seed")}
+    summary = softdrop.optimize(db, medium=grains, grains=None, width=None, generations=1, **options, **balloon.OPTIONS)
+    assert summary.run == 2
     with pytest.raises(ValueError, match="r_max"):  # no config: the default droplet's radii in this box
         softdrop.optimize(tmp_path / "never.db", config=None, r_max=-1, **SEARCH)
 
