@@ -13,6 +13,8 @@
 
 #include "arguments.hpp"
 #include "bindings.hpp"
+#include "cli/cli.hpp"
+#include "cli/config_file.hpp"
 #include "cli/file_roles.hpp"
 #include "cli/output.hpp"
 #include "cli/search_setup.hpp"
@@ -104,12 +106,10 @@ std::map<std::string, CallOption> search_call_options(SearchRun* run, cli::Searc
 }
 
 // What the program's config files may give a command beside its own options: the keys that shape a
-// generated medium, which a command that does not take them leaves alone.
+// generated medium, which a command that does not take them leaves alone (the program's own rule).
 bool shapes_a_medium(const std::string& key) {
-  static const nlohmann::json sweep = sweep_values(default_sweep());
-  const std::vector<std::string>& search = search_medium_keys();
-  return key == "medium" || key == "pixel-size" || key == "porosity" || key == "grains" || sweep.contains(key) ||
-         std::find(search.begin(), search.end(), key) != search.end();
+  static const cli::Cli program;
+  return cli::shapes_a_medium(program.app, key);
 }
 
 py::object optimize(const py::object& db, const py::dict& keywords, const py::object& callback) {

@@ -59,7 +59,7 @@ bool SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string
   }
   const CLI::Option* option = command->get_option_no_throw("--" + item.name);
   if (option == nullptr) option = app_.get_option_no_throw("--" + item.name);  // program-level options
-  if (option == nullptr && shapes_a_medium(item.name)) return false;
+  if (option == nullptr && shapes_a_medium(app_, item.name)) return false;
   if (option == nullptr) {
     std::string path;
     for (const std::string& parent : item.parents) path += parent + " ";
@@ -76,8 +76,8 @@ bool SubcommandConfig::check_item(const CLI::ConfigItem& item, const std::string
 // The installed droplet configs name the grains their droplet was calibrated among (r-min, r-max),
 // for the commands that generate media; a command that takes no medium options (validate, which
 // reads its medium) leaves such keys alone, as it does a medium option on the command line.
-bool SubcommandConfig::shapes_a_medium(const std::string& key) const {
-  const auto simulate = app_.get_subcommands([](const CLI::App* s) { return s->get_name() == "simulate"; });
+bool shapes_a_medium(const CLI::App& app, const std::string& key) {
+  const auto simulate = app.get_subcommands([](const CLI::App* s) { return s->get_name() == "simulate"; });
   if (simulate.empty()) return false;
   for (const CLI::App* group : simulate.front()->get_subcommands(
            [](const CLI::App* s) { return s->get_name().empty() && s->get_group() == "Medium"; }))

@@ -26,9 +26,13 @@ class SubcommandConfig : public CLI::ConfigTOML {
   /// Throws naming the file and key if the item is refused; false: leave it out (a medium's key
   /// for a command without medium options).
   bool check_item(const CLI::ConfigItem& item, const std::string& file) const;
-  bool shapes_a_medium(const std::string& key) const;
   const CLI::App& app_;
 };
+
+/// Whether a config file's `key` is an option that shapes a generated medium (one of simulate's
+/// medium options in the program `app`): a command that does not take it leaves it alone, where
+/// another unknown key is refused.
+bool shapes_a_medium(const CLI::App& app, const std::string& key);
 
 /// The values a TOML config file gives the command `command`, for a host that takes options as
 /// named values rather than a command line (the Python module): its plain keys, then those of its

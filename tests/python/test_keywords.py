@@ -78,6 +78,7 @@ def test_a_config_files_values_are_keywords_that_a_keyword_overrides(tmp_path):
 @pytest.mark.parametrize("text, says", [
     ("lamda = 3\n", r"c.toml': lamda: optimize has no option lamda \(did you mean lambda\?\)"),
     ("lambda = 2.5\n", r"c.toml': lambda: a whole number, not 2.5"),
+    ("media = 4\n", r"c.toml': media: optimize has no option media"),  # a sweep's key, refused as the program does
     ("lambda = [\n", r"c.toml' line 1"),
 ])
 def test_a_config_file_is_refused_naming_it_and_the_key(tmp_path, text, says):
