@@ -15,7 +15,7 @@
 // about 200 grains at phi 0.7); medium-5000 (the same grain density in a 25x larger box, about
 // 5000 grains); medium-200-red-black (medium-200 with the red-black constraint order); batch
 // (`simulate --droplets 24` on the medium-200 medium: one droplet at a time on 1 thread, the
-// default lanes stepped together (24 with AVX-512 or AVX, 6 with SSE2) on 1 thread, and on all
+// default lanes stepped together (24 with AVX-512 or AVX, 1 with SSE2) on 1 thread, and on all
 // threads);
 // sweep and sweep-long (16 and 64 droplets through each of 4 media, on 1 thread and on all; the
 // paper's sweep has 200 per medium); search-l1 and search-l2 (the paper's search at lambda 1 and 2,

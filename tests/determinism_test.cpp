@@ -60,8 +60,8 @@ TEST(Determinism, SameSeedSameTortuosityAtOneAndTwoThreads) {
 }
 
 TEST(Determinism, BatchHasTheSameBitsAtEveryVectorWidth) {
-  // A batch on 2 threads with its default lanes (24 in lane-by-lane blocks with AVX-512 or AVX, 6
-  // with SSE2, 1 scalar) gives each droplet the bits it gets at every other width.
+  // A batch on 2 threads with its default lanes (24 in lane-by-lane blocks with AVX-512 or AVX, 1
+  // with SSE2 or none) gives each droplet the bits it gets at every other width.
   std::vector<std::vector<RunSummary>> runs;
   for (VectorWidth width : test::kVectorWidths) {
     const test::VectorWidthLimit limit(width);

@@ -60,11 +60,12 @@ Medium medium_of_porosity_08() {
 }
 
 TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
-  // Rings of mixed sizes (grouped by size, up to 24 at a time: 3 AVX-512 registers of 8, 3 AVX
-  // registers of 4 or 3 SSE2 registers of 2), stretched and squeezed at random, at every vector
-  // width.
+  // Rings of mixed sizes, stretched and squeezed at random, at every vector width. With AVX-512 or
+  // AVX, rings of one size go as lanes of the block's constraint, up to 24 at a time (the 26
+  // first: 24, then 2), the five last in one group of eight with three padding lanes; groups under
+  // fewest_lane_rings (2 and 2 rings, 1) go one by one, as they all do with SSE2 or none.
   std::vector<int> sizes(26, 40);
-  for (int masses : {41, 41, 16, 40, 40, 40}) sizes.push_back(masses);
+  for (int masses : {41, 41, 16, 40, 40, 40, 40, 40}) sizes.push_back(masses);
   const DropletParams p;
   for (VectorWidth width : test::kVectorWidths) {
     const test::VectorWidthLimit limit(width);

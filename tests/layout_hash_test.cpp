@@ -1,5 +1,5 @@
 // Every layout of the step keeps the golden state hashes (golden_hashes.hpp): one ring stepped
-// alone or run by its run loop, rings stepped side by side with their constraints interleaved, and
+// alone or run by its run loop, rings stepped one after another with their constraints together, and
 // droplets laid out lane by lane in a block, at every vector width the processor has. A driver that
 // drifts from the others by one rounding fails here, even where the droplets' summaries agree. The
 // run loops end as the droplet leaves the medium, so they are held to the state there (run_hash).
@@ -15,6 +15,7 @@
 #include "golden_hashes.hpp"
 #include "sim/interleaved.hpp"
 #include "sim/lane_policy.hpp"
+#include "sim/ring_group_step.hpp"
 #include "sim/step_test_seam.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -72,6 +73,27 @@ std::vector<RunEnd> interleaved_ends(const std::vector<test::GoldenRun>& runs) {
   return ends;
 }
 
+// Four droplets of golden run `g` stepped `g.steps` times as a ring group (RingGroup, the layout
+// run_interleaved steps the droplets outside a block in): their states' hashes. With AVX or
+// AVX-512 their sequential constraints go as lanes of the block's constraint (four rings, at
+// least fewest_lane_rings(), padded to a group of eight); otherwise one after another.
+std::vector<std::uint64_t> ring_group_hashes(const test::GoldenRun& g, const Medium& medium) {
+  std::deque<Simulation> sims;
+  std::vector<Simulation*> group_sims;
+  for (int t = 0; t < 4; ++t) {
+    sims.emplace_back(g.params, medium);
+    sims.back().place_above(100);
+    group_sims.push_back(&sims.back());
+  }
+  std::vector<DropletState*> rings;
+  std::vector<int> corrections;
+  RingGroup group{group_sims.data(), static_cast<int>(group_sims.size()), &rings, &corrections};
+  for (int k = 0; k < g.steps; ++k) run_stages(group);
+  std::vector<std::uint64_t> hashes;
+  for (const Simulation& sim : sims) hashes.push_back(sim.state_hash());
+  return hashes;
+}
+
 // Each droplet ended as its golden run's run loop ends.
 void expect_golden_ends(const std::vector<test::GoldenRun>& runs, const std::vector<RunEnd>& ends) {
   for (std::size_t d = 0; d < runs.size(); ++d) {
@@ -114,8 +136,11 @@ TEST(LayoutHash, EveryLayoutAtEveryWidthKeepsTheGoldenHashes) {
       EXPECT_EQ(run.outcome, Outcome::passed) << run.reason;
       EXPECT_EQ(run.steps, golden[g].run_steps);
       EXPECT_EQ(hex(sim.state_hash()), hex(golden[g].run_hash)) << "Simulation::run";
-      // Side by side: a block (AVX, AVX-512) or interleaved constraints (SSE2, scalar), and a ring
-      // of other parameters stepped with them.
+      // A ring group of four.
+      for (const std::uint64_t h : ring_group_hashes(golden[g], pore))
+        EXPECT_EQ(hex(h), hex(golden[g].hash)) << "RingGroup";
+      // Side by side: a block (AVX, AVX-512) or a ring group (SSE2, scalar), and a ring of other
+      // parameters stepped with them.
       const std::vector<test::GoldenRun> runs = nine_and_one(golden, g);
       expect_golden_ends(runs, interleaved_ends(runs));
     }
@@ -151,8 +176,10 @@ TEST(LayoutHash, ADriftingDriverFailsTheGoldenHashesInEveryLayout) {
     for (int k = 0; k < defaults.steps; ++k) sim.step();
     const std::uint64_t stepped = sim.state_hash();
     const std::vector<RunEnd> mutated = interleaved_ends(runs);
+    const std::vector<std::uint64_t> group = ring_group_hashes(defaults, pore);
     test_seam::step_mutation() = test_seam::StepMutation::none;
     EXPECT_NE(hex(stepped), hex(defaults.hash)) << "Simulation::step";
+    for (const std::uint64_t h : group) EXPECT_NE(hex(h), hex(defaults.hash)) << "RingGroup";
     for (std::size_t d = 0; d < runs.size(); ++d)
       EXPECT_NE(hex(mutated[d].hash), hex(clean[d].hash)) << "run_interleaved, droplet " << d;
     const std::vector<test::GoldenRun> nine(runs.begin(), runs.begin() + 9);

@@ -25,7 +25,7 @@ struct BatchOptions {
   std::uint64_t seed = 1;  ///< droplet i starts at x drawn from stream derive_seed(seed, i)
   int threads = 0;         ///< worker threads, 0 = all cores
   /// Droplets each thread steps together, in [1, 64]; 0: chosen for the processor (24 with AVX-512
-  /// or AVX, stepped as lane-by-lane blocks of three groups of eight, 6 with SSE2). Results do not
+  /// or AVX, stepped as lane-by-lane blocks of three groups of eight, 1 otherwise). Results do not
   /// depend on it.
   int lanes = 0;
   /// Start x of every droplet; NaN draws it uniformly in [0, W) (walls: [R, W - R]).

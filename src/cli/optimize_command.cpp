@@ -126,13 +126,15 @@ CLI::App* add_optimize_command(CLI::App& app, OptimizeArgs& a) {
   add_medium_options(s, a.medium, true);
   add_droplet_options(s, a.search.droplet);
 
-  // The preset fills in the options not given, once the command line and config are read, so that
-  // --check, the run and the stored parameters all see the search that runs.
+  // Once the command line and config are read: which stored keys were given, and the preset filling
+  // in the search options not given, so that --check, the run and the stored parameters all see
+  // the search that runs.
   s->parse_complete_callback([&a, s] {
-    std::vector<std::string> given;
-    for (const std::string& key : search_param_keys())
-      if (const CLI::Option* o = s->get_option_no_throw("--" + key); o && o->count() > 0) given.push_back(key);
-    a.preset_keys = apply_search_preset(a.preset, given, &a.search);
+    a.given.clear();
+    const nlohmann::json keys = search_run_values(default_search_run());
+    for (const auto& [key, value] : keys.items())
+      if (const CLI::Option* o = s->get_option_no_throw("--" + key); o && o->count() > 0) a.given.push_back(key);
+    for (std::string& key : apply_search_preset(a.preset, a.given, &a.search)) a.given.push_back(std::move(key));
   });
 
   auto* o = add_summary_options(s, a.out.format, a.out.json_file, a.out.quiet);

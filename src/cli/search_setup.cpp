@@ -1,13 +1,11 @@
 // What one search and islands share (search_setup.hpp).
 #include "cli/search_setup.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <stdexcept>
 
 #include "cli/output.hpp"
-#include "service/search_start.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/version.hpp"
 #include "store/params_json.hpp"
@@ -60,20 +58,6 @@ SearchStart start_of(const OptimizeArgs& a) {
   return start;
 }
 
-namespace {
-// The keys of `params` given on the command line (or in a config file), or set by its --preset:
-// on resume each must have the stored value.
-std::vector<std::string> given_keys(const nlohmann::json& params, const OptimizeArgs& a, const CLI::App* cmd) {
-  std::vector<std::string> keys;
-  for (const auto& [key, value] : params.items()) {
-    const CLI::Option* opt = cmd ? cmd->get_option_no_throw("--" + key) : nullptr;
-    const bool preset = std::find(a.preset_keys.begin(), a.preset_keys.end(), key) != a.preset_keys.end();
-    if (preset || (opt && opt->count() > 0)) keys.push_back(key);
-  }
-  return keys;
-}
-}  // namespace
-
 SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
   SearchRun run;
   run.search = a.search;
@@ -92,10 +76,7 @@ SearchRun search_run_of(const OptimizeArgs& a, const CLI::App* cmd) {
   run.migrate_every = a.islands.migrate_every;
   run.migration = to_string(a.islands.migration);
   run.own_island_starts = a.own_island_starts;
-  // The islands' keys count as given when they are, whatever --islands says.
-  nlohmann::json params = wanted_params(run);
-  set_island_params(run, &params);
-  run.given = given_keys(params, a, cmd);
+  run.given = a.given;
   return run;
 }
 

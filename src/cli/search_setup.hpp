@@ -52,9 +52,11 @@ struct OptimizeArgs {
   /// derive_seed(medium seed, i)) instead of all from one: restarts that sample starting media.
   bool own_island_starts = false;
   MediumArgs medium;
-  std::string preset;                    ///< "paper": the paper's algorithm for the search options not given
-  int validate_starts = 200;             ///< at the end, the best's held-out value over this many starts (0: none)
-  std::vector<std::string> preset_keys;  ///< the stored keys the preset set (compared on resume as if given)
+  std::string preset;         ///< "paper": the paper's algorithm for the search options not given
+  int validate_starts = 200;  ///< at the end, the best's held-out value over this many starts (0: none)
+  /// The stored keys given on the command line or in a config file, and those the preset set:
+  /// SearchRun::given, each compared with the stored run's on resume.
+  std::vector<std::string> given;
 
   OptimizeArgs();
 };
@@ -65,8 +67,8 @@ void add_objective_options(CLI::Option_group* g, OptimizeArgs& args);
 /// How a new run's first arrangement is made, from the command line (the medium's names read,
 /// not yet checked).
 SearchStart start_of(const OptimizeArgs& args);
-/// The library's run of one search (softdrop/service.hpp) for these options; `command` (nullptr:
-/// none parsed) tells which were given.
+/// The library's run of one search (softdrop/service.hpp) for these options, with args.given as
+/// its given keys; `command` (nullptr: none parsed) tells whether --generations was given.
 SearchRun search_run_of(const OptimizeArgs& args, const CLI::App* command);
 /// The summary's JSON of a stored held-out value; `objective` is NaN but for a robust objective.
 nlohmann::json held_out_json(const ValidationRecord& record, double objective);

@@ -4,6 +4,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "service/run_values.hpp"
 #include "service/search_start.hpp"
 #include "softdrop/medium.hpp"
 #include "store/params_json.hpp"

@@ -3,9 +3,9 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <type_traits>
 #include <utility>
 
-#include "service/search_start.hpp"
 #include "store/params_json.hpp"
 
 namespace softdrop {
@@ -28,6 +28,52 @@ SearchRun default_search_run() {
   // starts, compared on common starts.
   run.search.objective.kind = ObjectiveKind::mean;
   return run;
+}
+
+namespace {
+// The start's stored keys that are plain fields of MediumOptions, in one list for the writer
+// (search_run_params) and the reader (set_search_run_values): f(key, field) for each.
+template <class Medium, class F>
+void each_medium_field(Medium& m, const F& f) {
+  f("grains", m.grains);
+  f("width", m.width);
+  f("height", m.height);
+  f("r-min", m.r_min);
+  f("r-max", m.r_max);
+  f("r-median", m.r_median);
+  f("r-sigma", m.r_sigma);
+  f("medium-seed", m.seed);
+}
+// The islands' stored keys that are plain fields of SearchRun, the same way.
+template <class Run, class F>
+void each_island_field(Run& run, const F& f) {
+  f("islands", run.islands);
+  f("migrate-every", run.migrate_every);
+  f("migration", run.migration);
+}
+// The writer's f and the reader's: the field's value as the key's, and the key's as the field's.
+auto write_to(nlohmann::json& j) {
+  return [&j](const char* key, const auto& field) { j[key] = field; };
+}
+auto read_from(const nlohmann::json& j) {
+  return [&j](const char* key, auto& field) { field = j.at(key).get<std::remove_reference_t<decltype(field)>>(); };
+}
+}  // namespace
+
+nlohmann::json search_run_params(const SearchOptions& search, const SearchStart& start) {
+  nlohmann::json j = nlohmann::json::parse(search_params_to_json(search));
+  j["medium"] = start.file;
+  each_medium_field(start.medium, write_to(j));
+  j["radius-distribution"] = to_string(start.medium.radii);
+  j["walls"] = !start.medium.periodic;
+  return j;
+}
+
+const char* island_starts_name(bool own) { return own ? "own" : "shared"; }
+
+void set_island_params(const SearchRun& run, nlohmann::json* params) {
+  each_island_field(run, write_to(*params));
+  (*params)["island-starts"] = island_starts_name(run.own_island_starts);
 }
 
 nlohmann::json search_run_values(const SearchRun& run) {
@@ -53,20 +99,11 @@ void set_search_run_values(const nlohmann::json& values, SearchRun* run) {
     run->search = search_params_from_json(values.dump());
     MediumOptions& m = run->start.medium;
     run->start.file = values.at("medium").get<std::string>();
-    m.grains = values.at("grains").get<int>();
-    m.width = values.at("width").get<double>();
-    m.height = values.at("height").get<double>();
-    m.r_min = values.at("r-min").get<double>();
-    m.r_max = values.at("r-max").get<double>();
+    each_medium_field(m, read_from(values));
     m.radii = parse_radius_distribution(values.at("radius-distribution").get<std::string>());
-    m.r_median = values.at("r-median").get<double>();
-    m.r_sigma = values.at("r-sigma").get<double>();
     m.periodic = !values.at("walls").get<bool>();
-    m.seed = values.at("medium-seed").get<std::uint64_t>();
     m.gap = run->search.gap;  // the generator's spacing rule is the moves'
-    run->islands = values.at("islands").get<int>();
-    run->migrate_every = values.at("migrate-every").get<int>();
-    run->migration = values.at("migration").get<std::string>();
+    each_island_field(*run, read_from(values));
     const std::string starts = values.at("island-starts").get<std::string>();
     if (starts != island_starts_name(false) && starts != island_starts_name(true))
       throw std::invalid_argument("island-starts = '" + starts + "': must be " + island_starts_name(false) + " or " +

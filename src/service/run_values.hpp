@@ -12,6 +12,16 @@
 
 namespace softdrop {
 
+/// The parameters stored with a new run: the search's (search_params_to_json) and how its first
+/// arrangement is made (medium: the grain file or ""; grains, width, height, r-min, r-max,
+/// radius-distribution, r-median, r-sigma, walls, medium-seed). set_search_run_values reads them.
+nlohmann::json search_run_params(const SearchOptions& search, const SearchStart& start);
+/// The stored and command-line spelling of SearchRun::own_island_starts: "own" or "shared".
+const char* island_starts_name(bool own);
+/// Sets the islands' keys of the stored parameters (islands, migrate-every, migration,
+/// island-starts) to `run`'s.
+void set_island_params(const SearchRun& run, nlohmann::json* params);
+
 /// The named values of a run: its stored parameters (wanted_params) with the islands' keys always
 /// present. Each value's JSON type is the type the name takes.
 nlohmann::json search_run_values(const SearchRun& run);

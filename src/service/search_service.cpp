@@ -59,16 +59,6 @@ IslandOptions island_options(const SearchRun& run) {
   return o;
 }
 
-const char* island_starts_name(bool own) { return own ? "own" : "shared"; }
-
-void set_island_params(const SearchRun& run, nlohmann::json* params) {
-  nlohmann::json& j = *params;
-  j["islands"] = run.islands;
-  j["migrate-every"] = run.migrate_every;
-  j["migration"] = run.migration;
-  j["island-starts"] = island_starts_name(run.own_island_starts);
-}
-
 nlohmann::json wanted_params(const SearchRun& run) {
   nlohmann::json j = search_run_params(run.search, run.start);
   if (run.islands > 1)  // (runs of one search keep the parameters they always had)

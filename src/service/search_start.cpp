@@ -15,23 +15,6 @@ namespace softdrop {
 
 using detail::num;
 
-nlohmann::json search_run_params(const SearchOptions& search, const SearchStart& start) {
-  nlohmann::json j = nlohmann::json::parse(search_params_to_json(search));
-  const MediumOptions& m = start.medium;
-  j["medium"] = start.file;
-  j["grains"] = m.grains;
-  j["width"] = m.width;
-  j["height"] = m.height;
-  j["r-min"] = m.r_min;
-  j["r-max"] = m.r_max;
-  j["radius-distribution"] = to_string(m.radii);
-  j["r-median"] = m.r_median;
-  j["r-sigma"] = m.r_sigma;
-  j["walls"] = !m.periodic;
-  j["medium-seed"] = m.seed;
-  return j;
-}
-
 Generation starting_generation(const SearchStart& start, const SearchOptions& search, Configuration* best,
                                const std::function<void(int, const std::string&)>& refused) {
   if (!start.file.empty()) {

@@ -29,11 +29,6 @@ struct IslandsDrive {
 /// std::invalid_argument naming an unknown migration.
 IslandOptions island_options(const SearchRun& run);
 
-/// The stored and command-line spelling of SearchRun::own_island_starts: "own" or "shared".
-const char* island_starts_name(bool own);
-/// Sets the islands' keys of the stored parameters (islands, migrate-every, migration,
-/// island-starts) to `run`'s.
-void set_island_params(const SearchRun& run, nlohmann::json* params);
 /// Whether `run` resumes one of islands (reads its history; false if it has no such run).
 bool resumes_islands(const SearchRun& run);
 
@@ -52,11 +47,6 @@ DriveOptions drive_options(const SearchRun& run, std::int64_t target, SearchObse
 
 /// The island with the highest best T (the lowest-numbered among equals).
 std::size_t best_island(const std::vector<Configuration>& bests);
-
-/// The parameters stored with a new run: the search's (search_params_to_json) and how its first
-/// arrangement is made (medium: the grain file or ""; grains, width, height, r-min, r-max,
-/// radius-distribution, r-median, r-sigma, walls, medium-seed).
-nlohmann::json search_run_params(const SearchOptions& search, const SearchStart& start);
 
 /// Generation 0 of a new run: the grain file's medium, or random media until the droplet passes
 /// (`refused(attempt, why)` hears of each that it does not). A medium that cannot be generated at

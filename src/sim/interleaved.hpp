@@ -33,20 +33,21 @@ class LaneExchange {
   LaneExchange& operator=(const LaneExchange&) = delete;
   /// Droplets handed from one thread to another so far.
   std::int64_t handovers() const;
+  /// The threads' shared state, defined and used by lane_exchange.hpp alone.
+  struct Impl;
+  Impl* impl() const { return impl_.get(); }
 
  private:
-  friend class LaneExchangeSeat;
-  struct Impl;
   std::unique_ptr<Impl> impl_;
 };
 
 /// Runs droplets on this thread `lanes` at a time, stepped together. With AVX-512 or AVX, enough
-/// droplets of one set of parameters (3 with AVX-512, 6 with AVX) go as one block laid out lane by
-/// lane, eight to a group (one AVX-512 register, two AVX ones): every stage but the contacts
-/// (forces, viscosity, integration, either constraint order) is vector code across droplets, so
-/// the chains of dependent sums, square roots and divisions that bound one ring serve eight.
-/// Otherwise their sequential Provot constraints go link by link side by side
-/// (apply_length_constraint_interleaved), so the processor overlaps the chains. Every
+/// droplets of one set of parameters (fewest_block_droplets(), lane_policy.hpp) go as one block
+/// laid out lane by lane, eight to a group (one AVX-512 register, two AVX ones): every stage but
+/// the contacts (forces, viscosity, integration, either constraint order) is vector code across
+/// droplets, so the chains of dependent sums, square roots and divisions that bound one ring serve
+/// eight. The others step ring by ring, and their sequential constraints go as lanes of the
+/// block's where there are enough (apply_length_constraint_interleaved). Every
 /// droplet gets exactly the operations of Simulation::run, so its summary has the same bits (its
 /// state().fx, fy, scratch of a step, are not kept in a block).
 /// `next(job, may_wait)` fills in the next droplet and returns true, or returns false: when

@@ -24,38 +24,11 @@ LaneExchange::~LaneExchange() = default;
 std::int64_t LaneExchange::handovers() const { return impl_->handovers.load(); }
 
 namespace {
-// Simulation::centre_of_mass of sims[0..count): four droplets' ordered sums side by side where
-// they have the same number of masses (each sum's additions in its own order, so the same bits),
-// so that the processor overlaps their chains of dependent additions instead of waiting out each.
-void centres_of_four(Simulation* const* sims, int count, double* cx, double* cy) {
-  int t = 0;
-  for (; t + 4 <= count; t += 4) {
-    const DropletState* s[4] = {&sims[t]->runtime().state, &sims[t + 1]->runtime().state, &sims[t + 2]->runtime().state,
-                                &sims[t + 3]->runtime().state};
-    const int n = s[0]->size();
-    if (s[1]->size() != n || s[2]->size() != n || s[3]->size() != n) {
-      for (int k = 0; k < 4; ++k) sims[t + k]->centre_of_mass(cx + t + k, cy + t + k);
-      continue;
-    }
-    double x0 = 0, x1 = 0, x2 = 0, x3 = 0, y0 = 0, y1 = 0, y2 = 0, y3 = 0;
-    for (int i = 0; i < n; ++i) {
-      x0 += s[0]->x[i], x1 += s[1]->x[i], x2 += s[2]->x[i], x3 += s[3]->x[i];
-      y0 += s[0]->y[i], y1 += s[1]->y[i], y2 += s[2]->y[i], y3 += s[3]->y[i];
-    }
-    const double sums_x[4] = {x0, x1, x2, x3}, sums_y[4] = {y0, y1, y2, y3};
-    for (int k = 0; k < 4; ++k) cx[t + k] = sums_x[k] / n, cy[t + k] = sums_y[k] / n;
-  }
-  for (; t < count; ++t) sims[t]->centre_of_mass(cx + t, cy + t);
-}
-
-// Simulation::centre_of_mass of sims[0..count), `rest` a scratch of count: the lane-by-lane step's
-// where it still holds; the others' own sums (centres_of_four's when none holds).
-void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy, std::vector<int>& rest) {
-  rest.clear();
+// Simulation::centre_of_mass of sims[0..count): the lane-by-lane step's where it still holds, the
+// droplet's own sum otherwise.
+void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy) {
   for (int t = 0; t < count; ++t)
-    if (!LaneBlockStep::centre_of_mass(*sims[t], cx + t, cy + t)) rest.push_back(t);
-  if (rest.size() == static_cast<std::size_t>(count)) return centres_of_four(sims, count, cx, cy);
-  for (const int t : rest) sims[t]->centre_of_mass(cx + t, cy + t);
+    if (!LaneBlockStep::centre_of_mass(*sims[t], cx + t, cy + t)) sims[t]->centre_of_mass(cx + t, cy + t);
 }
 }  // namespace
 
@@ -68,11 +41,8 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   std::vector<int> corrections;
   std::vector<Simulation*> block, alone, stepped;
   std::vector<double> cx(static_cast<std::size_t>(lanes)), cy(cx.size());
-  std::vector<int> rest;  // centres_of_mass's scratch
-  rest.reserve(cx.size());
   std::vector<char> valid(cx.size());
-  const VectorWidth width = constraint_vector_width();
-  const bool lane_wise = width >= VectorWidth::avx;
+  const bool lane_wise = constraint_vector_width() >= VectorWidth::avx;
   LaneExchangeSeat seat(exchange, lanes);
   int busy = 0;
   // The lanes' split into the block and the droplets stepped alone is made again only after a
@@ -125,8 +95,8 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     }
     // One step of every busy lane. With AVX-512 or AVX, the droplets with the first one's
     // parameters go lane by lane (LaneBlockStep) if there are at least fewest_block_droplets();
-    // the others, and all with SSE2 alone, ring by ring with their constraints interleaved
-    // (RingGroup).
+    // the others, and all with SSE2 alone, ring by ring (RingGroup), whose constraint takes enough
+    // rings of one size as lanes of the block's.
     if (lanes_changed) {
       lanes_changed = false;
       block.clear();
@@ -139,7 +109,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
         else
           alone.push_back(sim);
       }
-      if (block.size() < fewest_block_droplets(width)) {
+      if (block.size() < fewest_block_droplets()) {
         alone.insert(alone.end(), block.begin(), block.end());
         block.clear();
       }
@@ -160,7 +130,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
       valid[stepped.size()] = l.run->simulation()->runtime().valid();
       stepped.push_back(l.run->simulation());
     }
-    centres_of_mass(stepped.data(), static_cast<int>(stepped.size()), cx.data(), cy.data(), rest);
+    centres_of_mass(stepped.data(), static_cast<int>(stepped.size()), cx.data(), cy.data());
     std::size_t t = 0;
     for (Lane& l : slots) {
       if (!l.run) continue;

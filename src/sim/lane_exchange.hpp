@@ -63,7 +63,7 @@ struct LaneExchange::Impl {
 // a droplet starts, ends or moves.
 class LaneExchangeSeat {
  public:
-  LaneExchangeSeat(LaneExchange* exchange, int lanes) : x_(exchange ? exchange->impl_.get() : nullptr), lanes_(lanes) {
+  LaneExchangeSeat(LaneExchange* exchange, int lanes) : x_(exchange ? exchange->impl() : nullptr), lanes_(lanes) {
     if (!x_) return;
     std::lock_guard lock(x_->m);
     seat_ = x_->seats.size();

@@ -13,9 +13,9 @@ namespace softdrop {
 /// The sequential order on several rings at once: each ring ends exactly as
 /// apply_length_constraint(ring, ..., ConstraintOrder::sequential) leaves it, and corrections[r]
 /// is its return value. The sequential pass is a chain of dependent square roots and divisions;
-/// the chains of different rings are independent. Rings of one size go link by link together, a
-/// ring per vector lane and up to three registers' chains side by side: up to 12 rings with AVX,
-/// 6 with SSE2.
+/// the chains of different rings are independent. With AVX-512 or AVX, rings of one size go link
+/// by link together, up to interleaved_lanes() of them, as lanes of the lane-by-lane layout
+/// (lane_layout.hpp); otherwise one after another.
 void apply_length_constraint_interleaved(DropletState* const* rings, int count, double rest_length, double max_strain,
                                          int iterations, int* corrections);
 
@@ -31,26 +31,24 @@ VectorWidth constraint_vector_width();
 /// the width in use. For tests and benchmarks that check or time the narrower paths.
 VectorWidth limit_constraint_vector_width(VectorWidth width);
 
-/// Rings apply_length_constraint_interleaved takes at once: a ring per vector lane, up to three
-/// registers side by side (24 with AVX-512, 12 with AVX, 6 with SSE2, 1 without).
-int interleaved_ring_capacity();
-
 /// Droplets per thread that run_interleaved steps fastest together: 24 with AVX-512 or AVX, which
-/// step them as lane-by-lane blocks of up to three groups of eight; otherwise
-/// interleaved_ring_capacity(). The default of BatchOptions::lanes.
+/// step them as lane-by-lane blocks of up to three groups of eight (and constrain the others' rings
+/// as lanes too); otherwise 1. The default of BatchOptions::lanes.
 int interleaved_lanes();
 /// BatchOptions::lanes as a batch steps them: `requested`, or interleaved_lanes() when it is 0.
 int batch_lanes(int requested);
 
-/// The fewest droplets worth a lane-by-lane block with `width`; fewer step faster one by one:
-/// 3 with AVX-512, 6 with AVX (whose groups of eight are two registers each).
-std::size_t fewest_block_droplets(VectorWidth width);
+/// The fewest droplets worth a lane-by-lane block (with AVX-512 or AVX): 3. Fewer step faster
+/// one by one.
+std::size_t fewest_block_droplets();
+/// The fewest rings of one size apply_length_constraint_interleaved constrains as lanes with
+/// `width`; fewer go one by one, which is faster: 3 with AVX-512, 4 with AVX.
+int fewest_lane_rings(VectorWidth width);
 
 /// Droplets each thread of a speculating search steps together, when its options leave it to the
-/// program: `per_generation` candidates a generation, `threads` threads. 8 on 1 and 2 threads; 4
-/// at per_generation = 1 with SSE2 alone (there the lanes only hide the sequential constraint's
-/// chain). With the red-black order, 1 with SSE2 alone and with AVX at per_generation = 1 on
-/// several threads. More threads keep the droplets in flight of 2 threads, over fewer lanes each:
+/// program: `per_generation` candidates a generation, `threads` threads. 8 on 1 and 2 threads; 1
+/// with SSE2 alone, where the droplets step one at a time, and with the red-black order and AVX at
+/// per_generation = 1 on several threads. More threads keep the droplets in flight of 2 threads, over fewer lanes each:
 /// more lanes run further ahead, so more speculative work is thrown away, and slow each droplet,
 /// which delays the decisions the rest waits for.
 int speculative_lanes(int per_generation, int threads, ConstraintOrder order);

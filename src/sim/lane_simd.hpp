@@ -5,7 +5,7 @@
 // counters), their operations, a few on eight int32 lanes in memory (equal_lanes,
 // store_minus_ones, select_lanes), and Limits and constrain_springs (one spring on each lane,
 // length_constraint_kernel.inc). `x2_sse2` and `x4_avx` have the operations of that kernel on two
-// and four lanes, for the one-ring constraints; lane_scalar.hpp has one lane. src/sim/stage_kernels.inc,
+// and four lanes, for the one-ring red-black constraint; lane_scalar.hpp has one lane. src/sim/stage_kernels.inc,
 // lane_kernels.inc and contact_limit_kernels.inc are written against these names and compiled once for each. Every
 // operation gives each lane the bits the scalar one gives, so both instruction sets, and the one-ring code, agree to
 // the bit. Call these only where constraint_vector_width() has the instruction set. These wrappers of intrinsics are

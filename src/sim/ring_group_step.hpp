@@ -10,9 +10,9 @@ namespace softdrop {
 
 // Each stage runs for each ring in turn, as the ring's own step runs it (OneRing), but for the
 // constraint: the sequential constraints of the rings that share the first sequential ring's
-// constraint parameters go link by link side by side, each ring a vector lane
-// (apply_length_constraint_interleaved), so that the processor overlaps their chains of dependent
-// square roots; every other ring is constrained alone. Each ring gets the bits of its own step().
+// constraint parameters go together (apply_length_constraint_interleaved: as lanes of the
+// lane-by-lane block's constraint, where there are enough); every other ring is constrained alone.
+// Each ring gets the bits of its own step().
 struct RingGroup {
   Simulation* const* sims = nullptr;
   int count = 0;

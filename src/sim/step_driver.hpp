@@ -14,7 +14,7 @@
 //                               true: the layout holds two droplets' rings, and the ring-ring
 //                               stages run; a layout without it has no code for them
 // The layouts: one ring (OneRing, below), a block of droplets in vector lanes (lane_block_step.cpp)
-// and rings stepped side by side with their constraints interleaved (ring_group_step.cpp). Each
+// and rings stepped one after another, their constraints together (ring_group_step.cpp). Each
 // runs the same kernels for a stage, so every droplet gets the same bits in every layout; the
 // golden state hashes hold them to it (tests/layout_hash_test.cpp).
 #include "ring_stages.hpp"
