@@ -12,6 +12,7 @@
 #include <type_traits>
 
 #include "lane_policy.hpp"
+#include "simd_dispatch.hpp"  // SOFTDROP_AVX_DISPATCH: where these functions are defined
 #include "softdrop/droplet.hpp"
 #include "step_context.hpp"
 
