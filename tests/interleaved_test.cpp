@@ -17,6 +17,7 @@
 #include "fixtures.hpp"
 #include "sim/lane_layout.hpp"
 #include "sim/lane_policy.hpp"
+#include "sim/step_test_seam.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/simulation.hpp"
 
@@ -79,8 +80,15 @@ TEST(Interleaved, RingsConstrainedTogetherEndAsEachAlone) {
     for (auto& s : together) rings.push_back(&s);
     std::vector<int> corrections(rings.size());
     // The same rest length for all, as run_interleaved groups them; 3 passes, some rings converge first.
+#if defined(SOFTDROP_TEST_HOOKS)
+    const std::int64_t groups_before = test_seam::lane_constraint_groups();
+#endif
     apply_length_constraint_interleaved(rings.data(), static_cast<int>(rings.size()), p.rest_length(), p.max_strain, 3,
                                         corrections.data());
+#if defined(SOFTDROP_TEST_HOOKS)
+    // Two groups as lanes (24 rings, then the five last) with AVX-512 or AVX, none otherwise.
+    EXPECT_EQ(test_seam::lane_constraint_groups() - groups_before, limit.in_use() >= VectorWidth::avx ? 2 : 0);
+#endif
     for (std::size_t r = 0; r < alone.size(); ++r) {
       const int c = apply_length_constraint(&alone[r], p.rest_length(), p.max_strain, 3);
       EXPECT_EQ(corrections[r], c) << "ring " << r;

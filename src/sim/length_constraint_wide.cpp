@@ -9,6 +9,7 @@
 #include "lane_policy.hpp"
 #include "simd_dispatch.hpp"
 #include "softdrop/droplet.hpp"
+#include "step_test_seam.hpp"
 
 namespace softdrop {
 
@@ -43,6 +44,9 @@ void apply_length_constraint_interleaved(DropletState* const* rings, int count, 
       lanes::copy_in(x, X, n, registers);
       lanes::copy_in(y, Y, n, registers);
       lanes::constrain_sequential(X, Y, n, registers, iterations, dmin, dmax, counts);
+#if defined(SOFTDROP_TEST_HOOKS)
+      ++test_seam::lane_constraint_groups();
+#endif
       std::fill(x + same, x + 8 * registers, nullptr);  // and is not copied back
       std::fill(y + same, y + 8 * registers, nullptr);
       lanes::copy_out(x, X, n, registers);

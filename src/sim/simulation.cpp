@@ -28,6 +28,10 @@ std::atomic<test_seam::StepMutation>& test_seam::step_mutation() {
   static std::atomic<StepMutation> mutation{StepMutation::none};
   return mutation;
 }
+std::int64_t& test_seam::lane_constraint_groups() {
+  thread_local std::int64_t groups = 0;
+  return groups;
+}
 #endif
 
 constexpr detail::EnumName<Outcome> kOutcomes[] = {{Outcome::passed, "passed"},

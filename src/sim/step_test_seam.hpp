@@ -2,6 +2,7 @@
 // The step driver's seam for tests, compiled only with -DSOFTDROP_TEST_HOOKS=ON (the builds of the
 // test scripts): a build for users has none of it.
 #include <atomic>
+#include <cstdint>
 
 #if defined(SOFTDROP_TEST_HOOKS)
 namespace softdrop::test_seam {
@@ -13,5 +14,9 @@ enum class StepMutation {
   damps_before_collisions,
 };
 std::atomic<StepMutation>& step_mutation();
+/// Groups of rings apply_length_constraint_interleaved has constrained as lanes on this thread: a
+/// test that the lanes path runs where the vector width says it does (both paths give the same
+/// bits, so nothing else would show that it had been compiled out).
+std::int64_t& lane_constraint_groups();
 }  // namespace softdrop::test_seam
 #endif
