@@ -38,6 +38,8 @@ class CMakeBuild(build_ext):
         target = pathlib.Path(self.get_ext_fullpath(ext.name))
         target.parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(core, target)
+        # Its stub, which the build writes from python/softdrop/_core.pyi.in and the droplet's fields.
+        shutil.copy2(build / "python" / "softdrop" / "_core.pyi", target.parent / "_core.pyi")
         program = target.parent / "bin" / "softdrop"
         program.parent.mkdir(parents=True, exist_ok=True)
         shutil.copy2(build / "softdrop", program)

@@ -59,11 +59,39 @@ def test_the_stubs_name_every_keyword_of_the_parameter_types():
     # exactly the attributes the module has, which __init__'s docstring lists with their defaults.
     import ast
 
+    # DropletParams' part is written by the build from the droplet's list of fields; each keyword
+    # and attribute is annotated with the type of its default.
     tree = ast.parse((pathlib.Path(softdrop.__file__).parent / "_core.pyi").read_text())
     for cls in (softdrop.DropletParams, softdrop.RunOptions):
         stub = next(n for n in tree.body if isinstance(n, ast.ClassDef) and n.name == cls.__name__)
         init = next(n for n in stub.body if isinstance(n, ast.FunctionDef) and n.name == "__init__")
         keywords = [a.arg for a in init.args.kwonlyargs]
-        assert keywords == list(cls().__getstate__()), cls.__name__
-        for name in keywords:
-            assert f"    {name} (" in cls.__init__.__doc__
+        defaults = cls().__getstate__()
+        assert keywords == list(defaults), cls.__name__
+        attributes = {n.target.id: n.annotation.id for n in stub.body if isinstance(n, ast.AnnAssign)}
+        assert list(attributes) == keywords, cls.__name__
+        for a in init.args.kwonlyargs:
+            assert a.annotation.id == attributes[a.arg] == type(defaults[a.arg]).__name__, (cls.__name__, a.arg)
+            assert f"    {a.arg} (" in cls.__init__.__doc__
+
+
+def test_the_stub_writer_refuses_a_template_without_its_one_marker_and_writes_nothing(tmp_path):
+    # The build's writer of _core.pyi (python/droplet_stub.cpp), beside the module in a build tree.
+    writer = PACKAGE_ROOT / "droplet_stub"
+    if not writer.exists():
+        pytest.skip("an installed package: the stub writer is in the build tree only")
+    template = (HERE.parents[1] / "python" / "softdrop" / "_core.pyi.in").read_text()
+    out = tmp_path / "_core.pyi"
+    r = subprocess.run([str(writer), str(HERE.parents[1] / "python" / "softdrop" / "_core.pyi.in"), str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    assert out.read_text() == (pathlib.Path(softdrop.__file__).parent / "_core.pyi").read_text()
+    marker = "    @DROPLET_PARAMS_FIELDS@\n"
+    for bad, times in ((template.replace(marker, ""), 0), (template + marker, 2)):
+        (tmp_path / "bad.pyi.in").write_text(bad)
+        r = subprocess.run([str(writer), str(tmp_path / "bad.pyi.in"), str(tmp_path / "bad.pyi")],
+                           capture_output=True, text=True)
+        assert r.returncode == 1
+        assert r.stderr == f"droplet_stub: {tmp_path / 'bad.pyi.in'}: needs the line @DROPLET_PARAMS_FIELDS@ once, " \
+                           f"not {times} times\n"
+        assert sorted(p.name for p in tmp_path.iterdir()) == ["_core.pyi", "bad.pyi.in"]
