@@ -54,6 +54,7 @@ for path in sorted(p for p in glob.glob(f"{out}/db/*.json") if not p.endswith("-
     start = json.load(open(path[:-5] + "-start.json"))["at_dt"]
     problem, objective, generations, seed = re.match(r"([a-z0-9]+)-([a-z-]+)-(\d+)-(\d+)", os.path.basename(path)).groups()
     h = j["held_out"] or {}
+    assert objective == "single" or j["starts"] == 16, f"{path}: K = {j['starts']}; the error of the gap below takes K = 16"
     lam = round((j["evaluations"] - 1) / int(generations))  # generation 0 is one evaluation
     rows.append(dict(problem=problem, objective=objective, strategy=j["strategy"], **{"lambda": lam},
                      generations=int(generations),
@@ -69,7 +70,8 @@ ran = {key(r) for r in rows}
 if os.path.exists(f"{out}/runs.csv"):
     for r in csv.DictReader(open(f"{out}/runs.csv")):
         if key(r) not in ran:
-            rows.append({k: (None if v == "" else v) for k, v in r.items() if k not in ("start_stuck_as_1", "held_out_stuck_as_1")})
+            rows.append({k: (None if v == "" else v) for k, v in r.items() if k not in ("start_stuck_as_1", "held_out_stuck_as_1", "in_search_reruns",
+                                                                     "gap_in_se_of_difference")})
 num = lambda v: None if v is None else float(v)
 for r in rows:
     for k in ("lambda", "generations", "seed", "droplets", "start_held_out_passed", "best_generation", "held_out_passed"):
@@ -84,12 +86,42 @@ stuck_as_1 = lambda t, passed: None if passed is None else ((t or 0) * passed + 
 for r in rows:
     r["start_stuck_as_1"] = stuck_as_1(r["start_held_out_t"], r["start_held_out_passed"])
     r["held_out_stuck_as_1"] = stuck_as_1(r["held_out_tortuosity"], r["held_out_passed"])
+# How far the in-search value may stray from the held-out one by chance alone: the standard error
+# of their difference, from the held-out droplets' spread (the spread of one droplet's value: T of
+# a passed droplet, with T = 1 for one that did not pass under the mean objective).
+#  - single: the in-search value is one droplet's T.
+#  - mean: a robust search runs its best again on each later generation's fresh starts, and its
+#    in-search value is then the mean of those re-runs (the value it won with is dropped): K
+#    droplets a re-run. A best kept in the last generation has no re-run: its value is the one it
+#    won with among the candidates, which chance favours (the winner's curse).
+#  - quantile and lower-bound: no simple standard error; left empty.
+# A search's K starts are stratified over the box's width; the held-out starts are not. Treating
+# both as independent droplets overstates the in-search error a little, if anything.
+K = 16  # every search here runs the default --starts
+for r in rows:
+    r["in_search_reruns"] = r["generations"] - r["best_generation"] if r["objective"] != "single" else None
+    r["gap_in_se_of_difference"] = None
+    n, se, t = r["held_out_passed"], r["held_out_standard_error"], r["held_out_tortuosity"]
+    if None in (n, se, t) or n < 2 or r["objective"] not in ("mean", "single"):
+        continue
+    spread_t = se * se * n  # the variance of a passed droplet's T
+    if r["objective"] == "single":
+        one, ref, droplets_in = spread_t, t, 1
+    else:
+        p = n / STARTS
+        one = p * spread_t + p * (1 - p) * (t - 1) ** 2
+        ref, droplets_in = r["held_out_objective"], K * max(1, r["in_search_reruns"])
+    held_var = spread_t / n if r["objective"] == "single" else one / STARTS
+    r["gap_in_se_of_difference"] = round((r["in_search_tortuosity"] - ref) / (one / droplets_in + held_var) ** 0.5, 2)
 rows.sort(key=lambda r: (r["problem"], r["objective"], r["strategy"], r["lambda"], r["generations"], r["seed"]))
 with open(f"{out}/runs.csv", "w", newline="") as f:
     w = csv.DictWriter(f, fieldnames=list(rows[0]))
     w.writeheader()
     w.writerows(rows)
 groups = {}
+def max_abs(values):
+    known = [abs(v) for v in values if v is not None]
+    return round(max(known), 1) if len(known) == len(values) else None
 for r in rows:
     groups.setdefault((r["problem"], r["objective"], r["generations"], r["strategy"], r["lambda"]), []).append(r)
 with open(f"{out}/summary.csv", "w", newline="") as f:
@@ -98,7 +130,7 @@ with open(f"{out}/summary.csv", "w", newline="") as f:
                 "median_held_out_t", "min_held_out_t", "max_held_out_t", "median_held_out_passed",
                 "median_start_stuck_as_1", "median_held_out_stuck_as_1", "min_held_out_stuck_as_1",
                 "max_held_out_stuck_as_1", "median_gap",
-                "max_gap_in_se", "median_wall_seconds"])
+                "max_gap_in_se", "max_gap_in_se_of_difference", "kept_in_last_generation", "median_wall_seconds"])
     for (problem, objective, generations, strategy, lam), rs in sorted(groups.items()):
         held = [r["held_out_tortuosity"] for r in rs]
         # The in-search value against its held-out counterpart: the objective over the held-out
@@ -114,6 +146,8 @@ with open(f"{out}/summary.csv", "w", newline="") as f:
                     round(min(r["held_out_stuck_as_1"] for r in rs), 4), round(max(r["held_out_stuck_as_1"] for r in rs), 4),
                     round(statistics.median(gaps), 4),
                     round(max(abs(g) / r["held_out_standard_error"] for g, r in zip(gaps, rs)), 1),
+                    max_abs([r["gap_in_se_of_difference"] for r in rs]),
+                    sum(r["in_search_reruns"] == 0 for r in rs),
                     statistics.median(r["wall_seconds"] for r in rs)])
 print(open(f"{out}/summary.csv").read(), end="")
 PY
