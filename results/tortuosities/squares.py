@@ -1,11 +1,12 @@
 """The flow tortuosity of freely overlapping squares, Matyka, Khalili and Koza's (2008) medium, to set
 softdrop's flow solve beside their lattice-Boltzmann law T = 1 - p ln(phi). Squares of side A pixels
 at uniform random places in an L x L box periodic in both directions (buffer_rows=0: the image is a
-unit cell), added until the porosity falls to the target; SEEDS boxes a porosity. Writes
-squares.csv (one row a box) and prints p = (T - 1) / (-ln phi) per porosity, mean and standard
-error over the boxes.
+unit cell), added until the porosity falls to the target; SEEDS boxes a porosity (seeds 1 to
+SEEDS). Writes squares_L_A.csv, or squares_L_A_PHIS.csv for other porosities than the default
+five (one row a box), and prints p = (T - 1) / (-ln phi) per porosity, mean and standard error
+over the boxes.
 
-    /usr/bin/python3 squares.py [L A SEEDS]      (default 400 8 4: about 3 minutes)
+    /usr/bin/python3 squares.py [L A SEEDS [PHIS]]      (default 400 8 4 0.5,0.6,0.7,0.8,0.9: about 3 minutes)
 """
 import math
 import os
@@ -17,6 +18,8 @@ import pandas as pd
 import softdrop
 
 L, A, SEEDS = (int(v) for v in sys.argv[1:4]) if len(sys.argv) >= 4 else (400, 8, 4)
+DEFAULT_PHIS = "0.5,0.6,0.7,0.8,0.9"
+PHIS = sys.argv[4] if len(sys.argv) >= 5 else DEFAULT_PHIS
 
 
 def squares(porosity, seed):
@@ -31,7 +34,7 @@ def squares(porosity, seed):
 
 
 rows = []
-for porosity in (0.5, 0.6, 0.7, 0.8, 0.9):
+for porosity in (float(v) for v in PHIS.split(",")):
     for seed in range(1, SEEDS + 1):
         image = squares(porosity, seed)
         try:
@@ -44,7 +47,8 @@ for porosity in (0.5, 0.6, 0.7, 0.8, 0.9):
                      "p": (r.hydrodynamic_tortuosity - 1) / -math.log(r.porosity),
                      "permeability": r.permeability})
 frame = pd.DataFrame(rows)
-out = os.path.join(os.path.dirname(os.path.abspath(__file__)), f"squares_{L}_{A}.csv")
+name = f"squares_{L}_{A}" + ("" if PHIS == DEFAULT_PHIS else f"_{PHIS.replace(',', '_')}")
+out = os.path.join(os.path.dirname(os.path.abspath(__file__)), f"{name}.csv")
 frame.to_csv(out, index=False)
 summary = frame.groupby("target_porosity").agg(boxes=("p", "size"), T=("hydrodynamic_tortuosity", "mean"),
                                                p=("p", "mean"), p_se=("p", "sem"))
