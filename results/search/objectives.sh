@@ -4,7 +4,8 @@
 # For each seed and run, a search of the problem with that objective and strategy (default es;
 # seed = medium seed), whose best gets its held-out value at the end (200 random starts, seed 1,
 # at dt and dt/2), and its starting medium the same (at dt): a random medium of the problem. Then
-# results/search/objectives/runs.csv and summary.csv, held_out.png (objectives_plot.py), and
+# results/search/objectives/runs.csv, summary.csv and paired.csv (each search against the default
+# search of its seed), held_out.png (objectives_plot.py), and
 # pictures of the bests with 50 droplets' paths (PROBLEM-OBJECTIVE-best-paths.png). A search already in objectives/db/ is not run again;
 # the rows of runs.csv whose database is not there are kept.
 # The problems:
@@ -150,6 +151,22 @@ with open(f"{out}/summary.csv", "w", newline="") as f:
                     sum(r["in_search_reruns"] == 0 for r in rs),
                     statistics.median(r["wall_seconds"] for r in rs)])
 print(open(f"{out}/summary.csv").read(), end="")
+# Each search against the default search (mean, es, lambda 8, 200 generations) of the same problem
+# and seed, which starts from the same medium: the held-out value with stuck droplets as T = 1.
+default = {(r["problem"], r["seed"]): r["held_out_stuck_as_1"] for r in rows
+           if (r["objective"], r["strategy"], r["lambda"], r["generations"]) == ("mean", "es", 8, 200)}
+with open(f"{out}/paired.csv", "w", newline="") as f:
+    w = csv.writer(f)
+    w.writerow(["problem", "objective", "generations", "strategy", "lambda", "seeds", "mean_difference",
+                "standard_error", "seeds_higher"])
+    for (problem, objective, generations, strategy, lam), rs in sorted(groups.items()):
+        d = [r["held_out_stuck_as_1"] - default[(problem, r["seed"])] for r in rs
+             if (problem, r["seed"]) in default and r["held_out_stuck_as_1"] is not None]
+        if len(d) < 2 or (objective, strategy, lam, generations) == ("mean", "es", 8, 200):
+            continue
+        w.writerow([problem, objective, generations, strategy, lam, len(d), round(statistics.mean(d), 4),
+                    round(statistics.stdev(d) / len(d) ** 0.5, 4), sum(x > 0 for x in d)])
+print(open(f"{out}/paired.csv").read(), end="")
 PY
 /usr/bin/python3 results/search/objectives_plot.py "$OUT/runs.csv" "$OUT/held_out.png"
 # The problem's best arrangement of the default objective (the seed with the highest held-out value)
