@@ -39,7 +39,7 @@ def main(csv, out):
                 xm = g[x].median() * 1.04 ** (k - 4)  # spread apart the searches of one budget
                 ax.errorbar([xm], [y.median()], yerr=[[y.median() - y.min()], [y.max() - y.median()]],
                             fmt=MARKERS.get(objective, "o"), color=COLOURS.get(strategy, "k"), ms=7, capsize=3,
-                            label=f"{objective}, {strategy}, λ {lam}, {generations} gen.")
+                            label=f"{objective}, {strategy}, λ {lam}, {generations} gen. ({len(g)} seeds)")
             ax.set_xscale("log")
             ax.set_xlabel(label)
             ax.grid(alpha=0.3)
@@ -48,7 +48,7 @@ def main(csv, out):
             if row == 0:
                 ax.set_title(TITLES[problem], fontsize=10)
                 ax.legend(fontsize=7, loc="upper left", framealpha=0.9)
-    fig.suptitle("The searches' bests on 200 held-out starts: median and range over 5 seeds", fontsize=11)
+    fig.suptitle("The searches' bests on 200 held-out starts: median and range over the seeds", fontsize=11)
     fig.tight_layout()
     fig.savefig(out, dpi=110)
 
