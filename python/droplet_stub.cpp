@@ -5,11 +5,10 @@
 //   droplet_stub TEMPLATE OUTPUT
 // The output is written to a temporary file beside it and renamed, so a build stopped midway
 // leaves the old stub or the new one, never half of one.
-#include <softdrop/droplet.hpp>
-
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <softdrop/droplet.hpp>
 #include <sstream>
 #include <string>
 #include <type_traits>
@@ -54,8 +53,7 @@ std::string fields_block(const std::string& indent) {
   const std::string hang(indent.size() + std::string("def __init__(").size(), ' ');  // under `self`
   std::string line = head;
   for (std::size_t i = 0; i < names.size(); ++i) {
-    const std::string item =
-        names[i] + ": " + types[i] + " = ..." + (i + 1 < names.size() ? "," : ") -> None: ...");
+    const std::string item = names[i] + ": " + types[i] + " = ..." + (i + 1 < names.size() ? "," : ") -> None: ...");
     if (line.size() + 1 + item.size() > 120 && line != head) {
       out << line << "\n";
       line = hang + item;
