@@ -14,6 +14,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "cli/columns.hpp"
+
 namespace {
 
 using softdrop::DropletField;
@@ -40,10 +42,7 @@ std::string fields_block(const std::string& indent) {
   DropletParams defaults;
   softdrop::visit_droplet_fields(
       [&](const DropletField& field, const auto& value) {
-        std::string name = field.key;
-        for (char& c : name)
-          if (c == '-') c = '_';
-        names.push_back(name);
+        names.push_back(softdrop::cli::column_name(field.key));  // the module's attribute name (module.cpp)
         types.emplace_back(python_type<std::decay_t<decltype(value)>>());
       },
       defaults);

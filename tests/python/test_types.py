@@ -80,10 +80,10 @@ def test_the_stub_writer_refuses_a_template_without_its_one_marker_and_writes_no
     writer = PACKAGE_ROOT / "droplet_stub"
     if not writer.exists():
         pytest.skip("an installed package: the stub writer is in the build tree only")
-    template = (HERE.parents[1] / "python" / "softdrop" / "_core.pyi.in").read_text()
+    source = HERE.parents[1] / "python" / "softdrop" / "_core.pyi.in"
+    template = source.read_text()
     out = tmp_path / "_core.pyi"
-    r = subprocess.run([str(writer), str(HERE.parents[1] / "python" / "softdrop" / "_core.pyi.in"), str(out)],
-                       capture_output=True, text=True)
+    r = subprocess.run([str(writer), str(source), str(out)], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr
     assert out.read_text() == (pathlib.Path(softdrop.__file__).parent / "_core.pyi").read_text()
     marker = "    @DROPLET_PARAMS_FIELDS@\n"
