@@ -33,9 +33,11 @@
 // (the kept evaluations'). two-droplets-079-1thread runs 24 pairs (simulate --second-droplet
 // distance) through a non-overlapping medium at phi 0.79, one pair at a time, and
 // one-droplet-079-1thread the same 24 first droplets alone: the ratio of their seconds is what a
-// second droplet costs. medium-200-image and batch-1thread-image run medium-200 and batch-1thread
-// on the same medium drawn as an image at 4 pixels a length unit (2000 x 2000 pixels), whose
-// solid the droplets meet through its distance field.
+// second droplet costs. two-droplets-079-batch-1thread and one-droplet-079-batch-1thread do the
+// same for 48 as batches on one thread (run_two_droplet_batch, run_batch): 24 droplets stepped
+// together, or 12 pairs, their rings as lanes of one block. medium-200-image and batch-1thread-image run medium-200 and
+// batch-1thread on the same medium drawn as an image at 4 pixels a length unit (2000 x 2000 pixels), whose solid the
+// droplets meet through its distance field.
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -174,6 +176,29 @@ Work two_droplets(const Medium& medium, int pairs, bool alone) {
       w.steps += static_cast<double>(s.first.steps + s.second.steps);
       w.droplets += 2;
     }
+  }
+  w.seconds = since(t0);
+  w.mass_updates = w.steps * p.masses;
+  w.grains = static_cast<long>(medium.grains.size());
+  return w;
+}
+
+// The two-droplet scene as batches on one thread, at the default lanes: `pairs` pairs, 12 stepped
+// together, or their first droplets, 24 together.
+Work two_droplet_batch(const Medium& medium, int pairs, bool alone) {
+  const DropletParams p = scene_droplet;
+  BatchOptions b;
+  b.droplets = pairs;
+  b.threads = 1;
+  Work w;
+  const auto t0 = Clock::now();
+  if (alone) {
+    for (const RunSummary& s : run_batch(p, medium, RunOptions{}, b)) w.steps += static_cast<double>(s.steps);
+    w.droplets = pairs;
+  } else {
+    for (const TwoDropletSummary& s : run_two_droplet_batch(p, medium, RunOptions{}, b, SecondDroplet{}))
+      w.steps += static_cast<double>(s.first.steps + s.second.steps);
+    w.droplets = 2 * pairs;
   }
   w.seconds = since(t0);
   w.mass_updates = w.steps * p.masses;
@@ -365,6 +390,8 @@ int main(int argc, char** argv) {
       {"search-mean", [&] { return search(8, threads, 15, ConstraintOrder::sequential, true, 16); }},
       {"one-droplet-079-1thread", [&] { return two_droplets(m079, 24, true); }},
       {"two-droplets-079-1thread", [&] { return two_droplets(m079, 24, false); }},
+      {"one-droplet-079-batch-1thread", [&] { return two_droplet_batch(m079, 48, true); }},
+      {"two-droplets-079-batch-1thread", [&] { return two_droplet_batch(m079, 48, false); }},
   };
   std::ostringstream csv;
   csv << "# machine: " << machine() << "\n# compiler: GCC " << __VERSION__ << ", "

@@ -86,6 +86,15 @@ inline CalibrationOptions tiny_calibration() {
   o.trace_droplets = 2;
   return o;
 }
+/// The two-droplet study's case, small: phi = 0.79, non-overlapping grains, 200 x 200.
+inline Medium small_medium_079() {
+  MediumOptions mo;
+  mo.kind = MediumKind::non_overlapping;
+  mo.porosity = 0.79;
+  mo.width = mo.height = 200;
+  mo.seed = 3;
+  return generate_medium(mo);
+}
 /// An empty periodic box.
 inline Medium empty_medium(double width = 500, double height = 500) { return Medium{width, height, true, {}, nullptr}; }
 

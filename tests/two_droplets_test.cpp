@@ -19,8 +19,8 @@
 #include "fixtures.hpp"
 #include "sim/droplet_runtime.hpp"
 #include "sim/ring_contact.hpp"
+#include "sim/ring_group_step.hpp"
 #include "sim/two_droplet_run.hpp"
-#include "sim/two_rings_step.hpp"
 #include "softdrop/batch.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/simulation.hpp"
@@ -55,16 +55,6 @@ void set_velocity(DropletState* s, double vx, double vy, double dt) {
   }
 }
 
-// The paper's cited case, small: phi = 0.79, non-overlapping grains, 200 x 200.
-Medium small_medium_079() {
-  MediumOptions mo;
-  mo.kind = MediumKind::non_overlapping;
-  mo.porosity = 0.79;
-  mo.width = mo.height = 200;
-  mo.seed = 3;
-  return generate_medium(mo);
-}
-
 TEST(TwoDroplets, AHeadOnCollisionInFreeFallKeepsThePairsMomentumAndNoMassGetsInside) {
   // No grains: two droplets thrown at each other (at different speeds, and off centre, so that
   // the collision turns them), falling together. Every internal force and every ring-ring force
@@ -85,15 +75,19 @@ TEST(TwoDroplets, AHeadOnCollisionInFreeFallKeepsThePairsMomentumAndNoMassGetsIn
     momentum(a.state(), b.state(), &px0, &py0);
     const int n = a.state().size() + b.state().size();
     RingContactScratch scratch;
+    std::vector<DropletState*> group_rings;
+    std::vector<int> corrections;
+    Simulation* sims[2] = {&a, &b};
     std::int64_t touching = 0, limited = 0;
     double worst_x = 0, worst_y = 0;
     const int steps = 3000;  // 0.018 time units: they meet within 0.002 and rebound
     for (int k = 1; k <= steps; ++k) {
-      TwoRings rings{a.model(), &a.runtime(), &b.runtime(), &scratch};
+      RingPair pair{0, 1, &scratch, 0};
+      RingGroup rings{sims, 2, &group_rings, &corrections, &pair, 1};
       run_stages(rings);
       ASSERT_TRUE(a.valid() && b.valid()) << "step " << k;
       touching += scratch.contacts > 0;
-      limited += rings.moved > 0;
+      limited += pair.moved > 0;
       ASSERT_FALSE(mass_inside(a.state(), b.state(), 0)) << "a mass of the first inside the second at step " << k;
       ASSERT_FALSE(mass_inside(b.state(), a.state(), 0)) << "a mass of the second inside the first at step " << k;
       double px, py;
@@ -129,7 +123,7 @@ TEST(TwoDroplets, AHeadOnCollisionInFreeFallKeepsThePairsMomentumAndNoMassGetsIn
 TEST(TwoDroplets, NoMassOfEitherRingIsEverInsideTheOtherInAMedium) {
   // The paper's cited case: phi = 0.79, non-overlapping grains. The second droplet is released
   // soon after the first (it catches up in the pores), and every step is checked.
-  const Medium medium = small_medium_079();
+  const Medium medium = test::small_medium_079();
   const DropletParams p;
   SecondDroplet second;
   second.after = 2 * p.radius + p.max_depth + 1;
@@ -240,7 +234,7 @@ TEST(TwoDroplets, OneShakenMediumShakesBothDropletsOnOneClock) {
   // The medium shakes from the first step; the second droplet, released later, feels it in the
   // same phase as the first at every step both run (the shaking's force on a mass is m a(t), t
   // the medium's time since it began to shake).
-  const Medium medium = small_medium_079();
+  const Medium medium = test::small_medium_079();
   DropletParams p;
   p.vibration_amplitude = 2;
   p.vibration_frequency = 100;
@@ -272,29 +266,37 @@ TEST(TwoDroplets, OneShakenMediumShakesBothDropletsOnOneClock) {
   EXPECT_EQ(rest.second.shaken_at, 0.0);
 }
 
-TEST(TwoDroplets, ABatchOfPairsIsTheSameOnAnyThreadCount) {
-  // Each pair is a sequential run of its own: one thread or four, the same bits, in pair order.
-  const Medium medium = small_medium_079();
+TEST(TwoDroplets, ABatchOfPairsIsTheSameOnAnyThreadAndLaneCount) {
+  // Each pair's run is its own, whoever steps it and beside whatever: one pair at a time on one
+  // thread (lanes 2), six together in one block on one thread, and on four threads, the same bits,
+  // in pair order.
+  const Medium medium = test::small_medium_079();
   SecondDroplet second;
   second.after = 20;
   BatchOptions b;
   b.droplets = 6;
   b.seed = 11;
   b.threads = 1;
+  b.lanes = 2;
   const std::vector<TwoDropletSummary> one = run_two_droplet_batch(DropletParams{}, medium, RunOptions{}, b, second);
-  b.threads = 4;
-  const std::vector<TwoDropletSummary> four = run_two_droplet_batch(DropletParams{}, medium, RunOptions{}, b, second);
   ASSERT_EQ(one.size(), 6U);
-  ASSERT_EQ(four.size(), 6U);
-  for (std::size_t i = 0; i < one.size(); ++i) {
-    EXPECT_EQ(one[i].first.start_x, batch_start_x(b, medium, DropletParams{}, static_cast<int>(i)));
-    EXPECT_EQ(one[i].first.steps, four[i].first.steps);
-    EXPECT_EQ(one[i].second.steps, four[i].second.steps);
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(one[i].first.tortuosity),
-              std::bit_cast<std::uint64_t>(four[i].first.tortuosity));
-    EXPECT_EQ(std::bit_cast<std::uint64_t>(one[i].second.tortuosity),
-              std::bit_cast<std::uint64_t>(four[i].second.tortuosity));
-    EXPECT_EQ(one[i].contact_steps, four[i].contact_steps);
+  for (const auto& [threads, lanes] : {std::pair{1, 0}, std::pair{4, 0}}) {
+    SCOPED_TRACE(std::to_string(threads) + " threads, lanes " + std::to_string(lanes));
+    b.threads = threads;
+    b.lanes = lanes;
+    const std::vector<TwoDropletSummary> other =
+        run_two_droplet_batch(DropletParams{}, medium, RunOptions{}, b, second);
+    ASSERT_EQ(other.size(), 6U);
+    for (std::size_t i = 0; i < one.size(); ++i) {
+      EXPECT_EQ(one[i].first.start_x, batch_start_x(b, medium, DropletParams{}, static_cast<int>(i)));
+      EXPECT_EQ(one[i].first.steps, other[i].first.steps);
+      EXPECT_EQ(one[i].second.steps, other[i].second.steps);
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[i].first.tortuosity),
+                std::bit_cast<std::uint64_t>(other[i].first.tortuosity));
+      EXPECT_EQ(std::bit_cast<std::uint64_t>(one[i].second.tortuosity),
+                std::bit_cast<std::uint64_t>(other[i].second.tortuosity));
+      EXPECT_EQ(one[i].contact_steps, other[i].contact_steps);
+    }
   }
 }
 
@@ -366,7 +368,7 @@ TEST(TwoDroplets, TheCommandLineRunsPairsAndRefusesABadSecondDropletInOneLine) {
   int rows = 0;
   while (std::getline(in, line)) ++rows;
   EXPECT_EQ(rows, 6);
-  const Medium medium = small_medium_079();
+  const Medium medium = test::small_medium_079();
   BatchOptions b;
   b.droplets = 3;
   b.seed = 5;

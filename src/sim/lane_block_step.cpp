@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "lane_layout.hpp"
+#include "ring_contact.hpp"
 #include "ring_stages.hpp"
 #include "simd_dispatch.hpp"
 #include "step_driver.hpp"
@@ -62,10 +63,15 @@ struct LaneBlockStep::Layout {
   double area[lanes::kMaxLanes];      // written by the gravity stage's pass, read by the collisions
   int corrections[lanes::kMaxLanes];  // the constraint's counts (unread)
   std::uint64_t id = 0;               // the block id the step gave its droplets (at the contact limit)
+  RingPair* pairs = nullptr;          // the two-droplet pairs among the lanes
+  int pair_count = 0;
 
   // Not an aggregate: the scratch arrays are left as they are, not zeroed at every step.
   Layout(Simulation* const* s, int c, int masses, int regs, const StepContext& constants, const DropletParams& params)
       : sims(s), count(c), n(masses), registers(regs), L(8 * regs), k(constants), p(params) {}
+
+  // The ring-ring stages run between the rings of each pair (a block of single droplets has none).
+  static constexpr bool kRingPairs = true;
 
   bool damped() const { return k.damped; }
   bool shaken() const {
@@ -130,6 +136,17 @@ void LaneBlockStep::Layout::stage<StepStage::collisions>() {
 }
 
 template <>
+void LaneBlockStep::Layout::stage<StepStage::ring_contacts>() {
+  // Each pair's, on the block's forces: the positions the stage reads are still each droplet's own.
+  for (int q = 0; q < pair_count; ++q) {
+    const RingPair& pair = pairs[q];
+    ring_contacts_stage(sims[pair.a]->model(), sims[pair.a]->runtime(), sims[pair.b]->runtime(), pair.scratch,
+                        RingForces{block[4] + pair.a, block[5] + pair.a, L},
+                        RingForces{block[4] + pair.b, block[5] + pair.b, L});
+  }
+}
+
+template <>
 void LaneBlockStep::Layout::stage<StepStage::viscosity>() {
   lanes::viscosity(k, block[0], block[1], block[2], block[3], block[4], block[5], n, registers);
 }
@@ -175,7 +192,17 @@ void LaneBlockStep::Layout::stage<StepStage::contact_limit>() {
   }
 }
 
-void LaneBlockStep::step(Simulation* const* sims, int count) {
+template <>
+void LaneBlockStep::Layout::stage<StepStage::ring_limit>() {
+  // On each droplet's own state, after its contact limit; a moved mass clears both block ids.
+  for (int q = 0; q < pair_count; ++q) {
+    RingPair& pair = pairs[q];
+    pair.moved =
+        ring_limit_stage(sims[pair.a]->model(), sims[pair.a]->runtime(), sims[pair.b]->runtime(), pair.scratch);
+  }
+}
+
+void LaneBlockStep::step(Simulation* const* sims, int count, RingPair* pairs, int pair_count) {
   const DropletModel& model = sims[0]->model();
   const int n = sims[0]->state().size();
   const int registers = (count + 7) / 8, L = 8 * registers;
@@ -188,6 +215,8 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   if (memory.data.size() < 6 * size) memory.data.resize(6 * size);
   double* const X = memory.data.data();
   Layout layout(sims, count, n, registers, model.context, model.params);
+  layout.pairs = pairs;
+  layout.pair_count = pair_count;
   for (int a = 0; a < 6; ++a) layout.block[a] = X + static_cast<std::size_t>(a) * size;
   // The lanes whose droplet is not in the block as the last step left it (padding lanes repeat
   // the last droplet's, and are there if the last step had as many droplets).
@@ -218,7 +247,9 @@ void LaneBlockStep::step(Simulation* const* sims, int count) {
   memory.masses = n;
 }
 #else
-void LaneBlockStep::step(Simulation* const*, int) { throw std::logic_error("lane-by-lane step without AVX"); }
+void LaneBlockStep::step(Simulation* const*, int, RingPair*, int) {
+  throw std::logic_error("lane-by-lane step without AVX");
+}
 #endif
 
 }  // namespace softdrop

@@ -8,6 +8,8 @@
 
 namespace softdrop {
 
+struct RingPair;
+
 // Droplets of one set of parameters, stepped together on a copy of their positions laid out lane
 // by lane (lane_layout.hpp), eight to a group (an AVX-512 register or two AVX ones): forces,
 // integration and constraint (either order) as vector code across droplets, where the one-ring
@@ -22,7 +24,9 @@ struct LaneBlockStep {
   // step() of sims[0..count), count <= lanes::kMaxLanes, all compatible with sims[0]: the stages of
   // kStepStages over the block's layout (step_driver.hpp), the contact limit on each droplet's own
   // state after the copy out. Each droplet's validity test is then sims[t]->valid().
-  static void step(Simulation* const* sims, int count);
+  // pairs[0..pair_count): the lanes of two droplets in one medium (ring_contact.hpp), each lane in
+  // one pair at most, with the ring-ring stages between them.
+  static void step(Simulation* const* sims, int count, RingPair* pairs = nullptr, int pair_count = 0);
   // Simulation::centre_of_mass of sim as the last step left it, if that step was a block's and
   // nothing has moved a mass since: false otherwise.
   static bool centre_of_mass(const Simulation& sim, double* cx, double* cy) {

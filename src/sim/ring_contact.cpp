@@ -88,11 +88,13 @@ bool nearest_edge(const DropletState& e, const EdgeGrid& grid, double x, double 
 // ring within a step still finds the edge it crossed.
 double grid_reach(const DropletModel& m) { return 2 * m.params.max_depth; }
 
-// The penalty between the masses of ring p and the edges of ring e (listed in grid).
-std::int64_t penalty(const DropletModel& m, DropletRuntime& p, DropletRuntime& e, const EdgeGrid& grid) {
+// The penalty between the masses of ring p and the edges of ring e (listed in grid), added to
+// their forces fp and fe.
+std::int64_t penalty(const DropletModel& m, const DropletRuntime& p, const DropletRuntime& e, const EdgeGrid& grid,
+                     RingForces fp, RingForces fe) {
   const double skin = m.params.max_depth, kc = m.params.kc, cc = m.params.cc, inv_dt = m.context.inv_dt;
   const DropletState& es = e.state;
-  DropletState& ps = p.state;
+  const DropletState& ps = p.state;
   const int ne = es.size();
   std::int64_t contacts = 0;
   for (int i = 0; i < ps.size(); ++i) {
@@ -108,12 +110,12 @@ std::int64_t penalty(const DropletModel& m, DropletRuntime& p, DropletRuntime& e
     ++contacts;
     if (f == 0) continue;
     const double fx = f * h.nx, fy = f * h.ny;
-    ps.fx[i] += fx;
-    ps.fy[i] += fy;
-    e.state.fx[a] -= (1 - t) * fx;
-    e.state.fy[a] -= (1 - t) * fy;
-    e.state.fx[b] -= t * fx;
-    e.state.fy[b] -= t * fy;
+    fp.fx[i * fp.stride] += fx;
+    fp.fy[i * fp.stride] += fy;
+    fe.fx[a * fe.stride] -= (1 - t) * fx;
+    fe.fy[a * fe.stride] -= (1 - t) * fy;
+    fe.fx[b * fe.stride] -= t * fx;
+    fe.fy[b * fe.stride] -= t * fy;
   }
   return contacts;
 }
@@ -241,15 +243,16 @@ double periodic_shift(const DropletState& a, const DropletState& b, const Medium
   return -W * std::round((b.x[0] - a.x[0]) / W);
 }
 
-void ring_contacts_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b, RingContactScratch* scratch) {
+void ring_contacts_stage(const DropletModel& m, const DropletRuntime& a, const DropletRuntime& b,
+                         RingContactScratch* scratch, RingForces fa, RingForces fb) {
   scratch->contacts = 0;
   const double s = periodic_shift(a.state, b.state, m.medium), reach = grid_reach(m);
   // Rings further apart than the reach: no contact, and no grid to build.
   if (!may_touch(m, a.state, b.state, s, reach)) return;
   scratch->edges[1].build(b.state, s, reach);  // b in a's frame
-  scratch->contacts += penalty(m, a, b, scratch->edges[1]);
+  scratch->contacts += penalty(m, a, b, scratch->edges[1], fa, fb);
   scratch->edges[0].build(a.state, -s, reach);  // a in b's frame
-  scratch->contacts += penalty(m, b, a, scratch->edges[0]);
+  scratch->contacts += penalty(m, b, a, scratch->edges[0], fb, fa);
 }
 
 int ring_limit_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b, RingContactScratch* scratch) {

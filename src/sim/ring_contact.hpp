@@ -1,6 +1,6 @@
 #pragma once
 // Contacts between the rings of two droplets: the ring_contacts and ring_limit stages of a step
-// with two droplets (TwoRings, two_rings_step.hpp). Private to the library.
+// with two droplets (the pairs of a RingGroup or of a lane-by-lane block). Private to the library.
 //
 // Each ring is the other's obstacle, thickened by the contact limit's depth: a mass of one ring
 // within max_depth of the other's boundary, or inside it, is in contact with the nearest edge.
@@ -9,6 +9,7 @@
 // mass no deeper than max_depth, i.e. never inside the other ring, and stops its approach. Every
 // force and every correction acts on the mass and, opposite, on the edge's two ends in the
 // proportions of the contact point (1 - t, t): the pair's momentum is unchanged by both stages.
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -48,9 +49,30 @@ struct RingContactScratch {
   std::int64_t contacts = 0;  ///< masses in contact with the other ring in the last ring_contacts
 };
 
+// Where the ring_contacts stage adds one ring's forces: mass i's at fx[i * stride], fy[i * stride]
+// (a ring's own arrays, or its lane of a lane-by-lane block's forces).
+struct RingForces {
+  double* fx = nullptr;
+  double* fy = nullptr;
+  std::ptrdiff_t stride = 1;
+  /// The ring's own force arrays.
+  static RingForces of(DropletRuntime& r) { return {r.state.fx.data(), r.state.fy.data(), 1}; }
+};
+
+// Two droplets of a layout (ring_group_step.hpp, lane_block_step.hpp) that run in one medium: the
+// layout's droplets a and b, between which the ring-ring stages run, with the pair's scratch;
+// `moved` is what the step's ring limit moved.
+struct RingPair {
+  int a = 0, b = 0;
+  RingContactScratch* scratch = nullptr;
+  int moved = 0;
+};
+
 /// The ring_contacts stage: the penalty forces between the masses of each ring and the edges of
-/// the other, added to both rings' forces (a's masses first, then b's).
-void ring_contacts_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b, RingContactScratch* scratch);
+/// the other, added to both rings' forces, fa and fb (a's masses first, then b's). It reads the
+/// positions of the rings' own states.
+void ring_contacts_stage(const DropletModel& m, const DropletRuntime& a, const DropletRuntime& b,
+                         RingContactScratch* scratch, RingForces fa, RingForces fb);
 /// The ring_limit stage: no mass of either ring inside the other (a's masses first, then b's).
 /// Returns the number of masses moved. A ring whose masses moved is changed(): the contact limit's
 /// records of it no longer hold.

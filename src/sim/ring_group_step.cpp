@@ -1,4 +1,4 @@
-// The constraint stage of rings stepped side by side (ring_group_step.hpp).
+// The constraint and ring-ring stages of rings stepped side by side (ring_group_step.hpp).
 #include "ring_group_step.hpp"
 
 #include "droplet_model.hpp"
@@ -28,6 +28,15 @@ void RingGroup::constrain() {
   apply_length_constraint_interleaved(rings->data(), static_cast<int>(rings->size()), first->context.rest_length,
                                       first->params.max_strain, first->params.constraint_iterations,
                                       corrections->data());
+}
+
+void RingGroup::ring_contacts(RingPair& pair) {
+  DropletRuntime &a = sims[pair.a]->runtime(), &b = sims[pair.b]->runtime();
+  ring_contacts_stage(sims[pair.a]->model(), a, b, pair.scratch, RingForces::of(a), RingForces::of(b));
+}
+
+void RingGroup::ring_limit(RingPair& pair) {
+  pair.moved = ring_limit_stage(sims[pair.a]->model(), sims[pair.a]->runtime(), sims[pair.b]->runtime(), pair.scratch);
 }
 
 }  // namespace softdrop

@@ -10,11 +10,13 @@
 //                               stage runs only then)
 //   template <StepStage S> void stage()
 //                               stage S for every droplet of the layout
-//   static constexpr bool kTwoRings (optional)
-//                               true: the layout holds two droplets' rings, and the ring-ring
-//                               stages run; a layout without it has no code for them
+//   static constexpr bool kRingPairs (optional)
+//                               true: the layout may hold pairs of rings of two droplets in one
+//                               medium (RingPair, ring_contact.hpp), and the ring-ring stages run
+//                               between each pair's rings; a layout without it has no code for them
 // The layouts: one ring (OneRing, below), a block of droplets in vector lanes (lane_block_step.cpp)
-// and rings stepped one after another, their constraints together (ring_group_step.cpp). Each
+// and rings stepped one after another, their constraints together (ring_group_step.cpp); the last
+// two hold pairs. Each
 // runs the same kernels for a stage, so every droplet gets the same bits in every layout; the
 // golden state hashes hold them to it (tests/layout_hash_test.cpp).
 #include "ring_stages.hpp"
@@ -27,9 +29,9 @@ namespace softdrop {
 
 namespace step_driver_detail {
 template <class Layout>
-constexpr bool two_rings() {
-  if constexpr (requires { Layout::kTwoRings; })
-    return Layout::kTwoRings;
+constexpr bool ring_pairs() {
+  if constexpr (requires { Layout::kRingPairs; })
+    return Layout::kRingPairs;
   else
     return false;
 }
@@ -37,7 +39,7 @@ constexpr bool two_rings() {
 template <class Layout, StepStage S>
 void run_stage(Layout& layout) {
   if constexpr (S == StepStage::ring_contacts || S == StepStage::ring_limit) {
-    if constexpr (two_rings<Layout>()) layout.template stage<S>();
+    if constexpr (ring_pairs<Layout>()) layout.template stage<S>();
   } else {
     if constexpr (S == StepStage::viscosity) {
       if (!layout.damped()) return;

@@ -1,5 +1,5 @@
 // Two droplets one after the other (simulation.hpp): the release rule, the pair's step through
-// the driver (TwoRings) and the two runs' book-keeping.
+// the driver (a RingGroup of the two rings) and the two runs' book-keeping.
 #include "two_droplet_run.hpp"
 
 #include <algorithm>
@@ -9,7 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "two_rings_step.hpp"
+#include "lane_block_step.hpp"
+#include "ring_group_step.hpp"
 #include "util/enum_names.hpp"
 #include "util/validation.hpp"
 
@@ -76,20 +77,44 @@ void TwoDropletRun::share_shaking() {
       r->join_shaking(k_ - shaken_from_);
 }
 
-void TwoDropletRun::step() {
-  RunStepper& a = *first_run_;
-  const bool a_on = !a.finished(), b_on = second_running();
+void TwoDropletRun::begin_step(Simulation** a, Simulation** b) {
+  RunStepper& first = *first_run_;
+  a_on_ = !first.finished();
+  b_on_ = second_running();
   // A droplet found stuck is held while the other may still move it: before the release (once:
   // the release follows), and while the other runs and is not held itself.
-  if (a_on) a.hold_when_stuck(second_run_ ? b_on && !second_run_->held() : !a.held());
-  if (b_on) second_run_->hold_when_stuck(a_on && !a.held());
-  TwoRings rings{first_.model(), a_on ? &first_.runtime() : nullptr, b_on ? &second_.runtime() : nullptr, &scratch_};
+  if (a_on_) first.hold_when_stuck(second_run_ ? b_on_ && !second_run_->held() : !first.held());
+  if (b_on_) second_run_->hold_when_stuck(a_on_ && !first.held());
+  *a = a_on_ ? &first_ : nullptr;
+  *b = b_on_ ? &second_ : nullptr;
+}
+
+void TwoDropletRun::step() {
+  Simulation *a = nullptr, *b = nullptr;
+  begin_step(&a, &b);
+  Simulation* sims[2] = {a ? a : b, b};
+  RingPair pair{0, 1, &scratch_, 0};
+  RingGroup rings{sims, a && b ? 2 : 1, &group_rings_, &group_corrections_, &pair, a && b ? 1 : 0};
   run_stages(rings);
-  limited_ = rings.moved;
-  if (a_on && b_on && scratch_.contacts > 0) ++contact_steps_;
+  end_step(pair.moved);
+}
+
+namespace {
+// RunStepper::after_step with the centre of mass the step left: the lane-by-lane block's where it
+// still holds (the same bits), the droplet's own sum otherwise.
+void after_step(RunStepper& run, const Simulation& sim) {
+  double cx = 0, cy = 0;
+  if (!LaneBlockStep::centre_of_mass(sim, &cx, &cy)) sim.centre_of_mass(&cx, &cy);
+  run.after_step(sim.runtime().valid(), cx, cy);
+}
+}  // namespace
+
+void TwoDropletRun::end_step(int moved) {
+  limited_ = moved;
+  if (a_on_ && b_on_ && scratch_.contacts > 0) ++contact_steps_;
   ++k_;
-  if (a_on) a.after_step(first_.runtime().valid());
-  if (b_on) second_run_->after_step(second_.runtime().valid());
+  if (a_on_) after_step(*first_run_, first_);
+  if (b_on_) after_step(*second_run_, second_);
   if (!second_run_) release_if_due();
   share_shaking();
 }

@@ -3,6 +3,7 @@
 // a test can look at both rings between steps. Private to the library.
 #include <cstdint>
 #include <optional>
+#include <vector>
 
 #include "ring_contact.hpp"
 #include "run_stepper.hpp"
@@ -21,9 +22,18 @@ class TwoDropletRun {
 
   /// Both runs have ended (or the first has, and the second could not be released).
   bool finished() const { return first_run_->finished() && (!second_run_ || second_run_->finished()); }
-  /// One step of every droplet still running, with the ring-ring stages while both are; then
-  /// each run's book-keeping, and the second's release if it is due.
+  /// One step of every droplet still running, with the ring-ring stages while both are (a
+  /// RingGroup of the two rings); then each run's book-keeping, and the second's release if it is
+  /// due: begin_step(), the step, end_step().
   void step();
+  /// A step in parts, for a driver that steps several pairs' rings together (a lane-by-lane block):
+  /// begin_step() sets the holds and gives the rings to step, the first droplet's and the second's
+  /// (null: not stepped); the driver steps them, with the ring-ring stages between them (and this
+  /// pair's scratch()) where both are; end_step(moved) does the rest, given what the ring limit
+  /// moved.
+  void begin_step(Simulation** a, Simulation** b);
+  void end_step(int moved);
+  RingContactScratch* scratch() { return &scratch_; }
   /// The summaries, once finished().
   TwoDropletSummary take();
 
@@ -49,6 +59,9 @@ class TwoDropletRun {
   std::int64_t shaken_from_ = -1;  // the pair's step at which the medium began to shake; -1: not yet
   double released_at_;
   int limited_ = 0;
+  bool a_on_ = false, b_on_ = false;        // the rings the step in progress moves
+  std::vector<DropletState*> group_rings_;  // the ring group's scratch
+  std::vector<int> group_corrections_;
 };
 
 }  // namespace softdrop

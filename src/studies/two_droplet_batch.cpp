@@ -1,5 +1,5 @@
-// Many pairs of droplets through one medium (run_two_droplet_batch, batch.hpp): each pair
-// is a sequential run of its own, taken by worker threads in index order.
+// Many pairs of droplets through one medium (run_two_droplet_batch, batch.hpp): worker threads
+// take the pairs in index order, each stepping several together (run_pairs_interleaved).
 #include <algorithm>
 #include <atomic>
 #include <exception>
@@ -7,6 +7,8 @@
 #include <string>
 #include <thread>
 
+#include "sim/lane_policy.hpp"
+#include "sim/pair_lanes.hpp"
 #include "softdrop/batch.hpp"
 #include "util/worker_threads.hpp"
 
@@ -25,19 +27,26 @@ std::vector<TwoDropletSummary> run_two_droplet_batch(const DropletParams& drople
   std::mutex mutex;
   int done = 0;
   std::exception_ptr error;
+  // Half a thread's droplets as pairs; a pair's summary does not depend on who steps it beside.
+  const int pairs = std::clamp(batch_lanes(options.lanes) / 2, 1, kMostInterleavedPairs);
   auto worker = [&] {
     try {
-      for (;;) {
-        if (options.stop && options.stop->load(std::memory_order_relaxed)) return;
-        const int i = next.fetch_add(1);
-        if (i >= k) return;
-        results[static_cast<std::size_t>(i)] =
-            run_two_droplets(droplet, medium, batch_start_x(options, medium, droplet, i), run, second);
-        if (progress) {
-          std::lock_guard lock(mutex);
-          progress(++done, k);
-        }
-      }
+      run_pairs_interleaved(
+          pairs, droplet, medium, run, second,
+          [&](PairJob* job) {
+            if (options.stop && options.stop->load(std::memory_order_relaxed)) return false;
+            const int i = next.fetch_add(1);
+            if (i >= k) return false;
+            *job = PairJob{batch_start_x(options, medium, droplet, i), i};
+            return true;
+          },
+          [&](std::int64_t i, TwoDropletSummary&& summary) {
+            results[static_cast<std::size_t>(i)] = std::move(summary);
+            if (progress) {
+              std::lock_guard lock(mutex);
+              progress(++done, k);
+            }
+          });
     } catch (...) {
       std::lock_guard lock(mutex);
       if (!error) error = std::current_exception();
