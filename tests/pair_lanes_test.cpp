@@ -128,11 +128,12 @@ void expect_same_run(const RunSummary& got, const RunSummary& want) {
 }
 
 TEST(PairLanes, PairsSteppedTogetherGetEachPairsOwnSummaryAtEveryWidth) {
-  // Seven pairs, three or seven at a time: the lane counts change as pairs release their second
-  // droplets and end, and a slot takes the next pair while the others run.
+  // Fourteen pairs, three or fourteen at a time: the lane counts change as pairs release their
+  // second droplets and end, a slot takes the next pair while the others run, and fourteen pairs'
+  // rings (more than kMaxLanes, 24) go as two blocks.
   const Medium medium = test::small_medium_079();
   const SecondDroplet second = close_behind();
-  const std::vector<double> starts{20, 55, 90, 100, 125, 160, 185};
+  const std::vector<double> starts{20, 55, 90, 100, 125, 160, 185, 10, 35, 70, 110, 140, 150, 195};
   std::vector<TwoDropletSummary> alone;
   std::int64_t contact = 0;
   for (double x0 : starts) {
@@ -144,7 +145,7 @@ TEST(PairLanes, PairsSteppedTogetherGetEachPairsOwnSummaryAtEveryWidth) {
   for (VectorWidth width : test::kVectorWidths) {
     const test::VectorWidthLimit limit(width);
     if (!lacked.has(limit, width)) continue;
-    for (int pairs : {3, 7}) {
+    for (int pairs : {3, 14}) {
       SCOPED_TRACE("vector width " + std::to_string(static_cast<int>(width)) + ", " + std::to_string(pairs) +
                    " pairs at a time");
       const std::map<std::int64_t, TwoDropletSummary> got = interleaved(pairs, starts, medium, second);
@@ -172,7 +173,7 @@ TEST(PairLanes, ABadPairCountIsRefusedNamingIt) {
       interleaved(pairs, {100}, medium, close_behind());
       ADD_FAILURE() << "pairs = " << pairs << " was taken";
     } catch (const std::invalid_argument& e) {
-      EXPECT_EQ(std::string(e.what()).rfind("pairs = " + std::to_string(pairs) + ": must be in [1, 12]", 0), 0U)
+      EXPECT_EQ(std::string(e.what()).rfind("pairs = " + std::to_string(pairs) + ": must be in [1, 24]", 0), 0U)
           << e.what();
     }
   }

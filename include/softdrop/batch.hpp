@@ -61,7 +61,7 @@ BatchStats summarize(const std::vector<RunSummary>& runs);
 
 /// options.droplets pairs, pair i's first droplet from batch_start_x(options, medium, droplet, i),
 /// on options.threads worker threads, each stepping options.lanes / 2 pairs together (at most
-/// 12); the results are in pair order and do not depend on the thread or lane count (on_finished
+/// 24); the results are in pair order and do not depend on the thread or lane count (on_finished
 /// is not read). `progress(done, total)` is called
 /// from the workers (serialised) as pairs end. Once options.stop reads true no pair starts, and
 /// the pairs that ran, 0 to n - 1, are returned.

@@ -215,6 +215,9 @@ void LaneBlockStep::step(Simulation* const* sims, int count, RingPair* pairs, in
   if (memory.data.size() < 6 * size) memory.data.resize(6 * size);
   double* const X = memory.data.data();
   Layout layout(sims, count, n, registers, model.context, model.params);
+  for (int q = 0; q < pair_count; ++q)
+    if (const RingPair& r = pairs[q]; r.a < 0 || r.b < 0 || r.a >= count || r.b >= count || r.a == r.b)
+      throw std::logic_error("LaneBlockStep: a pair's lanes are not two of the block's");
   layout.pairs = pairs;
   layout.pair_count = pair_count;
   for (int a = 0; a < 6; ++a) layout.block[a] = X + static_cast<std::size_t>(a) * size;

@@ -3,6 +3,7 @@
 // ring-ring stages between each pair's two rings.
 #include "pair_lanes.hpp"
 
+#include <cstddef>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -17,7 +18,37 @@
 
 namespace softdrop {
 
-static_assert(2 * kMostInterleavedPairs <= lanes::kMaxLanes, "the rings of the pairs make one block");
+namespace {
+
+struct Slot {
+  std::unique_ptr<TwoDropletRun> run;
+  std::int64_t id = 0;
+  int first_lane = 0, lanes = 0;  // its rings' places among this step's rings
+};
+
+// The rings as lane-by-lane blocks of at most kMaxLanes, each filled as far as it goes before the
+// next begins (the fewest groups of eight lanes), a pair's two rings in the same block. ring_pairs'
+// lanes are counted from the first ring; each block's are made its own.
+void step_blocks(const std::vector<Slot>& slots, std::vector<Simulation*>& rings, std::vector<RingPair>& ring_pairs) {
+  const int total = static_cast<int>(rings.size());
+  std::size_t s = 0, q = 0;
+  for (int begin = 0; begin < total;) {
+    int end = begin;
+    const std::size_t first_pair = q;
+    for (; s < slots.size(); ++s) {
+      const Slot& slot = slots[s];
+      if (!slot.run) continue;
+      if (end + slot.lanes - begin > lanes::kMaxLanes) break;
+      end += slot.lanes;
+      if (slot.lanes == 2) ring_pairs[q].a -= begin, ring_pairs[q].b -= begin, ++q;
+    }
+    LaneBlockStep::step(rings.data() + begin, end - begin, ring_pairs.data() + first_pair,
+                        static_cast<int>(q - first_pair));
+    begin = end;
+  }
+}
+
+}  // namespace
 
 void run_pairs_interleaved(int pairs, const DropletParams& droplet, const Medium& medium, const RunOptions& options,
                            const SecondDroplet& second, const std::function<bool(PairJob*)>& next,
@@ -25,14 +56,8 @@ void run_pairs_interleaved(int pairs, const DropletParams& droplet, const Medium
   if (pairs < 1 || pairs > kMostInterleavedPairs)
     throw std::invalid_argument("pairs = " + std::to_string(pairs) + ": must be in [1, " +
                                 std::to_string(kMostInterleavedPairs) + "]");
-  struct Slot {
-    std::unique_ptr<TwoDropletRun> run;
-    std::int64_t id = 0;
-    int first_lane = 0, lanes = 0;  // its rings' places among this step's rings
-  };
   std::vector<Slot> slots(static_cast<std::size_t>(pairs));
   const bool lane_wise = constraint_vector_width() >= VectorWidth::avx;
-  // At most 2 kMostInterleavedPairs rings: one block.
   std::vector<Simulation*> rings;
   std::vector<RingPair> ring_pairs;
   std::vector<DropletState*> group_rings;  // a ring group's scratch
@@ -59,8 +84,7 @@ void run_pairs_interleaved(int pairs, const DropletParams& droplet, const Medium
     }
     if (rings.empty()) return;  // a pair still running steps a ring; every slot is empty, and next() said no
     if (lane_wise && rings.size() >= fewest_block_droplets()) {
-      LaneBlockStep::step(rings.data(), static_cast<int>(rings.size()), ring_pairs.data(),
-                          static_cast<int>(ring_pairs.size()));
+      step_blocks(slots, rings, ring_pairs);
     } else {
       RingGroup group{rings.data(),      static_cast<int>(rings.size()),     &group_rings, &corrections,
                       ring_pairs.data(), static_cast<int>(ring_pairs.size())};

@@ -8,8 +8,8 @@
 
 namespace softdrop {
 
-/// The most pairs run_pairs_interleaved steps together: their rings fill one lane-by-lane block.
-inline constexpr int kMostInterleavedPairs = 12;
+/// The most pairs run_pairs_interleaved steps together: their rings fill two lane-by-lane blocks.
+inline constexpr int kMostInterleavedPairs = 24;
 
 /// A pair for run_pairs_interleaved: its first droplet's start x, and the caller's id, handed back
 /// with the summary.
