@@ -60,9 +60,9 @@ std::vector<RunSummary> run_batch(const DropletParams& params, const Medium& med
 BatchStats summarize(const std::vector<RunSummary>& runs);
 
 /// options.droplets pairs, pair i's first droplet from batch_start_x(options, medium, droplet, i),
-/// on options.threads worker threads, each stepping options.lanes / 2 pairs together (at most
-/// 24); the results are in pair order and do not depend on the thread or lane count (on_finished
-/// is not read). `progress(done, total)` is called
+/// on options.threads worker threads, each stepping as many pairs together as fill options.lanes
+/// droplets (at least one pair); the results are in pair order and do not depend on the thread or
+/// lane count (on_finished is not read). `progress(done, total)` is called
 /// from the workers (serialised) as pairs end. Once options.stop reads true no pair starts, and
 /// the pairs that ran, 0 to n - 1, are returned.
 std::vector<TwoDropletSummary> run_two_droplet_batch(const DropletParams& droplet, const Medium& medium,

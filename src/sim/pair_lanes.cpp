@@ -50,13 +50,11 @@ void step_blocks(const std::vector<Slot>& slots, std::vector<Simulation*>& rings
 
 }  // namespace
 
-void run_pairs_interleaved(int pairs, const DropletParams& droplet, const Medium& medium, const RunOptions& options,
+void run_pairs_interleaved(int lanes, const DropletParams& droplet, const Medium& medium, const RunOptions& options,
                            const SecondDroplet& second, const std::function<bool(PairJob*)>& next,
                            const std::function<void(std::int64_t id, TwoDropletSummary&&)>& done) {
-  if (pairs < 1 || pairs > kMostInterleavedPairs)
-    throw std::invalid_argument("pairs = " + std::to_string(pairs) + ": must be in [1, " +
-                                std::to_string(kMostInterleavedPairs) + "]");
-  std::vector<Slot> slots(static_cast<std::size_t>(pairs));
+  if (lanes < 2 || lanes > 64) throw std::invalid_argument("lanes = " + std::to_string(lanes) + ": must be in [2, 64]");
+  std::vector<Slot> slots(static_cast<std::size_t>(lanes - 1));  // at most a lane each, and a pair starts in two
   const bool lane_wise = constraint_vector_width() >= VectorWidth::avx;
   std::vector<Simulation*> rings;
   std::vector<RingPair> ring_pairs;
@@ -64,11 +62,15 @@ void run_pairs_interleaved(int pairs, const DropletParams& droplet, const Medium
   std::vector<int> corrections;
   bool more = true;
   for (;;) {
+    int held = 0;
+    for (const Slot& slot : slots)
+      if (slot.run) held += slot.run->lanes_held();
     for (Slot& slot : slots) {
       PairJob job;
-      if (slot.run || !more || !(more = next(&job))) continue;
+      if (slot.run || held + 2 > lanes || !more || !(more = next(&job))) continue;
       slot.run = std::make_unique<TwoDropletRun>(droplet, medium, job.x0, options, second);
       slot.id = job.id;
+      held += 2;
     }
     rings.clear();
     ring_pairs.clear();

@@ -20,6 +20,12 @@ class TwoDropletRun {
   TwoDropletRun(const TwoDropletRun&) = delete;
   TwoDropletRun& operator=(const TwoDropletRun&) = delete;
 
+  /// The lanes the pair holds in a driver that steps several (run_pairs_interleaved): one for each
+  /// droplet still running, and one for the second before its release.
+  int lanes_held() const {
+    const int second = second_run_ ? (second_running() ? 1 : 0) : (finished() ? 0 : 1);
+    return (first_run_->finished() ? 0 : 1) + second;
+  }
   /// Both runs have ended (or the first has, and the second could not be released).
   bool finished() const { return first_run_->finished() && (!second_run_ || second_run_->finished()); }
   /// One step of every droplet still running, with the ring-ring stages while both are (a

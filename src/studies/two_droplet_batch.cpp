@@ -27,12 +27,12 @@ std::vector<TwoDropletSummary> run_two_droplet_batch(const DropletParams& drople
   std::mutex mutex;
   int done = 0;
   std::exception_ptr error;
-  // Half a thread's droplets as pairs; a pair's summary does not depend on who steps it beside.
-  const int pairs = std::clamp(batch_lanes(options.lanes) / 2, 1, kMostInterleavedPairs);
+  // A thread's lanes, each a droplet of a pair; a pair's summary does not depend on who steps it beside.
+  const int lanes = std::max(2, batch_lanes(options.lanes));
   auto worker = [&] {
     try {
       run_pairs_interleaved(
-          pairs, droplet, medium, run, second,
+          lanes, droplet, medium, run, second,
           [&](PairJob* job) {
             if (options.stop && options.stop->load(std::memory_order_relaxed)) return false;
             const int i = next.fetch_add(1);
