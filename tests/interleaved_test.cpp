@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <latch>
 #include <map>
 #include <memory>
@@ -15,6 +14,7 @@
 #include <tuple>
 
 #include "fixtures.hpp"
+#include "same_summary.hpp"
 #include "sim/lane_layout.hpp"
 #include "sim/lane_policy.hpp"
 #include "sim/step_test_seam.hpp"
@@ -24,29 +24,8 @@
 namespace softdrop {
 namespace {
 
-std::uint64_t bits(double v) {
-  std::uint64_t b;
-  std::memcpy(&b, &v, sizeof b);
-  return b;
-}
-
 void expect_same(const RunSummary& a, const RunSummary& b, const std::string& what) {
-  SCOPED_TRACE(what);
-  EXPECT_EQ(a.outcome, b.outcome);
-  EXPECT_EQ(a.reason, b.reason);
-  EXPECT_EQ(a.steps, b.steps);
-  EXPECT_EQ(bits(a.tortuosity), bits(b.tortuosity));
-  EXPECT_EQ(bits(a.route_tortuosity), bits(b.route_tortuosity));
-  EXPECT_EQ(bits(a.path_length), bits(b.path_length));
-  EXPECT_EQ(bits(a.min_area_ratio), bits(b.min_area_ratio));
-  EXPECT_EQ(bits(a.max_penetration), bits(b.max_penetration));
-  EXPECT_EQ(a.touched, b.touched);
-  EXPECT_EQ(bits(a.shaken_at), bits(b.shaken_at));
-  EXPECT_EQ(a.path_x, b.path_x);
-  EXPECT_EQ(a.path_y, b.path_y);
-  EXPECT_EQ(a.area, b.area);
-  ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
-  for (std::size_t i = 0; i < a.snapshots.size(); ++i) EXPECT_EQ(a.snapshots[i].x, b.snapshots[i].x);
+  test::expect_same_summary(a, b, what);
 }
 
 // A generated overlapping medium, 200 x 200 at porosity 0.8: droplets pass, get stuck and run for

@@ -7,7 +7,6 @@
 
 #include <gtest/gtest.h>
 
-#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <deque>
@@ -18,6 +17,7 @@
 #include <vector>
 
 #include "fixtures.hpp"
+#include "same_summary.hpp"
 #include "sim/lane_block_step.hpp"
 #include "sim/lane_policy.hpp"
 #include "sim/two_droplet_run.hpp"
@@ -26,7 +26,7 @@
 namespace softdrop {
 namespace {
 
-std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
+using test::bits;
 
 // The second droplet released soon after the first, so that it catches up with it in the pores.
 SecondDroplet close_behind() {
@@ -117,16 +117,6 @@ std::map<std::int64_t, TwoDropletSummary> interleaved(int lanes, const std::vect
   return out;
 }
 
-void expect_same_run(const RunSummary& got, const RunSummary& want) {
-  EXPECT_EQ(got.outcome, want.outcome);
-  EXPECT_EQ(got.steps, want.steps);
-  EXPECT_EQ(bits(got.tortuosity), bits(want.tortuosity));
-  EXPECT_EQ(bits(got.path_length), bits(want.path_length));
-  EXPECT_EQ(bits(got.min_area_ratio), bits(want.min_area_ratio));
-  EXPECT_EQ(bits(got.max_penetration), bits(want.max_penetration));
-  EXPECT_EQ(got.touched, want.touched);
-}
-
 TEST(PairLanes, PairsSteppedTogetherGetEachPairsOwnSummaryAtEveryWidth) {
   // Fourteen pairs in 2, 7 or 28 lanes: one pair at a time (a ring group), or several whose lane
   // counts change as they release their second droplets and end, a pair starting as two lanes
@@ -153,8 +143,8 @@ TEST(PairLanes, PairsSteppedTogetherGetEachPairsOwnSummaryAtEveryWidth) {
         SCOPED_TRACE("pair " + std::to_string(i));
         const TwoDropletSummary& g = got.at(static_cast<std::int64_t>(i));
         const TwoDropletSummary& w = alone[i];
-        expect_same_run(g.first, w.first);
-        expect_same_run(g.second, w.second);
+        test::expect_same_summary(g.first, w.first, "first droplet");
+        test::expect_same_summary(g.second, w.second, "second droplet");
         EXPECT_EQ(g.released, w.released);
         EXPECT_EQ(bits(g.released_at), bits(w.released_at));
         EXPECT_EQ(g.contact_steps, w.contact_steps);
