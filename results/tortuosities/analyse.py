@@ -1,7 +1,9 @@
-"""Gathers results/tortuosities/json/ (one `softdrop tortuosity --format json` a medium) into
-media.csv, points.csv (per porosity: the mean of each tortuosity over the media and its standard
+"""Gathers results/tortuosities/json/ (one `softdrop tortuosity --format json` a medium; without
+it, the media.csv it made) and fine.csv (fine.sh: the geometric T and diffusive tau of some media
+at twice the pixels) into media.csv, points.csv (per porosity: the mean of each tortuosity over the media and its standard
 error over them), fits.csv (each tortuosity's mean fitted to the paper's power law and to
-1 - p ln(porosity), by `softdrop fit`), correlations.csv (medium by medium, how the droplet's <T>
+1 - p ln(porosity), by `softdrop fit`), convergence_1000.csv (fine.sh's values' change from 1000 to
+2000 pixels, per porosity), correlations.csv (medium by medium, how the droplet's <T>
 goes with each pore-space tortuosity at one porosity) and tortuosities.png.
 
     python3 analyse.py DIR SOFTDROP
@@ -32,11 +34,41 @@ for path in sorted(glob.glob(os.path.join(here, "json", "*.json"))):
     for q in QUANTITIES[:3] + ["permeability"]:
         row[q] = j[q]["values"][1]  # at 500 pixels across, 16 a smallest radius
         row[q.replace("_tortuosity", "") + "_change"] = j[q]["change"]  # relative, from 250 pixels
+        row[q.replace("_tortuosity", "") + "_pixels"] = 500
     d = j["droplet_tortuosity"]
     row.update(droplet_tortuosity=d["mean_tortuosity"], droplet_standard_error=d["standard_error"],
                droplet_passed=d["passed"], droplet_starts=d["starts"])
     rows.append(row)
-media = pd.DataFrame(rows).sort_values(["target_porosity", "medium_seed"])
+if rows:
+    media = pd.DataFrame(rows).sort_values(["target_porosity", "medium_seed"])
+else:  # the study's json/ is not kept: start again from its table
+    media = pd.read_csv(os.path.join(here, "media.csv"), float_precision="round_trip")
+    blocked = pd.read_csv(os.path.join(here, "points.csv")).set_index("target_porosity")["blocked"]
+    blocked = {f"{t:g}": int(n) for t, n in blocked.items()}
+    for q in ("geometric", "hydrodynamic", "diffusive", "permeability"):
+        if q + "_pixels" not in media:
+            media[q + "_pixels"] = 500
+# fine.sh's values at 1000 pixels across (checked against 2000) replace the geometric T and the
+# diffusive tau of the media it solved.
+fine_path = os.path.join(here, "fine.csv")
+if os.path.exists(fine_path):
+    fine = pd.read_csv(fine_path, float_precision="round_trip").set_index(["target_porosity", "medium_seed"])
+    keys = pd.MultiIndex.from_frame(media[["target_porosity", "medium_seed"]])
+    solved = keys.isin(fine.index)
+    for q in ("geometric", "diffusive"):
+        media.loc[solved, q + "_tortuosity"] = fine.loc[keys[solved], q + "_at_1000"].to_numpy()
+        media.loc[solved, q + "_change"] = fine.loc[keys[solved], q + "_change_1000_to_2000"].to_numpy()
+        media.loc[solved, q + "_pixels"] = 1000
+    # Their convergence, per porosity: the change from 1000 to 2000 pixels across, medium by medium.
+    summary = []
+    for target, group in fine.reset_index().groupby("target_porosity"):
+        for q in ("geometric", "diffusive"):
+            change = group[q + "_change_1000_to_2000"]
+            summary.append({"value": q, "target_porosity": target, "media": len(group),
+                            "median_change_1000_to_2000": change.abs().median(),
+                            "largest_change_1000_to_2000": change.abs().max(),
+                            "mean_change_1000_to_2000": change.mean()})
+    pd.DataFrame(summary).round(5).to_csv(os.path.join(here, "convergence_1000.csv"), index=False)
 media.to_csv(os.path.join(here, "media.csv"), index=False)
 
 points = []

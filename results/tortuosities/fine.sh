@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
-# The pore-space tortuosities that resolve slowest, at twice the study's pixels: for every medium of
-# the study at PHIS with a pore path (media.csv), the geometric T and the diffusive tau at 1000 pixels across (32 a
-# smallest radius), each checked against 2000, with no flow solve and no droplets. analyse.py then
-# takes both from here (fine/) for those media; the flow T, converged at 500 (convergence.sh), and
-# the droplet's <T> stay the study's. About 15-30 s a medium on one core, two at a time; a medium
-# already solved is kept, so it resumes.
-#     bash results/tortuosities/fine.sh            (PHIS="0.45 0.5 0.55 0.6 0.65 0.7")
+# The diffusive tau at twice the study's pixels, where it resolves slowest: for every medium of the
+# study at PHIS with a pore path (media.csv), the geometric T and the diffusive tau at 1000 pixels
+# across (32 a smallest radius), each checked against 2000, with no flow solve and no droplets.
+# Writes fine.csv, then runs analyse.py, which takes both values from there for those media (the
+# flow T, converged at 500 (convergence.sh), and the droplet's <T> stay the study's). About 15 to 40
+# s a medium on one core, two at a time: about 35 minutes at the default; a medium already solved
+# (fine/, one JSON a medium) is kept, so it resumes.
+#     bash results/tortuosities/fine.sh            (PHIS="0.45 0.5 0.55 0.6")
 set -euo pipefail
 cd "$(dirname "$0")"
 here=$PWD
-PHIS=${PHIS:-"0.45 0.5 0.55 0.6 0.65 0.7"}
+PHIS=${PHIS:-"0.45 0.5 0.55 0.6"}
 SRC=${SOFTDROP:-$here/../../build/softdrop}
 BIN=$(mktemp /tmp/softdrop_fine.XXXXXX)  # a copy: a rebuild meanwhile changes nothing here
 trap 'rm -f "$BIN"' EXIT
@@ -38,7 +39,8 @@ if ((${#jobs[@]})); then
     fi'
 fi
 # fine.csv: each medium's two values and the relative change from 1000 to 2000 pixels across.
-"${PYTHON:-/usr/bin/python3}" - <<'PY'
+PYTHON=${PYTHON:-/usr/bin/python3}  # Debian's, with numpy, pandas and matplotlib
+"$PYTHON" - <<'PY'
 import glob, json, os
 import pandas as pd
 rows = []
@@ -54,3 +56,4 @@ for path in sorted(glob.glob("fine/*.json")):
 pd.DataFrame(rows).to_csv("fine.csv", index=False)
 print(f"fine: {len(rows)} media in fine.csv")
 PY
+"$PYTHON" "$here/analyse.py" "$here" "$BIN"
