@@ -15,7 +15,8 @@ void RingGroup::constrain() {
     DropletRuntime& r = sims[t]->runtime();
     if (m.params.constraint_order == ConstraintOrder::sequential) {
       if (!first) first = &m;
-      if (same_fields(first->params, m.params, FieldUse::constraint)) {
+      // (Copies of one simulation share its model: no fields to compare.)
+      if (&m == first || same_fields(first->params, m.params, FieldUse::constraint)) {
         r.changed();
         rings->push_back(&r.state);
         continue;
