@@ -35,9 +35,9 @@
 // one-droplet-079-1thread the same 24 first droplets alone: the ratio of their seconds is what a
 // second droplet costs. two-droplets-079-batch-1thread and one-droplet-079-batch-1thread do the
 // same for 48 as batches on one thread (run_two_droplet_batch, run_batch): 24 droplets stepped
-// together, or 12 pairs, their rings as lanes of one block. medium-200-image and batch-1thread-image run medium-200 and
-// batch-1thread on the same medium drawn as an image at 4 pixels a length unit (2000 x 2000 pixels), whose solid the
-// droplets meet through its distance field.
+// together, or pairs as many as fill those 24 lanes, their rings as lanes of one block. medium-200-image and
+// batch-1thread-image run medium-200 and batch-1thread on the same medium drawn as an image at 4 pixels a length unit
+// (2000 x 2000 pixels), whose solid the droplets meet through its distance field.
 #include <sys/resource.h>
 #include <sys/utsname.h>
 
@@ -183,8 +183,8 @@ Work two_droplets(const Medium& medium, int pairs, bool alone) {
   return w;
 }
 
-// The two-droplet scene as batches on one thread, at the default lanes: `pairs` pairs, 12 stepped
-// together, or their first droplets, 24 together.
+// The two-droplet scene as batches on one thread, in the default 24 lanes: `pairs` pairs, a lane a
+// droplet, or their first droplets alone.
 Work two_droplet_batch(const Medium& medium, int pairs, bool alone) {
   const DropletParams p = scene_droplet;
   BatchOptions b;
