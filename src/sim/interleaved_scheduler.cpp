@@ -23,15 +23,6 @@ LaneExchange::LaneExchange() : impl_(std::make_unique<Impl>()) {}
 LaneExchange::~LaneExchange() = default;
 std::int64_t LaneExchange::handovers() const { return impl_->handovers.load(); }
 
-namespace {
-// Simulation::centre_of_mass of sims[0..count): the lane-by-lane step's where it still holds, the
-// droplet's own sum otherwise.
-void centres_of_mass(Simulation* const* sims, int count, double* cx, double* cy) {
-  for (int t = 0; t < count; ++t)
-    if (!LaneBlockStep::centre_of_mass(*sims[t], cx + t, cy + t)) sims[t]->centre_of_mass(cx + t, cy + t);
-}
-}  // namespace
-
 void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_wait)>& next,
                      const std::function<void(std::int64_t id, RunSummary&&)>& done,
                      const std::function<void(std::int64_t id)>& cancelled, LaneExchange* exchange) {
@@ -39,9 +30,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
   std::vector<Lane> slots(static_cast<std::size_t>(lanes));
   std::vector<DropletState*> rings;
   std::vector<int> corrections;
-  std::vector<Simulation*> block, alone, stepped;
-  std::vector<double> cx(static_cast<std::size_t>(lanes)), cy(cx.size());
-  std::vector<char> valid(cx.size());
+  std::vector<Simulation*> block, alone;
   const bool lane_wise = constraint_vector_width() >= VectorWidth::avx;
   LaneExchangeSeat seat(exchange, lanes);
   int busy = 0;
@@ -123,23 +112,13 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
     }
     RingGroup group{alone.data(), static_cast<int>(alone.size()), &rings, &corrections};
     run_stages(group);
-    // Every lane's validity and centre of mass at once, then each run's book-keeping.
-    stepped.clear();
+    // Each run's book-keeping (its centre of mass: the block's sum, where the block stepped it).
     for (Lane& l : slots) {
       if (!l.run) continue;
-      valid[stepped.size()] = l.run->simulation()->runtime().valid();
-      stepped.push_back(l.run->simulation());
-    }
-    centres_of_mass(stepped.data(), static_cast<int>(stepped.size()), cx.data(), cy.data());
-    std::size_t t = 0;
-    for (Lane& l : slots) {
-      if (!l.run) continue;
-      const bool ok = valid[t] != 0;
-      const double x = cx[t], y = cy[t];
-      ++t;
+      const bool ok = l.run->simulation()->runtime().valid();
       if (cancelled) {
         try {
-          l.run->after_step(ok, x, y);
+          l.run->after_step(ok);
         } catch (const RunCancelled&) {
           l.run.reset();
           left();
@@ -147,7 +126,7 @@ void run_interleaved(int lanes, const std::function<bool(DropletJob*, bool may_w
           continue;
         }
       } else {
-        l.run->after_step(ok, x, y);
+        l.run->after_step(ok);
       }
       if (l.run->finished()) {
         RunSummary summary = l.run->take();

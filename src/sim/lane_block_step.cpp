@@ -166,8 +166,8 @@ void LaneBlockStep::Layout::stage<StepStage::constraint>() {
 
 template <>
 void LaneBlockStep::Layout::stage<StepStage::contact_limit>() {
-  // The centres of mass from the block (run_interleaved needs them after the contact limits, which
-  // seldom move a mass: then they are computed again from the state).
+  // The centres of mass from the block, which Simulation::centre_of_mass gives after the step (the
+  // contact limits seldom move a mass: then it sums the state again).
   double cx[lanes::kMaxLanes], cy[lanes::kMaxLanes];
   lanes::centres(block[0], block[1], n, registers, cx, cy);
   // Verlet left the positions the step began with as the previous ones, so px, py are x, y as they

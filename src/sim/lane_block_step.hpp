@@ -27,15 +27,6 @@ struct LaneBlockStep {
   // pairs[0..pair_count): the lanes of two droplets in one medium (ring_contact.hpp), each lane in
   // one pair at most, with the ring-ring stages between them.
   static void step(Simulation* const* sims, int count, RingPair* pairs = nullptr, int pair_count = 0);
-  // Simulation::centre_of_mass of sim as the last step left it, if that step was a block's and
-  // nothing has moved a mass since: false otherwise.
-  static bool centre_of_mass(const Simulation& sim, double* cx, double* cy) {
-    const BlockSlot& slot = sim.runtime().block;
-    if (slot.id == 0 || slot.id != slot.centre_id) return false;
-    *cx = slot.cx;
-    *cy = slot.cy;
-    return true;
-  }
 
  private:
   struct Layout;  // the block as a layout of the step driver (lane_block_step.cpp)

@@ -23,7 +23,7 @@ namespace {
 struct Slot {
   std::unique_ptr<TwoDropletRun> run;
   std::int64_t id = 0;
-  int first_lane = 0, lanes = 0;  // its rings' places among this step's rings
+  int lanes = 0;  // its rings stepped this step (0, 1 or 2)
 };
 
 // The rings as lane-by-lane blocks of at most kMaxLanes, each filled as far as it goes before the
@@ -78,11 +78,11 @@ void run_pairs_interleaved(int lanes, const DropletParams& droplet, const Medium
       if (!slot.run) continue;
       Simulation *a = nullptr, *b = nullptr;
       slot.run->begin_step(&a, &b);
-      slot.first_lane = static_cast<int>(rings.size());
+      const int first = static_cast<int>(rings.size());
       for (Simulation* sim : {a, b})
         if (sim) rings.push_back(sim);
-      slot.lanes = static_cast<int>(rings.size()) - slot.first_lane;
-      if (slot.lanes == 2) ring_pairs.push_back({slot.first_lane, slot.first_lane + 1, slot.run->scratch(), 0});
+      slot.lanes = static_cast<int>(rings.size()) - first;
+      if (slot.lanes == 2) ring_pairs.push_back({first, first + 1, slot.run->scratch(), 0});
     }
     if (rings.empty()) return;  // a pair still running steps a ring; every slot is empty, and next() said no
     if (lane_wise && rings.size() >= fewest_block_droplets()) {

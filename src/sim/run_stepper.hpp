@@ -78,16 +78,9 @@ class RunStepper {
 
   /// Book-keeping of the step just taken (ok: the step's own validity test); may end the run.
   void after_step(bool ok) {
-    double cx, cy;
-    sim_->centre_of_mass(&cx, &cy);
-    after_step(ok, cx, cy);
-  }
-  /// after_step(ok), given the centre of mass the step left (cx, cy), as centre_of_mass() gives it.
-  void after_step(bool ok, double cx, double cy) {
     const std::int64_t k = ++k_;
     const double pcx = cx_, pcy = cy_;
-    cx_ = cx;
-    cy_ = cy;
+    sim_->centre_of_mass(&cx_, &cy_);
     if (!ok || !std::isfinite(cx_) || !std::isfinite(cy_)) {
       std::ostringstream r;
       r << "ring became invalid at step " << k << " (area " << r_.area << ")";

@@ -9,7 +9,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "lane_block_step.hpp"
 #include "ring_group_step.hpp"
 #include "util/enum_names.hpp"
 #include "util/validation.hpp"
@@ -99,22 +98,12 @@ void TwoDropletRun::step() {
   end_step(pair.moved);
 }
 
-namespace {
-// RunStepper::after_step with the centre of mass the step left: the lane-by-lane block's where it
-// still holds (the same bits), the droplet's own sum otherwise.
-void after_step(RunStepper& run, const Simulation& sim) {
-  double cx = 0, cy = 0;
-  if (!LaneBlockStep::centre_of_mass(sim, &cx, &cy)) sim.centre_of_mass(&cx, &cy);
-  run.after_step(sim.runtime().valid(), cx, cy);
-}
-}  // namespace
-
 void TwoDropletRun::end_step(int moved) {
   limited_ = moved;
   if (a_on_ && b_on_ && scratch_.contacts > 0) ++contact_steps_;
   ++k_;
-  if (a_on_) after_step(*first_run_, first_);
-  if (b_on_) after_step(*second_run_, second_);
+  if (a_on_) first_run_->after_step(first_.runtime().valid());
+  if (b_on_) second_run_->after_step(second_.runtime().valid());
   if (!second_run_) release_if_due();
   share_shaking();
 }
