@@ -26,8 +26,6 @@
 namespace softdrop {
 namespace {
 
-using test::bits;
-
 // The second droplet released soon after the first, so that it catches up with it in the pores.
 SecondDroplet close_behind() {
   SecondDroplet second;
@@ -140,15 +138,7 @@ TEST(PairLanes, PairsSteppedTogetherGetEachPairsOwnSummaryAtEveryWidth) {
       const std::map<std::int64_t, TwoDropletSummary> got = interleaved(lanes, starts, medium, second);
       ASSERT_EQ(got.size(), starts.size());
       for (std::size_t i = 0; i < starts.size(); ++i) {
-        SCOPED_TRACE("pair " + std::to_string(i));
-        const TwoDropletSummary& g = got.at(static_cast<std::int64_t>(i));
-        const TwoDropletSummary& w = alone[i];
-        test::expect_same_summary(g.first, w.first, "first droplet");
-        test::expect_same_summary(g.second, w.second, "second droplet");
-        EXPECT_EQ(g.released, w.released);
-        EXPECT_EQ(bits(g.released_at), bits(w.released_at));
-        EXPECT_EQ(g.contact_steps, w.contact_steps);
-        EXPECT_EQ(g.shared_touched, w.shared_touched);
+        test::expect_same_pair(got.at(static_cast<std::int64_t>(i)), alone[i], "pair " + std::to_string(i));
       }
     }
   }

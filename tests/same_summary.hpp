@@ -1,6 +1,6 @@
 #pragma once
-// The test that two runs are the same to the bit: every value of their summaries, the doubles
-// compared by their bits.
+// The tests that two runs, or two pairs of droplets, are the same to the bit: every value of their
+// summaries, the doubles compared by their bits.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -32,6 +32,17 @@ inline void expect_same_summary(const RunSummary& a, const RunSummary& b, const 
   EXPECT_EQ(a.area, b.area);
   ASSERT_EQ(a.snapshots.size(), b.snapshots.size());
   for (std::size_t i = 0; i < a.snapshots.size(); ++i) EXPECT_EQ(a.snapshots[i].x, b.snapshots[i].x);
+}
+
+/// Whether two pairs of droplets ran the same, to the bit: both droplets, the release, the contacts.
+inline void expect_same_pair(const TwoDropletSummary& a, const TwoDropletSummary& b, const std::string& what) {
+  SCOPED_TRACE(what);
+  expect_same_summary(a.first, b.first, "first droplet");
+  expect_same_summary(a.second, b.second, "second droplet");
+  EXPECT_EQ(a.released, b.released);
+  EXPECT_EQ(bits(a.released_at), bits(b.released_at));
+  EXPECT_EQ(a.contact_steps, b.contact_steps);
+  EXPECT_EQ(a.shared_touched, b.shared_touched);
 }
 
 }  // namespace softdrop::test

@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+
+#include "step_test_seam.hpp"
 
 namespace softdrop {
 
@@ -57,13 +60,15 @@ bool nearest_edge(const DropletState& e, const EdgeGrid& grid, double x, double 
   // (the sum of its two edges' unit normals), which decides rightly for any closed polyline.
   double nx, ny;
   outward(e, found, &nx, &ny);
-  double sx = nx / std::hypot(nx, ny), sy = ny / std::hypot(nx, ny);
+  const double len_n = std::hypot(nx, ny);
+  double sx = nx / len_n, sy = ny / len_n;
   if (ft == 0 || ft == 1) {
     const int other = ft == 0 ? (found == 0 ? n - 1 : found - 1) : (found + 1 == n ? 0 : found + 1);
     double ox, oy;
     outward(e, other, &ox, &oy);
-    sx += ox / std::hypot(ox, oy);
-    sy += oy / std::hypot(ox, oy);
+    const double len_o = std::hypot(ox, oy);
+    sx += ox / len_o;
+    sy += oy / len_o;
   }
   const bool inside = (x - fqx) * sx + (y - fqy) * sy < 0;
   const double dist = std::sqrt(best);
@@ -78,8 +83,8 @@ bool nearest_edge(const DropletState& e, const EdgeGrid& grid, double x, double 
     hit->nx = sx / len;
     hit->ny = sy / len;
   } else {  // on a corner whose edges fold back onto each other: the edge's own normal
-    hit->nx = nx / std::hypot(nx, ny);
-    hit->ny = ny / std::hypot(nx, ny);
+    hit->nx = nx / len_n;
+    hit->ny = ny / len_n;
   }
   return true;
 }
@@ -88,18 +93,80 @@ bool nearest_edge(const DropletState& e, const EdgeGrid& grid, double x, double 
 // ring within a step still finds the edge it crossed.
 double grid_reach(const DropletModel& m) { return 2 * m.params.max_depth; }
 
-// The penalty between the masses of ring p and the edges of ring e (listed in grid), added to
-// their forces fp and fe.
-std::int64_t penalty(const DropletModel& m, const DropletRuntime& p, const DropletRuntime& e, const EdgeGrid& grid,
-                     RingForces fp, RingForces fe) {
+// How near the other ring's box a mass must be to query its grid: the reach, and half of it again.
+// A mass further out is further than the reach from every edge by a margin many orders of magnitude
+// beyond the rounding of a coordinate, so it could not have found one: leaving it out changes no bit.
+double query_margin(const DropletModel& m) {
+#if defined(SOFTDROP_TEST_HOOKS)
+  if (!test_seam::ring_pruning().load(std::memory_order_relaxed)) return std::numeric_limits<double>::infinity();
+#endif
+  return 1.5 * grid_reach(m);
+}
+
+// Ring s's bounding box, its x shifted by `shift`.
+RingBox box_of(const DropletState& s, double shift) {
+  RingBox b{s.x[0], s.x[0], s.y[0], s.y[0]};
+  for (int i = 1; i < s.size(); ++i) {
+    b.x0 = std::min(b.x0, s.x[i]);
+    b.x1 = std::max(b.x1, s.x[i]);
+    b.y0 = std::min(b.y0, s.y[i]);
+    b.y1 = std::max(b.y1, s.y[i]);
+  }
+  b.x0 += shift;
+  b.x1 += shift;
+  return b;
+}
+
+// Box b, its x shifted by `shift`: the same bits as box_of(ring, shift) for b = box_of(ring, 0).
+RingBox shifted(RingBox b, double shift) {
+  b.x0 += shift;
+  b.x1 += shift;
+  return b;
+}
+
+// Whether boxes a and b come within reach of each other.
+bool boxes_meet(const RingBox& a, const RingBox& b, double reach) {
+  return !(b.x0 > a.x1 + reach || a.x0 > b.x1 + reach || b.y0 > a.y1 + reach || a.y0 > b.y1 + reach);
+}
+
+// Whether ring b, its x shifted by s, may come within reach of ring a, judged on one mass of each:
+// every mass of a ring is within half its perimeter, N (1 + max_strain) d0 / 2, of every other.
+bool first_masses_near(const DropletModel& m, const DropletState& a, const DropletState& b, double s, double reach) {
+  const double far = a.size() * (1 + m.params.max_strain) * m.context.rest_length + reach;
+  return !(std::abs(b.x[0] + s - a.x[0]) > far || std::abs(b.y[0] - a.y[0]) > far);
+}
+
+// The penalty between the masses of ring p and the edges of ring e, whose box in p's frame is
+// `box`, added to their forces fp and fe. The grid lists e's edges near the masses that can touch
+// them; none is built when no mass can.
+std::int64_t penalty(const DropletModel& m, const DropletRuntime& p, const DropletRuntime& e, const RingBox& box,
+                     double shift, EdgeGrid* grid, RingForces fp, RingForces fe) {
+  const double margin = query_margin(m);
+  const DropletState& ps = p.state;
+  // The masses of p near e's box, and their box widened by the margin beyond the reach.
+  bool any = false;
+  RingBox near_masses;
+  for (int i = 0; i < ps.size(); ++i) {
+    if (!box.near(ps.x[i], ps.y[i], margin)) continue;
+    if (!any) near_masses = {ps.x[i], ps.x[i], ps.y[i], ps.y[i]};
+    any = true;
+    near_masses.x0 = std::min(near_masses.x0, ps.x[i]);
+    near_masses.x1 = std::max(near_masses.x1, ps.x[i]);
+    near_masses.y0 = std::min(near_masses.y0, ps.y[i]);
+    near_masses.y1 = std::max(near_masses.y1, ps.y[i]);
+  }
+  if (!any) return 0;
+  const double slack = margin - grid_reach(m);
+  const RingBox only{near_masses.x0 - slack, near_masses.x1 + slack, near_masses.y0 - slack, near_masses.y1 + slack};
+  grid->build(e.state, shift, grid_reach(m), std::isfinite(slack) ? &only : nullptr);
   const double skin = m.params.max_depth, kc = m.params.kc, cc = m.params.cc, inv_dt = m.context.inv_dt;
   const DropletState& es = e.state;
-  const DropletState& ps = p.state;
   const int ne = es.size();
   std::int64_t contacts = 0;
   for (int i = 0; i < ps.size(); ++i) {
+    if (!box.near(ps.x[i], ps.y[i], margin)) continue;
     EdgeHit h;
-    if (!nearest_edge(es, grid, ps.x[i], ps.y[i], grid_reach(m), &h)) continue;
+    if (!nearest_edge(es, *grid, ps.x[i], ps.y[i], grid_reach(m), &h)) continue;
     if (!(h.d < skin)) continue;
     const int a = h.edge, b = a + 1 == ne ? 0 : a + 1;
     const double t = h.t;
@@ -120,8 +187,11 @@ std::int64_t penalty(const DropletModel& m, const DropletRuntime& p, const Dropl
   return contacts;
 }
 
-// The limit between the masses of ring p and the edges of ring e (listed in grid).
-int limit(const DropletModel& m, DropletRuntime& p, DropletRuntime& e, const EdgeGrid& grid) {
+// The limit between the masses of ring p and the edges of ring e, whose box in p's frame is `box`.
+// The grid lists all of e's edges, built at the first mass near the box, before anything moved.
+int limit(const DropletModel& m, DropletRuntime& p, DropletRuntime& e, RingBox box, double shift, EdgeGrid* grid) {
+  const double margin = query_margin(m);
+  bool built = false;
   // A mass inside is moved out to a thousandth of max_depth outside the other ring, so that the
   // rounding of the correction leaves it outside.
   const double clear = 1e-3 * m.params.max_depth;
@@ -130,8 +200,11 @@ int limit(const DropletModel& m, DropletRuntime& p, DropletRuntime& e, const Edg
   const int ne = es.size();
   int moved = 0;
   for (int i = 0; i < ps.size(); ++i) {
+    if (!box.near(ps.x[i], ps.y[i], margin)) continue;
+    if (!built) grid->build(es, shift, grid_reach(m));
+    built = true;
     EdgeHit h;
-    if (!nearest_edge(es, grid, ps.x[i], ps.y[i], grid_reach(m), &h) || !(h.d < 0)) continue;
+    if (!nearest_edge(es, *grid, ps.x[i], ps.y[i], grid_reach(m), &h) || !(h.d < 0)) continue;
     const int a = h.edge, b = a + 1 == ne ? 0 : a + 1;
     const double t = h.t, u = 1 - t;
     // The mass moves by s n and the edge's ends by -s (1 - t) n and -s t n: the displacements sum
@@ -153,37 +226,16 @@ int limit(const DropletModel& m, DropletRuntime& p, DropletRuntime& e, const Edg
       es.px[a] += u * jx, es.py[a] += u * jy;
       es.px[b] += t * jx, es.py[b] += t * jy;
     }
+    // The box keeps holding every mass of e, so it still tells which later masses can reach it.
+    for (const int v : {a, b}) {
+      box.x0 = std::min(box.x0, es.x[v] + shift);
+      box.x1 = std::max(box.x1, es.x[v] + shift);
+      box.y0 = std::min(box.y0, es.y[v]);
+      box.y1 = std::max(box.y1, es.y[v]);
+    }
     ++moved;
   }
   return moved;
-}
-
-void bounds(const DropletState& s, double* x0, double* x1, double* y0, double* y1) {
-  *x0 = *x1 = s.x[0];
-  *y0 = *y1 = s.y[0];
-  for (int i = 1; i < s.size(); ++i) {
-    *x0 = std::min(*x0, s.x[i]);
-    *x1 = std::max(*x1, s.x[i]);
-    *y0 = std::min(*y0, s.y[i]);
-    *y1 = std::max(*y1, s.y[i]);
-  }
-}
-
-// Whether the bounding boxes of ring a and of ring b, its x shifted by s, come within reach.
-bool boxes_within(const DropletState& a, const DropletState& b, double s, double reach) {
-  double ax0, ax1, ay0, ay1, bx0, bx1, by0, by1;
-  bounds(a, &ax0, &ax1, &ay0, &ay1);
-  bounds(b, &bx0, &bx1, &by0, &by1);
-  return !(bx0 + s > ax1 + reach || ax0 > bx1 + s + reach || by0 > ay1 + reach || ay0 > by1 + reach);
-}
-
-// Whether ring b, its x shifted by s, may come within reach of ring a: first on one mass of each
-// (every mass of a ring is within half its perimeter, N (1 + max_strain) d0 / 2, of every other),
-// then on the bounding boxes.
-bool may_touch(const DropletModel& m, const DropletState& a, const DropletState& b, double s, double reach) {
-  const double far = a.size() * (1 + m.params.max_strain) * m.context.rest_length + reach;
-  if (std::abs(b.x[0] + s - a.x[0]) > far || std::abs(b.y[0] - a.y[0]) > far) return false;
-  return boxes_within(a, b, s, reach);
 }
 
 }  // namespace
@@ -193,16 +245,23 @@ std::uint64_t EdgeGrid::bucket(std::int64_t ix, std::int64_t iy) const {
   return ((ux * 0x9E3779B97F4A7C15ULL) ^ (uy * 0xC2B2AE3D27D4EB4FULL)) >> 20 & mask_;
 }
 
-void EdgeGrid::build(const DropletState& ring, double shift_x, double reach) {
+void EdgeGrid::build(const DropletState& ring, double shift_x, double reach, const RingBox* only) {
   const int n = ring.size();
   shift_ = shift_x;
   mask_ = power_of_two_at_least(2 * static_cast<std::uint64_t>(n)) - 1;
-  // A cell as wide as the longest edge's box widened by the reach on both sides: each edge is
-  // listed in at most four cells.
+  // The edges to list: all, or those whose box widened by the reach meets `only`.
+  const auto listed = [&](int j, int k) {
+    if (!only) return true;
+    const double xa = ring.x[j] + shift_x, xb = ring.x[k] + shift_x;
+    return !(std::min(xa, xb) - reach > only->x1 || std::max(xa, xb) + reach < only->x0 ||
+             std::min(ring.y[j], ring.y[k]) - reach > only->y1 || std::max(ring.y[j], ring.y[k]) + reach < only->y0);
+  };
+  // A cell as wide as the longest listed edge's box widened by the reach on both sides: each edge
+  // is listed in at most four cells.
   double longest = 0;
   for (int j = 0; j < n; ++j) {
     const int k = j + 1 == n ? 0 : j + 1;
-    longest = std::max({longest, std::abs(ring.x[k] - ring.x[j]), std::abs(ring.y[k] - ring.y[j])});
+    if (listed(j, k)) longest = std::max({longest, std::abs(ring.x[k] - ring.x[j]), std::abs(ring.y[k] - ring.y[j])});
   }
   cell_ = longest + 2 * reach;
   start_.assign(mask_ + 2, 0);
@@ -211,11 +270,15 @@ void EdgeGrid::build(const DropletState& ring, double shift_x, double reach) {
   // Each edge's cells, as (bucket, edge) in edge order; then a counting sort by bucket, stable.
   for (int j = 0; j < n; ++j) {
     const int k = j + 1 == n ? 0 : j + 1;
+    if (!listed(j, k)) continue;
     const double xa = ring.x[j] + shift_x, xb = ring.x[k] + shift_x;
     const auto ix0 = static_cast<std::int64_t>(std::floor((std::min(xa, xb) - reach) / cell_));
     const auto ix1 = static_cast<std::int64_t>(std::floor((std::max(xa, xb) + reach) / cell_));
     const auto iy0 = static_cast<std::int64_t>(std::floor((std::min(ring.y[j], ring.y[k]) - reach) / cell_));
     const auto iy1 = static_cast<std::int64_t>(std::floor((std::max(ring.y[j], ring.y[k]) + reach) / cell_));
+#if defined(SOFTDROP_TEST_HOOKS)
+    ++test_seam::ring_grid_edges();
+#endif
     for (std::int64_t ix = ix0; ix <= ix1; ++ix)
       for (std::int64_t iy = iy0; iy <= iy1; ++iy) {
         const std::uint64_t key = bucket(ix, iy);
@@ -248,20 +311,21 @@ void ring_contacts_stage(const DropletModel& m, const DropletRuntime& a, const D
   scratch->contacts = 0;
   const double s = periodic_shift(a.state, b.state, m.medium), reach = grid_reach(m);
   // Rings further apart than the reach: no contact, and no grid to build.
-  if (!may_touch(m, a.state, b.state, s, reach)) return;
-  scratch->edges[1].build(b.state, s, reach);  // b in a's frame
-  scratch->contacts += penalty(m, a, b, scratch->edges[1], fa, fb);
-  scratch->edges[0].build(a.state, -s, reach);  // a in b's frame
-  scratch->contacts += penalty(m, b, a, scratch->edges[0], fb, fa);
+  if (!first_masses_near(m, a.state, b.state, s, reach)) return;
+  const RingBox box_a = box_of(a.state, 0), box_b = box_of(b.state, s);  // in a's frame
+  if (!boxes_meet(box_a, box_b, reach)) return;
+  scratch->contacts += penalty(m, a, b, box_b, s, &scratch->edges[1], fa, fb);
+  scratch->contacts += penalty(m, b, a, shifted(box_a, -s), -s, &scratch->edges[0], fb, fa);  // in b's frame
 }
 
 int ring_limit_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b, RingContactScratch* scratch) {
   const double s = periodic_shift(a.state, b.state, m.medium), reach = grid_reach(m);
-  if (!may_touch(m, a.state, b.state, s, reach)) return 0;
-  scratch->edges[1].build(b.state, s, reach);
-  const int moved_a = limit(m, a, b, scratch->edges[1]);
-  scratch->edges[0].build(a.state, -s, reach);
-  const int moved_b = limit(m, b, a, scratch->edges[0]);
+  if (!first_masses_near(m, a.state, b.state, s, reach)) return 0;
+  const RingBox box_a = box_of(a.state, 0), box_b = box_of(b.state, s);
+  if (!boxes_meet(box_a, box_b, reach)) return 0;
+  const int moved_a = limit(m, a, b, box_b, s, &scratch->edges[1]);
+  // In b's frame, with a's box as a's moves left it.
+  const int moved_b = limit(m, b, a, moved_a > 0 ? box_of(a.state, -s) : shifted(box_a, -s), -s, &scratch->edges[0]);
   if (moved_a + moved_b > 0) {
     // Both rings may have moved (a mass, or an edge's ends).
     a.changed();
@@ -271,7 +335,7 @@ int ring_limit_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b
 }
 
 bool rings_within(const DropletState& a, const DropletState& b, const Medium& medium, double reach) {
-  return boxes_within(a, b, periodic_shift(a, b, medium), reach);
+  return boxes_meet(box_of(a, 0), box_of(b, periodic_shift(a, b, medium)), reach);
 }
 
 }  // namespace softdrop

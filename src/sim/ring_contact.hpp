@@ -18,6 +18,15 @@
 
 namespace softdrop {
 
+// An axis-aligned box, [x0, x1] x [y0, y1] (length units).
+struct RingBox {
+  double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  /// Whether (x, y) lies within `margin` of the box.
+  bool near(double x, double y, double margin) const {
+    return !(x < x0 - margin || x > x1 + margin || y < y0 - margin || y > y1 + margin);
+  }
+};
+
 // A uniform grid of one ring's edges, rebuilt for each use (O(N)): edge j, from mass j to mass
 // j + 1, is listed in every cell that its bounding box, widened by `reach`, overlaps, so a point
 // finds every edge within reach of it in its own cell. The cells are hashed into a table of a
@@ -26,8 +35,10 @@ namespace softdrop {
 // result. Each list ascends.
 class EdgeGrid {
  public:
-  /// Lists the edges of `ring`, its x shifted by shift_x (a periodic copy), within `reach`.
-  void build(const DropletState& ring, double shift_x, double reach);
+  /// Lists the edges of `ring`, its x shifted by shift_x (a periodic copy), within `reach`; with
+  /// `only`, just the edges whose box widened by `reach` meets it (in the shifted frame), for
+  /// queries from points inside `only` alone.
+  void build(const DropletState& ring, double shift_x, double reach, const RingBox* only = nullptr);
   /// The edges listed in the cell of (x, y) (in the shifted frame): [*begin, *end).
   void cell(double x, double y, const std::int32_t** begin, const std::int32_t** end) const;
   double shift() const { return shift_; }

@@ -32,6 +32,14 @@ std::int64_t& test_seam::lane_constraint_groups() {
   thread_local std::int64_t groups = 0;
   return groups;
 }
+std::atomic<bool>& test_seam::ring_pruning() {
+  static std::atomic<bool> on{true};
+  return on;
+}
+std::int64_t& test_seam::ring_grid_edges() {
+  thread_local std::int64_t edges = 0;
+  return edges;
+}
 #endif
 
 constexpr detail::EnumName<Outcome> kOutcomes[] = {{Outcome::passed, "passed"},

@@ -18,5 +18,11 @@ std::atomic<StepMutation>& step_mutation();
 /// test that the lanes path runs where the vector width says it does (both paths give the same
 /// bits, so nothing else would show that it had been compiled out).
 std::int64_t& lane_constraint_groups();
+/// Whether the ring-ring stages leave out the masses too far from the other ring to touch it
+/// (ring_contact.cpp). Off, every mass queries a grid of every edge, as the stages did without the
+/// pruning: a test compares the two. Set it only while no droplet is stepped.
+std::atomic<bool>& ring_pruning();
+/// Edges the ring-ring stages have listed in their grids on this thread: what the pruning saves.
+std::int64_t& ring_grid_edges();
 }  // namespace softdrop::test_seam
 #endif
