@@ -95,6 +95,20 @@ inline Medium small_medium_079() {
   mo.seed = 3;
   return generate_medium(mo);
 }
+/// The second droplet released soon after the first (the least descent that starts it clear of
+/// the first), so that it catches up with it in the pores of small_medium_079.
+inline SecondDroplet close_behind() {
+  SecondDroplet second;
+  const DropletParams p;
+  second.after = 2 * p.radius + p.max_depth + 1;
+  return second;
+}
+/// Run options with a step budget that lets both droplets of such a pair pass.
+inline RunOptions long_enough() {
+  RunOptions o;
+  o.max_steps = 400000;
+  return o;
+}
 /// An empty periodic box.
 inline Medium empty_medium(double width = 500, double height = 500) { return Medium{width, height, true, {}, nullptr}; }
 

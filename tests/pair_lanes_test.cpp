@@ -26,19 +26,8 @@
 namespace softdrop {
 namespace {
 
-// The second droplet released soon after the first, so that it catches up with it in the pores.
-SecondDroplet close_behind() {
-  SecondDroplet second;
-  const DropletParams p;
-  second.after = 2 * p.radius + p.max_depth + 1;
-  return second;
-}
-
-RunOptions long_enough() {
-  RunOptions o;
-  o.max_steps = 400000;
-  return o;
-}
+using test::close_behind;
+using test::long_enough;
 
 TEST(PairLanes, APairAsTwoLanesOfABlockStepsAsItsOwnStepToTheBit) {
   // Pair `alone` steps itself (a ring group of its two rings). The same pair, beside another (a block of four lanes,

@@ -118,10 +118,8 @@ TEST(RingPruning, PairsInAMediumAreTheSameBitsWithoutThePruning) {
   // the first so that it catches up with it in the pores.
   const Medium medium = test::small_medium_079();
   const DropletParams p;
-  SecondDroplet second;
-  second.after = 2 * p.radius + p.max_depth + 1;
-  RunOptions o;
-  o.max_steps = 400000;
+  const SecondDroplet second = test::close_behind();
+  const RunOptions o = test::long_enough();
   std::int64_t contact_steps = 0, pruned_edges = 0, every_edges = 0;
   for (const double x0 : {60.0, 100.0, 150.0}) {
     std::int64_t before = test_seam::ring_grid_edges();

@@ -125,10 +125,8 @@ TEST(TwoDroplets, NoMassOfEitherRingIsEverInsideTheOtherInAMedium) {
   // soon after the first (it catches up in the pores), and every step is checked.
   const Medium medium = test::small_medium_079();
   const DropletParams p;
-  SecondDroplet second;
-  second.after = 2 * p.radius + p.max_depth + 1;
-  RunOptions o;
-  o.max_steps = 400000;
+  const SecondDroplet second = test::close_behind();
+  const RunOptions o = test::long_enough();
   for (double x0 : {60.0, 100.0, 150.0}) {
     SCOPED_TRACE("x0 = " + std::to_string(x0));
     TwoDropletRun run(p, medium, x0, o, second);
