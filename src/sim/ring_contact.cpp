@@ -103,21 +103,14 @@ double query_margin(const DropletModel& m) {
   return 1.5 * grid_reach(m);
 }
 
-// Ring s's bounding box, its x shifted by `shift`.
-RingBox box_of(const DropletState& s, double shift) {
-  RingBox b{s.x[0], s.x[0], s.y[0], s.y[0]};
-  for (int i = 1; i < s.size(); ++i) {
-    b.x0 = std::min(b.x0, s.x[i]);
-    b.x1 = std::max(b.x1, s.x[i]);
-    b.y0 = std::min(b.y0, s.y[i]);
-    b.y1 = std::max(b.y1, s.y[i]);
-  }
-  b.x0 += shift;
-  b.x1 += shift;
+// Ring s's bounding box.
+RingBox box_of(const DropletState& s) {
+  RingBox b = RingBox::at(s.x[0], s.y[0]);
+  for (int i = 1; i < s.size(); ++i) b.add(s.x[i], s.y[i]);
   return b;
 }
 
-// Box b, its x shifted by `shift`: the same bits as box_of(ring, shift) for b = box_of(ring, 0).
+// Box b, its x shifted by `shift` (into the frame of the other ring).
 RingBox shifted(RingBox b, double shift) {
   b.x0 += shift;
   b.x1 += shift;
@@ -148,12 +141,12 @@ std::int64_t penalty(const DropletModel& m, const DropletRuntime& p, const Dropl
   RingBox near_masses;
   for (int i = 0; i < ps.size(); ++i) {
     if (!box.near(ps.x[i], ps.y[i], margin)) continue;
-    if (!any) near_masses = {ps.x[i], ps.x[i], ps.y[i], ps.y[i]};
-    any = true;
-    near_masses.x0 = std::min(near_masses.x0, ps.x[i]);
-    near_masses.x1 = std::max(near_masses.x1, ps.x[i]);
-    near_masses.y0 = std::min(near_masses.y0, ps.y[i]);
-    near_masses.y1 = std::max(near_masses.y1, ps.y[i]);
+    if (any) {
+      near_masses.add(ps.x[i], ps.y[i]);
+    } else {
+      near_masses = RingBox::at(ps.x[i], ps.y[i]);
+      any = true;
+    }
   }
   if (!any) return 0;
   const double slack = margin - grid_reach(m);
@@ -227,12 +220,8 @@ int limit(const DropletModel& m, DropletRuntime& p, DropletRuntime& e, RingBox b
       es.px[b] += t * jx, es.py[b] += t * jy;
     }
     // The box keeps holding every mass of e, so it still tells which later masses can reach it.
-    for (const int v : {a, b}) {
-      box.x0 = std::min(box.x0, es.x[v] + shift);
-      box.x1 = std::max(box.x1, es.x[v] + shift);
-      box.y0 = std::min(box.y0, es.y[v]);
-      box.y1 = std::max(box.y1, es.y[v]);
-    }
+    box.add(es.x[a] + shift, es.y[a]);
+    box.add(es.x[b] + shift, es.y[b]);
     ++moved;
   }
   return moved;
@@ -312,7 +301,7 @@ void ring_contacts_stage(const DropletModel& m, const DropletRuntime& a, const D
   const double s = periodic_shift(a.state, b.state, m.medium), reach = grid_reach(m);
   // Rings further apart than the reach: no contact, and no grid to build.
   if (!first_masses_near(m, a.state, b.state, s, reach)) return;
-  const RingBox box_a = box_of(a.state, 0), box_b = box_of(b.state, s);  // in a's frame
+  const RingBox box_a = box_of(a.state), box_b = shifted(box_of(b.state), s);  // in a's frame
   if (!boxes_meet(box_a, box_b, reach)) return;
   scratch->contacts += penalty(m, a, b, box_b, s, &scratch->edges[1], fa, fb);
   scratch->contacts += penalty(m, b, a, shifted(box_a, -s), -s, &scratch->edges[0], fb, fa);  // in b's frame
@@ -321,11 +310,11 @@ void ring_contacts_stage(const DropletModel& m, const DropletRuntime& a, const D
 int ring_limit_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b, RingContactScratch* scratch) {
   const double s = periodic_shift(a.state, b.state, m.medium), reach = grid_reach(m);
   if (!first_masses_near(m, a.state, b.state, s, reach)) return 0;
-  const RingBox box_a = box_of(a.state, 0), box_b = box_of(b.state, s);
+  const RingBox box_a = box_of(a.state), box_b = shifted(box_of(b.state), s);
   if (!boxes_meet(box_a, box_b, reach)) return 0;
   const int moved_a = limit(m, a, b, box_b, s, &scratch->edges[1]);
   // In b's frame, with a's box as a's moves left it.
-  const int moved_b = limit(m, b, a, moved_a > 0 ? box_of(a.state, -s) : shifted(box_a, -s), -s, &scratch->edges[0]);
+  const int moved_b = limit(m, b, a, shifted(moved_a > 0 ? box_of(a.state) : box_a, -s), -s, &scratch->edges[0]);
   if (moved_a + moved_b > 0) {
     // Both rings may have moved (a mass, or an edge's ends).
     a.changed();
@@ -335,7 +324,7 @@ int ring_limit_stage(const DropletModel& m, DropletRuntime& a, DropletRuntime& b
 }
 
 bool rings_within(const DropletState& a, const DropletState& b, const Medium& medium, double reach) {
-  return boxes_meet(box_of(a, 0), box_of(b, periodic_shift(a, b, medium)), reach);
+  return boxes_meet(box_of(a), shifted(box_of(b), periodic_shift(a, b, medium)), reach);
 }
 
 }  // namespace softdrop

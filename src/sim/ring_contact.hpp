@@ -9,6 +9,7 @@
 // mass no deeper than max_depth, i.e. never inside the other ring, and stops its approach. Every
 // force and every correction acts on the mass and, opposite, on the edge's two ends in the
 // proportions of the contact point (1 - t, t): the pair's momentum is unchanged by both stages.
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -21,6 +22,12 @@ namespace softdrop {
 // An axis-aligned box, [x0, x1] x [y0, y1] (length units).
 struct RingBox {
   double x0 = 0, x1 = 0, y0 = 0, y1 = 0;
+  /// The box of the point (x, y) alone.
+  static RingBox at(double x, double y) { return {x, x, y, y}; }
+  /// Widens the box to hold (x, y).
+  void add(double x, double y) {
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  }
   /// Whether (x, y) lies within `margin` of the box.
   bool near(double x, double y, double margin) const {
     return !(x < x0 - margin || x > x1 + margin || y < y0 - margin || y > y1 + margin);
