@@ -15,15 +15,11 @@ import sys
 import numpy as np
 import pandas as pd
 
-import softdrop
-
-L, A, SEEDS = (int(v) for v in sys.argv[1:4]) if len(sys.argv) >= 4 else (400, 8, 4)
 DEFAULT_PHIS = "0.5,0.6,0.7,0.8,0.9"
-PHIS = sys.argv[4] if len(sys.argv) >= 5 else DEFAULT_PHIS
 
 
-def squares(porosity, seed):
-    """A boolean image, True in the pore space: squares of side A at random places, periodic."""
+def squares(L, A, porosity, seed):
+    """A boolean L x L image, True in the pore space: squares of side A at random places, periodic."""
     rng = np.random.default_rng(seed)
     pore = np.ones((L, L), dtype=bool)
     rows = np.arange(A)
@@ -33,24 +29,33 @@ def squares(porosity, seed):
     return pore
 
 
-rows = []
-for porosity in (float(v) for v in PHIS.split(",")):
-    for seed in range(1, SEEDS + 1):
-        image = squares(porosity, seed)
-        try:
-            r = softdrop.tortuosity(image, pixel_size=1.0, buffer_rows=0)
-        except ValueError as e:  # no pore path from the top to the bottom
-            print(f"squares: porosity {porosity}, seed {seed}: {e}", file=sys.stderr)
-            continue
-        rows.append({"target_porosity": porosity, "seed": seed, "porosity": r.porosity,
-                     "hydrodynamic_tortuosity": r.hydrodynamic_tortuosity,
-                     "p": (r.hydrodynamic_tortuosity - 1) / -math.log(r.porosity),
-                     "permeability": r.permeability})
-frame = pd.DataFrame(rows)
-name = f"squares_{L}_{A}" + ("" if PHIS == DEFAULT_PHIS else f"_{PHIS.replace(',', '_')}")
-out = os.path.join(os.path.dirname(os.path.abspath(__file__)), f"{name}.csv")
-frame.to_csv(out, index=False)
-summary = frame.groupby("target_porosity").agg(boxes=("p", "size"), T=("hydrodynamic_tortuosity", "mean"),
-                                               p=("p", "mean"), p_se=("p", "sem"))
-print(f"L = {L}, A = {A} (L / A = {L // A})")
-print(summary.round(4).to_string())
+def main():
+    import softdrop  # the built module (PYTHONPATH=build/python); squares() alone does not need it
+
+    L, A, SEEDS = (int(v) for v in sys.argv[1:4]) if len(sys.argv) >= 4 else (400, 8, 4)
+    PHIS = sys.argv[4] if len(sys.argv) >= 5 else DEFAULT_PHIS
+    rows = []
+    for porosity in (float(v) for v in PHIS.split(",")):
+        for seed in range(1, SEEDS + 1):
+            image = squares(L, A, porosity, seed)
+            try:
+                r = softdrop.tortuosity(image, pixel_size=1.0, buffer_rows=0)
+            except ValueError as e:  # no pore path from the top to the bottom
+                print(f"squares: porosity {porosity}, seed {seed}: {e}", file=sys.stderr)
+                continue
+            rows.append({"target_porosity": porosity, "seed": seed, "porosity": r.porosity,
+                         "hydrodynamic_tortuosity": r.hydrodynamic_tortuosity,
+                         "p": (r.hydrodynamic_tortuosity - 1) / -math.log(r.porosity),
+                         "permeability": r.permeability})
+    frame = pd.DataFrame(rows)
+    name = f"squares_{L}_{A}" + ("" if PHIS == DEFAULT_PHIS else f"_{PHIS.replace(',', '_')}")
+    out = os.path.join(os.path.dirname(os.path.abspath(__file__)), f"{name}.csv")
+    frame.to_csv(out, index=False)
+    summary = frame.groupby("target_porosity").agg(boxes=("p", "size"), T=("hydrodynamic_tortuosity", "mean"),
+                                                   p=("p", "mean"), p_se=("p", "sem"))
+    print(f"L = {L}, A = {A} (L / A = {L // A})")
+    print(summary.round(4).to_string())
+
+
+if __name__ == "__main__":
+    main()
