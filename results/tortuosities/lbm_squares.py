@@ -34,9 +34,9 @@ WEIGHT = np.array([4 / 9] + [1 / 9] * 4 + [1 / 36] * 4)
 OPPOSITE = np.array([0, 3, 4, 1, 2, 7, 8, 5, 6])
 
 
-def shift(a, dy, dx, out):
-    """out = a moved by (dy, dx), periodic: out[y, x] = a[y - dy, x - dx]."""
-    out[...] = np.roll(np.roll(a, dy, axis=0), dx, axis=1)
+def moved(a, dy, dx):
+    """a moved by (dy, dx), periodic: the result at [y, x] is a[y - dy, x - dx]."""
+    return np.roll(np.roll(a, dy, axis=0), dx, axis=1)
 
 
 def flow(pore, tau_plus=3.0, force=1e-6, check=100, max_steps=400_000):
@@ -47,24 +47,25 @@ def flow(pore, tau_plus=3.0, force=1e-6, check=100, max_steps=400_000):
     omega_plus = 1 / tau_plus
     omega_minus = 1 / (0.5 + (3 / 16) / (tau_plus - 0.5))
     w = WEIGHT[:, None, None]
-    cx = CX[:, None, None].astype(float)
-    cy = CY[:, None, None].astype(float)
+    ex, ey = CX.astype(float), CY.astype(float)
+    cx, cy = ex[:, None, None], ey[:, None, None]
     # Guo's forcing for the linear equilibrium: only the antisymmetric (odd) part.
     source = ((1 - omega_minus / 2) * 3 * WEIGHT * CY * force)[:, None, None]
     # A population that would come from a solid node bounces back at the edge: f_i(x) = f*_opp(x).
-    bounce = np.array([np.roll(np.roll(solid, CY[i], axis=0), CX[i], axis=1) & pore for i in range(9)])
+    bounce = np.array([moved(solid, CY[i], CX[i]) & pore for i in range(9)])
     f = np.broadcast_to(w, (9, ny, nx)).copy()
     post = np.empty_like(f)
     last, steps = None, 0
     while steps < max_steps:
         rho = f.sum(axis=0)
-        jx = np.tensordot(CX.astype(float), f, axes=1)
-        jy = np.tensordot(CY.astype(float), f, axes=1) + force / 2 * rho
+        jx = np.tensordot(ex, f, axes=1)
+        jy = np.tensordot(ey, f, axes=1) + force / 2 * rho
         neq = f - w * (rho + 3 * (cx * jx + cy * jy))
-        odd = neq - neq[OPPOSITE]  # twice the antisymmetric part
-        post[...] = f - omega_plus * 0.5 * (neq + neq[OPPOSITE]) - omega_minus * 0.5 * odd + source * rho
+        neq_opposite = neq[OPPOSITE]  # the sum and the difference: twice the even and the odd part
+        post[...] = (f - omega_plus * 0.5 * (neq + neq_opposite) - omega_minus * 0.5 * (neq - neq_opposite)
+                     + source * rho)
         for i in range(9):
-            shift(post[i], CY[i], CX[i], f[i])
+            f[i] = moved(post[i], CY[i], CX[i])
         np.copyto(f, post[OPPOSITE], where=bounce)
         f[:, solid] = WEIGHT[:, None]
         steps += 1
