@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <string>
+#include <string_view>
 #include <type_traits>
 #include <utility>
 
@@ -31,6 +33,15 @@ SearchRun default_search_run() {
 }
 
 namespace {
+// The reader of stored parameters (params_json.hpp) names its source "stored parameters"; these
+// values are the caller's own, not yet stored, so the refusal names only the value.
+std::invalid_argument given_values_error(const std::runtime_error& e) {
+  constexpr std::string_view stored = "stored parameters: ";
+  std::string what = e.what();
+  if (what.starts_with(stored)) what.erase(0, stored.size());
+  return std::invalid_argument(what);
+}
+
 // The start's stored keys that are plain fields of MediumOptions, in one list for the writer
 // (search_run_params) and the reader (set_search_run_values): f(key, field) for each.
 template <class Medium, class F>
@@ -112,7 +123,7 @@ void set_search_run_values(const nlohmann::json& values, SearchRun* run) {
   } catch (const nlohmann::json::exception& e) {
     throw std::invalid_argument(std::string("a search's values: ") + e.what());
   } catch (const std::runtime_error& e) {  // search_params_from_json naming a mistyped key
-    throw std::invalid_argument(e.what());
+    throw given_values_error(e);
   }
 }
 
@@ -189,7 +200,7 @@ SweepOptions sweep_of_values(const nlohmann::json& values, const std::vector<std
   try {
     return sweep_params_from_json(j.dump());
   } catch (const std::runtime_error& e) {  // naming a mistyped key
-    throw std::invalid_argument(e.what());
+    throw given_values_error(e);
   }
 }
 

@@ -51,6 +51,11 @@ def test_every_option_of_the_program_is_a_keyword(tmp_path, command):
     (lambda db: softdrop.sweep(db, second_after=3), ValueError, r"^second_after: has no effect without second_droplet$"),
     (lambda db: softdrop.sweep(db, shard="2/2"), ValueError, r"^shard = '2/2': expected i/n with 0 <= i < n$"),
     (lambda db: softdrop.sweep(db, preset="slow"), ValueError, r"^preset = 'slow': must be quick or paper$"),
+    # Read by the reader of stored runs, but the caller's own value: the refusal names it alone.
+    (lambda db: softdrop.optimize(db, objective="o"), ValueError,
+     r"^objective = 'o': must be single, mean, quantile or lower-bound$"),
+    (lambda db: softdrop.sweep(db, constraint_order="zigzag"), ValueError,
+     r"^constraint_order = 'zigzag': must be sequential or red-black$"),
 ])
 def test_a_value_is_read_as_its_options_type(tmp_path, call, error, says):
     with pytest.raises(error, match=says):
