@@ -88,7 +88,9 @@ class RunStepper {
     }
     s_.min_area_ratio = std::min(s_.min_area_ratio, r_.area / m_.area0);
     s_.max_penetration = std::max(s_.max_penetration, r_.last_penetration);
-    path_.add(pcx, pcy, cx_, cy_, H_);
+    // The step's travel, for the path and the rest test alike.
+    const double travel = step_detail::distance(pcx, pcy, cx_, cy_);
+    path_.add(pcx, pcy, cx_, cy_, H_, travel);
     if (shaking_ && (cy_ < 0 || static_cast<double>(k - shaking_from_) * dt_ * m_.params.vibration_frequency >=
                                     static_cast<double>(periods_))) {
       // The route: the centre once a shaking period (at the first step of each), and where it left.
@@ -129,7 +131,7 @@ class RunStepper {
     if (rest_window_ > 0 && !shaking_) {
       // The centre's travel in any direction: a droplet bouncing off a grain travels far while
       // making no net progress, and is not at rest.
-      rest_travel_ += step_detail::distance(pcx, pcy, cx_, cy_);
+      rest_travel_ += travel;
       if (k % rest_window_ == 0) {
         if (rest_travel_ < o_.rest_distance) {
           if (shaking_pending()) return start_shaking(k);

@@ -28,7 +28,10 @@ struct PathInMedium {
   bool entered = false;  // a point was below H
 
   // The segment from (px, py) to (x, y).
-  void add(double px, double py, double x, double y, double H) {
+  void add(double px, double py, double x, double y, double H) { add(px, py, x, y, H, distance(px, py, x, y)); }
+  // The same, given the segment's whole length, distance(px, py, x, y): a caller that needs that
+  // length too computes it once (the same double either way).
+  void add(double px, double py, double x, double y, double H, double whole) {
     if (!entered && y < H) {
       entered = true;
       const double f = (py - H) / (py - y);
@@ -38,7 +41,7 @@ struct PathInMedium {
         const double f = py / (py - y);
         length += distance(px, py, px + f * (x - px), 0);
       } else {
-        length += distance(px, py, x, y);
+        length += whole;
       }
     }
   }
