@@ -62,6 +62,9 @@ std::vector<SweepUnit> sweep_units(const SweepOptions& options, int shard = 0, i
 /// value and the medium index, so adding porosities or media to a sweep leaves the existing units
 /// unchanged.
 std::uint64_t sweep_medium_seed(const SweepOptions& options, const SweepUnit& unit);
+/// The options from which the sweep generates the unit's medium (generate_medium): the sweep's
+/// medium options with the unit's target porosity and sweep_medium_seed.
+MediumOptions sweep_medium_options(const SweepOptions& options, const SweepUnit& unit);
 
 /// One droplet's record.
 struct SweepDroplet {

@@ -18,7 +18,8 @@ from . import _core
 
 __all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "simulate_pair",
            "simulate_pairs", "held_out", "tortuosity", "optimize",
-           "sweep", "rigid_descent", "read_history", "read_sweep", "best_arrangement", "columns", "__version__"]
+           "sweep", "rigid_descent", "read_history", "read_sweep", "sweep_droplet", "best_arrangement", "columns",
+           "__version__"]
 
 
 class Result(dict):
@@ -365,6 +366,24 @@ def columns():
     import pandas as pd
 
     return pd.DataFrame(_core._columns())
+
+
+def sweep_droplet(db, porosity_index, medium_index, droplet, sweep=None):
+    """One droplet of a `softdrop sweep`, ready to run again, named by its indices in the sweep's
+    tables (read_sweep): a Result with medium (the medium's grains, generated again from its stored
+    seed and the sweep's options), params (the sweep's DropletParams), run (its RunOptions) and x0
+    (the droplet's start), and what the sweep stored of the droplet: outcome, tortuosity (NaN unless
+    it passed), steps, with target_porosity, porosity, medium_seed and sweep. simulate(r.medium,
+    x0=r.x0, params=r.params, run=r.run) gives the stored outcome, T and steps again to the bit;
+    add path=True or trace=True to see how it got there. `sweep` is the sweep's id (None: the only
+    one in the file). A sweep of pairs is refused: a pair's first droplet does not run alone."""
+    for name, value in (("porosity_index", porosity_index), ("medium_index", medium_index), ("droplet", droplet)):
+        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+            raise TypeError(f"{name}: a whole number, not {value!r}")
+    if sweep is not None and (isinstance(sweep, bool) or not isinstance(sweep, numbers.Integral) or sweep < 1):
+        raise ValueError(f"sweep = {sweep!r}: sweep ids are whole numbers from 1 (None: the only one)")
+    return Result(_core._sweep_droplet(_db_path(db), int(sweep or 0), int(porosity_index), int(medium_index),
+                                       int(droplet)))
 
 
 def best_arrangement(db, run=1, generation=-1):

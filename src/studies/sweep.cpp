@@ -83,6 +83,13 @@ std::uint64_t sweep_medium_seed(const SweepOptions& o, const SweepUnit& u) {
   return derive_seed(derive_seed(base, micro), static_cast<std::uint64_t>(u.medium));
 }
 
+MediumOptions sweep_medium_options(const SweepOptions& o, const SweepUnit& u) {
+  MediumOptions mo = o.medium;
+  mo.porosity = o.porosities.at(static_cast<std::size_t>(u.porosity));
+  mo.seed = sweep_medium_seed(o, u);
+  return mo;
+}
+
 namespace {
 
 // A unit's medium and the options of its droplets: the one definition both runners use.
@@ -100,11 +107,9 @@ struct UnitSetup {
 UnitSetup setup_unit(const SweepOptions& o, const SweepUnit& u) {
   UnitSetup s;
   s.record.unit = u;
-  s.record.target_porosity = o.porosities.at(static_cast<std::size_t>(u.porosity));
-  s.record.medium_seed = sweep_medium_seed(o, u);
-  MediumOptions mo = o.medium;
-  mo.porosity = s.record.target_porosity;
-  mo.seed = s.record.medium_seed;
+  const MediumOptions mo = sweep_medium_options(o, u);
+  s.record.target_porosity = mo.porosity;
+  s.record.medium_seed = mo.seed;
   s.medium = generate_medium(mo);
   s.record.porosity = exact_porosity(s.medium);
   s.record.grains = static_cast<int>(s.medium.grains.size());
