@@ -1,12 +1,13 @@
 """The rest window at the paper's size: the paper-size sweep under the default rest test (0.1
-within 0.05 time units) against the same sweep under 0.005, droplet by droplet, and two checks of
-what the default window itself loses.
+within 0.05 time units) against the same sweep under 0.01 and under 0.005, droplet by droplet, and
+two checks of what the default window itself loses.
 
-Reads ../paper_size/paper.db (the default study) and rest_window_paper.db (the same sweep with
---rest-window 0.005), both made by rest_window_paper.sh. Writes:
+Reads ../paper_size/paper.db (the default study) and rest_window_paper_W.db (the same sweep with
+--rest-window W), all made by rest_window_paper.sh. Writes:
 
-- rest_window_paper.csv: per porosity, the droplets that passed under each window, those that
-  passed under 0.05 and were stopped under 0.005, the T of the passed droplets, and the steps;
+- rest_window_paper.csv: per short window and porosity, the droplets that passed under each
+  window, those that passed under 0.05 and were stopped under the short one, the T of the passed
+  droplets, and the steps;
 - rest_window_paper_lost.csv: each droplet lost under 0.005, run again alone from its start under
   windows from 0.05 down to 0.005 (its outcome and steps under each);
 - rest_window_paper_no_rest.csv: the first media of every porosity, and the two media where
@@ -22,7 +23,7 @@ import sys
 import pandas as pd
 import softdrop
 
-DEFAULT, SHORT = "../paper_size/paper.db", "rest_window_paper.db"
+DEFAULT, SHORT = "../paper_size/paper.db", [0.01, 0.005]  # the shortest last: its lost droplets are run again
 WINDOWS = [0.05, 0.03, 0.02, 0.01, 0.0075, 0.005]
 NO_REST_MEDIA_PER_POROSITY = 6
 KEY = ["porosity_index", "medium_index", "droplet"]
@@ -67,26 +68,27 @@ def without_rest_test(row):
 
 
 def main():
-    d = droplets(DEFAULT).merge(droplets(SHORT)[KEY + ["outcome", "tortuosity", "steps"]], on=KEY,
-                                suffixes=("", "_short"))
-    assert len(d) == 400_000, len(d)
-    passed, passed_short = d.outcome == "passed", d.outcome_short == "passed"
-    d["lost"] = passed & ~passed_short
-    rows = []
-    for (i, phi), g in d.groupby(["porosity_index", "target_porosity"]):
-        p, ps = g.outcome == "passed", g.outcome_short == "passed"
-        rows.append({"target_porosity": phi, "droplets": len(g), "passed": int(p.sum()), "passed_short": int(ps.sum()),
-                     "lost": int(g.lost.sum()), "gained": int((~p & ps).sum()),
-                     "tortuosity_changed": int((g.tortuosity[p & ps] != g.tortuosity_short[p & ps]).sum()),
-                     "mean_t": g.tortuosity[p].mean(), "mean_t_short": g.tortuosity_short[ps].mean(),
-                     "mean_t_of_lost": g.tortuosity[g.lost].mean(),
-                     "steps_ratio": g.steps_short.sum() / g.steps.sum(),
-                     "stuck_steps_share": g.steps[~p].sum() / g.steps.sum()})
+    default, rows = droplets(DEFAULT), []
+    for window in SHORT:
+        d = default.merge(droplets(f"rest_window_paper_{window}.db")[KEY + ["outcome", "tortuosity", "steps"]],
+                          on=KEY, suffixes=("", "_short"))
+        assert len(d) == 400_000, len(d)
+        passed, passed_short = d.outcome == "passed", d.outcome_short == "passed"
+        d["lost"] = passed & ~passed_short
+        for (i, phi), g in d.groupby(["porosity_index", "target_porosity"]):
+            p, ps = g.outcome == "passed", g.outcome_short == "passed"
+            rows.append({"rest_window": window, "target_porosity": phi, "droplets": len(g), "passed": int(p.sum()),
+                         "passed_short": int(ps.sum()), "lost": int(g.lost.sum()), "gained": int((~p & ps).sum()),
+                         "tortuosity_changed": int((g.tortuosity[p & ps] != g.tortuosity_short[p & ps]).sum()),
+                         "mean_t": g.tortuosity[p].mean(), "mean_t_short": g.tortuosity_short[ps].mean(),
+                         "mean_t_of_lost": g.tortuosity[g.lost].mean(),
+                         "steps_ratio": g.steps_short.sum() / g.steps.sum(),
+                         "stuck_steps_share": g.steps[~p].sum() / g.steps.sum()})
+        print(f"rest window {window}:", int(d.lost.sum()), "lost,", round(d.steps_short.sum() / d.steps.sum(), 4),
+              "of the steps; passed droplets' share of the steps", round(d.steps[passed].sum() / d.steps.sum(), 4))
     table = pd.DataFrame(rows)
     table.to_csv("rest_window_paper.csv", index=False)
     print(table.to_string(index=False))
-    print("all:", int(d.lost.sum()), "lost,", round(d.steps_short.sum() / d.steps.sum(), 4), "of the steps;",
-          "passed droplets' share of the steps", round(d.steps[passed].sum() / d.steps.sum(), 4))
 
     with mp.Pool(2) as pool:
         # to_dict("records"), not iterrows: iterrows makes a row's 64-bit seed a float
