@@ -3,7 +3,6 @@
 #include <pybind11/numpy.h>
 #include <pybind11/stl.h>
 
-#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -16,9 +15,9 @@
 #include "bindings.hpp"
 #include "cli/columns.hpp"
 #include "cli/sweep_report_command.hpp"
+#include "service/sweep_droplet.hpp"
 #include "softdrop/store.hpp"
 #include "softdrop/sweep.hpp"
-#include "store/params_json.hpp"
 
 namespace softdrop::python {
 namespace {
@@ -225,53 +224,24 @@ py::dict sweep_tables(SweepStore& store, std::int64_t only) {
   return out;
 }
 
-// One droplet of a sweep as the sweep ran it: its medium generated again, the sweep's droplet and
-// exit options, its start, and what the store holds of it.
+// One droplet of a sweep as the sweep ran it (service/sweep_droplet.hpp), for simulate.
 py::dict sweep_droplet(SweepStore& store, const std::string& db, std::int64_t sweep, int porosity_index,
                        int medium_index, int droplet) {
-  const std::int64_t id = cli::pick_sweep(store, sweep, db);
-  const SweepOptions options = sweep_params_from_json(store.sweep(id).params);
-  if (options.second)
-    throw std::invalid_argument(
-        "sweep = " + std::to_string(id) +
-        ": a sweep of pairs; a pair's first droplet is not run alone (simulate_pair runs a pair)");
-  const auto in_range = [](const char* name, int value, std::size_t size) {
-    if (value < 0 || static_cast<std::size_t>(value) >= size)
-      throw std::invalid_argument(std::string(name) + " = " + std::to_string(value) + ": must be in [0, " +
-                                  std::to_string(size) + ")");
-  };
-  in_range("porosity_index", porosity_index, options.porosities.size());
-  in_range("medium_index", medium_index, static_cast<std::size_t>(options.media));
-  in_range("droplet", droplet, static_cast<std::size_t>(options.droplets));
-  const SweepUnit unit{porosity_index, medium_index};
-  for (const SweepMedium& m : store.media(id)) {
-    if (!(m.unit == unit)) continue;
-    const MediumOptions mo = sweep_medium_options(options, unit);
-    if (mo.seed != m.medium_seed)  // the stored parameters would not give this medium again
-      throw DatabaseError("'" + db + "': sweep " + std::to_string(id) + "'s medium " + std::to_string(porosity_index) +
-                          ":" + std::to_string(medium_index) + " has a seed its parameters do not derive");
-    const auto found =
-        std::find_if(m.droplets.begin(), m.droplets.end(), [&](const SweepDroplet& d) { return d.droplet == droplet; });
-    if (found == m.droplets.end())
-      throw DatabaseError("'" + db + "': a stored medium lacks droplet " + std::to_string(droplet));
-    const SweepDroplet& d = *found;
-    py::dict out;
-    out["medium"] = generate_medium(mo);
-    out["params"] = options.droplet;
-    out["run"] = options.run;
-    out["x0"] = d.start_x;
-    out["outcome"] = to_string(d.outcome);
-    out["tortuosity"] = d.outcome == Outcome::passed ? d.tortuosity : kNaN;
-    out["steps"] = d.steps;
-    out["target_porosity"] = mo.porosity;
-    out["porosity"] = m.porosity;
-    out["medium_seed"] = m.medium_seed;
-    out["sweep"] = id;
-    return out;
-  }
-  throw std::invalid_argument("medium_index = " + std::to_string(medium_index) + ": sweep " + std::to_string(id) +
-                              " has not stored medium " + std::to_string(medium_index) + " of porosity_index " +
-                              std::to_string(porosity_index) + " (yet)");
+  const StoredSweepDroplet s =
+      stored_sweep_droplet(store, db, cli::pick_sweep(store, sweep, db), porosity_index, medium_index, droplet);
+  py::dict out;
+  out["medium"] = generate_medium(s.medium);
+  out["params"] = s.options.droplet;
+  out["run"] = s.options.run;
+  out["x0"] = s.droplet.start_x;
+  out["outcome"] = to_string(s.droplet.outcome);
+  out["tortuosity"] = s.droplet.outcome == Outcome::passed ? s.droplet.tortuosity : kNaN;
+  out["steps"] = s.droplet.steps;
+  out["target_porosity"] = s.medium.porosity;
+  out["porosity"] = s.porosity;
+  out["medium_seed"] = s.medium.seed;
+  out["sweep"] = s.sweep;
+  return out;
 }
 
 }  // namespace

@@ -127,6 +127,7 @@ void Cli::check() {
   check_distinct_files(named_files(app));
   check_command_line(app, words_);
   if (simulate_cmd_->parsed()) {
+    take_sweep_droplet(simulate_, *simulate_cmd_);
     check_simulate(simulate_);
     if (simulate_.medium.file.empty()) check_placement(simulate_.medium.options);
   }
@@ -170,7 +171,10 @@ int Cli::run() {
   // under another name, and no option may be given that the command would ignore.
   check_distinct_files(named_files(app));
   check_command_line(app, words_);
-  if (simulate_cmd_->parsed()) return run_simulate(simulate_);
+  if (simulate_cmd_->parsed()) {
+    take_sweep_droplet(simulate_, *simulate_cmd_);
+    return run_simulate(simulate_);
+  }
   if (optimize_cmd_->parsed()) return run_optimize(optimize_, *optimize_cmd_, host_);
   if (history_cmd_->parsed()) return run_history(history_);
   if (export_cmd_->parsed()) return run_export(export_);

@@ -16,7 +16,7 @@ namespace fs = std::filesystem;
 constexpr const char* kOutputs[] = {"--json",  "--csv",       "--runs",        "--trace",
                                     "--paths", "--snapshots", "--save-medium", "--simulate-config",
                                     "--plot",  "--curve",     "--output"};
-constexpr const char* kInputs[] = {"--medium", "--config"};
+constexpr const char* kInputs[] = {"--medium", "--config", "--from-sweep"};
 
 auto named_as(const std::string& name) {
   return [&name](const char* n) { return name == n; };

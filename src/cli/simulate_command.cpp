@@ -38,6 +38,14 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& a) {
 
   add_second_droplet_options(s, a.second);
 
+  auto* w = s->add_option_group("Sweep droplet", "one droplet of a stored sweep, run again as the sweep ran it");
+  w->add_option("--from-sweep", a.from_sweep,
+                "A sweep's SQLite store: run one of its droplets again (--sweep-droplet), in the sweep's medium "
+                "with its droplet and exit options, from the droplet's start; outputs as for any run");
+  w->add_option("--sweep-droplet", a.sweep_droplet,
+                "P:M:D, the droplet's porosity_index, medium_index and droplet (the store's sweep_droplets_view)");
+  w->add_option("--sweep-id", a.sweep_id, "The sweep (default: the only one in the file)")->check(id_check());
+
   auto* o = add_summary_options(s, a.format, a.json_file, a.quiet);
   o->add_option("--runs", a.runs_csv, "CSV, one row per droplet: start, outcome, T, steps, touched");
   o->add_option("--paths", a.paths_csv, "CSV of centre-of-mass paths (droplet,time,x,y)");

@@ -24,6 +24,9 @@ struct SimulateArgs {
   std::string runs_csv, paths_csv, trace_csv, snapshots_csv, json_file;
   bool quiet = false;        ///< no progress on stderr
   SecondDropletArgs second;  ///< a second droplet after each
+  /// --from-sweep DB --sweep-droplet P:M:D [--sweep-id ID]: one droplet of a stored sweep again.
+  std::string from_sweep, sweep_droplet;
+  std::int64_t sweep_id = 0;  ///< 0: the only sweep of the file
 };
 
 /// Registers the subcommand and its options on `app`; returns it.
@@ -33,6 +36,10 @@ CLI::App* add_simulate_command(CLI::App& app, SimulateArgs& args);
 /// Checks the options (and that output paths can be written) without running; throws
 /// std::invalid_argument naming the bad parameter.
 void check_simulate(SimulateArgs& args);
+/// With --from-sweep (else nothing): takes the medium, the droplet and exit options and the start of the named
+/// droplet from the sweep's store (simulate_from_sweep.cpp), refusing any of those options given
+/// on `command` (or in a config file) with one line naming it.
+void take_sweep_droplet(SimulateArgs& args, const CLI::App& command);
 int run_simulate(SimulateArgs& args);
 /// run_simulate with a second droplet after each (--second-droplet), on the medium it made.
 int run_simulate_two(SimulateArgs& args, const Medium& medium);
