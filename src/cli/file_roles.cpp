@@ -34,13 +34,6 @@ std::vector<const CLI::App*> chosen(const CLI::App& app) {
   return chain;
 }
 
-// The options of a command, with those of its option groups (nameless subcommands to CLI11).
-void options_of(const CLI::App& command, std::vector<const CLI::Option*>* out) {
-  for (const CLI::Option* o : command.get_options()) out->push_back(o);
-  for (const CLI::App* group : command.get_subcommands([](const CLI::App* s) { return s->get_name().empty(); }))
-    options_of(*group, out);
-}
-
 // The values an option holds: those given (command line or config file), else its default.
 std::vector<std::string> values_of(const CLI::Option& o) {
   if (o.count() > 0) return o.results();
@@ -55,6 +48,12 @@ std::string canonical(const std::string& path) {
 }
 
 }  // namespace
+
+void options_of(const CLI::App& command, std::vector<const CLI::Option*>* out) {
+  for (const CLI::Option* o : command.get_options()) out->push_back(o);
+  for (const CLI::App* group : command.get_subcommands([](const CLI::App* s) { return s->get_name().empty(); }))
+    options_of(*group, out);
+}
 
 std::vector<NamedFile> named_files(const CLI::App& app) {
   const auto chain = chosen(app);

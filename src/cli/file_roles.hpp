@@ -16,6 +16,9 @@ struct NamedFile {
   bool database = false;  ///< an SQLite file: its -wal, -shm and -journal files are part of it
 };
 
+/// The options of a command and of its option groups (nameless subcommands to CLI11).
+void options_of(const CLI::App& command, std::vector<const CLI::Option*>* out);
+
 /// The files named by the chosen command (and its subcommand, for render), from the values parsed
 /// into `app` and the defaults of the options not given.
 std::vector<NamedFile> named_files(const CLI::App& app);

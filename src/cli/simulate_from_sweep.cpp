@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/file_roles.hpp"
 #include "cli/output.hpp"
 #include "cli/simulate_command.hpp"
 #include "cli/sweep_report_command.hpp"
@@ -22,13 +23,6 @@ constexpr const char* kStillFree[] = {"--from-sweep", "--sweep-droplet",  "--swe
                                       "--paths",      "--path-interval",  "--trace",       "--trace-interval",
                                       "--snapshots",  "--snapshot-times", "--format",      "--json",
                                       "--quiet",      "--threads",        "--save-medium", "--help"};
-
-// The options of a command and of its option groups (nameless subcommands to CLI11).
-void options_of(const CLI::App& command, std::vector<const CLI::Option*>* out) {
-  for (const CLI::Option* o : command.get_options()) out->push_back(o);
-  for (const CLI::App* group : command.get_subcommands([](const CLI::App* s) { return s->get_name().empty(); }))
-    options_of(*group, out);
-}
 
 // "P:M:D" as three indices.
 void parse_droplet(const std::string& text, int* p, int* m, int* d) {
