@@ -300,6 +300,15 @@ void bind_stores(py::module_& m) {
           d["medium"] = c.medium;
           d["generation"] = c.generation;
           d["tortuosity"] = c.eval.tortuosity;
+          // Its values as history --best gives them: in the search and held out.
+          const ArrangementValues v = arrangement_values(*h, run, c);
+          d["objective"] = v.objective;
+          d["best_tortuosity"] = v.in_search;
+          d["re_runs"] = v.re_runs;
+          const bool held = v.held_out.has_value();
+          d["held_out_tortuosity"] = held ? py::cast(v.held_out->mean_t) : py::none();
+          d["held_out_standard_error"] = held ? py::cast(v.held_out->standard_error) : py::none();
+          d["held_out_starts"] = held ? py::cast(v.held_out->starts) : py::none();
           d["touched"] = c.eval.touched.size();
           d["touched_grains"] = c.eval.touched;
           d["path"] = xy_array(c.eval.path_x, c.eval.path_y);

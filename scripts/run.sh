@@ -3,8 +3,8 @@
 # of 8 candidates, the evolution strategy with relocation, on all cores) logged to the SQLite
 # history results/run/history.db; then, in results/run/run-N/ for the search's run N (a run again
 # adds a run and a folder, and keeps the earlier ones): its summary, the best-T curve (CSV and
-# picture), the best medium (JSON, with the simulate config that replays it) and its picture with
-# the droplet's paths. Extra arguments go to `softdrop optimize` (e.g. --generations 1000,
+# picture), the best medium (JSON, with the simulate config that replays its value) and its picture
+# with droplets' paths. Extra arguments go to `softdrop optimize` (e.g. --generations 1000,
 # --time-limit 600, --resume 1). SOFTDROP=path runs another build (and skips building this one).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -24,5 +24,5 @@ mv results/run/summary.json "$out/summary.json"
   --simulate-config "$out/best_simulate.toml"
 "$S" render search --db results/run/history.db --run "$run" -o "$out/best.png" --curve "$out/best_curve.png"
 echo "history: results/run/history.db (run $run); in $out/: summary.json, best_curve.csv and best_curve.png," \
-     "best_medium.json, best.png (the best medium with the droplet's paths); replay the best with" \
+     "best_medium.json, best.png (the best medium with droplets' paths through it); its droplets again:" \
      "softdrop simulate --config $out/best_simulate.toml"

@@ -103,7 +103,8 @@ TEST(Validate, ASearchStoresItsBestsHeldOutValue) {
   EXPECT_EQ(last["held_out_starts"], 16);
   EXPECT_TRUE(best.front()["held_out_tortuosity"].is_null() || best.size() == 1);
   const Result e = run("export --db " + db + " --run 1 -o " + fresh("validate_end.json"));
-  EXPECT_NE(e.err.find("its held-out T is"), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find("export: held out, <T> = "), std::string::npos) << e.err;
+  EXPECT_NE(e.err.find(" over 16 random starts"), std::string::npos) << e.err;
   // validate stores what it computes for any generation; the same again replaces it.
   ASSERT_EQ(run("validate --db " + db + " --run 1 --generation 0 --starts 8 --quiet").code, 0);
   ASSERT_EQ(run("validate --db " + db + " --run 1 --generation 0 --starts 8 --quiet").code, 0);

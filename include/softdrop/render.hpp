@@ -44,7 +44,7 @@ struct RenderStyle {
   bool solid_grains = false;
   Rgba solid{0.70, 0.73, 0.78, 1};
   double margin = 12;
-  bool caption = true;     ///< a line of text under the picture
+  bool caption = true;     ///< the scene's caption under the picture
   bool scale_bar = false;  ///< a bar of a round length, labelled, at the box's lower left
 
   bool IsValid(std::string* why) const;
@@ -81,7 +81,7 @@ struct Scene {
   std::vector<std::uint8_t> filled;  ///< per grain, nonzero: fill it (touched grains)
   std::vector<Polyline> lines;
   std::vector<Label> labels;  ///< drawn on top of everything in the box
-  std::string caption;
+  std::string caption;        ///< under the picture; "\n" starts another line
   /// Extra room above the medium (length units) so that droplets starting above it are seen;
   /// -1: fit the polylines.
   double top_room = -1;

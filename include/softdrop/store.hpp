@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -128,6 +129,11 @@ struct KeptValue {
 };
 KeptValue kept_value(const std::vector<GenerationRecord>& generations, std::int64_t kept);
 
+/// The held-out value stored for the arrangement kept as of `generation`: of several (other seeds
+/// or start counts, or validated again) the one of most starts, and of those the one made last.
+/// Empty: none stored.
+std::optional<ValidationRecord> held_out_of(const std::vector<ValidationRecord>& validations, std::int64_t generation);
+
 /// Storage of search runs. Implementations must make each call atomic.
 class History {
  public:
@@ -176,6 +182,23 @@ class History {
   /// The run's held-out values, by generation, seed and starts.
   virtual std::vector<ValidationRecord> validations(std::int64_t run) = 0;
 };
+
+/// What a search says of one arrangement it kept: the value it stands on in the search, as
+/// `history --best` gives it, and the held-out value stored for it. Every command and reader that
+/// quotes a kept arrangement's value quotes these.
+struct ArrangementValues {
+  std::string objective;  ///< single, mean, quantile or lower-bound
+  int starts = 1;         ///< droplets an evaluation pushes (1 for single)
+  /// single: the droplet's T from x0 = W/2. Robust objectives: kept_value's (the mean of the
+  /// re-runs on fresh starts, or with none the value it was kept with).
+  double in_search = 0;
+  std::int64_t re_runs = 0;  ///< robust objectives: the re-runs in_search is the mean of
+  std::optional<ValidationRecord> held_out;
+  bool robust() const { return objective != "single"; }
+};
+/// Throws as History::generations does, and std::runtime_error naming the run if its stored
+/// parameters are not a JSON object.
+ArrangementValues arrangement_values(History& history, std::int64_t run, const Configuration& kept);
 
 /// Opens an SQLite history. A missing file (read_only), a file that is not SQLite, a foreign SQLite
 /// database, one from a newer schema or a truncated or corrupted one gives std::runtime_error with

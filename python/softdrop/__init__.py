@@ -388,8 +388,14 @@ def sweep_droplet(db, porosity_index, medium_index, droplet, sweep=None):
 
 def best_arrangement(db, run=1, generation=-1):
     """The arrangement a search kept as of `generation` (-1: the latest; the best for the paper's
-    strategy): a Result with medium (a Medium), generation, tortuosity, touched (a count),
-    touched_grains (their indices) and path (rows of x, y, as simulate's)."""
+    strategy): a Result with medium (a Medium), generation, tortuosity (the objective's value it
+    was kept with), touched (a count), touched_grains (their indices) and path (rows of x, y, as
+    simulate's; a robust objective's first droplet's), and its values as `softdrop history --best`
+    gives them: objective, best_tortuosity (its value in the search: for a robust objective the
+    mean of its re_runs re-runs on fresh starts, which a lucky win does not inflate), and
+    held_out_tortuosity, held_out_standard_error and held_out_starts (<T> over random starts no
+    evaluation used, as stored by the search's end or `softdrop validate`; None if none is
+    stored)."""
     if isinstance(run, bool) or not isinstance(run, numbers.Integral) or run < 1:
         raise ValueError(f"run = {run!r}: run ids are whole numbers from 1")
     return Result(_core._arrangement(_db_path(db), int(run), int(generation)))

@@ -187,7 +187,7 @@ PY
   [[ -f $picture ]] && continue
   tmp=$(mktemp -d)
   "$S" export --db "$best.db" --run 1 -o "$tmp/best.json" --simulate-config "$tmp/best.toml" 2> /dev/null
-  grep -v '^x0 =' "$tmp/best.toml" > "$tmp/paths.toml"
+  grep -v -E '^(x0|droplets|seed) =' "$tmp/best.toml" > "$tmp/paths.toml"
   "$S" --config "$tmp/paths.toml" render paths --droplets 50 --seed 2 --quiet -o "$picture"
   echo "objectives: $picture: $(basename "$best")" >&2
   rm -r "$tmp"

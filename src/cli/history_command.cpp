@@ -3,12 +3,13 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
-#include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
 #include "cli/common_options.hpp"
+#include "cli/kept_arrangement.hpp"
 #include "cli/output.hpp"
 #include "softdrop/medium.hpp"
 #include "softdrop/store.hpp"
@@ -135,18 +136,15 @@ int run_history(const HistoryArgs& a) {
     t.header = {
         "generation",      "kind",   "best_tortuosity", "touched", "held_out_tortuosity", "held_out_standard_error",
         "held_out_starts", "re_runs"};
-    std::map<std::int64_t, ValidationRecord> held_out;
-    for (const ValidationRecord& v : history->validations(a.run)) held_out[v.generation] = v;
+    const std::vector<ValidationRecord> validations = history->validations(a.run);
     const auto params = nlohmann::json::parse(history->run(a.run).params, nullptr, false);
     const bool robust = params.is_object() && params.value("objective", "single") != "single";
     const std::vector<GenerationRecord> gs = history->generations(a.run);
     const auto row = [&](const GenerationRecord& g, double best_t, const nlohmann::json& re_runs) {
-      const auto v = held_out.find(g.generation);
-      const bool has = v != held_out.end();
-      t.rows.push_back({g.generation, g.kind, best_t, g.touched,
-                        has ? finite_or_null(v->second.mean_t) : nlohmann::json(),
-                        has ? finite_or_null(v->second.standard_error) : nlohmann::json(),
-                        has ? nlohmann::json(v->second.starts) : nlohmann::json(), re_runs});
+      const std::optional<ValidationRecord> v = held_out_of(validations, g.generation);
+      t.rows.push_back({g.generation, g.kind, best_t, g.touched, v ? finite_or_null(v->mean_t) : nlohmann::json(),
+                        v ? finite_or_null(v->standard_error) : nlohmann::json(),
+                        v ? nlohmann::json(v->starts) : nlohmann::json(), re_runs});
     };
     double best = 0;
     for (const GenerationRecord& g : gs) {
@@ -185,12 +183,16 @@ int run_export(const ExportArgs& a) {
   const RunRecord run = history->run(a.run);
   check_stored_generation(a.generation, run);
   const Configuration c = history->configuration(a.run, a.generation < 0 ? run.best_generation : a.generation);
+  const ArrangementValues values = arrangement_values(*history, a.run, c);
   // Both files are made in memory first, so a stored run the config cannot be made of leaves
   // neither behind.
-  std::string config;
+  std::string config, replays;
   if (!a.simulate_config.empty()) {
-    // The droplet and exit options of the run, so that simulate pushes the same droplet from the
-    // same place: numbers in JSON notation, which TOML reads back to the same doubles.
+    // The droplet and exit options of the run, so that simulate pushes the same droplet: numbers in
+    // JSON notation, which TOML reads back to the same doubles. The single objective's value is one
+    // droplet's from x0 = W/2, and the config replays it. A robust objective's value belongs to
+    // the medium, not to a start: the config pushes the droplets of its held-out value (the
+    // default starts of softdrop validate if none is stored), whose <T> simulate then gives.
     try {
       search_params_from_json(run.params);  // names a required key the stored run lacks
     } catch (const std::exception& e) {
@@ -199,22 +201,32 @@ int run_export(const ExportArgs& a) {
     const nlohmann::json params = nlohmann::json::parse(run.params);
     std::ostringstream toml;
     toml << "# softdrop simulate --config " << a.simulate_config << "  (run " << a.run << ", generation "
-         << c.generation << ", T = " << fmt(c.eval.tortuosity) << ")\n";
+         << c.generation << ", T = " << fmt(values.in_search) << " in the search: " << in_search_basis(values) << ")\n";
     toml << "medium = " << nlohmann::json(a.output).dump() << "\n";
-    toml << "x0 = " << nlohmann::json(0.5 * c.medium.width).dump() << "\n";
+    if (values.robust()) {
+      const HeldOutOptions defaults;
+      const int starts = values.held_out ? values.held_out->starts : defaults.starts;
+      const std::uint64_t seed = values.held_out ? values.held_out->seed : defaults.seed;
+      replays = "the " + std::to_string(starts) + " random starts (seed " + std::to_string(seed) + ") of " +
+                (values.held_out ? "its held-out value" : std::string("softdrop validate's held-out value"));
+      toml << "# " << replays << "; simulate gives their "
+           << (values.held_out ? held_out_text(*values.held_out) + ", as stored" : std::string("<T>")) << "\n";
+      toml << "droplets = " << starts << "\nseed = " << seed << "\n";
+    } else {
+      replays = "its droplet from x0 = W/2";
+      toml << "x0 = " << nlohmann::json(0.5 * c.medium.width).dump() << "\n";
+    }
     for (const std::string& key : simulation_param_keys())
       if (params.contains(key)) toml << key << " = " << params.at(key).dump() << "\n";  // older runs lack newer keys
     config = toml.str();
   }
   save_medium(a.output, c.medium);
   if (!config.empty()) write_file_atomically(a.simulate_config, config);
-  std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation
-            << " (T = " << fmt(c.eval.tortuosity) << ", " << c.medium.grains.size() << " grains) written to "
-            << a.output << "\n";
-  for (const ValidationRecord& v : history->validations(a.run))
-    if (v.generation == c.generation && std::isfinite(v.mean_t))
-      std::cerr << "export: its held-out T is " << fmt(v.mean_t, 6) << " over " << v.starts << " random starts ("
-                << v.passed << " passed; softdrop validate)\n";
+  std::cerr << "export: run " << a.run << ", configuration of generation " << c.generation << " ("
+            << c.medium.grains.size() << " grains) written to " << a.output << "\n";
+  std::cerr << "export: in the search T = " << fmt(values.in_search, 6) << " (" << in_search_basis(values) << ")\n";
+  if (values.held_out) std::cerr << "export: held out, " << held_out_text(*values.held_out) << " (softdrop validate)\n";
+  if (!config.empty()) std::cerr << "export: " << a.simulate_config << " replays " << replays << "\n";
   return 0;
 }
 

@@ -64,15 +64,13 @@ RenderStyle style_of(const RenderArgs& a) {
   return s;
 }
 
-namespace {
-
 // Overlapping grains are drawn as their solid union; others as outlined discs.
-void draw(const Scene& scene, RenderStyle style, const std::string& path) {
+void draw_picture(const Scene& scene, RenderStyle style, const std::string& path) {
   style.solid_grains = grains_overlap(scene.medium);
   render_scene(scene, style, path);
 }
 
-std::string describe(const Medium& m) { return medium_words(m, exact_porosity(m), 4); }
+std::string medium_caption(const Medium& m) { return medium_words(m, exact_porosity(m), 4); }
 
 // The part of a path inside or below the medium (y <= top): the start above it is cut at y = top.
 Polyline below_top(Polyline p, double top) {
@@ -91,6 +89,8 @@ Polyline below_top(Polyline p, double top) {
   return p;
 }
 
+namespace {
+
 void check_droplet(const RenderArgs& a) {
   std::string why;
   if (!a.droplet.IsValid(&why)) throw std::invalid_argument(why);
@@ -101,9 +101,9 @@ void check_droplet(const RenderArgs& a) {
 int render_medium(RenderArgs& a) {
   Scene scene;
   scene.medium = medium_of(a);
-  scene.caption = describe(scene.medium);
+  scene.caption = medium_caption(scene.medium);
   scene.top_room = 0;
-  draw(scene, style_of(a), a.output);
+  draw_picture(scene, style_of(a), a.output);
   return 0;
 }
 
@@ -143,130 +143,12 @@ int render_snapshots(RenderArgs& a) {
     scene.lines.push_back(std::move(ring));
   }
   scene.caption = std::to_string(r.snapshots.size()) + " snapshots; " + to_string(r.outcome) +
-                  (r.outcome == Outcome::passed ? ", T = " + fmt(r.tortuosity, 5) : "") + "; " + describe(scene.medium);
+                  (r.outcome == Outcome::passed ? ", T = " + fmt(r.tortuosity, 5) : "") + "; " +
+                  medium_caption(scene.medium);
   if (r.snapshots.size() < a.times.size())
     std::cerr << "render: " << a.times.size() - r.snapshots.size() << " snapshot time(s) after the run ended ("
               << to_string(r.outcome) << " at t = " << fmt(static_cast<double>(r.steps) * a.droplet.dt, 4) << ")\n";
-  draw(scene, style, a.output);
-  return 0;
-}
-
-// render paths' own limits, which --check applies too: the droplet count, the colours' alpha and
-// the memory of the paths being recorded: the droplets in flight at once (each thread's lanes) may
-// each run --max-steps; a finished path keeps only what the picture shows (thin_path). Returns the
-// run options it records with.
-RunOptions paths_run(const RenderArgs& a) {
-  if (a.batch.droplets < 1 || a.batch.droplets > 1'000'000)
-    throw std::invalid_argument("droplets = " + std::to_string(a.batch.droplets) + ": must be in [1, 1e6]");
-  if (!(a.alpha >= 0 && a.alpha <= 1)) throw std::invalid_argument("alpha = " + fmt(a.alpha) + ": must be in [0, 1]");
-  if (a.path_interval < 1)
-    throw std::invalid_argument("path-interval = " + std::to_string(a.path_interval) + ": must be >= 1");
-  RunOptions run = a.run;
-  run.path_interval = a.path_interval;
-  const long threads = detail::worker_threads(a.batch.threads);
-  check_recording(run, std::min<long>(a.batch.droplets, threads * batch_lanes(a.batch.lanes)), a.droplet.masses);
-  return run;
-}
-
-// A finished droplet's path as drawn: the points at least `spacing` (half a pixel, in length
-// units) from the last one kept, and the last; its times and other records dropped. A path in a
-// picture needs no more, and a long batch keeps no more.
-void thin_path(RunSummary& r, double spacing) {
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < r.path_x.size(); ++i) {
-    const bool last = i + 1 == r.path_x.size();
-    if (kept > 0 && !last && std::hypot(r.path_x[i] - r.path_x[kept - 1], r.path_y[i] - r.path_y[kept - 1]) < spacing)
-      continue;
-    r.path_x[kept] = r.path_x[i], r.path_y[kept] = r.path_y[i];
-    ++kept;
-  }
-  r.path_x.resize(kept), r.path_y.resize(kept);
-  r.path_x.shrink_to_fit(), r.path_y.shrink_to_fit();
-  r.path_t = {}, r.area_t = {}, r.area = {}, r.snapshots = {};
-}
-
-int render_paths(RenderArgs& a) {
-  const RunOptions run = paths_run(a);
-  const RenderStyle style = style_of(a);
-  Scene scene;
-  scene.medium = medium_of(a);
-  Progress progress("render: droplets done");
-  BatchOptions batch = a.batch;
-  const double spacing = 0.5 * scene.medium.width / (a.size * a.dpi / 72.0);
-  std::atomic<bool> over{false};
-  double points = 0;
-  batch.stop = &over;
-  batch.on_finished = [&](int, RunSummary& r) {
-    thin_path(r, spacing);
-    points += static_cast<double>(r.path_x.size());
-    if (points > kMaxRecordedSamples) over = true;
-  };
-  const auto runs = run_batch(a.droplet, scene.medium, run, batch, [&](int done, int total) {
-    if (!a.quiet) progress.update(done, total);
-  });
-  if (over)
-    throw std::runtime_error("render paths: the paths of the first " + std::to_string(runs.size()) +
-                             " droplets hold more than 1e8 points as drawn; draw fewer --droplets");
-  const double alpha = a.alpha > 0 ? a.alpha : std::min(1.0, std::max(0.03, 10.0 / a.batch.droplets));
-  Rgba passed = parse_colour(a.path_colour), stuck = parse_colour(a.stuck_colour);
-  passed.a = stuck.a = alpha;
-  for (const RunSummary& r : runs)
-    scene.lines.push_back(below_top(path_line(r.path_x, r.path_y, r.outcome == Outcome::passed ? passed : stuck, 1.5),
-                                    scene.medium.height));
-  const BatchStats stats = summarize(runs);
-  scene.caption = std::to_string(stats.droplets) + " droplets: " + std::to_string(stats.passed) + " passed, " +
-                  std::to_string(stats.droplets - stats.passed) + " did not" +
-                  (stats.passed ? ", <T> = " + fmt(stats.mean_tortuosity, 4) : "") + "; " + describe(scene.medium);
-  draw(scene, style, a.output);
-  return 0;
-}
-
-int render_search(RenderArgs& a) {
-  const RenderStyle style = style_of(a);
-  if (!a.curve.empty()) check_picture_path("--curve", a.curve);
-  auto history = open_history(a.db, OpenMode::read_only);
-  const RunRecord run = history->run(a.run_id);
-  check_stored_generation(a.generation, run);
-  const Configuration best = history->configuration(a.run_id, a.generation < 0 ? run.best_generation : a.generation);
-  Scene scene;
-  scene.medium = best.medium;
-  scene.filled.assign(best.medium.grains.size(), 0);
-  for (std::int32_t i : best.eval.touched) scene.filled[static_cast<std::size_t>(i)] = 1;
-  // Earlier accepted generations' paths, thin and light; the best's thick on top.
-  Rgba thin = parse_colour(a.path_colour);
-  thin.a = 0.35;
-  Series curve;
-  double raised = 0;  // the earlier bests: the generations that raised the best T
-  for (const GenerationRecord& g : history->generations(a.run_id)) {
-    if (g.generation > best.generation) break;
-    if (g.generation > 0 && !(g.best_t > raised)) continue;
-    raised = g.best_t;
-    curve.x.push_back(static_cast<double>(g.generation));
-    curve.y.push_back(g.best_t);
-    if (g.generation == best.generation) continue;
-    const Configuration c = history->configuration(a.run_id, g.generation);
-    scene.lines.push_back(path_line(c.eval.path_x, c.eval.path_y, thin, 1.0));
-  }
-  scene.lines.push_back(path_line(best.eval.path_x, best.eval.path_y, parse_colour(a.path_colour), 3.5));
-  scene.caption = "run " + std::to_string(a.run_id) + ", generation " + std::to_string(best.generation) +
-                  ": T = " + fmt(best.eval.tortuosity, 5) + ", " + std::to_string(best.eval.touched.size()) +
-                  " grains touched (filled); " + describe(best.medium);
-  draw(scene, style, a.output);
-  if (!a.curve.empty()) {
-    // The curve continues flat to the last stored generation.
-    curve.x.push_back(
-        static_cast<double>(std::max(best.generation, a.generation < 0 ? run.generations : a.generation)));
-    curve.y.push_back(best.eval.tortuosity);
-    curve.style = Series::Style::steps;
-    curve.colour = parse_colour(a.path_colour);
-    Chart chart;
-    chart.series.push_back(curve);
-    chart.x_label = "generation";
-    chart.y_label = "best tortuosity T";
-    chart.title = "run " + std::to_string(a.run_id) + ": " + std::to_string(run.grains) +
-                  " grains, λ = " + std::to_string(run.lambda);
-    render_chart(chart, style, a.curve);
-  }
+  draw_picture(scene, style, a.output);
   return 0;
 }
 
@@ -299,7 +181,8 @@ int render_trace(RenderArgs& a) {
   c.x_label = "time t (time units)";
   c.y_label = "area ratio S(t) / S₀";
   c.title = std::string(to_string(whole.outcome)) +
-            (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") + "; " + describe(medium);
+            (whole.outcome == Outcome::passed ? ", T = " + fmt(whole.tortuosity, 5) : "") + "; " +
+            medium_caption(medium);
   if (!a.csv.empty()) write_area_traces(a.csv, {trace});
   render_chart(c, style, a.output);
   const double lo = trace.min_ratio, hi = trace.max_ratio;
@@ -317,7 +200,7 @@ void check_render(RenderArgs& a, const std::string& which) {
   style_of(a);
   check_droplet(a);
   resolve_medium(a.medium);
-  if (which == "paths") paths_run(a);
+  if (which == "paths") paths_run(a.run, a.batch.droplets, a, a.droplet);
 }
 
 int run_render(RenderArgs& a, const CLI::App& render) {

@@ -34,6 +34,7 @@ struct RenderArgs {
   std::int64_t run_id = 0;
   std::int64_t generation = -1;
   std::string curve;              ///< search: best-T chart
+  int search_droplets = -1;       ///< search: held-out paths drawn (-1: 50 for a robust objective, 0 for single)
   double fps = 25, speed = 0.02;  ///< animation: frames per second, time units per second
   int max_frames = 1500;
   std::string csv;                       ///< trace: the area samples
@@ -52,6 +53,28 @@ Polyline path_line(const std::vector<double>& x, const std::vector<double>& y, R
 double start_of(const RenderArgs& args, const Medium& medium);
 /// The picture options as a RenderStyle; throws std::invalid_argument naming a bad colour or size.
 RenderStyle style_of(const RenderArgs& args);
+/// Draws a scene; overlapping grains as their solid union, others as outlined discs.
+void draw_picture(const Scene& scene, RenderStyle style, const std::string& path);
+/// The medium in a caption's words: grains, porosity, box.
+std::string medium_caption(const Medium& medium);
+/// The part of a path inside or below the medium (y <= top): the start above it is cut at y = top.
+Polyline below_top(Polyline path, double top);
+
+/// The run options that record paths for a picture of `droplets` droplets (render_paths.cpp),
+/// after checking the count and the memory of the paths in flight; throws std::invalid_argument.
+RunOptions paths_run(const RunOptions& run, int droplets, const RenderArgs& args, const DropletParams& droplet);
+/// The batch's droplets with their paths as drawn (a few points a pixel of a picture `size_points`
+/// wide at `dpi`), progress on stderr unless quiet. Throws std::runtime_error if the paths drawn
+/// would hold more than 1e8 points.
+std::vector<RunSummary> run_paths(const DropletParams& droplet, const Medium& medium, const RunOptions& run,
+                                  BatchOptions batch, const RenderArgs& args);
+/// Adds each run's path below the medium's top: passed ones in --path-colour, the others in
+/// --stuck-colour, each at `alpha` (0: 10 / runs, at least 0.03).
+void add_paths(Scene& scene, const std::vector<RunSummary>& runs, const RenderArgs& args, double alpha);
+
+/// `render paths` and `render search` (render_paths.cpp, render_search.cpp).
+int render_paths(RenderArgs& args);
+int render_search(RenderArgs& args);
 /// `render curves` (render_curves.cpp).
 int render_curves(RenderArgs& args);
 /// `render animation` (render_animation.cpp).

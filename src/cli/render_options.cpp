@@ -1,5 +1,5 @@
-// `softdrop render`: its seven subcommands and their options (the drawing is render_command.cpp's
-// and render_curves.cpp's).
+// `softdrop render`: its seven subcommands and their options (the drawing is render_command.cpp's,
+// render_paths.cpp's, render_search.cpp's and render_curves.cpp's).
 #include "cli/common_options.hpp"
 #include "cli/render_command.hpp"
 
@@ -54,13 +54,19 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& a) {
       ->capture_default_str();
   p->add_option("--path-interval", a.path_interval, "Steps between recorded points of a path")->capture_default_str();
 
-  CLI::App* q = r->add_subcommand("search", "A search's best configuration, its path, earlier paths, touched grains");
+  CLI::App* q = r->add_subcommand(
+      "search", "A search's best arrangement with droplets' paths through it, its T in the search and held out");
   style(q, ".png, .svg or .pdf");
   q->add_option("--db", a.db, "SQLite history file")->required();
   q->add_option("--run", a.run_id, "Run id")->required()->check(id_check());
   q->add_option("--generation", a.generation, "The best as of this generation (default: the run's best)")
       ->check(index_check());
-  q->add_option("--curve", a.curve, "Also draw the best-T-versus-generation chart to this file");
+  q->add_option("--curve", a.curve,
+                "Also draw the best's T against generation to this file, in the search and held out");
+  q->add_option("--droplets", a.search_droplets,
+                "Paths of the first N random starts of the best's held-out value, touched grains filled "
+                "(default: 50 for a robust objective; 0 for single, which draws its droplet from x0 = W/2 thick "
+                "and the earlier bests' thin)");
 
   CLI::App* v = r->add_subcommand(
       "animation", "A droplet pushed through the medium, as an animated GIF or an MP4 video (.gif, .mp4)");

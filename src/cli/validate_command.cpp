@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli/kept_arrangement.hpp"
 #include "cli/output.hpp"
 #include "cli/simulate_output.hpp"
 #include "softdrop/medium.hpp"
@@ -122,21 +123,12 @@ int run_validate(ValidateArgs& a, const CLI::App& cmd) {
     medium = c.medium;
     objective = stored.objective;
     source = {{"db", a.db}, {"run", a.run}, {"generation", c.generation}, {"objective", to_string(objective.kind)}};
-    if (objective.robust()) {
-      // Its value in the search: the mean of its re-runs on fresh starts (search.hpp).
-      const KeptValue kept = kept_value(history->generations(a.run), c.generation);
-      source["in_search_tortuosity"] = kept.value;
-      source["re_runs"] = kept.re_runs;
-      in_search = "in-search    " + fmt(kept.value, 6) + " (" + to_string(objective.kind) + " over " +
-                  std::to_string(objective.starts) + " starts, a droplet that did not pass counted as T = 1; " +
-                  (kept.re_runs > 0 ? "the mean of " + std::to_string(kept.re_runs) + " re-runs on fresh starts"
-                                    : std::string("the value it was kept with")) +
-                  ", generation " + std::to_string(c.generation) + ")\n";
-    } else {
-      source["in_search_tortuosity"] = c.eval.tortuosity;
-      in_search = "in-search T  " + fmt(c.eval.tortuosity, 6) + " (one droplet from x0 = W/2, generation " +
-                  std::to_string(c.generation) + ")\n";
-    }
+    // Its value in the search (for a robust objective the mean of its re-runs on fresh starts).
+    const ArrangementValues values = arrangement_values(*history, a.run, c);
+    source["in_search_tortuosity"] = values.in_search;
+    if (values.robust()) source["re_runs"] = values.re_runs;
+    in_search = std::string(values.robust() ? "in-search    " : "in-search T  ") + fmt(values.in_search, 6) + " (" +
+                in_search_basis(values) + ", generation " + std::to_string(c.generation) + ")\n";
   } else {
     medium = load_medium(a.medium);
     source = {{"medium", a.medium}};

@@ -89,7 +89,10 @@ Geometry geometry_of(const Scene& scene, const RenderStyle& style) {
   g.y0 = std::max(g.y0, -0.1 * m.height);  // a path leaves through the bottom; show only its start
   g.width = style.width;
   g.scale = (style.width - 2 * style.margin) / m.width;
-  g.caption_height = style.caption && !scene.caption.empty() ? std::max(11.0, 0.02 * style.width) * 1.6 : 0;
+  // A caption's lines are 1.3 font sizes apart, and the last has 1.6 of them.
+  const auto lines = static_cast<double>(std::count(scene.caption.begin(), scene.caption.end(), '\n') + 1);
+  g.caption_height =
+      style.caption && !scene.caption.empty() ? std::max(11.0, 0.02 * style.width) * (1.6 + 1.3 * (lines - 1)) : 0;
   g.height = static_cast<int>(std::ceil(2 * style.margin + g.scale * (g.y1 - g.y0) + g.caption_height));
   return g;
 }
@@ -313,17 +316,32 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
     // Shrink the font until the caption fits the width. Measured again after each shrink: hinted
     // glyph advances are rounded to whole pixels, so the width is not proportional to the size.
-    double font = g.caption_height / 1.6;
+    std::vector<std::string> lines;
+    for (std::size_t from = 0;;) {
+      const std::size_t to = scene.caption.find('\n', from);
+      lines.push_back(scene.caption.substr(from, to == std::string::npos ? std::string::npos : to - from));
+      if (to == std::string::npos) break;
+      from = to + 1;
+    }
+    const double base = std::max(11.0, 0.02 * style.width);
+    double font = base;
     const double room = g.width - 2 * style.margin;
     cairo_text_extents_t ext;
     for (int tries = 0; tries < 20; ++tries) {
       cairo_set_font_size(cr, font);
-      cairo_text_extents(cr, scene.caption.c_str(), &ext);
-      if (ext.x_bearing + ext.width <= room) break;
-      font *= std::min(0.98, room / (ext.x_bearing + ext.width));
+      double widest = 0;
+      for (const std::string& line : lines) {
+        cairo_text_extents(cr, line.c_str(), &ext);
+        widest = std::max(widest, ext.x_bearing + ext.width);
+      }
+      if (widest <= room) break;
+      font *= std::min(0.98, room / widest);
     }
-    cairo_move_to(cr, style.margin, g.height - style.margin - 0.3 * g.caption_height);
-    show_text(cr, scene.caption);
+    const double bottom = g.height - style.margin - 0.3 * base * 1.6;  // the last line's baseline
+    for (std::size_t i = 0; i < lines.size(); ++i) {
+      cairo_move_to(cr, style.margin, bottom - 1.3 * base * static_cast<double>(lines.size() - 1 - i));
+      show_text(cr, lines[i]);
+    }
   }
 }
 

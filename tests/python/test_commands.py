@@ -305,3 +305,26 @@ def test_without_tqdm_progress_goes_to_logging(tmp_path, monkeypatch, caplog):
         softdrop.optimize(tmp_path / "p.db", progress=True, generations=3, **SEARCH)
     lines = [r.getMessage() for r in caplog.records if r.name == "softdrop"]
     assert lines and lines[-1].startswith("generation 3/3")
+
+
+def test_best_arrangement_quotes_what_history_best_does(tmp_path):
+    # A robust search: its best's value in the search is the mean of its re-runs, and the held-out
+    # value stored at the end sits beside it, as in `softdrop history --best`.
+    db = tmp_path / "robust.db"
+    summary = softdrop.optimize(db, generations=5, **{**SEARCH, "objective": "mean", "starts": 4,
+                                                        "validate_starts": 12})
+    best = softdrop.best_arrangement(db)
+    row = json.loads(cli("history", "--db", str(db), "--run", "1", "--best", "--format", "json"))[-1]
+    assert best.generation == row["generation"] == summary["best_generation"]
+    assert best.objective == "mean"
+    assert best.best_tortuosity == row["best_tortuosity"] == summary["best_tortuosity"]
+    assert best.re_runs == row["re_runs"]
+    assert best.held_out_tortuosity == row["held_out_tortuosity"] == summary["held_out"]["mean_tortuosity"]
+    assert best.held_out_standard_error == row["held_out_standard_error"]
+    assert best.held_out_starts == 12
+    # The single objective's in-search value is its droplet's T; no held-out value was asked for.
+    single = tmp_path / "single.db"
+    softdrop.optimize(single, generations=3, **SEARCH)
+    one = softdrop.best_arrangement(single)
+    assert one.objective == "single" and one.best_tortuosity == one.tortuosity and one.re_runs == 0
+    assert one.held_out_tortuosity is None and one.held_out_starts is None

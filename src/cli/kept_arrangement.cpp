@@ -1,0 +1,19 @@
+#include "cli/kept_arrangement.hpp"
+
+#include "cli/output.hpp"
+
+namespace softdrop::cli {
+
+std::string in_search_basis(const ArrangementValues& v) {
+  if (!v.robust()) return "one droplet from x0 = W/2";
+  return v.objective + " over " + std::to_string(v.starts) + " starts, a droplet that did not pass counted as T = 1; " +
+         (v.re_runs > 0 ? "the mean of " + std::to_string(v.re_runs) + " re-runs on fresh starts"
+                        : std::string("the value it was kept with, not re-run"));
+}
+
+std::string held_out_text(const ValidationRecord& v) {
+  return "<T> = " + with_error(v.mean_t, v.standard_error) + " over " + std::to_string(v.starts) + " random starts, " +
+         std::to_string(v.passed) + " passed";
+}
+
+}  // namespace softdrop::cli
