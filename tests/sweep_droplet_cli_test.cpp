@@ -36,7 +36,16 @@ TEST(SweepDropletCli, EveryDropletOfASweepRunsAgainToItsStoredBits) {
   ASSERT_EQ(run("sweep --db " + db + sweep_options()).code, 0);
   auto store = open_sweep_store(db, OpenMode::read_only);
   int runs = 0, passed = 0;
-  for (const SweepMedium& m : store->media(1))
+  for (const SweepMedium& m : store->media(1)) {
+    // The medium read alone is the same record, its droplets all and only its own.
+    const std::optional<SweepMedium> alone = store->medium(1, m.unit);
+    ASSERT_TRUE(alone.has_value());
+    EXPECT_EQ(alone->medium_seed, m.medium_seed);
+    ASSERT_EQ(alone->droplets.size(), m.droplets.size());
+    for (std::size_t i = 0; i < m.droplets.size(); ++i) {
+      EXPECT_EQ(alone->droplets[i].droplet, m.droplets[i].droplet);
+      EXPECT_EQ(alone->droplets[i].steps, m.droplets[i].steps);
+    }
     for (const SweepDroplet& d : m.droplets) {
       const std::string name =
           std::to_string(m.unit.porosity) + ":" + std::to_string(m.unit.medium) + ":" + std::to_string(d.droplet);
@@ -56,6 +65,7 @@ TEST(SweepDropletCli, EveryDropletOfASweepRunsAgainToItsStoredBits) {
       EXPECT_NE(r.err.find("droplet " + name + " of sweep 1"), std::string::npos) << r.err;
       ++runs;
     }
+  }
   EXPECT_EQ(runs, 16);
   EXPECT_GT(passed, 0);
 }

@@ -124,6 +124,10 @@ TEST(SweepPairs, RecordsAreStoredReadBackAndSentAsBytesToTheBit) {
     const std::vector<SweepMedium> back = store->media(id);
     ASSERT_EQ(back.size(), 1U);
     expect_same(back[0], m);
+    const std::optional<SweepMedium> alone = store->medium(id, m.unit);  // the one unit, read alone
+    ASSERT_TRUE(alone.has_value());
+    expect_same(*alone, m);
+    EXPECT_FALSE(store->medium(id, {0, 0}).has_value());
   }
   const SweepMedium sent = decode_sweep_medium(encode_sweep_medium(m));
   expect_same(sent, m);

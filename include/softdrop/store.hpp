@@ -241,6 +241,9 @@ class SweepStore {
   virtual SweepRecord sweep(std::int64_t id) = 0;
   /// Every stored medium of a sweep with its droplets, ordered by (porosity, medium).
   virtual std::vector<SweepMedium> media(std::int64_t sweep) = 0;
+  /// The stored medium of one unit with its droplets (empty: not stored), read alone: a sweep of
+  /// the paper's size holds 400 000 droplets.
+  virtual std::optional<SweepMedium> medium(std::int64_t sweep, const SweepUnit& unit) = 0;
 };
 
 /// Opens the sweep store of a softdrop database (the same checks as open_history).

@@ -26,18 +26,17 @@ StoredSweepDroplet stored_sweep_droplet(SweepStore& store, const std::string& db
   in_range("medium_index", medium_index, static_cast<std::size_t>(out.options.media));
   in_range("droplet", droplet, static_cast<std::size_t>(out.options.droplets));
   const SweepUnit unit{porosity_index, medium_index};
-  for (const SweepMedium& m : store.media(sweep)) {
-    if (!(m.unit == unit)) continue;
+  if (const std::optional<SweepMedium> m = store.medium(sweep, unit)) {
     out.medium = sweep_medium_options(out.options, unit);
-    if (out.medium.seed != m.medium_seed)  // the stored parameters would not give this medium again
+    if (out.medium.seed != m->medium_seed)  // the stored parameters would not give this medium again
       throw DatabaseError("'" + db + "': sweep " + std::to_string(sweep) + "'s medium " +
                           std::to_string(porosity_index) + ":" + std::to_string(medium_index) +
                           " has a seed its parameters do not derive");
-    const auto found =
-        std::find_if(m.droplets.begin(), m.droplets.end(), [&](const SweepDroplet& d) { return d.droplet == droplet; });
-    if (found == m.droplets.end())
+    const auto found = std::find_if(m->droplets.begin(), m->droplets.end(),
+                                    [&](const SweepDroplet& d) { return d.droplet == droplet; });
+    if (found == m->droplets.end())
       throw DatabaseError("'" + db + "': a stored medium lacks droplet " + std::to_string(droplet));
-    out.porosity = m.porosity;
+    out.porosity = m->porosity;
     out.droplet = *found;
     return out;
   }

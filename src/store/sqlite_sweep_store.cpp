@@ -120,50 +120,73 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
   }
 
   std::vector<SweepMedium> media(std::int64_t sweep_id) override {
+    return guarded([&] { return read_media(sweep_id, nullptr); });
+  }
+
+  std::optional<SweepMedium> medium(std::int64_t sweep_id, const SweepUnit& unit) override {
     return guarded([&] {
-      sweep(sweep_id);
-      SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);  // one consistent snapshot
-      std::vector<SweepMedium> out;
-      SQLite::Statement q(db_,
-                          "SELECT porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
-                          "passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction, seconds "
-                          "FROM sweep_media WHERE sweep_id = ? ORDER BY porosity_index, medium_index");
-      q.bind(1, sweep_id);
-      while (q.executeStep()) {
-        SweepMedium m;
-        m.unit = {detail::as_int(q.getColumn(0)), detail::as_int(q.getColumn(1))};
-        m.target_porosity = detail::as_real(q.getColumn(2));
-        m.porosity = detail::as_real(q.getColumn(3));
-        m.grains = detail::as_int(q.getColumn(4));
-        m.medium_seed = static_cast<std::uint64_t>(detail::as_int64(q.getColumn(5)));
-        m.passed = detail::as_int(q.getColumn(6));
-        m.stuck = detail::as_int(q.getColumn(7));
-        m.timeout = detail::as_int(q.getColumn(8));
-        m.diverged = detail::as_int(q.getColumn(9));
-        m.mean_t = q.getColumn(10).isNull() ? 0.0 : detail::as_real(q.getColumn(10));
-        m.standard_error = q.getColumn(11).isNull() ? 0.0 : detail::as_real(q.getColumn(11));
-        m.stuck_fraction = detail::as_real(q.getColumn(12));
-        m.seconds = detail::as_real(q.getColumn(13));
-        out.push_back(std::move(m));
-      }
-      SQLite::Statement d(
-          db_,
-          std::string("SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, "
-                      "steps, ") +
-              // A file older than version 9, read as it is, has not these columns.
-              (detail::has_column(db_, "sweep_droplets", "shaken_at") ? "shaken_at, route_tortuosity" : "NULL, NULL") +
-              " FROM sweep_droplets WHERE sweep_id = ? ORDER BY porosity_index, "
-              "medium_index, droplet");
-      d.bind(1, sweep_id);
-      std::size_t k = 0;
-      while (d.executeStep()) medium_of(out, &k, d, sweep_id, "droplets").droplets.push_back(droplet_row(d));
-      if (db_.tableExists("sweep_second_droplets")) read_second_droplets(sweep_id, out);  // none before version 10
-      t.commit();
-      return out;
+      std::vector<SweepMedium> one = read_media(sweep_id, &unit);
+      return one.empty() ? std::optional<SweepMedium>() : std::optional<SweepMedium>(std::move(one.front()));
     });
   }
 
  private:
+  // The sweep's stored media with their droplets, in unit order: all, or the one of `only`.
+  std::vector<SweepMedium> read_media(std::int64_t sweep_id, const SweepUnit* only) {
+    sweep(sweep_id);
+    SQLite::Transaction t(db_, SQLite::TransactionBehavior::DEFERRED);  // one consistent snapshot
+    const std::string where =
+        std::string(" WHERE sweep_id = ?") + (only ? " AND porosity_index = ? AND medium_index = ?" : "");
+    const auto bind = [&](SQLite::Statement& q) {
+      q.bind(1, sweep_id);
+      if (only) q.bind(2, only->porosity), q.bind(3, only->medium);
+    };
+    std::vector<SweepMedium> out;
+    SQLite::Statement q(db_,
+                        "SELECT porosity_index, medium_index, target_porosity, porosity, grains, medium_seed, "
+                        "passed, stuck, timeout, diverged, mean_t, standard_error, stuck_fraction, seconds "
+                        "FROM sweep_media" +
+                            where + " ORDER BY porosity_index, medium_index");
+    bind(q);
+    while (q.executeStep()) {
+      SweepMedium m;
+      m.unit = {detail::as_int(q.getColumn(0)), detail::as_int(q.getColumn(1))};
+      m.target_porosity = detail::as_real(q.getColumn(2));
+      m.porosity = detail::as_real(q.getColumn(3));
+      m.grains = detail::as_int(q.getColumn(4));
+      m.medium_seed = static_cast<std::uint64_t>(detail::as_int64(q.getColumn(5)));
+      m.passed = detail::as_int(q.getColumn(6));
+      m.stuck = detail::as_int(q.getColumn(7));
+      m.timeout = detail::as_int(q.getColumn(8));
+      m.diverged = detail::as_int(q.getColumn(9));
+      m.mean_t = q.getColumn(10).isNull() ? 0.0 : detail::as_real(q.getColumn(10));
+      m.standard_error = q.getColumn(11).isNull() ? 0.0 : detail::as_real(q.getColumn(11));
+      m.stuck_fraction = detail::as_real(q.getColumn(12));
+      m.seconds = detail::as_real(q.getColumn(13));
+      out.push_back(std::move(m));
+    }
+    SQLite::Statement d(db_, std::string("SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, "
+                                         "steps, ") +
+                                 // A file older than version 9, read as it is, has not these columns.
+                                 (detail::has_column(db_, "sweep_droplets", "shaken_at") ? "shaken_at, route_tortuosity"
+                                                                                         : "NULL, NULL") +
+                                 " FROM sweep_droplets" + where + " ORDER BY porosity_index, medium_index, droplet");
+    bind(d);
+    std::size_t k = 0;
+    while (d.executeStep()) medium_of(out, &k, d, sweep_id, "droplets").droplets.push_back(droplet_row(d));
+    if (db_.tableExists("sweep_second_droplets")) {  // none before version 10
+      SQLite::Statement p(db_,
+                          "SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps, "
+                          "shaken_at, route_tortuosity, released_at, first_held_at, held_at, contact_steps, "
+                          "shared_touched FROM sweep_second_droplets" +
+                              where + " ORDER BY porosity_index, medium_index, droplet");
+      bind(p);
+      read_second_droplets(p, sweep_id, out);
+    }
+    t.commit();
+    return out;
+  }
+
   // The record of the unit in a row's first two columns (porosity_index, medium_index), looked
   // for from media[*k] on: rows and media are both in unit order.
   static SweepMedium& medium_of(std::vector<SweepMedium>& media, std::size_t* k, SQLite::Statement& row,
@@ -192,13 +215,8 @@ class SqliteSweepStore final : public SweepStore, private detail::SqliteConnecti
             real_or_nan(row, 8)};
   }
 
-  // The pairs' seconds into their media's records (`media` in unit order).
-  void read_second_droplets(std::int64_t sweep_id, std::vector<SweepMedium>& media) {
-    SQLite::Statement d(db_,
-                        "SELECT porosity_index, medium_index, droplet, start_x, outcome, tortuosity, steps, shaken_at, "
-                        "route_tortuosity, released_at, first_held_at, held_at, contact_steps, shared_touched "
-                        "FROM sweep_second_droplets WHERE sweep_id = ? ORDER BY porosity_index, medium_index, droplet");
-    d.bind(1, sweep_id);
+  // The pairs' seconds, the rows of `d`, into their media's records (`media` in unit order).
+  static void read_second_droplets(SQLite::Statement& d, std::int64_t sweep_id, std::vector<SweepMedium>& media) {
     std::size_t k = 0;
     while (d.executeStep()) {
       SweepMedium& m = medium_of(media, &k, d, sweep_id, "second droplets");
