@@ -160,9 +160,16 @@ class SearchProgress {
     if (!force && now - last_ < (tty_ ? std::chrono::seconds(1) : std::chrono::seconds(10))) return;
     last_ = now;
     const double s = std::chrono::duration<double>(now - t0_).count();
+    // A robust objective re-runs the best every generation (g.parent), so its value moves: say what
+    // it is the mean of, as history --best does.
+    const std::int64_t re_runs = g.number - best.generation;
+    const std::string basis = g.parent.droplets == 0 ? ""
+                              : re_runs > 0
+                                  ? ", the mean of " + std::to_string(re_runs) + (re_runs > 1 ? " re-runs" : " re-run")
+                                  : ", as kept";
     std::ostringstream line;
     line << "optimize: run " << run_ << " generation " << g.number << "/" << target_ << "  best T "
-         << fmt(best.eval.tortuosity, 8) << " (gen " << best.generation << ")  accepted " << accepted_ << "/"
+         << fmt(best.eval.tortuosity, 8) << " (gen " << best.generation << basis << ")  accepted " << accepted_ << "/"
          << generations_ << "  " << fmt(s > 0 ? static_cast<double>(evaluations_) / s : 0.0, 3) << " eval/s  "
          << percent_and_eta(s, static_cast<double>(g.number - from_), static_cast<double>(target_ - from_));
     std::cerr << (tty_ ? "\r" : "") << line.str() << (tty_ && !force ? "\033[K" : "\n") << std::flush;
