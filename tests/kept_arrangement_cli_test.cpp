@@ -50,6 +50,9 @@ TEST(KeptArrangement, ARobustRunsExportReplaysItsHeldOutStartsAndEveryCommandQuo
   EXPECT_EQ(in_search, summary.at("best_tortuosity").get<double>());
   EXPECT_EQ(held_out, summary.at("held_out").at("mean_tortuosity").get<double>());
   EXPECT_EQ(best.at("held_out_starts"), 12);
+  const auto runs = nlohmann::json::parse(run("history --db " + db + " --format json").out);  // the runs table too
+  EXPECT_EQ(runs.at(0).at("held_out_tortuosity").get<double>(), held_out);
+  EXPECT_EQ(runs.at(0).at("best_tortuosity").get<double>(), in_search);
 
   // The config has no start; it pushes the 12 held-out droplets, and simulate gives their <T>.
   const std::string grains = fresh("kept_robust.json"), config = fresh("kept_robust.toml");

@@ -38,7 +38,8 @@ CLI::App* add_history_command(CLI::App& app, HistoryArgs& a) {
       "archipelago = the run id of its islands' first run (optimize --islands; empty otherwise); evaluations = "
       "candidates evaluated so far (generation 0's included); droplets = droplet runs so far (evaluations x "
       "--starts, and the parents' re-runs); objective = what a candidate scores (optimize --objective); "
-      "best_generation = where the best was found. With a robust objective (mean, quantile, lower-bound) every "
+      "best_generation = where the best was found; held_out_tortuosity, held_out_standard_error, held_out_starts = "
+      "the best's held-out value (as --best gives it). With a robust objective (mean, quantile, lower-bound) every "
       "tortuosity below is the objective's value over the evaluation's droplets, and the best is the arrangement "
       "the search stands on, its best_tortuosity the mean of its re-runs on fresh starts. Generations: kind = the "
       "move that made its candidates: all (every grain jumps), single (one touched grain), relocate (one "
@@ -99,17 +100,36 @@ int run_history(const HistoryArgs& a) {
   auto history = open_history(a.db, OpenMode::read_only);
   Table t;
   if (a.run == 0) {
-    t.header = {"run",    "created",     "status",      "strategy",        "island",          "archipelago",
-                "grains", "generations", "evaluations", "best_tortuosity", "best_generation", "lambda",
-                "seed",   "version",     "objective",   "droplets"};
+    t.header = {"run",
+                "created",
+                "status",
+                "strategy",
+                "island",
+                "archipelago",
+                "grains",
+                "generations",
+                "evaluations",
+                "best_tortuosity",
+                "best_generation",
+                "held_out_tortuosity",
+                "held_out_standard_error",
+                "held_out_starts",
+                "lambda",
+                "seed",
+                "version",
+                "objective",
+                "droplets"};
     for (const RunRecord& r : history->runs()) {
       const auto params = nlohmann::json::parse(r.params, nullptr, false);
       const std::string strategy = params.is_object() ? params.value("strategy", "paper") : "?";
       const std::string objective = params.is_object() ? params.value("objective", "single") : "?";
+      const std::optional<ValidationRecord> v = held_out_of(history->validations(r.id), r.best_generation);
       t.rows.push_back(
           {r.id, r.created, r.status, strategy, r.island >= 0 ? nlohmann::json(r.island) : nlohmann::json(),
            r.island >= 0 ? nlohmann::json(r.archipelago) : nlohmann::json(), r.grains, r.generations, r.evaluations,
-           r.best_t, r.best_generation, r.lambda, r.seed, r.version, objective, r.droplets});
+           r.best_t, r.best_generation, v ? finite_or_null(v->mean_t) : nlohmann::json(),
+           v ? finite_or_null(v->standard_error) : nlohmann::json(), v ? nlohmann::json(v->starts) : nlohmann::json(),
+           r.lambda, r.seed, r.version, objective, r.droplets});
     }
   } else if (a.params) {
     t.header = {"option", "value"};
