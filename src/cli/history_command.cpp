@@ -229,8 +229,8 @@ int run_export(const ExportArgs& a) {
       const std::uint64_t seed = values.held_out ? values.held_out->seed : defaults.seed;
       replays = "the " + std::to_string(starts) + " random starts (seed " + std::to_string(seed) + ") of " +
                 (values.held_out ? "its held-out value" : std::string("softdrop validate's held-out value"));
-      toml << "# " << replays << "; simulate gives their "
-           << (values.held_out ? held_out_text(*values.held_out) + ", as stored" : std::string("<T>")) << "\n";
+      toml << "# " << replays << " (simulate gives their <T>"
+           << (values.held_out ? "; stored: " + held_out_text(*values.held_out) : std::string()) << ")\n";
       toml << "droplets = " << starts << "\nseed = " << seed << "\n";
     } else {
       replays = "its droplet from x0 = W/2";

@@ -1,5 +1,7 @@
 #include "cli/kept_arrangement.hpp"
 
+#include <cmath>
+
 #include "cli/output.hpp"
 
 namespace softdrop::cli {
@@ -12,8 +14,10 @@ std::string in_search_basis(const ArrangementValues& v) {
 }
 
 std::string held_out_text(const ValidationRecord& v) {
-  return "<T> = " + with_error(v.mean_t, v.standard_error) + " over " + std::to_string(v.starts) + " random starts, " +
-         std::to_string(v.passed) + " passed";
+  const std::string starts = std::to_string(v.starts) + " random starts";
+  if (!std::isfinite(v.mean_t)) return "no droplet of " + starts + " passed";
+  return "<T> = " + (std::isfinite(v.standard_error) ? with_error(v.mean_t, v.standard_error) : fmt(v.mean_t, 4)) +
+         " over " + starts + ", " + std::to_string(v.passed) + " passed";
 }
 
 }  // namespace softdrop::cli

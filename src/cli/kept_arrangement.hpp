@@ -12,7 +12,8 @@ namespace softdrop::cli {
 /// counted as T = 1; the mean of 8 re-runs on fresh starts", or "one droplet from x0 = W/2".
 std::string in_search_basis(const ArrangementValues& v);
 
-/// "<T> = 1.499 ± 0.012 over 200 random starts, 200 passed".
+/// "<T> = 1.499 ± 0.012 over 200 random starts, 200 passed" (no error where one passed; "no
+/// droplet of 200 random starts passed").
 std::string held_out_text(const ValidationRecord& v);
 
 }  // namespace softdrop::cli
