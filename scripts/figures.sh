@@ -27,9 +27,11 @@ $S tortuosity --porosity 0.7 --medium-seed 3 --starts 0 --quiet --picture $out/p
 # The area trace of one droplet through non-overlapping grains at porosity 0.79 (the paper's figure).
 $S render trace --kind non-overlapping --porosity 0.79 --medium-seed 4 --size 600 -o $out/trace.png 2> /dev/null
 # Two 2000-evaluation searches, the paper's hill climb (lambda 2) and the default strategy: the best
-# arrangement of the first and its best-T curve, and both curves against evaluations.
+# arrangement of the second with its value against generation (the starting medium held out too),
+# and both curves against evaluations.
 rm -f build/figures.db build/figures.db-wal build/figures.db-shm build/figures_es.db build/figures_es.db-*
 $S optimize --db build/figures.db --generations 1000 --lambda 2 --strategy paper --relocate-every 0 --quiet
 $S optimize --db build/figures_es.db --generations 250 --quiet
-$S render search --db build/figures.db --run 1 --size 600 -o $out/search.png --curve $out/search_curve.png
+$S validate --db build/figures_es.db --run 1 --generation 0 --quiet > /dev/null
+$S render search --db build/figures_es.db --run 1 --size 600 -o $out/search.png --curve $out/search_curve.png
 $S render curves --db build/figures.db --db build/figures_es.db --size 600 -o $out/curves.png

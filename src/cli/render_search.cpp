@@ -3,6 +3,8 @@
 // droplets from the held-out value's random starts; the single objective's is one droplet's from
 // x0 = W/2, shown as the paper shows it: that path thick, the earlier bests' paths thin.
 #include <algorithm>
+#include <iomanip>
+#include <sstream>
 #include <stdexcept>
 
 #include "cli/history_command.hpp"
@@ -77,6 +79,13 @@ Chart value_chart(const RenderArgs& a, const RunRecord& run, const std::vector<G
   return chart;
 }
 
+// v with `places` decimals: a caption's values line up (1.5000, not 1.5).
+std::string fixed(double v, int places) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(places) << v;
+  return s.str();
+}
+
 // in_search_basis in the few words a caption has room for.
 std::string brief_basis(const ArrangementValues& v) {
   if (!v.robust()) return "one droplet from x0 = W/2";
@@ -139,7 +148,7 @@ int render_search(RenderArgs& a) {
     scene.lines.push_back(path_line(best.eval.path_x, best.eval.path_y, parse_colour(a.path_colour), 3.5));
   }
   scene.caption = "run " + std::to_string(a.run_id) + ", generation " + std::to_string(best.generation) +
-                  ": T = " + fmt(values.in_search, 5) + " in the search (" + brief_basis(values) + ")";
+                  ": T = " + fixed(values.in_search, 4) + " in the search (" + brief_basis(values) + ")";
   if (values.held_out) scene.caption += "\nheld out: " + held_out_text(*values.held_out);
   scene.caption += "\n" + drawn + "; " + medium_caption(best.medium);
   draw_picture(scene, style, a.output);
