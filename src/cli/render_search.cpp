@@ -3,7 +3,9 @@
 // droplets from the held-out value's random starts; the single objective's is one droplet's from
 // x0 = W/2, shown as the paper shows it: that path thick, the earlier bests' paths thin.
 #include <algorithm>
+#include <cmath>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
