@@ -89,6 +89,15 @@ TEST(KeptArrangement, ARobustRunsExportReplaysItsHeldOutStartsAndEveryCommandQuo
   EXPECT_NE(svg.find("over 24 random starts"), std::string::npos);
   EXPECT_NE(svg.find("5 held-out paths"), std::string::npos);
   EXPECT_NE(text_of(chart).find("held out: &lt;T&gt; over 24 random starts"), std::string::npos);
+  // A run with no held-out value: its paths are those validate would take, and named so.
+  const std::string unvalidated = fresh("kept_unvalidated.db");
+  ASSERT_EQ(run("optimize --db " + unvalidated + kBase +
+                " --objective mean --starts 4 --lambda 2 --strategy es --validate-starts 0 --generations 1")
+                .code,
+            0);
+  ASSERT_EQ(run("render search --db " + unvalidated + " --run 1 --droplets 3 --quiet -o " + picture).code, 0);
+  EXPECT_NE(text_of(picture).find("3 paths from random starts"), std::string::npos);
+  EXPECT_EQ(text_of(picture).find("held out:"), std::string::npos);
 }
 
 TEST(KeptArrangement, TheSingleObjectivesExportAndPictureKeepItsOneDroplet) {

@@ -129,8 +129,8 @@ int render_search(RenderArgs& a) {
       passed += r.outcome == Outcome::passed;
       for (std::int32_t i : r.touched) scene.filled[static_cast<std::size_t>(i)] = 1;
     }
-    drawn = std::to_string(droplets) + " held-out paths (" + std::to_string(passed) +
-            " passed), the grains they touched filled";
+    drawn = std::to_string(droplets) + (values.held_out ? " held-out paths (" : " paths from random starts (") +
+            std::to_string(passed) + " passed), the grains they touched filled";
   } else {
     for (std::int32_t i : best.eval.touched) scene.filled[static_cast<std::size_t>(i)] = 1;
     drawn = std::to_string(best.eval.touched.size()) + " grains touched (filled)";
