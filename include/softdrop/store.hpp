@@ -129,6 +129,18 @@ struct KeptValue {
 };
 KeptValue kept_value(const std::vector<GenerationRecord>& generations, std::int64_t kept);
 
+/// One point of a run's best-T curve as `history --best` gives it: a generation, the value of the
+/// arrangement kept there, and for a robust objective the re-runs that value is the mean of.
+struct BestPoint {
+  std::int64_t generation = 0;
+  double value = 0;
+  std::int64_t re_runs = 0;
+};
+/// The best-T curve of `generations` (numbered 0, 1, 2, ...): for the single objective generation 0
+/// and each generation that raised best_t, at its best_t; for a robust one generation 0 and each
+/// generation that kept a candidate, at kept_value's value.
+std::vector<BestPoint> best_curve(const std::vector<GenerationRecord>& generations, bool robust);
+
 /// The held-out value stored for the arrangement kept as of `generation`: of several (other seeds
 /// or start counts, or validated again) the one of most starts, and of those the one made last.
 /// Empty: none stored.
@@ -199,6 +211,10 @@ struct ArrangementValues {
 /// Throws as History::generations does, and std::runtime_error naming the run if its stored
 /// parameters are not a JSON object.
 ArrangementValues arrangement_values(History& history, std::int64_t run, const Configuration& kept);
+/// The same from what a caller has read already: the run's row, its generations (read only for a
+/// robust objective: may be empty for the single one) and its validations.
+ArrangementValues arrangement_values(const RunRecord& run, const std::vector<GenerationRecord>& generations,
+                                     const std::vector<ValidationRecord>& validations, const Configuration& kept);
 
 /// Opens an SQLite history. A missing file (read_only), a file that is not SQLite, a foreign SQLite
 /// database, one from a newer schema or a truncated or corrupted one gives std::runtime_error with

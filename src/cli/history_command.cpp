@@ -150,7 +150,7 @@ int run_history(const HistoryArgs& a) {
                           c.seconds, c.reason, c.droplets, c.passed});
   } else if (a.best) {
     // Beside the in-search best T, the held-out value of that generation's arrangement where one
-    // was stored (the latest of its validations). A robust objective's best is the arrangement
+    // was stored (held_out_of's choice of its validations). A robust objective's best is the arrangement
     // the search stands on: one row for each arrangement kept, with its value where its tenure
     // ended (the mean of its re-runs on fresh starts) and how many re-runs that mean holds.
     t.header = {
@@ -160,21 +160,13 @@ int run_history(const HistoryArgs& a) {
     const auto params = nlohmann::json::parse(history->run(a.run).params, nullptr, false);
     const bool robust = params.is_object() && params.value("objective", "single") != "single";
     const std::vector<GenerationRecord> gs = history->generations(a.run);
-    const auto row = [&](const GenerationRecord& g, double best_t, const nlohmann::json& re_runs) {
+    for (const BestPoint& p : best_curve(gs, robust)) {
+      const GenerationRecord& g = gs[static_cast<std::size_t>(p.generation)];
       const std::optional<ValidationRecord> v = held_out_of(validations, g.generation);
-      t.rows.push_back({g.generation, g.kind, best_t, g.touched, v ? finite_or_null(v->mean_t) : nlohmann::json(),
+      t.rows.push_back({g.generation, g.kind, p.value, g.touched, v ? finite_or_null(v->mean_t) : nlohmann::json(),
                         v ? finite_or_null(v->standard_error) : nlohmann::json(),
-                        v ? nlohmann::json(v->starts) : nlohmann::json(), re_runs});
-    };
-    double best = 0;
-    for (const GenerationRecord& g : gs) {
-      if (robust && (g.generation == 0 || g.accepted >= 0)) {
-        const KeptValue kept = kept_value(gs, g.generation);
-        row(g, kept.value, kept.re_runs);
-      } else if (!robust && (g.generation == 0 || g.best_t > best)) {  // the generations that raised the best
-        best = g.best_t;
-        row(g, g.best_t, nlohmann::json());
-      }
+                        v ? nlohmann::json(v->starts) : nlohmann::json(),
+                        robust ? nlohmann::json(p.re_runs) : nlohmann::json()});
     }
   } else {
     t.header = {"generation", "kind",    "accepted", "best_candidate_tortuosity", "outcomes", "best_tortuosity",

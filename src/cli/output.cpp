@@ -185,8 +185,12 @@ std::string with_error(double value, double error) {
   if (!std::isfinite(value) || !std::isfinite(error) || !(error > 0)) return fmt(value, 4) + " ± " + fmt(error, 2);
   // Decimal places that keep the error's second significant digit (none when the error is >= 10).
   const int places = std::max(0, 1 - static_cast<int>(std::floor(std::log10(error))));
+  return fixed(value, places) + " ± " + fixed(error, places);
+}
+
+std::string fixed(double v, int places) {
   std::ostringstream s;
-  s << std::fixed << std::setprecision(places) << value << " ± " << error;
+  s << std::fixed << std::setprecision(places) << v;
   return s.str();
 }
 

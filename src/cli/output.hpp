@@ -81,6 +81,8 @@ nlohmann::json finite_or_null(double v);
 /// Formats a double with the given significant digits (17 = round trip).
 std::string fmt(double v, int digits = 17);  // 17 and more: the shortest that reads back the same
 
+/// v with `places` decimals ("1.5000", not "1.5"), as std::fixed writes it.
+std::string fixed(double v, int places);
 /// "value ± error" at the error's precision: the error to two significant digits and the value to
 /// the same decimal place (1.5751 ± 0.0129 -> "1.575 ± 0.013"; 3.89 ± 0.19 -> "3.89 ± 0.19").
 /// A non-finite or zero error gives the value to 4 significant digits and the error as is.

@@ -4,9 +4,7 @@
 // x0 = W/2, shown as the paper shows it: that path thick, the earlier bests' paths thin.
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
 #include <optional>
-#include <sstream>
 #include <stdexcept>
 
 #include "cli/history_command.hpp"
@@ -45,16 +43,9 @@ Chart value_chart(const RenderArgs& a, const RunRecord& run, const std::vector<G
   const std::vector<GenerationRecord> shown(
       gs.begin(),
       gs.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(gs.size(), static_cast<std::size_t>(last) + 1)));
-  double raised = 0;
-  for (const GenerationRecord& g : shown) {
-    if (values.robust() && (g.generation == 0 || g.accepted >= 0)) {
-      in_search.x.push_back(static_cast<double>(g.generation));
-      in_search.y.push_back(kept_value(shown, g.generation).value);
-    } else if (!values.robust() && (g.generation == 0 || g.best_t > raised)) {
-      raised = g.best_t;
-      in_search.x.push_back(static_cast<double>(g.generation));
-      in_search.y.push_back(g.best_t);
-    }
+  for (const BestPoint& p : best_curve(shown, values.robust())) {
+    in_search.x.push_back(static_cast<double>(p.generation));
+    in_search.y.push_back(p.value);
   }
   in_search.x.push_back(static_cast<double>(last));  // flat to the last generation shown
   in_search.y.push_back(in_search.y.back());
@@ -81,20 +72,6 @@ Chart value_chart(const RenderArgs& a, const RunRecord& run, const std::vector<G
   return chart;
 }
 
-// v with `places` decimals: a caption's values line up (1.5000, not 1.5).
-std::string fixed(double v, int places) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(places) << v;
-  return s.str();
-}
-
-// in_search_basis in the few words a caption has room for.
-std::string brief_basis(const ArrangementValues& v) {
-  if (!v.robust()) return "one droplet from x0 = W/2";
-  return v.objective + " over " + std::to_string(v.starts) + " starts, " +
-         (v.re_runs > 0 ? "the mean of " + std::to_string(v.re_runs) + " re-runs" : std::string("as kept, no re-run"));
-}
-
 }  // namespace
 
 int render_search(RenderArgs& a) {
@@ -106,8 +83,9 @@ int render_search(RenderArgs& a) {
   const RunRecord run = history->run(a.run_id);
   check_stored_generation(a.generation, run);
   const Configuration best = history->configuration(a.run_id, a.generation < 0 ? run.best_generation : a.generation);
-  const ArrangementValues values = arrangement_values(*history, a.run_id, best);
   const std::vector<GenerationRecord> generations = history->generations(a.run_id);
+  const std::vector<ValidationRecord> validations = history->validations(a.run_id);
+  const ArrangementValues values = arrangement_values(run, generations, validations, best);
   const int droplets = a.search_droplets >= 0 ? a.search_droplets : (values.robust() ? kRobustPaths : 0);
 
   Scene scene;
@@ -139,24 +117,22 @@ int render_search(RenderArgs& a) {
     // The in-search droplet's path thick; without held-out paths, the earlier bests' paths thin.
     Rgba thin = parse_colour(a.path_colour);
     thin.a = 0.35;
-    double raised = 0;
-    for (const GenerationRecord& g : generations) {
-      if (droplets > 0 || g.generation >= best.generation) break;
-      if (g.generation > 0 && !(g.best_t > raised)) continue;
-      raised = g.best_t;
-      const Configuration c = history->configuration(a.run_id, g.generation);
+    for (const BestPoint& p : best_curve(generations, false)) {
+      if (droplets > 0 || p.generation >= best.generation) break;
+      const Configuration c = history->configuration(a.run_id, p.generation);
       scene.lines.push_back(path_line(c.eval.path_x, c.eval.path_y, thin, 1.0));
     }
     scene.lines.push_back(path_line(best.eval.path_x, best.eval.path_y, parse_colour(a.path_colour), 3.5));
   }
   scene.caption = "run " + std::to_string(a.run_id) + ", generation " + std::to_string(best.generation) +
-                  ": T = " + fixed(values.in_search, 4) + " in the search (" + brief_basis(values) + ")";
+                  ": T = " + fixed(values.in_search, 4) + " in the search (" + in_search_basis(values, /*brief=*/true) +
+                  ")";
   if (values.held_out) scene.caption += "\nheld out: " + held_out_text(*values.held_out);
   scene.caption += "\n" + drawn + "; " + medium_caption(best.medium);
   draw_picture(scene, style, a.output);
   if (!a.curve.empty()) {
     const std::int64_t last = std::max(best.generation, a.generation < 0 ? run.generations : a.generation);
-    render_chart(value_chart(a, run, generations, history->validations(a.run_id), values, last), style, a.curve);
+    render_chart(value_chart(a, run, generations, validations, values, last), style, a.curve);
   }
   return 0;
 }

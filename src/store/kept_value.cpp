@@ -17,6 +17,20 @@ KeptValue kept_value(const std::vector<GenerationRecord>& generations, std::int6
   return {generations[end].best_t, static_cast<std::int64_t>(end) - kept};
 }
 
+std::vector<BestPoint> best_curve(const std::vector<GenerationRecord>& generations, bool robust) {
+  std::vector<BestPoint> curve;
+  double best = 0;
+  for (const GenerationRecord& g : generations)
+    if (robust && (g.generation == 0 || g.accepted >= 0)) {
+      const KeptValue kept = kept_value(generations, g.generation);
+      curve.push_back({g.generation, kept.value, kept.re_runs});
+    } else if (!robust && (g.generation == 0 || g.best_t > best)) {  // the generations that raised the best
+      best = g.best_t;
+      curve.push_back({g.generation, g.best_t, 0});
+    }
+  return curve;
+}
+
 std::optional<ValidationRecord> held_out_of(const std::vector<ValidationRecord>& validations, std::int64_t generation) {
   std::optional<ValidationRecord> last;
   // ISO 8601 times order as strings; a tie keeps the later row.
@@ -27,21 +41,39 @@ std::optional<ValidationRecord> held_out_of(const std::vector<ValidationRecord>&
   return last;
 }
 
-ArrangementValues arrangement_values(History& history, std::int64_t run, const Configuration& kept) {
-  const auto params = nlohmann::json::parse(history.run(run).params, nullptr, false);
+namespace {
+
+// The stored run's objective (runs from before the objectives are single) and its parameters.
+nlohmann::json params_of(const RunRecord& run) {
+  auto params = nlohmann::json::parse(run.params, nullptr, false);
   if (!params.is_object())
-    throw std::runtime_error("run " + std::to_string(run) + ": its stored parameters are not a JSON object");
+    throw std::runtime_error("run " + std::to_string(run.id) + ": its stored parameters are not a JSON object");
+  return params;
+}
+
+}  // namespace
+
+ArrangementValues arrangement_values(const RunRecord& run, const std::vector<GenerationRecord>& generations,
+                                     const std::vector<ValidationRecord>& validations, const Configuration& kept) {
+  const nlohmann::json params = params_of(run);
   ArrangementValues v;
-  v.objective = params.value("objective", "single");  // runs from before the objectives are single
-  v.held_out = held_out_of(history.validations(run), kept.generation);
+  v.objective = params.value("objective", "single");
+  v.held_out = held_out_of(validations, kept.generation);
   if (!v.robust()) {
     v.in_search = kept.eval.tortuosity;
     return v;
   }
   v.starts = params.value("starts", 1);
-  const KeptValue k = kept_value(history.generations(run), kept.generation);
+  const KeptValue k = kept_value(generations, kept.generation);
   v.in_search = k.value, v.re_runs = k.re_runs;
   return v;
+}
+
+ArrangementValues arrangement_values(History& history, std::int64_t run, const Configuration& kept) {
+  const RunRecord r = history.run(run);
+  const bool robust = params_of(r).value("objective", "single") != "single";
+  return arrangement_values(r, robust ? history.generations(run) : std::vector<GenerationRecord>{},
+                            history.validations(run), kept);
 }
 
 }  // namespace softdrop
