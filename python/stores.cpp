@@ -89,6 +89,9 @@ py::dict history_tables(History& h, bool arrangements) {
                 "paired",
                 "dt_shift",
                 "dt_shift_error"});
+  // history --best's rows, with the run.
+  Columns best({"run", "generation", "kind", "best_tortuosity", "touched", "held_out_tortuosity",
+                "held_out_standard_error", "held_out_starts", "re_runs"});
   for (const RunRecord& r : h.runs()) {
     for (const ValidationRecord& v : h.validations(r.id)) {
       held["run"].append(r.id), held["generation"].append(v.generation), held["seed"].append(v.seed);
@@ -119,6 +122,17 @@ py::dict history_tables(History& h, bool arrangements) {
     runs["best_generation"].append(r.best_generation), runs["params"].append(r.params);
     runs["island"].append(or_none(r.island >= 0, py::int_(r.island)));
     runs["archipelago"].append(or_none(r.archipelago > 0, py::int_(r.archipelago)));
+    // Parameters that are not a JSON object: read_history raises StoreError naming the file.
+    const BestCurve curve = params.is_object() ? best_rows(h, r.id) : BestCurve{};
+    for (const BestRow& b : curve.rows) {
+      const std::optional<ValidationRecord>& v = b.held_out;
+      best["run"].append(r.id), best["generation"].append(b.point.generation), best["kind"].append(b.kind);
+      best["best_tortuosity"].append(b.point.value), best["touched"].append(b.touched);
+      best["held_out_tortuosity"].append(v ? v->mean_t : kNaN);
+      best["held_out_standard_error"].append(v ? v->standard_error : kNaN);
+      best["held_out_starts"].append(or_none(v.has_value(), py::int_(v ? v->starts : 0)));
+      best["re_runs"].append(or_none(curve.robust, py::int_(b.point.re_runs)));
+    }
     for (const GenerationRecord& g : h.generations(r.id)) {
       gens["run"].append(r.id), gens["generation"].append(g.generation), gens["kind"].append(g.kind);
       gens["accepted_candidate"].append(or_none(g.accepted >= 0, py::int_(g.accepted)));
@@ -156,6 +170,7 @@ py::dict history_tables(History& h, bool arrangements) {
   py::dict out;
   out["runs"] = runs.dict(), out["generations"] = gens.dict(), out["candidates"] = cands.dict();
   out["grains"] = grains.dict(), out["paths"] = paths.dict(), out["validations"] = held.dict();
+  out["best"] = best.dict();
   return out;
 }
 

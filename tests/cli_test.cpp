@@ -53,7 +53,8 @@ TEST(Cli, ProgressLinesEndAtOneHundredPercent) {
   EXPECT_EQ(sim.err.find('\r'), std::string::npos) << "a pipe gets plain lines";
   const std::string db = softdrop::test::temp_path("progress.db");
   std::filesystem::remove(db);
-  const Result opt = run("optimize --db " + db + softdrop::test::kSmallScene + " --generations 3");
+  const Result opt = run("optimize --db " + db + softdrop::test::kSmallScene +
+                         " --generations 3 --starts 4 --validate-starts 4 --stuck-window 0.1 --stuck-distance 1");
   ASSERT_EQ(opt.code, 0) << opt.err;
   EXPECT_NE(opt.err.find("generation 3/3"), std::string::npos) << opt.err;
   EXPECT_NE(opt.err.find(" 100 %\n"), std::string::npos) << opt.err;

@@ -366,7 +366,7 @@ TEST(RenderCli, EveryPictureKindRenders) {
 
   const std::string db = fresh("cli_search.db");
   ASSERT_EQ(test::run("optimize --db " + db + test::kSmallScene +
-                      " --seed 7 "
+                      " --seed 7 --starts 4 --validate-starts 8 "
                       "--stuck-window 0.1 --stuck-distance 1 --generations 8 --quiet")
                 .code,
             0);
@@ -640,7 +640,7 @@ TEST(RenderCli, PathsOfManyDropletsAreDrawn) {
 TEST(RenderCli, CurvesDrawSeveralSearchesAndNameWhatTheyCannotDraw) {
   const std::string a = fresh("curves-a-1.db"), b = fresh("curves-a-2.db"), png = fresh("curves.png");
   const std::string search = test::kSmallScene +
-                             " --stuck-window 0.1 "
+                             " --stuck-window 0.1 --starts 4 --validate-starts 4 "
                              "--stuck-distance 1 --generations 3 --quiet";
   for (const auto& [db, seed] : {std::pair{a, 7}, std::pair{b, 8}})
     ASSERT_EQ(test::run("optimize --db " + db + search + " --seed " + std::to_string(seed)).code, 0);

@@ -216,6 +216,23 @@ ArrangementValues arrangement_values(History& history, std::int64_t run, const C
 ArrangementValues arrangement_values(const RunRecord& run, const std::vector<GenerationRecord>& generations,
                                      const std::vector<ValidationRecord>& validations, const Configuration& kept);
 
+/// A run's best-T curve as `history --best` gives it: best_curve's points, each with the move
+/// (GenerationRecord::kind) and touched grains of its generation and the held-out value stored for
+/// that generation's arrangement (held_out_of). robust: the run's objective is not single, and each
+/// point's value is kept_value's.
+struct BestRow {
+  BestPoint point;
+  std::string kind;
+  int touched = 0;
+  std::optional<ValidationRecord> held_out;
+};
+struct BestCurve {
+  bool robust = false;
+  std::vector<BestRow> rows;
+};
+/// Throws as arrangement_values.
+BestCurve best_rows(History& history, std::int64_t run);
+
 /// Opens an SQLite history. A missing file (read_only), a file that is not SQLite, a foreign SQLite
 /// database, one from a newer schema or a truncated or corrupted one gives std::runtime_error with
 /// one line naming the file, and the file is not modified.

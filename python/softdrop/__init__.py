@@ -314,8 +314,10 @@ def read_history(db, arrangements=True):
     names of softdrop.columns()): `runs`, `generations`, `candidates`, `grains` and `paths` (the
     arrangements the search kept: generation 0's and each accepted one; arrangements=False leaves
     these two empty), `validations` (held-out values of arrangements: `softdrop validate`, and the
-    end of a search), and `params` (one row a run: run and the options stored with it, typed). A
-    file the store refuses raises StoreError naming it."""
+    end of a search), `best` (each run's best-T curve as `softdrop history --run N --best` gives it,
+    with the held-out value stored for each arrangement on it; re_runs is <NA> for the single
+    objective) and `params` (one row a run: run and the options stored with it, typed). A file the
+    store refuses raises StoreError naming it."""
     import json
 
     import pandas as pd
@@ -323,7 +325,8 @@ def read_history(db, arrangements=True):
     tables = _core._read_history(_db_path(db), bool(arrangements))
     frames = {name: pd.DataFrame(columns) for name, columns in tables.items()}
     for name, column in (("generations", "accepted_candidate"), ("candidates", "moved_grain"), ("runs", "island"),
-                         ("runs", "archipelago"), ("validations", "half_dt_passed"), ("validations", "paired")):
+                         ("runs", "archipelago"), ("validations", "half_dt_passed"), ("validations", "paired"),
+                         ("best", "held_out_starts"), ("best", "re_runs")):
         frames[name][column] = frames[name][column].astype("Int64")  # missing: <NA>
     frames["grains"]["touched"] = frames["grains"]["touched"].astype(bool)
     rows = []

@@ -156,17 +156,13 @@ int run_history(const HistoryArgs& a) {
     t.header = {
         "generation",      "kind",   "best_tortuosity", "touched", "held_out_tortuosity", "held_out_standard_error",
         "held_out_starts", "re_runs"};
-    const std::vector<ValidationRecord> validations = history->validations(a.run);
-    const auto params = nlohmann::json::parse(history->run(a.run).params, nullptr, false);
-    const bool robust = params.is_object() && params.value("objective", "single") != "single";
-    const std::vector<GenerationRecord> gs = history->generations(a.run);
-    for (const BestPoint& p : best_curve(gs, robust)) {
-      const GenerationRecord& g = gs[static_cast<std::size_t>(p.generation)];
-      const std::optional<ValidationRecord> v = held_out_of(validations, g.generation);
-      t.rows.push_back({g.generation, g.kind, p.value, g.touched, v ? finite_or_null(v->mean_t) : nlohmann::json(),
-                        v ? finite_or_null(v->standard_error) : nlohmann::json(),
-                        v ? nlohmann::json(v->starts) : nlohmann::json(),
-                        robust ? nlohmann::json(p.re_runs) : nlohmann::json()});
+    const BestCurve curve = best_rows(*history, a.run);
+    for (const BestRow& b : curve.rows) {
+      const std::optional<ValidationRecord>& v = b.held_out;
+      t.rows.push_back(
+          {b.point.generation, b.kind, b.point.value, b.touched, v ? finite_or_null(v->mean_t) : nlohmann::json(),
+           v ? finite_or_null(v->standard_error) : nlohmann::json(), v ? nlohmann::json(v->starts) : nlohmann::json(),
+           curve.robust ? nlohmann::json(b.point.re_runs) : nlohmann::json()});
     }
   } else {
     t.header = {"generation", "kind",    "accepted", "best_candidate_tortuosity", "outcomes", "best_tortuosity",

@@ -76,4 +76,16 @@ ArrangementValues arrangement_values(History& history, std::int64_t run, const C
                             history.validations(run), kept);
 }
 
+BestCurve best_rows(History& history, std::int64_t run) {
+  BestCurve curve;
+  curve.robust = params_of(history.run(run)).value("objective", "single") != "single";
+  const std::vector<GenerationRecord> generations = history.generations(run);
+  const std::vector<ValidationRecord> validations = history.validations(run);
+  for (const BestPoint& p : best_curve(generations, curve.robust)) {
+    const GenerationRecord& g = generations[static_cast<std::size_t>(p.generation)];
+    curve.rows.push_back({p, g.kind, g.touched, held_out_of(validations, p.generation)});
+  }
+  return curve;
+}
+
 }  // namespace softdrop

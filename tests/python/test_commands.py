@@ -1,5 +1,6 @@
 """optimize and sweep from Python against the program: the same options write the same records;
 the callback stops a search that then resumes exactly; readers give the program's tables."""
+import io
 import json
 import os
 import signal
@@ -328,3 +329,11 @@ def test_best_arrangement_quotes_what_history_best_does(tmp_path):
     one = softdrop.best_arrangement(single)
     assert one.objective == "single" and one.best_tortuosity == one.tortuosity and one.re_runs == 0
     assert one.held_out_tortuosity is None and one.held_out_starts is None
+    # read_history's `best` is history --best's table for every run, cell for cell.
+    for path, robust in ((db, True), (single, False)):
+        ours = softdrop.read_history(path, arrangements=False)["best"]
+        theirs = pd.read_csv(io.StringIO(cli("history", "--db", str(path), "--run", "1", "--best", "--format", "csv")))
+        theirs.insert(0, "run", 1)
+        assert list(ours.columns) == list(theirs.columns)
+        assert ours["re_runs"].isna().all() != robust
+        pd.testing.assert_frame_equal(ours, theirs, check_dtype=False)
