@@ -94,10 +94,13 @@ def paths(m, runs, ax=None, color="tab:blue", linewidth=0.8, alpha=0.7):
 
 
 def best_curve(history, run=1, ax=None):
-    """A search's best T against generation, from read_history's frames or a database path; with a
-    robust objective also each generation's re-run of the arrangement it stood on
-    (parent_tortuosity), and
-    any held-out values (validations) with their standard errors. Returns the Figure."""
+    """A search's best T against generation, as `softdrop render search --curve` draws it: the
+    in-search value of each arrangement kept (read_history's `best`, the rows of `softdrop history
+    --best`: the single objective's T, or a robust objective's mean of its re-runs where its tenure
+    ended), as steps to the last generation; with a robust objective also each generation's re-run
+    of the arrangement it stood on (parent_tortuosity, grey dots); and every held-out value stored
+    (validations) with its standard error. `history` is read_history's frames or a database path.
+    Returns the Figure."""
     if not isinstance(history, dict):
         from . import read_history
 
@@ -106,17 +109,23 @@ def best_curve(history, run=1, ax=None):
     g = g[g["run"] == run]
     if g.empty:
         raise ValueError(f"run = {run}: no such run in the history")
+    best = history["best"]
+    best = best[best["run"] == run]
+    robust = best["re_runs"].notna().any()
     ax = _axes(ax)
-    ax.step(g["generation"], g["best_tortuosity"], where="post", color="black", label="best T (in search)")
+    x = np.append(best["generation"].to_numpy(), g["generation"].max())  # flat to the last generation
+    y = np.append(best["best_tortuosity"].to_numpy(), best["best_tortuosity"].iloc[-1])
+    ax.step(x, y, where="post", color="black",
+            label="in the search (the mean of its re-runs)" if robust else "in the search (x0 = W/2)")
     if "parent_tortuosity" in g and g["parent_tortuosity"].notna().any():
         ax.plot(g["generation"], g["parent_tortuosity"], ".", color="0.6", markersize=2, label="re-run on fresh starts")
     v = history.get("validations")
     if v is not None and not v.empty:
         v = v[v["run"] == run]
         ax.errorbar(v["generation"], v["mean_tortuosity"], yerr=v["standard_error"], fmt="o", color="tab:red",
-                    label="held-out ⟨T⟩")
+                    label="held out: ⟨T⟩ over random starts")
     ax.set_xlabel("generation")
-    ax.set_ylabel("T")
+    ax.set_ylabel("tortuosity T of the best")
     ax.legend(loc="best", frameon=False)
     return ax.figure
 

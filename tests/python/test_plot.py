@@ -47,7 +47,7 @@ def test_paths_are_cut_where_they_wrap_and_drawn_into_the_callers_axes():
     plt.close(fig)
 
 
-def test_the_best_curve_is_the_stored_best_t_with_the_re_runs_and_held_out_values(tmp_path):
+def test_the_best_curve_is_history_best_with_the_re_runs_and_held_out_values(tmp_path):
     db = tmp_path / "search.db"
     cli = os.environ.get("SOFTDROP_CLI", "softdrop")
     subprocess.run([cli, "optimize", "--db", str(db), "--grains", "16", "--width", "160", "--height", "120",
@@ -58,7 +58,11 @@ def test_the_best_curve_is_the_stored_best_t_with_the_re_runs_and_held_out_value
     fig = softdrop.plot.best_curve(db, run=1)
     ax = fig.axes[0]
     best, reruns = ax.lines[0], ax.lines[1]
-    assert np.array_equal(best.get_ydata(), h["generations"]["best_tortuosity"].to_numpy())
+    # The kept arrangements' values as history --best gives them, flat to the last generation.
+    kept = h["best"]
+    assert np.array_equal(best.get_xdata(), list(kept["generation"]) + [3])
+    assert np.array_equal(best.get_ydata(), list(kept["best_tortuosity"]) + [kept["best_tortuosity"].iloc[-1]])
+    assert best.get_label() == "in the search (the mean of its re-runs)"
     assert np.array_equal(reruns.get_ydata(), h["generations"]["parent_tortuosity"].to_numpy(), equal_nan=True)
     assert len(ax.containers) == 1  # the held-out value, with its error bar
     with pytest.raises(ValueError, match="run = 2"):
