@@ -43,7 +43,7 @@ py::array_t<bool> top_first(const PoreImage& im) {
 }
 
 // A boolean image of the box, rows from the top: True in the pore space (PoreSpy's convention).
-py::array_t<bool> pore_image(const Medium& m, int pixels) {
+py::array_t<bool> pore_array(const Medium& m, int pixels) {
   if (pixels < 1 || pixels > 20000)
     throw std::invalid_argument("pixels = " + std::to_string(pixels) + ": must be in [1, 20000]");
   if (m.image) return top_first(pixels == m.image->nx ? *m.image : softdrop::pore_image(m, pixels));
@@ -218,9 +218,7 @@ void bind_medium(py::module_& m) {
       .def("porosity", &exact_porosity, "The exact void fraction of the box")
       .def(
           "to_image",
-          [](const Medium& med, const py::object& pixels) {
-            return (pore_image)(med, int_arg(pixels, "pixels"));  // this file's, not softdrop::pore_image by ADL
-          },
+          [](const Medium& med, const py::object& pixels) { return pore_array(med, int_arg(pixels, "pixels")); },
           py::arg("pixels"), "Boolean image, `pixels` wide, rows from the top: True in the pore space")
       .def("__len__", [](const Medium& med) { return med.grains.size(); })
       .def("__repr__",

@@ -45,6 +45,9 @@ inline std::string fresh_path(const std::string& name) {
   return p;
 }
 
+/// fresh_path's short name.
+inline std::string fresh(const std::string& name) { return fresh_path(name); }
+
 /// The first line of a text file ("" if there is none).
 inline std::string first_line(const std::string& path) {
   std::ifstream in(path);

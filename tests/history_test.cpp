@@ -17,7 +17,7 @@
 namespace softdrop {
 namespace {
 
-std::string fresh(const std::string& name) { return test::fresh_path(name); }
+using test::fresh;
 
 std::string bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

@@ -16,8 +16,9 @@
 namespace {
 using namespace softdrop::test;
 
-const std::string kBase = kSmallScene + " --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet ";
-const std::string kRobust = kBase + " --objective mean --starts 4 --lambda 2 --strategy es --validate-starts 12";
+const std::string kKeptBase = kSmallScene + " --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet ";
+const std::string kKeptRobust =
+    kKeptBase + " --objective mean --starts 4 --lambda 2 --strategy es --validate-starts 12";
 
 std::string text_of(const std::string& path) {
   std::ifstream in(path);
@@ -41,7 +42,7 @@ nlohmann::json best_row(const std::string& db) {
 
 TEST(KeptArrangement, ARobustRunsExportReplaysItsHeldOutStartsAndEveryCommandQuotesTheSameValues) {
   const std::string db = fresh("kept_robust.db");
-  const Result o = run("optimize --db " + db + kRobust + " --generations 6 --format json");
+  const Result o = run("optimize --db " + db + kKeptRobust + " --generations 6 --format json");
   ASSERT_EQ(o.code, 0) << o.err;
   const nlohmann::json summary = nlohmann::json::parse(o.out);
   const nlohmann::json best = best_row(db);
@@ -91,7 +92,7 @@ TEST(KeptArrangement, ARobustRunsExportReplaysItsHeldOutStartsAndEveryCommandQuo
   EXPECT_NE(text_of(chart).find("held out: &lt;T&gt; over 24 random starts"), std::string::npos);
   // A run with no held-out value: its paths are those validate would take, and named so.
   const std::string unvalidated = fresh("kept_unvalidated.db");
-  ASSERT_EQ(run("optimize --db " + unvalidated + kBase +
+  ASSERT_EQ(run("optimize --db " + unvalidated + kKeptBase +
                 " --objective mean --starts 4 --lambda 2 --strategy es --validate-starts 0 --generations 1")
                 .code,
             0);
@@ -103,7 +104,8 @@ TEST(KeptArrangement, ARobustRunsExportReplaysItsHeldOutStartsAndEveryCommandQuo
 TEST(KeptArrangement, TheSingleObjectivesExportAndPictureKeepItsOneDroplet) {
   const std::string db = fresh("kept_single.db");
   ASSERT_EQ(
-      run("optimize --db " + db + kBase + " --objective single --lambda 2 --validate-starts 8 --generations 4").code,
+      run("optimize --db " + db + kKeptBase + " --objective single --lambda 2 --validate-starts 8 --generations 4")
+          .code,
       0);
   const nlohmann::json best = best_row(db);
   const std::string grains = fresh("kept_single.json"), config = fresh("kept_single.toml");

@@ -19,7 +19,7 @@
 namespace softdrop {
 namespace {
 
-std::string fresh(const std::string& name) { return test::fresh_path(name); }
+using test::fresh;
 
 struct Png {
   int width = 0, height = 0;

@@ -27,8 +27,6 @@ namespace softdrop::test {
 inline const std::string kScene =
     kSmallScene + " --seed 7 --stuck-window 0.1 --stuck-distance 1 --quiet --validate-starts 0 --objective single ";
 
-inline std::string fresh(const std::string& name) { return fresh_path(name); }
-
 /// Everything deterministic a run stored: the rows of every table without times and durations.
 /// With `upto` >= 0, only generations up to it, and not the runs row (which changes as a run goes on).
 inline std::string dump(const std::string& db_path, int run, std::int64_t upto = -1) {

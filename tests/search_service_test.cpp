@@ -38,7 +38,7 @@ SearchRun small_run(const std::string& db, std::int64_t generations) {
 }
 
 // Records what it hears; stops after `stop_after` generations (0: never).
-struct Recorder : SearchObserver {
+struct SearchRecorder : SearchObserver {
   std::int64_t stop_after = 0;
   std::vector<std::int64_t> started_with;  // run, from, target, resumed
   std::vector<std::int64_t> generations;
@@ -74,7 +74,7 @@ TEST(SearchService, ARunStoresEveryGenerationAndItsHeldOutValue) {
   const std::string db = test::fresh_path("search_service_whole.db");
   SearchRun run = small_run(db, 4);
   run.validate_starts = 6;
-  Recorder heard;
+  SearchRecorder heard;
   const SearchRunSummary s = run_search(run, heard);
   EXPECT_EQ(s.run, 1);
   EXPECT_FALSE(s.resumed);
@@ -101,9 +101,9 @@ TEST(SearchService, ARunStoresEveryGenerationAndItsHeldOutValue) {
 TEST(SearchService, AStoppedRunResumesToTheSameBitsAndAGivenOptionMustMatch) {
   const std::string whole = test::fresh_path("search_service_reference.db"),
                     parts = test::fresh_path("search_service_parts.db");
-  Recorder reference;
+  SearchRecorder reference;
   const SearchRunSummary r = run_search(small_run(whole, 6), reference);
-  Recorder first;
+  SearchRecorder first;
   first.stop_after = 2;
   const SearchRunSummary s = run_search(small_run(parts, 6), first);
   EXPECT_EQ(s.drive.termination, Termination::callback);
@@ -117,7 +117,7 @@ TEST(SearchService, AStoppedRunResumesToTheSameBitsAndAGivenOptionMustMatch) {
   resume.generations.reset();  // the run's own target
   resume.search.lambda = 3;
   resume.given = {"lambda"};
-  Recorder refused;
+  SearchRecorder refused;
   try {
     run_search(resume, refused);
     FAIL() << "a contradicting lambda was accepted";
@@ -128,7 +128,7 @@ TEST(SearchService, AStoppedRunResumesToTheSameBitsAndAGivenOptionMustMatch) {
   EXPECT_EQ(open_history(parts, OpenMode::read_only)->run(1).generations, 2);
   // Not given, the same difference is the stored run's to decide.
   resume.given.clear();
-  Recorder second;
+  SearchRecorder second;
   const SearchRunSummary t = run_search(resume, second);
   EXPECT_TRUE(t.resumed);
   EXPECT_EQ(t.search.lambda, 2);
@@ -149,7 +149,7 @@ TEST(SearchService, AStoppedRunResumesToTheSameBitsAndAGivenOptionMustMatch) {
 
 TEST(SearchService, ARefusedRunNamesTheOptionAndWritesNoFile) {
   const std::string db = test::fresh_path("search_service_refused.db");
-  Recorder heard;
+  SearchRecorder heard;
   const auto refused_naming = [&](const SearchRun& run, const std::string& name) {
     try {
       run_search(run, heard);
@@ -209,7 +209,7 @@ TEST(SearchService, IslandsAreRunsOfOneArchipelagoAndResumeTogetherToTheSameBits
     r.migration = "broadcast";
     return r;
   };
-  Recorder reference;
+  SearchRecorder reference;
   const SearchRunSummary r = run_search(islands_run(whole), reference);
   EXPECT_EQ(reference.island_runs, (std::vector<std::int64_t>{1, 2, 3}));
   EXPECT_TRUE(reference.started_with.empty());   // islands_started instead
@@ -228,7 +228,7 @@ TEST(SearchService, IslandsAreRunsOfOneArchipelagoAndResumeTogetherToTheSameBits
   }
   // Stopped after four generations (of any islands), then resumed from island 2's run: all of
   // them go on, and every island's history is the uninterrupted one's.
-  Recorder first;
+  SearchRecorder first;
   first.stop_after = 4;
   const SearchRunSummary s = run_search(islands_run(parts), first);
   EXPECT_EQ(s.drive.termination, Termination::callback);
@@ -236,7 +236,7 @@ TEST(SearchService, IslandsAreRunsOfOneArchipelagoAndResumeTogetherToTheSameBits
   resume.resume = 3;
   resume.generations.reset();
   resume.given = {"islands"};  // 3, as stored
-  Recorder second;
+  SearchRecorder second;
   const SearchRunSummary t = run_search(resume, second);
   EXPECT_TRUE(t.resumed);
   EXPECT_EQ(second.island_runs, (std::vector<std::int64_t>{1, 2, 3}));
@@ -265,7 +265,7 @@ TEST(SearchService, AStoredTargetThatIsNotAWholeNumberIsRefusedByOneSearchAndByI
     const std::string db = test::fresh_path("search_service_target.db");
     SearchRun run = small_run(db, 1);
     run.islands = islands;
-    Recorder heard;
+    SearchRecorder heard;
     run_search(run, heard);
     SQLite::Database(db, SQLite::OPEN_READWRITE)
         .exec(R"(UPDATE runs SET params = json_set(params, '$."target-generations"', 2.5))");
@@ -288,7 +288,7 @@ TEST(SearchService, AStoredTargetThatIsNotAWholeNumberIsRefusedByOneSearchAndByI
 TEST(SearchService, AFileThatIsNotAHistoryIsRefusedAndKept) {
   const std::string db = test::fresh_path("search_service_text.db");
   { std::ofstream(db) << "not a database\n"; }
-  Recorder heard;
+  SearchRecorder heard;
   EXPECT_THROW(run_search(small_run(db, 2), heard), DatabaseError);
   EXPECT_EQ(test::first_line(db), "not a database");
   std::filesystem::remove(db);

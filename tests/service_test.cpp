@@ -37,7 +37,7 @@ SweepRun tiny_run(const std::string& db) {
 }
 
 // Records what it hears; stops after `stop_after` media (0: never).
-struct Recorder : SweepObserver {
+struct SweepRecorder : SweepObserver {
   std::size_t stop_after = 0;
   std::vector<std::size_t> started_with;  // stored, to_do
   std::vector<SweepProgress> progress;
@@ -60,7 +60,7 @@ std::vector<std::uint64_t> stored_bits(const std::string& db, std::int64_t sweep
 
 TEST(SweepService, ARunStoresEveryMediumAndTellsItsObserver) {
   const std::string db = test::fresh_path("service_whole.db");
-  Recorder heard;
+  SweepRecorder heard;
   const SweepSummary s = run_sweep(tiny_run(db), heard);
   EXPECT_EQ(s.status, "complete");
   EXPECT_EQ(s.media, 4);
@@ -76,7 +76,7 @@ TEST(SweepService, ARunStoresEveryMediumAndTellsItsObserver) {
     EXPECT_EQ(heard.progress[i].sweep, s.sweep);
   }
   // Run again: nothing left to do, and nothing changes.
-  Recorder again;
+  SweepRecorder again;
   const SweepSummary t = run_sweep(tiny_run(db), again);
   EXPECT_EQ(t.sweep, s.sweep);
   EXPECT_EQ(t.status, "complete");
@@ -92,8 +92,8 @@ TEST(SweepService, AnObserverThatStopsTheRunLeavesAResumableSweepWithTheSameBits
   // droplet at a time, so it starts a few media meanwhile, not all 20: with 24 lanes it had 8 in
   // flight and sometimes started the last 4 before the stop. The bits are the same at every width.
   const test::VectorWidthLimit one_at_a_time(VectorWidth::sse2);
-  Recorder reference;
-  Recorder first;
+  SweepRecorder reference;
+  SweepRecorder first;
   first.stop_after = 1;
   SweepRun run = tiny_run(parts);
   run.sweep.media = 10;
@@ -107,7 +107,7 @@ TEST(SweepService, AnObserverThatStopsTheRunLeavesAResumableSweepWithTheSameBits
   EXPECT_LT(s.done, 20);  // the media in flight at the stop are stored, no more
   EXPECT_EQ(static_cast<std::int64_t>(first.progress.size()), s.done);
   EXPECT_EQ(open_sweep_store(parts, OpenMode::read_only)->sweep(s.sweep).status, "interrupted");
-  Recorder second;
+  SweepRecorder second;
   const SweepSummary t = run_sweep(run, second);
   const auto before = static_cast<std::size_t>(s.done);
   EXPECT_EQ(second.started_with, (std::vector<std::size_t>{before, 20 - before}));
@@ -120,7 +120,7 @@ TEST(SweepService, AnObserverThatStopsTheRunLeavesAResumableSweepWithTheSameBits
 
 TEST(SweepService, ARefusedRunNamesTheOptionAndWritesNoFile) {
   const std::string db = test::fresh_path("service_refused.db");
-  Recorder heard;
+  SweepRecorder heard;
   SweepRun run = tiny_run(db);
   run.shard = 2;
   run.shards = 2;
@@ -143,7 +143,7 @@ TEST(SweepService, ARefusedRunNamesTheOptionAndWritesNoFile) {
 TEST(SweepService, AFileThatIsNotADatabaseIsRefusedAndKept) {
   const std::string db = test::fresh_path("service_text.db");
   { std::ofstream(db) << "not a database\n"; }
-  Recorder heard;
+  SweepRecorder heard;
   EXPECT_THROW(run_sweep(tiny_run(db), heard), DatabaseError);
   EXPECT_EQ(test::first_line(db), "not a database");
   std::filesystem::remove(db);

@@ -28,7 +28,7 @@
 namespace softdrop {
 namespace {
 
-std::string fresh(const std::string& name) { return test::fresh_path(name); }
+using test::fresh;
 
 SweepOptions tiny() {
   SweepOptions o;

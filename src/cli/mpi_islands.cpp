@@ -135,11 +135,6 @@ struct LocalIslands {
   }
 };
 
-[[noreturn]] void fail_job(const Job& job, const std::exception& e) {
-  std::fprintf(stderr, "softdrop: error (rank %d): %s\n", job.rank(), e.what());
-  job.abort(1);
-}
-
 }  // namespace
 
 SearchSummary drive_islands_on_ranks(const Job& job, std::vector<Search>& islands, const IslandOptions& io,
@@ -228,7 +223,7 @@ SearchSummary drive_islands_on_ranks(const Job& job, std::vector<Search>& island
       if (callbacks.migration && !callbacks.migration(gs, after)) stop_by_callback = true;
     }
   } catch (const std::exception& e) {
-    fail_job(job, e);
+    job.fail(e);
   }
   for (std::size_t j = 0; j < local.number.size(); ++j)  // rank 0's islands back where they were
     islands[static_cast<std::size_t>(local.number[j])] = std::move(local.searches[j]);
@@ -286,7 +281,7 @@ void work_on_islands(const Job& job, int threads, int lanes, bool speculate) {
       mpi::send(0, kMigrated, encode(migrated));
     }
   } catch (const std::exception& e) {
-    fail_job(job, e);
+    job.fail(e);
   }
 }
 

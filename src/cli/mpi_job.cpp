@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
@@ -119,5 +121,11 @@ std::string receive(int, int, int*, int*) { throw std::logic_error("MPI: not bui
 void broadcast(std::vector<int>&) { throw std::logic_error("MPI: not built"); }
 }  // namespace mpi
 #endif
+
+// An error on one rank leaves the others waiting for it: it ends the whole job.
+void Job::fail(const std::exception& e) const {
+  std::fprintf(stderr, "softdrop: error (rank %d): %s\n", rank(), e.what());
+  abort(1);
+}
 
 }  // namespace softdrop::cli

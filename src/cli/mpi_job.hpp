@@ -3,6 +3,7 @@
 // initialises MPI only when a launcher started it, so that without one it is the plain program.
 // MPI is process-wide, hence one Job per process, reached through current_job().
 
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,8 @@ class Job {
   int size() const { return size_; }
   /// Ends every rank of the job with `code` (for an error that leaves the others waiting).
   [[noreturn]] void abort(int code) const;
+  /// Reports `e` on stderr with this rank, then ends the job (abort(1)).
+  [[noreturn]] void fail(const std::exception& e) const;
 
  private:
   int rank_ = 0, size_ = 1;

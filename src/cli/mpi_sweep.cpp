@@ -67,12 +67,6 @@ std::map<std::pair<int, int>, std::size_t> index_of(const std::vector<SweepUnit>
   return index;
 }
 
-// An error on one rank leaves the others waiting for it: it ends the whole job.
-[[noreturn]] void fail_job(const Job& job, const std::exception& e) {
-  std::fprintf(stderr, "softdrop: error (rank %d): %s\n", job.rank(), e.what());
-  job.abort(1);
-}
-
 }  // namespace
 
 RanksReport run_sweep_units_on_ranks(const Job& job, const SweepOptions& options, const std::vector<SweepUnit>& todo,
@@ -106,7 +100,7 @@ RanksReport run_sweep_units_on_ranks(const Job& job, const SweepOptions& options
         serving += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       }
     } catch (const std::exception& e) {
-      fail_job(job, e);
+      job.fail(e);
     }
   });
   const auto index = index_of(todo);
@@ -123,7 +117,7 @@ RanksReport run_sweep_units_on_ranks(const Job& job, const SweepOptions& options
           return ledger.claim(index.at({u.porosity, u.medium})) != index.at({u.porosity, u.medium});
         });
   } catch (const std::exception& e) {
-    fail_job(job, e);
+    job.fail(e);
   }
   server.join();
   return {ran, serving};
@@ -150,7 +144,7 @@ void work_on_sweep_units(const Job& job, const SweepOptions& options, int thread
         });
     mpi::send(0, kDone, "");
   } catch (const std::exception& e) {
-    fail_job(job, e);
+    job.fail(e);
   }
 }
 
