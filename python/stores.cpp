@@ -93,7 +93,9 @@ py::dict history_tables(History& h, bool arrangements) {
   Columns best({"run", "generation", "kind", "best_tortuosity", "touched", "held_out_tortuosity",
                 "held_out_standard_error", "held_out_starts", "re_runs"});
   for (const RunRecord& r : h.runs()) {
-    for (const ValidationRecord& v : h.validations(r.id)) {
+    const std::vector<ValidationRecord> validations = h.validations(r.id);
+    const std::vector<GenerationRecord> generations = h.generations(r.id);
+    for (const ValidationRecord& v : validations) {
       held["run"].append(r.id), held["generation"].append(v.generation), held["seed"].append(v.seed);
       held["starts"].append(v.starts), held["created"].append(v.created), held["version"].append(v.version);
       held["dt"].append(v.dt), held["passed"].append(v.passed), held["mean_tortuosity"].append(v.mean_t);
@@ -123,7 +125,7 @@ py::dict history_tables(History& h, bool arrangements) {
     runs["island"].append(or_none(r.island >= 0, py::int_(r.island)));
     runs["archipelago"].append(or_none(r.archipelago > 0, py::int_(r.archipelago)));
     // Parameters that are not a JSON object: read_history raises StoreError naming the file.
-    const BestCurve curve = params.is_object() ? best_rows(h, r.id) : BestCurve{};
+    const BestCurve curve = params.is_object() ? best_rows(r, generations, validations) : BestCurve{};
     for (const BestRow& b : curve.rows) {
       const std::optional<ValidationRecord>& v = b.held_out;
       best["run"].append(r.id), best["generation"].append(b.point.generation), best["kind"].append(b.kind);
@@ -133,7 +135,7 @@ py::dict history_tables(History& h, bool arrangements) {
       best["held_out_starts"].append(or_none(v.has_value(), py::int_(v ? v->starts : 0)));
       best["re_runs"].append(or_none(curve.robust, py::int_(b.point.re_runs)));
     }
-    for (const GenerationRecord& g : h.generations(r.id)) {
+    for (const GenerationRecord& g : generations) {
       gens["run"].append(r.id), gens["generation"].append(g.generation), gens["kind"].append(g.kind);
       gens["accepted_candidate"].append(or_none(g.accepted >= 0, py::int_(g.accepted)));
       gens["best_tortuosity"].append(g.best_t), gens["touched"].append(g.touched), gens["seconds"].append(g.seconds);

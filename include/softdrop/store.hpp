@@ -232,6 +232,9 @@ struct BestCurve {
 };
 /// Throws as arrangement_values.
 BestCurve best_rows(History& history, std::int64_t run);
+/// The same from what a caller has read already: the run's row, its generations and validations.
+BestCurve best_rows(const RunRecord& run, const std::vector<GenerationRecord>& generations,
+                    const std::vector<ValidationRecord>& validations);
 
 /// Opens an SQLite history. A missing file (read_only), a file that is not SQLite, a foreign SQLite
 /// database, one from a newer schema or a truncated or corrupted one gives std::runtime_error with

@@ -77,10 +77,13 @@ ArrangementValues arrangement_values(History& history, std::int64_t run, const C
 }
 
 BestCurve best_rows(History& history, std::int64_t run) {
+  return best_rows(history.run(run), history.generations(run), history.validations(run));
+}
+
+BestCurve best_rows(const RunRecord& run, const std::vector<GenerationRecord>& generations,
+                    const std::vector<ValidationRecord>& validations) {
   BestCurve curve;
-  curve.robust = params_of(history.run(run)).value("objective", "single") != "single";
-  const std::vector<GenerationRecord> generations = history.generations(run);
-  const std::vector<ValidationRecord> validations = history.validations(run);
+  curve.robust = params_of(run).value("objective", "single") != "single";
   for (const BestPoint& p : best_curve(generations, curve.robust)) {
     const GenerationRecord& g = generations[static_cast<std::size_t>(p.generation)];
     curve.rows.push_back({p, g.kind, g.touched, held_out_of(validations, p.generation)});
