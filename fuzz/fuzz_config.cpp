@@ -14,7 +14,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (size == 0) return 0;
   static const std::array<const char*, 5> commands{"simulate", "optimize", "sweep", "render", "medium"};
   const std::size_t which = data[0] % commands.size();
-  static const std::string path = "/tmp/softdrop-fuzz-config-" + std::to_string(::getpid()) + ".toml";
+  // The scratch file, removed when the fuzzer exits normally.
+  static const struct Scratch {
+    std::string path = "/tmp/softdrop-fuzz-config-" + std::to_string(::getpid()) + ".toml";
+    ~Scratch() { std::remove(path.c_str()); }
+  } scratch;
+  const std::string& path = scratch.path;
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(reinterpret_cast<const char*>(data) + 1, static_cast<std::streamsize>(size - 1));

@@ -80,13 +80,23 @@ void write_file(const std::string& path, const char* data, std::size_t size) {
   out.write(data, static_cast<std::streamsize>(size));
 }
 
+/// The fuzzer's scratch database, removed with SQLite's companions when the fuzzer exits normally.
+struct ScratchDb {
+  std::string path = "/tmp/softdrop-fuzz-db-" + std::to_string(::getpid()) + ".db";
+  void clear() const {
+    for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::remove((path + suffix).c_str());
+  }
+  ~ScratchDb() { clear(); }
+};
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  static const std::string path = "/tmp/softdrop-fuzz-db-" + std::to_string(::getpid()) + ".db";
+  static const ScratchDb scratch;
+  const std::string& path = scratch.path;
   static const std::string history_seed = slurp(SOFTDROP_FUZZ_CORPUS "/history_db/history.db");
   static const std::string sweep_seed = slurp(SOFTDROP_FUZZ_CORPUS "/history_db/sweep.db");
-  for (const char* suffix : {"", "-wal", "-shm", "-journal"}) std::remove((path + suffix).c_str());
+  scratch.clear();
   const char* bytes = reinterpret_cast<const char*>(data);
   if (size >= 6 && std::memcmp(bytes, "SQLite", 6) == 0) {
     write_file(path, bytes, size);

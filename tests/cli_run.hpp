@@ -6,9 +6,11 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -33,10 +35,41 @@ struct Result {
   std::string out, err;
 };
 
-/// A path in the temporary directory, unique to this test process.
-inline std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("softdrop_" + std::to_string(::getpid()) + "_" + name)).string();
+/// A directory of this test process's own, made on first use and removed with everything in it when the
+/// process exits normally, so a run of the suite leaves nothing in the temporary directory. A test that
+/// crashes leaves its files for inspection. A forked child that exits normally does not remove its
+/// parent's directory.
+class TempDir {
+ public:
+  TempDir() {
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / ("softdrop_test_" + std::to_string(::getpid()) + "_XXXXXX")).string();
+    if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("cannot make a directory like " + pattern);
+    path_ = pattern;
+    // The same permissions as /tmp, for the tests that run the program as another user.
+    std::filesystem::permissions(path_, std::filesystem::perms::all | std::filesystem::perms::sticky_bit);
+  }
+  ~TempDir() {
+    std::error_code ignored;
+    if (::getpid() == owner_) std::filesystem::remove_all(path_, ignored);
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  pid_t owner_ = ::getpid();
+};
+
+/// This test process's temporary directory (see TempDir).
+inline const std::filesystem::path& temp_dir() {
+  static const TempDir dir;
+  return dir.path();
 }
+
+/// A path in this test process's temporary directory.
+inline std::string temp_path(const std::string& name) { return (temp_dir() / name).string(); }
 
 /// temp_path(name) with no file there, nor SQLite's -wal and -shm companions.
 inline std::string fresh_path(const std::string& name) {

@@ -4,14 +4,13 @@
 #include <fstream>
 #include <iterator>
 
+#include "cli_run.hpp"
 #include "softdrop/medium.hpp"
 
 namespace softdrop {
 namespace {
 
-std::string temp_path(const std::string& name) {
-  return (std::filesystem::temp_directory_path() / ("softdrop_test_" + name)).string();
-}
+using test::temp_path;
 
 void write(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
