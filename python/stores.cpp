@@ -279,6 +279,9 @@ void bind_stores(py::module_& m) {
   static py::exception<DatabaseError> error =
       py::register_exception<DatabaseError>(m, "StoreError", PyExc_RuntimeError);
   g_store_error = error.ptr();
+  error.attr("__doc__") =
+      "A database softdrop cannot use (missing, not softdrop's, damaged, or written by a newer softdrop): the "
+      "message names the file and what is wrong with it. A RuntimeError.";
 
   m.def(
       "_read_history",

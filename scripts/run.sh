@@ -10,7 +10,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ -z ${SOFTDROP:-} ]]; then
   echo "run.sh: building softdrop (a few minutes the first time; the log is build.log)" >&2
-  bash scripts/build.sh > build.log 2>&1 || { tail -n 30 build.log; echo "run.sh: the build failed; see build.log" >&2; exit 1; }
+  SOFTDROP_TARGETS=softdrop bash scripts/build.sh > build.log 2>&1 || { tail -n 30 build.log; echo "run.sh: the build failed; see build.log" >&2; exit 1; }
 fi
 S=${SOFTDROP:-./build/softdrop}
 mkdir -p results/run

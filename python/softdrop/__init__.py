@@ -10,13 +10,13 @@ for bit. Lengths, times and masses are in the paper's numerical units (see docs/
     summary = softdrop.optimize("search.db", generations=50, lambda_=2, quiet=True)
     history = softdrop.read_history("search.db")          # DataFrames
 """
-import numbers
-import os
+import numbers as _numbers
+import os as _os
 
 from ._core import DropletParams, Medium, RunOptions, StoreError, __version__  # noqa: F401
 from . import _core
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "simulate_pair",
+__all__ = ["DropletParams", "Medium", "Result", "RunOptions", "StoreError", "simulate", "simulate_many", "simulate_pair",
            "simulate_pairs", "held_out", "tortuosity", "optimize",
            "sweep", "rigid_descent", "read_history", "read_sweep", "sweep_droplet", "best_arrangement", "columns",
            "__version__"]
@@ -190,14 +190,14 @@ def _medium(medium):
     """A Medium, or a grain file's name (str or os.PathLike) read into one."""
     if isinstance(medium, Medium):
         return medium
-    if isinstance(medium, (str, os.PathLike)):
+    if isinstance(medium, (str, _os.PathLike)):
         return Medium.load(medium)
     raise TypeError(f"medium: a Medium or a grain file name, not {type(medium).__name__}")
 
 
 def _whole(value, name, least=None):
     """An integer argument: a float such as 2.5 is refused rather than cut to 2."""
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+    if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
         raise TypeError(f"{name}: a whole number, not {value!r}")
     if least is not None and value < least:
         raise ValueError(f"{name} = {value}: must be >= {least}")
@@ -207,9 +207,9 @@ def _whole(value, name, least=None):
 def _db_path(db, name="db"):
     """The file name of a database argument: a str or os.PathLike, not empty (SQLite would make a
     temporary database of "" and throw the run away; str(None) would be a file named None)."""
-    if isinstance(db, bytes) or not isinstance(db, (str, os.PathLike)):
+    if isinstance(db, bytes) or not isinstance(db, (str, _os.PathLike)):
         raise TypeError(f"{name}: a file name (str or os.PathLike), not {db!r}")
-    path = os.fspath(db)
+    path = _os.fspath(db)
     if not path:
         raise ValueError(f"{name}: an empty file name")
     return path
@@ -334,9 +334,9 @@ def read_history(db, arrangements=True):
         try:
             row = json.loads(text)
         except ValueError as e:  # JSONDecodeError, or text that is not UTF-8
-            raise StoreError(f"db '{os.fspath(db)}': run {run_id}: its params are not JSON ({e})") from None
+            raise StoreError(f"db '{_os.fspath(db)}': run {run_id}: its params are not JSON ({e})") from None
         if not isinstance(row, dict):
-            raise StoreError(f"db '{os.fspath(db)}': run {run_id}: its params are not a JSON object")
+            raise StoreError(f"db '{_os.fspath(db)}': run {run_id}: its params are not a JSON object")
         rows.append(row)
     params = pd.json_normalize(rows)
     params.insert(0, "run", frames["runs"]["run"].to_numpy())
@@ -355,7 +355,7 @@ def read_sweep(db, sweep=None):
     A file the store refuses raises StoreError naming it."""
     import pandas as pd
 
-    if sweep is not None and (isinstance(sweep, bool) or not isinstance(sweep, numbers.Integral) or sweep < 1):
+    if sweep is not None and (isinstance(sweep, bool) or not isinstance(sweep, _numbers.Integral) or sweep < 1):
         raise ValueError(f"sweep = {sweep!r}: sweep ids are whole numbers from 1 (None: every sweep)")
     tables = _core._read_sweep(_db_path(db), int(sweep or 0))
     return {name: pd.DataFrame(columns) for name, columns in tables.items()}
@@ -381,9 +381,9 @@ def sweep_droplet(db, porosity_index, medium_index, droplet, sweep=None):
     add path=True or trace=True to see how it got there. `sweep` is the sweep's id (None: the only
     one in the file). A sweep of pairs is refused: a pair's first droplet does not run alone."""
     for name, value in (("porosity_index", porosity_index), ("medium_index", medium_index), ("droplet", droplet)):
-        if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        if isinstance(value, bool) or not isinstance(value, _numbers.Integral):
             raise TypeError(f"{name}: a whole number, not {value!r}")
-    if sweep is not None and (isinstance(sweep, bool) or not isinstance(sweep, numbers.Integral) or sweep < 1):
+    if sweep is not None and (isinstance(sweep, bool) or not isinstance(sweep, _numbers.Integral) or sweep < 1):
         raise ValueError(f"sweep = {sweep!r}: sweep ids are whole numbers from 1 (None: the only one)")
     return Result(_core._sweep_droplet(_db_path(db), int(sweep or 0), int(porosity_index), int(medium_index),
                                        int(droplet)))
@@ -399,6 +399,6 @@ def best_arrangement(db, run=1, generation=-1):
     held_out_tortuosity, held_out_standard_error and held_out_starts (<T> over random starts no
     evaluation used, as stored by the search's end or `softdrop validate`; None if none is
     stored)."""
-    if isinstance(run, bool) or not isinstance(run, numbers.Integral) or run < 1:
+    if isinstance(run, bool) or not isinstance(run, _numbers.Integral) or run < 1:
         raise ValueError(f"run = {run!r}: run ids are whole numbers from 1")
     return Result(_core._arrangement(_db_path(db), int(run), int(generation)))

@@ -17,7 +17,7 @@ _Path = Union[str, PathLike[str]]
 _MediumLike = Union[Medium, _Path]
 _Event = dict[str, Any]
 
-__all__ = ["DropletParams", "Medium", "RunOptions", "StoreError", "simulate", "simulate_many", "simulate_pair",
+__all__ = ["DropletParams", "Medium", "Result", "RunOptions", "StoreError", "simulate", "simulate_many", "simulate_pair",
            "simulate_pairs", "held_out", "tortuosity", "optimize",
            "sweep", "rigid_descent", "read_history", "read_sweep", "sweep_droplet", "best_arrangement", "columns",
            "__version__"]

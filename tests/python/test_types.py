@@ -95,3 +95,12 @@ def test_the_stub_writer_refuses_a_template_without_its_one_marker_and_writes_no
         assert r.stderr == f"droplet_stub: {tmp_path / 'bad.pyi.in'}: needs the line @DROPLET_PARAMS_FIELDS@ once, " \
                            f"not {times} times\n"
         assert sorted(p.name for p in tmp_path.iterdir()) == ["_core.pyi", "bad.pyi.in"]
+
+
+def test_the_package_shows_its_api_and_only_that():
+    # What a user's tab completion lists is __all__ (and the plot submodule once imported): no
+    # module the package itself imports; and each name says what it is.
+    public = {n for n in dir(softdrop) if not n.startswith("_")} - {"plot"}
+    assert public == set(softdrop.__all__) - {"__version__"}
+    for name in public:
+        assert (getattr(softdrop, name).__doc__ or "").strip(), name
