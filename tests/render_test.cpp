@@ -47,6 +47,29 @@ TEST(Render, PngHasTheAskedWidthAndIsNotBlank) {
   EXPECT_GT(png.non_background, 2000);
 }
 
+// A grain's fill darkens with its share (of the droplets that touched it): more ink for more share,
+// and even the share of one droplet in fifty is seen against an unfilled grain.
+TEST(Render, AGrainsFillDarkensWithItsShare) {
+  const auto ink = [](double share) {
+    Scene s;
+    s.medium = Medium{100, 80, false, {{50, 40, 20}}, nullptr};
+    s.filled = {share};
+    s.caption = "";
+    const std::string out = fresh("share.png");
+    RenderStyle style;
+    style.width = 200;
+    render_scene(s, style, out);
+    double sum = 0;
+    for (const std::uint32_t p : png_pixels(out)) sum += 3 * 255 - ((p >> 16) & 0xff) - ((p >> 8) & 0xff) - (p & 0xff);
+    return sum;
+  };
+  const double none = ink(0), least = ink(1.0 / 50), half = ink(0.5), whole = ink(1), beyond = ink(7);
+  EXPECT_GT(least, 1.2 * none);
+  EXPECT_GT(half, 1.5 * least);
+  EXPECT_GT(whole, 1.2 * half);
+  EXPECT_EQ(beyond, whole);  // a share is at most 1
+}
+
 // A caption longer than the picture is shrunk until the whole of it fits inside the margins: no
 // pixel of it in the right margin, at any of these widths.
 TEST(Render, ALongCaptionStaysInsideTheRightMargin) {

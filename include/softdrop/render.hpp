@@ -77,8 +77,11 @@ struct Field {
 
 struct Scene {
   Medium medium;
-  Field field;                       ///< optional, under everything else
-  std::vector<std::uint8_t> filled;  ///< per grain, nonzero: fill it (touched grains)
+  Field field;  ///< optional, under everything else
+  /// Per grain, how strongly it is filled in RenderStyle::touched, from 0 (not filled) to 1: 1 for
+  /// a grain that one droplet touched; among many droplets, the share of them that touched it
+  /// (any share above 0 is drawn at least faintly).
+  std::vector<double> filled;
   std::vector<Polyline> lines;
   std::vector<Label> labels;  ///< drawn on top of everything in the box
   std::string caption;        ///< under the picture; "\n" starts another line

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "cli/history_command.hpp"
 #include "cli/kept_arrangement.hpp"
@@ -103,12 +104,15 @@ int render_search(RenderArgs& a) {
     const std::vector<RunSummary> runs = run_paths(stored.droplet, best.medium, recorded, batch, a);
     add_paths(scene, runs, a, 0);
     int passed = 0;
+    std::vector<int> touched_by(best.medium.grains.size(), 0);
     for (const RunSummary& r : runs) {
       passed += r.outcome == Outcome::passed;
-      for (std::int32_t i : r.touched) scene.filled[static_cast<std::size_t>(i)] = 1;
+      for (std::int32_t i : r.touched) ++touched_by[static_cast<std::size_t>(i)];
     }
+    for (std::size_t i = 0; i < touched_by.size(); ++i)
+      scene.filled[i] = static_cast<double>(touched_by[i]) / static_cast<double>(runs.size());
     drawn = std::to_string(droplets) + (values.held_out ? " held-out paths (" : " paths from random starts (") +
-            std::to_string(passed) + " passed), the grains they touched filled";
+            std::to_string(passed) + " passed), each grain shaded by the share of them that touched it";
   } else {
     for (std::int32_t i : best.eval.touched) scene.filled[static_cast<std::size_t>(i)] = 1;
     drawn = std::to_string(best.eval.touched.size()) + " grains touched (filled)";

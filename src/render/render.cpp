@@ -230,13 +230,17 @@ void draw_scene(cairo_t* cr, const Scene& scene, const RenderStyle& style, const
   }
   for (std::size_t i = 0; i < m.grains.size(); ++i) {
     const Grain& gr = m.grains[i];
-    const bool fill = i < scene.filled.size() && scene.filled[i];
+    const double share = i < scene.filled.size() ? std::clamp(scene.filled[i], 0.0, 1.0) : 0.0;
+    const bool fill = share > 0;
     if (style.solid_grains && !fill) continue;
+    // The least share still shows: a grain one droplet of many touched is not the background.
+    Rgba touched = style.touched;
+    touched.a *= 0.15 + 0.85 * share;
     for (double x : images(gr)) {
       cairo_new_path(cr);
       cairo_arc(cr, px(x), py(gr.y), g.scale * gr.r, 0, 2 * M_PI);
       if (fill) {
-        set(cr, style.touched);
+        set(cr, touched);
         if (style.solid_grains) {
           cairo_fill(cr);
           continue;
