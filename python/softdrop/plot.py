@@ -47,15 +47,31 @@ def _grain_copies(medium):
     return out
 
 
-def medium(m, ax=None, touched=(), color="0.55", touched_color="0.25"):
+def medium(m, ax=None, touched=(), color="0.55", touched_color="0.25", shares=None):
     """The grains of medium `m` in its box (periodic copies included); grains whose indices are in
-    `touched` are darker. Returns the Figure."""
+    `touched` are drawn in `touched_color`. `shares`, one number from 0 to 1 a grain (say, the
+    share of many droplets that touched it), shades each grain between `color` and
+    `touched_color` as `softdrop render search` does: the least share above 0 still shows, and 0
+    leaves the grain plain. Returns the Figure."""
+    from matplotlib.colors import to_rgba
     from matplotlib.patches import Circle, Rectangle
 
     ax = _axes(ax)
-    touched = set(int(i) for i in touched)
+    n = len(np.asarray(m.grains))
+    weight = np.zeros(n)
+    if shares is not None:
+        s = np.asarray(shares, dtype=float)
+        if s.shape != (n,):
+            raise ValueError(f"shares: one number for each of the {n} grains, not an array of shape {s.shape}")
+        if not np.all((s >= 0) & (s <= 1)):
+            raise ValueError("shares: each must be in [0, 1]")
+        weight = np.where(s > 0, 0.15 + 0.85 * s, 0.0)
+    for i in touched:
+        weight[int(i)] = 1.0
+    plain, dark = np.array(to_rgba(color)), np.array(to_rgba(touched_color))
     for x, y, r, i in _grain_copies(m):
-        ax.add_patch(Circle((x, y), r, facecolor=touched_color if i in touched else color, edgecolor="none"))
+        face = tuple((1 - weight[i]) * plain + weight[i] * dark)
+        ax.add_patch(Circle((x, y), r, facecolor=face, edgecolor="none"))
     ax.add_patch(Rectangle((0, 0), m.width, m.height, fill=False, edgecolor="black", linewidth=0.8))
     ax.set_xlim(0, m.width)
     ax.set_ylim(0, m.height)
@@ -79,12 +95,20 @@ def _pieces(x, y, width):
     return zip(np.split(x, cuts), np.split(y, cuts))
 
 
-def paths(m, runs, ax=None, color="tab:blue", linewidth=0.8, alpha=0.7):
+def paths(m, runs, ax=None, color="tab:blue", linewidth=0.8, alpha=0.7, shade=True):
     """Medium `m` with the centre-of-mass paths of `runs`: results of simulate(..., path=True),
     or path arrays (rows of x, y). A path that wraps across a periodic side is drawn
-    in pieces. Returns the Figure."""
+    in pieces. With `shade`, each grain is shaded by the share of the results that touched it
+    (medium's `shares`; path arrays carry no touched grains). Returns the Figure."""
     ax = _axes(ax)
-    medium(m, ax=ax)
+    results = [run for run in runs if isinstance(run, dict) and "touched_grains" in run]
+    shares = None
+    if shade and results:
+        counts = np.zeros(len(np.asarray(m.grains)))
+        for run in results:
+            counts[np.asarray(run["touched_grains"], dtype=int)] += 1
+        shares = counts / len(results)
+    medium(m, ax=ax, shares=shares)
     for run in runs:
         path = run["path"] if isinstance(run, dict) else run
         x, y = _xy(path)

@@ -32,6 +32,29 @@ def test_a_medium_is_drawn_with_the_periodic_copies_of_grains_that_cross_a_side(
     plt.close(fig)
 
 
+def test_grains_are_shaded_by_the_share_of_droplets_that_touched_them():
+    m = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
+    n = len(np.asarray(m.grains))
+    shares = np.zeros(n)
+    shares[:3] = [1.0, 0.5, 0.02]
+    circles = grain_circles(softdrop.plot.medium(m, shares=shares).axes[0])
+    darkness = {i: 1 - c.get_facecolor()[0] for c, (_, _, _, i) in zip(circles, softdrop.plot._grain_copies(m))}
+    assert darkness[0] > darkness[1] > darkness[2] > darkness[3] == pytest.approx(1 - 0.55)
+    for bad, match in (([0.5], "each of the"), (np.full(n, 1.5), r"\[0, 1\]"), (np.full(n, np.nan), r"\[0, 1\]")):
+        with pytest.raises(ValueError, match=match):
+            softdrop.plot.medium(m, shares=bad)
+    # paths() shades by its runs: the share of the two droplets that touched each grain.
+    runs = [softdrop.simulate(m, x0=x, path=True) for x in (100, 200)]
+    touched = [set(run.touched_grains) for run in runs]
+    assert touched[0] & touched[1] and touched[0] ^ touched[1]  # grains both touched, and one only
+    fig = softdrop.plot.paths(m, runs)
+    for circle, (_, _, _, i) in zip(grain_circles(fig.axes[0]), softdrop.plot._grain_copies(m)):
+        share = sum(i in t for t in touched) / 2
+        weight = 0.15 + 0.85 * share if share else 0
+        assert circle.get_facecolor()[0] == pytest.approx(0.55 + weight * (0.25 - 0.55)), i
+    plt.close("all")
+
+
 def test_paths_are_cut_where_they_wrap_and_drawn_into_the_callers_axes():
     m = softdrop.Medium.generate("non-overlapping", porosity=0.8, seed=1)
     run = softdrop.simulate(m, x0=20, path=True)
