@@ -93,6 +93,29 @@ TEST(GrainFile, BadFilesGiveErrorsNamingTheFile) {
   }
 }
 
+// A database or an image given where grains are expected is said for what it is, whatever its name.
+TEST(GrainFile, ADatabaseOrAnImageIsNamedForWhatItIs) {
+  struct Binary {
+    std::string name, head, expect;
+  };
+  for (const Binary& b : {Binary{"history.db", std::string("SQLite format 3\0", 16), "is an SQLite database"},
+                          Binary{"best.json", std::string("SQLite format 3\0", 16), "softdrop export --db"},
+                          Binary{"rock.dat", "\x89PNG\r\n\x1a\n", "name it .png, .tif or .npy"},
+                          Binary{"rock.csv", std::string("II*\0", 4), "is an image"},
+                          Binary{"rock.json", std::string("MM\0*", 4), "is an image"},
+                          Binary{"array.csv", "\x93NUMPY\x01\x00", "numpy array"}}) {
+    const std::string path = temp_path(b.name);
+    write(path, b.head + std::string(200, 'x'));
+    const std::string error = load_error(path);
+    EXPECT_EQ(error.rfind("grain file '" + path + "': ", 0), 0u) << b.name << ": " << error;
+    EXPECT_NE(error.find(b.expect), std::string::npos) << b.name << ": " << error;
+  }
+  // Text that merely begins with such letters is read as text.
+  const std::string mm = temp_path("mm.csv");
+  write(mm, "MM\n");
+  EXPECT_NE(load_error(mm).find("expected header"), std::string::npos);
+}
+
 TEST(GrainFile, SaveIntoMissingDirectoryFailsAndLeavesNothing) {
   const std::string dir = temp_path("no_such_dir");
   EXPECT_THROW(save_medium(dir + "/m.json", Medium{}), std::runtime_error);

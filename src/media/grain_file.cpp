@@ -178,6 +178,25 @@ Medium load_csv(const std::string& path, std::istream& in) {
   return m;
 }
 
+// A file that is plainly not text, by its first bytes, said for what it is: the grain parsers
+// would name its binary header instead. Leaves the stream at its start.
+void refuse_binary(const std::string& path, std::istream& in) {
+  std::string head(16, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  in.clear();
+  in.seekg(0);
+  const auto starts = [&](const std::string& magic) { return head.rfind(magic, 0) == 0; };
+  if (starts(std::string("SQLite format 3\0", 16)))
+    bad(path,
+        "is an SQLite database (a history or sweep store?), not a list of grains; `softdrop export --db FILE --run N "
+        "-o best.json` writes a search's arrangement as a grain file");
+  if (starts("\x89PNG") || starts(std::string("II*\0", 4)) || starts(std::string("MM\0*", 4)) || starts("\x93NUMPY"))
+    bad(path,
+        "is an image or a numpy array, not a list of grains; name it .png, .tif or .npy to read it as an image "
+        "medium");
+}
+
 }  // namespace
 
 GrainFileFormat grain_file_format(const std::string& path) {
@@ -204,8 +223,9 @@ Medium load_medium(const std::string& path) {
       bad(path, std::to_string(bytes >> 20) + " MiB, more than the limit of " +
                     std::to_string(kMaxGrainFileBytes >> 20) + " MiB for a grain file");
   }
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   if (!in) bad(path, std::string("cannot open (") + std::strerror(errno) + ")");
+  refuse_binary(path, in);
   return read_medium(in, grain_file_format(path), path);
 }
 
