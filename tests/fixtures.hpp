@@ -1,6 +1,7 @@
 #pragma once
 // Shared scenes for the tests.
 
+#include <cmath>
 #include <set>
 #include <string>
 
@@ -25,6 +26,12 @@ inline DropletState jiggled_ring(int masses, std::uint64_t seed, double amplitud
   for (int i = 0; i < s.size(); ++i)
     s.x[i] += rng.uniform(-amplitude, amplitude), s.y[i] += rng.uniform(-amplitude, amplitude);
   return s;
+}
+
+/// The length of spring i of a ring: from mass i to the next (the last to the first).
+inline double spring_length(const DropletState& s, int i) {
+  const int j = (i + 1) % s.size();
+  return std::hypot(s.x[j] - s.x[i], s.y[j] - s.y[i]);
 }
 
 /// Narrows the constraint's vector width for a scope (every width gives the same bits; tests

@@ -169,15 +169,15 @@ TEST(Objective, ACandidateMustBeatItsParentBeyondTheNoise) {
   EXPECT_FALSE(detail::improves(c, parent, o));
 }
 
-struct SearchRun {
+struct RobustHistory {
   std::vector<Generation> history;
   Configuration best;
 };
-SearchRun robust_run(const SearchOptions& o, int generations, int threads) {
+RobustHistory robust_run(const SearchOptions& o, int generations, int threads) {
   Configuration best;
   initial_generation(test::small_search_medium(), o, &best);
   Search s(o, best, 0);
-  SearchRun r;
+  RobustHistory r;
   for (int i = 0; i < generations; ++i) r.history.push_back(s.next(threads));
   r.best = s.best();
   return r;
@@ -186,7 +186,7 @@ SearchRun robust_run(const SearchOptions& o, int generations, int threads) {
 TEST(Objective, TheRobustSearchReRunsItsParentAndKeepsTheMeanOfTheReRunsAsItsBest) {
   SearchOptions o = robust_options(ObjectiveKind::mean, 6, 3);
   o.objective.margin = 0;  // accept often, to see both branches in a few generations
-  const SearchRun r = robust_run(o, 8, 2);
+  const RobustHistory r = robust_run(o, 8, 2);
   int accepted = 0;
   double mean = 0;
   int reruns = 0;
@@ -210,7 +210,7 @@ TEST(Objective, TheRobustSearchReRunsItsParentAndKeepsTheMeanOfTheReRunsAsItsBes
   EXPECT_GT(accepted, 0);
   EXPECT_LT(accepted, 8);
   // Threads change nothing.
-  const SearchRun one = robust_run(o, 8, 1);
+  const RobustHistory one = robust_run(o, 8, 1);
   for (std::size_t i = 0; i < r.history.size(); ++i) {
     EXPECT_EQ(one.history[i].accepted, r.history[i].accepted);
     EXPECT_EQ(one.history[i].best_t, r.history[i].best_t);
@@ -222,8 +222,8 @@ TEST(Objective, ARobustSearchResumedFromItsStoredStateGoesOnBitForBit) {
   SearchOptions o = robust_options(ObjectiveKind::lower_bound, 5, 2);
   o.strategy.kind = StrategyKind::es;
   o.objective.margin = 0.5;
-  const SearchRun whole = robust_run(o, 10, 2);
-  const SearchRun first = robust_run(o, 5, 2);
+  const RobustHistory whole = robust_run(o, 10, 2);
+  const RobustHistory first = robust_run(o, 5, 2);
   // What a resume has: the last kept arrangement with its evaluation on the starts it was kept
   // on, the stored best_t and the strategy's state.
   Configuration current = first.best;
