@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "balloon.hpp"
 #include "cli_run.hpp"
@@ -299,6 +300,30 @@ TEST(RenderCli, PathsColourPassedAndStuckDropletsApart) {
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("rgb(100%,0%,0%)"), std::string::npos) << "passed paths";
   EXPECT_NE(text.find("rgb(0%,0%,100%)"), std::string::npos) << "stuck paths";
+}
+
+// Separate grains are shaded by the share of the droplets that touched them, as in render search;
+// overlapping ones, drawn as their union, are not (discs shaded one by one would darken each overlap).
+TEST(RenderCli, PathsShadeSeparateGrainsByTheShareOfDropletsThatTouchedThem) {
+  const auto draw = [](const std::string& kind, const std::string& svg) {
+    const test::Result r = test::run("render paths --kind " + kind +
+                                     " --porosity 0.8 --width 200 --height 200 --droplets 8 --seed 1 --r-min 8 "
+                                     "--r-max 16 --touched-colour '#00ff00' --quiet -o " +
+                                     svg + test::kBalloonOptions);
+    EXPECT_EQ(r.code, 0) << r.err;
+    tinyxml2::XMLDocument doc;
+    EXPECT_EQ(doc.LoadFile(svg.c_str()), tinyxml2::XML_SUCCESS);
+    std::ifstream in(svg);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return std::pair{test::count_styled(doc.RootElement(), "fill:rgb(0%,100%,0%)"),
+                     text.find("shaded by the share") != std::string::npos};
+  };
+  const auto [separate_fills, separate_caption] = draw("non-overlapping", fresh("paths_separate.svg"));
+  EXPECT_GT(separate_fills, 0);
+  EXPECT_TRUE(separate_caption);
+  const auto [overlapping_fills, overlapping_caption] = draw("overlapping", fresh("paths_overlapping.svg"));
+  EXPECT_EQ(overlapping_fills, 0);
+  EXPECT_FALSE(overlapping_caption);
 }
 
 // 600 droplets (refused from 417 on while every path was kept whole at its worst case): each finished

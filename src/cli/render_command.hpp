@@ -72,6 +72,9 @@ std::vector<RunSummary> run_paths(const DropletParams& droplet, const Medium& me
 /// --stuck-colour, each at `alpha` (0: 10 / runs, at least 0.03).
 void add_paths(Scene& scene, const std::vector<RunSummary>& runs, const RenderArgs& args, double alpha);
 
+/// Fills each grain by the share of `runs` that touched it (Scene::filled).
+void shade_by_touches(Scene& scene, const std::vector<RunSummary>& runs);
+
 /// `render paths` and `render search` (render_paths.cpp, render_search.cpp).
 int render_paths(RenderArgs& args);
 int render_search(RenderArgs& args);

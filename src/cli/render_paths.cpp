@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <stdexcept>
+#include <vector>
 
 #include "cli/output.hpp"
 #include "cli/render_command.hpp"
@@ -80,6 +82,17 @@ void add_paths(Scene& scene, const std::vector<RunSummary>& runs, const RenderAr
                                     scene.medium.height));
 }
 
+void shade_by_touches(Scene& scene, const std::vector<RunSummary>& runs) {
+  std::vector<int> touched_by(scene.medium.grains.size(), 0);
+  for (const RunSummary& r : runs)
+    for (std::int32_t i : r.touched)
+      if (i >= 0 && static_cast<std::size_t>(i) < touched_by.size()) ++touched_by[static_cast<std::size_t>(i)];
+  scene.filled.assign(touched_by.size(), 0);
+  if (runs.empty()) return;
+  for (std::size_t i = 0; i < touched_by.size(); ++i)
+    scene.filled[i] = static_cast<double>(touched_by[i]) / static_cast<double>(runs.size());
+}
+
 int render_paths(RenderArgs& a) {
   const RunOptions run = paths_run(a.run, a.batch.droplets, a, a.droplet);
   const RenderStyle style = style_of(a);
@@ -87,10 +100,15 @@ int render_paths(RenderArgs& a) {
   scene.medium = medium_of(a);
   const std::vector<RunSummary> runs = run_paths(a.droplet, scene.medium, run, a.batch, a);
   add_paths(scene, runs, a, a.alpha);
+  // Separate grains are shaded by how many droplets met them; overlapping ones are drawn as their
+  // union, where discs shaded one by one would darken each overlap.
+  const bool shaded = scene.medium.image == nullptr && !grains_overlap(scene.medium);
+  if (shaded) shade_by_touches(scene, runs);
   const BatchStats stats = summarize(runs);
   scene.caption = std::to_string(stats.droplets) + " droplets: " + std::to_string(stats.passed) + " passed, " +
                   std::to_string(stats.droplets - stats.passed) + " did not" +
-                  (stats.passed ? ", <T> = " + fmt(stats.mean_tortuosity, 4) : "") + "; " +
+                  (stats.passed ? ", <T> = " + fmt(stats.mean_tortuosity, 4) : "") +
+                  (shaded ? ", each grain shaded by the share of them that touched it" : "") + "; " +
                   medium_caption(scene.medium);
   draw_picture(scene, style, a.output);
   return 0;

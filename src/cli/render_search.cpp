@@ -6,7 +6,6 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
-#include <vector>
 
 #include "cli/history_command.hpp"
 #include "cli/kept_arrangement.hpp"
@@ -103,14 +102,9 @@ int render_search(RenderArgs& a) {
     const RunOptions recorded = paths_run(stored.run, droplets, a, stored.droplet);
     const std::vector<RunSummary> runs = run_paths(stored.droplet, best.medium, recorded, batch, a);
     add_paths(scene, runs, a, 0);
+    shade_by_touches(scene, runs);
     int passed = 0;
-    std::vector<int> touched_by(best.medium.grains.size(), 0);
-    for (const RunSummary& r : runs) {
-      passed += r.outcome == Outcome::passed;
-      for (std::int32_t i : r.touched) ++touched_by[static_cast<std::size_t>(i)];
-    }
-    for (std::size_t i = 0; i < touched_by.size(); ++i)
-      scene.filled[i] = static_cast<double>(touched_by[i]) / static_cast<double>(runs.size());
+    for (const RunSummary& r : runs) passed += r.outcome == Outcome::passed;
     drawn = std::to_string(droplets) + (values.held_out ? " held-out paths (" : " paths from random starts (") +
             std::to_string(passed) + " passed), each grain shaded by the share of them that touched it";
   } else {
